@@ -1,0 +1,161 @@
+#include "Commands.h"
+
+#include <mrloc/beacons/BeaconLocalizer.h>
+#include <mrloc/common/Error.h>
+#include <mrloc/common/LocalizationRun.h>
+#include <mrloc/report/Report.h>
+#include <mrloc/sim/Simulator.h>
+#include <mrpt/3rdparty/tclap/CmdLine.h>
+#include <mrpt/config/CConfigFile.h>
+#include <mrpt/config/CConfigFileMemory.h>
+
+#include <cctype>
+#include <filesystem>
+#include <iostream>
+#include <set>
+
+namespace mrloc::app {
+
+namespace {
+
+constexpr const char* kVersion = "0.1.0";
+
+common::LocalizerRegistry makeRegistry() {
+    common::LocalizerRegistry r;
+    beacons::registerLocalizers(r);
+    return r;
+}
+
+/** Opens an INI and rejects lower-case sections that mrloc does not know (a misspelt
+ *  section would otherwise be ignored). Sections of MRPT's apps start with upper case. */
+std::unique_ptr<mrpt::config::CConfigFile> openIni(const std::string& path) {
+    if (!std::filesystem::is_regular_file(path)) throw Error("config " + path + ": no such file");
+    auto ini = std::make_unique<mrpt::config::CConfigFile>(path);
+    std::vector<std::string> sections;
+    ini->getAllSections(sections);
+    static const std::set<std::string> known = {"scenario", "world", "sensors", "beacons", "report"};
+    for (const auto& s : sections) {
+        if (s.empty() || !std::islower(static_cast<unsigned char>(s[0]))) continue;
+        if (known.count(s) || s.rfind("robot.", 0) == 0) continue;
+        throw Error(path + ": [" + s + "]: unknown section (mrloc's sections: scenario, world, "
+                    "sensors, robot.<name>, beacons, report; see doc/ini.md)");
+    }
+    return ini;
+}
+
+struct Common {
+    TCLAP::ValueArg<std::string> out{"o", "out", "output directory (default: out/<scenario name>)",
+                                     false, "", "DIR"};
+    TCLAP::SwitchArg quiet{"q", "quiet", "no progress bar, only errors"};
+};
+
+std::string outDirOr(Common& c, const std::string& name) {
+    return c.out.isSet() ? c.out.getValue() : "out/" + name;
+}
+
+sim::ScenarioConfig loadScenario(const mrpt::config::CConfigFile& ini, TCLAP::ValueArg<long>& seed) {
+    auto cfg = sim::ScenarioConfig::load(ini);
+    if (seed.isSet()) {
+        if (seed.getValue() < 0) throw Error("--seed must be non-negative");
+        cfg.scenario.seed = (unsigned long)seed.getValue();
+    }
+    return cfg;
+}
+
+/** Validates the method's section before anything is written. */
+std::unique_ptr<common::Localizer> makeLocalizer(const std::string& method,
+                                                 const mrpt::config::CConfigFileBase& ini) {
+    auto loc = makeRegistry().create(method);
+    loc->configure(ini);
+    return loc;
+}
+
+std::string doLocalize(const std::string& method, const mrpt::config::CConfigFileBase& ini,
+                       const mrpt::config::CConfigFileBase& effective, const std::string& rawlog,
+                       const std::string& outDir, bool quiet) {
+    auto loc = makeLocalizer(method, ini);
+    const auto m = common::runLocalization(*loc, {method, rawlog, outDir, quiet}, effective);
+    if (!quiet) {
+        std::cerr << "localized " << m["observations"] << " observations with '" << method << "'";
+        if (m.value("ground_truth", false))
+            std::cerr << ": RMSE " << m["rmse_m"].get<double>() << " m, max "
+                      << m["max_m"].get<double>() << " m over " << m["n"] << " estimates";
+        std::cerr << "\n";
+    }
+    return outDir;
+}
+
+}  // namespace
+
+int simulate(int argc, char** argv) {
+    TCLAP::CmdLine cmd("mrloc simulate: simulate the INI's scenario into a rawlog "
+                       "(<out>/<name>.rawlog) and ground truth (<out>/<name>.<robot>.gt.txt)",
+                       ' ', kVersion);
+    TCLAP::UnlabeledValueArg<std::string> iniArg("ini", "scenario INI file", true, "", "INI", cmd);
+    TCLAP::ValueArg<long> seed("s", "seed", "random seed (overrides [scenario] seed)", false, 0, "N", cmd);
+    Common c;
+    cmd.add(c.out);
+    cmd.add(c.quiet);
+    cmd.parse(argc, argv);
+    const auto ini = openIni(iniArg.getValue());
+    const auto cfg = loadScenario(*ini, seed);
+    makeLocalizer(cfg.scenario.method, *ini);  // a bad method section fails before simulating
+    const std::string path = sim::simulateToFiles(cfg, outDirOr(c, cfg.scenario.name), c.quiet.getValue());
+    std::cout << path << "\n";
+    return 0;
+}
+
+int localize(int argc, char** argv) {
+    TCLAP::CmdLine cmd("mrloc localize: run the INI's method ([scenario] method, default "
+                       "'beacons') on any MRPT rawlog, in either rawlog format. Ground truth "
+                       "is taken from <rawlog stem>.<robot>.gt.txt when present.",
+                       ' ', kVersion);
+    TCLAP::UnlabeledValueArg<std::string> iniArg("ini", "INI file", true, "", "INI", cmd);
+    TCLAP::UnlabeledValueArg<std::string> rawlog("rawlog", "rawlog file", true, "", "RAWLOG", cmd);
+    Common c;
+    cmd.add(c.out);
+    cmd.add(c.quiet);
+    cmd.parse(argc, argv);
+    const auto ini = openIni(iniArg.getValue());
+    sim::ScenarioOptions scenario;
+    scenario.loadFromConfigFile(*ini, "scenario");
+    const std::string dir = outDirOr(c, scenario.name);
+    doLocalize(scenario.method, *ini, *ini, rawlog.getValue(), dir, c.quiet.getValue());
+    std::cout << dir << "\n";
+    return 0;
+}
+
+int report(int argc, char** argv) {
+    TCLAP::CmdLine cmd("mrloc report: render report.html, topview.png, error_time.png and "
+                       "error_cdf.png in a directory written by `mrloc localize`",
+                       ' ', kVersion);
+    TCLAP::UnlabeledValueArg<std::string> dir("run-dir", "run directory", true, "", "DIR", cmd);
+    cmd.parse(argc, argv);
+    std::cout << report::makeReport(dir.getValue()) << "\n";
+    return 0;
+}
+
+int run(int argc, char** argv) {
+    TCLAP::CmdLine cmd("mrloc run: simulate, localize and report in a row; everything goes to "
+                       "<out> (default out/<scenario name>)",
+                       ' ', kVersion);
+    TCLAP::UnlabeledValueArg<std::string> iniArg("ini", "scenario INI file", true, "", "INI", cmd);
+    TCLAP::ValueArg<long> seed("s", "seed", "random seed (overrides [scenario] seed)", false, 0, "N", cmd);
+    Common c;
+    cmd.add(c.out);
+    cmd.add(c.quiet);
+    cmd.parse(argc, argv);
+    const auto ini = openIni(iniArg.getValue());
+    const auto cfg = loadScenario(*ini, seed);
+    makeLocalizer(cfg.scenario.method, *ini);
+    const std::string dir = outDirOr(c, cfg.scenario.name);
+    const std::string rawlog = sim::simulateToFiles(cfg, dir, c.quiet.getValue());
+    mrpt::config::CConfigFileMemory effective;
+    cfg.save(effective);
+    doLocalize(cfg.scenario.method, *ini, effective, rawlog, dir, c.quiet.getValue());
+    const std::string page = report::makeReport(dir);
+    std::cout << "report: " << page << "\n";
+    return 0;
+}
+
+}  // namespace mrloc::app

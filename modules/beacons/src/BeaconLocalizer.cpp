@@ -1,0 +1,168 @@
+#include <mrloc/beacons/BeaconLocalizer.h>
+#include <mrloc/common/Error.h>
+#include <mrloc/common/IniSection.h>
+#include <mrloc/common/Rawlog.h>
+#include <mrpt/obs/CObservationOdometry.h>
+#include <mrpt/system/datetime.h>
+
+namespace mrloc::beacons {
+
+using mrloc::common::IniSection;
+
+void BeaconOptions::loadFromConfigFile(const mrpt::config::CConfigFileBase& src,
+                                       const std::string& section) {
+    IniSection s(src, section);
+    mode = s.choice("mode", "tracker", {"tracker", "fixes"}) == "tracker" ? Mode::Tracker
+                                                                           : Mode::Fixes;
+    threeD = s.choice("dimension", "2d", {"2d", "3d"}) == "3d";
+    auto& f = tracker.fix;
+    f.residual = s.choice("residual", "range", {"range", "squared"}) == "range"
+                     ? Residual::Range
+                     : Residual::SquaredRange;
+    const std::string mirror = s.choice("mirror", "below", {"below", "above", "nearest"});
+    f.mirror = mirror == "below"   ? MirrorRule::Below
+               : mirror == "above" ? MirrorRule::Above
+                                   : MirrorRule::NearestToHint;
+    f.maxIterations = int(s.integer("max_iterations", 20, 1, 1000));
+    f.maxGdop = s.real("max_gdop", 1e3, 1.0);
+    f.knownHeight = threeD ? std::nullopt : std::optional<double>(0.0);  // set per epoch
+    tracker.rangeSigma = s.real("range_sigma", 0.03, 1e-6, 10);
+    tracker.gateProbability = s.real("gate_probability", 0.999, 0.5, 1.0 - 1e-12);
+    tracker.odomSigmaPerMetre = s.real("odometry_sigma_xy", 0.05, 0, 10);
+    tracker.odomSigmaPhiPerRad = s.real("odometry_sigma_phi", 0.05, 0, 10);
+    tracker.odomSigmaPhiPerMetre = s.real("odometry_sigma_phi_per_m", 0.02, 0, 10);
+    tracker.randomWalkSigma = s.real("random_walk_sigma", 0.5, 0, 100);
+    tracker.bootstrapBaseline = s.real("bootstrap_baseline", 0.3, 0.01, 100);
+    tracker.resetAfter = int(s.integer("reset_after", 5, 1, 100000));
+    map = common::loadBeaconMap(src, s);
+    s.finish();
+}
+
+void BeaconOptions::saveToConfigFile(mrpt::config::CConfigFileBase& t,
+                                     const std::string& section) const {
+    const auto& f = tracker.fix;
+    t.write(section, "mode", mode == Mode::Tracker ? "tracker" : "fixes");
+    t.write(section, "dimension", threeD ? "3d" : "2d");
+    t.write(section, "residual", f.residual == Residual::Range ? "range" : "squared");
+    t.write(section, "mirror",
+            f.mirror == MirrorRule::Below   ? "below"
+            : f.mirror == MirrorRule::Above ? "above"
+                                            : "nearest");
+    t.write(section, "max_iterations", f.maxIterations);
+    t.write(section, "max_gdop", f.maxGdop);
+    t.write(section, "range_sigma", tracker.rangeSigma);
+    t.write(section, "gate_probability", tracker.gateProbability);
+    t.write(section, "odometry_sigma_xy", tracker.odomSigmaPerMetre);
+    t.write(section, "odometry_sigma_phi", tracker.odomSigmaPhiPerRad);
+    t.write(section, "odometry_sigma_phi_per_m", tracker.odomSigmaPhiPerMetre);
+    t.write(section, "random_walk_sigma", tracker.randomWalkSigma);
+    t.write(section, "bootstrap_baseline", tracker.bootstrapBaseline);
+    t.write(section, "reset_after", tracker.resetAfter);
+    common::saveBeaconKeys(map, t, section);
+}
+
+void BeaconLocalizer::configure(const mrpt::config::CConfigFileBase& ini) {
+    options_.loadFromConfigFile(ini, "beacons");
+}
+
+void BeaconLocalizer::saveConfig(mrpt::config::CConfigFileBase& target) const {
+    options_.saveToConfigFile(target, "beacons");
+}
+
+BeaconTracker& BeaconLocalizer::trackerOf(const std::string& robot) {
+    auto it = trackers_.find(robot);
+    if (it == trackers_.end())
+        it = trackers_.emplace(robot, BeaconTracker(options_.map, options_.tracker)).first;
+    return it->second;
+}
+
+void BeaconLocalizer::process(const mrpt::obs::CObservation::Ptr& obs) {
+    const std::string robot = common::robotOfLabel(obs->sensorLabel);
+    const double t = mrpt::Clock::toDouble(obs->timestamp);
+    if (auto odo = std::dynamic_pointer_cast<mrpt::obs::CObservationOdometry>(obs)) {
+        trackerOf(robot).onOdometry(odo->odometry);
+        lastHeading_[robot] = odo->odometry.phi();
+        return;
+    }
+    auto ranges = std::dynamic_pointer_cast<mrpt::obs::CObservationBeaconRanges>(obs);
+    if (!ranges) return;
+    if (options_.mode == BeaconOptions::Mode::Fixes) {
+        fixOnly(robot, t, *ranges);
+        return;
+    }
+    if (const auto pose = trackerOf(robot).onRanges(t, *ranges))
+        estimates_[robot].push_back({t, mrpt::poses::CPose3D(*pose)});
+}
+
+void BeaconLocalizer::fixOnly(const std::string& robot, double t,
+                              const mrpt::obs::CObservationBeaconRanges& obs) {
+    // Seed 001 as published: one multilateration per epoch, no filtering.
+    std::vector<RangeMeasurement> m;
+    double sensorZ = 0;
+    for (const auto& r : obs.sensedData) {
+        const auto it = options_.map.find(r.beaconID);
+        if (it == options_.map.end() || !(r.sensedDistance > 0)) continue;
+        m.push_back({{it->second.x, it->second.y, it->second.z}, double(r.sensedDistance), r.beaconID});
+        sensorZ = r.sensorLocationOnRobot.z();
+    }
+    auto& stats = fixStats_[robot];
+    ++stats.epochs;
+    stats.rangesReceived += obs.sensedData.size();
+    stats.rangesUsed += m.size();
+    MultilaterationOptions fo = options_.tracker.fix;
+    fo.rangeSigma = options_.tracker.rangeSigma;
+    if (fo.knownHeight) fo.knownHeight = sensorZ;
+    auto& traj = estimates_[robot];
+    if (!traj.empty())
+        fo.hint = Eigen::Vector3d(traj.back().pose.x(), traj.back().pose.y(), sensorZ);
+    ++stats.fixes;
+    const Fix f = multilaterate(m, fo);
+    if (!f.ok()) {
+        ++stats.fixFailures;
+        return;
+    }
+    if (f.mirrorAmbiguous) ++stats.mirrorResolved;
+    const double z = options_.threeD ? f.position.z() - sensorZ : 0.0;
+    traj.push_back({t, mrpt::poses::CPose3D(f.position.x(), f.position.y(), z,
+                                            lastHeading_.count(robot) ? lastHeading_[robot] : 0.0,
+                                            0, 0)});
+}
+
+nlohmann::json BeaconLocalizer::methodMetrics() const {
+    nlohmann::json j;
+    TrackerStats total;
+    const auto add = [&](const TrackerStats& s) {
+        total.epochs += s.epochs;
+        total.rangesReceived += s.rangesReceived;
+        total.rangesUsed += s.rangesUsed;
+        total.rangesGated += s.rangesGated;
+        total.rangesUnknownBeacon += s.rangesUnknownBeacon;
+        total.fixes += s.fixes;
+        total.fixFailures += s.fixFailures;
+        total.mirrorResolved += s.mirrorResolved;
+        total.resets += s.resets;
+    };
+    for (const auto& [robot, tr] : trackers_) add(tr.stats());
+    for (const auto& [robot, s] : fixStats_) add(s);
+    j["mode"] = options_.mode == BeaconOptions::Mode::Tracker ? "tracker" : "fixes";
+    j["beacons"] = options_.map.size();
+    j["epochs"] = total.epochs;
+    j["ranges_received"] = total.rangesReceived;
+    j["ranges_used"] = total.rangesUsed;
+    j["ranges_gated"] = total.rangesGated;
+    j["ranges_unknown_beacon"] = total.rangesUnknownBeacon;
+    j["fixes"] = total.fixes;
+    j["fix_failures"] = total.fixFailures;
+    j["mirror_resolved"] = total.mirrorResolved;
+    j["filter_resets"] = total.resets;
+    j["reception_rate"] = total.epochs == 0 ? 0.0
+                                            : double(total.rangesReceived) /
+                                                  double(total.epochs * options_.map.size());
+    return j;
+}
+
+void registerLocalizers(common::LocalizerRegistry& registry) {
+    registry.add("beacons", [] { return std::make_unique<BeaconLocalizer>(); });
+}
+
+}  // namespace mrloc::beacons

@@ -1,0 +1,300 @@
+#include <mrloc/beacons/Multilateration.h>
+
+#include <Eigen/Cholesky>
+#include <Eigen/Eigenvalues>
+#include <Eigen/LU>
+#include <cmath>
+
+namespace mrloc::beacons {
+
+using Eigen::Matrix3d;
+using Eigen::Vector3d;
+
+const char* toString(FixStatus s) {
+    switch (s) {
+        case FixStatus::Ok: return "ok";
+        case FixStatus::InvalidInput: return "invalid input (NaN, infinite or negative value)";
+        case FixStatus::TooFewRanges: return "fewer than 3 ranges";
+        case FixStatus::CoincidentBeacons: return "the beacons coincide";
+        case FixStatus::CollinearBeacons: return "the beacons are collinear";
+        case FixStatus::IllConditioned: return "ill-conditioned geometry (GDOP too large)";
+        case FixStatus::AmbiguousMirror: return "mirror ambiguity that the rule cannot resolve";
+        case FixStatus::NotConverged: return "Gauss-Newton did not converge";
+    }
+    return "?";
+}
+
+namespace {
+
+// Eigenvalue ratios below these mark a degenerate spread of beacons.
+constexpr double kCollinearRatio = 1e-8;
+constexpr double kPlanarRatio = 1e-4;  // out-of-plane spread under 1 % of the in-plane one
+constexpr double kCoincident = 1e-12;  // m^2
+
+/** The problem in coordinates centred on the beacons' centroid (better conditioned). */
+struct Centred {
+    std::vector<Vector3d> b;  // beacons relative to the centroid
+    std::vector<double> r2;   // squared ranges (2-D: minus the known vertical offset)
+    Vector3d centroid;
+};
+
+/** Closed-form start from the differences of eq. (5) against their mean, which removes the
+ *  quadratic term: -2 b_i . x = r_i^2 - mean(r^2) - |b_i|^2 + mean(|b|^2). Solved over the
+ *  eigenvectors of the scatter S = sum b_i b_i^T whose eigenvalues are not negligible. */
+template <int D>
+Eigen::Matrix<double, D, 1> linearStart(const Centred& c,
+                                        const Eigen::SelfAdjointEigenSolver<Eigen::Matrix<double, D, D>>& es,
+                                        int usedDims) {
+    double meanR2 = 0, meanB2 = 0;
+    const size_t n = c.b.size();
+    for (size_t i = 0; i < n; ++i) {
+        meanR2 += c.r2[i];
+        meanB2 += c.b[i].template head<D>().squaredNorm();
+    }
+    meanR2 /= double(n);
+    meanB2 /= double(n);
+    Eigen::Matrix<double, D, 1> v = Eigen::Matrix<double, D, 1>::Zero();
+    for (size_t i = 0; i < n; ++i) {
+        const auto bi = c.b[i].template head<D>();
+        v += -0.5 * bi * (c.r2[i] - meanR2 - bi.squaredNorm() + meanB2);
+    }
+    Eigen::Matrix<double, D, 1> x = Eigen::Matrix<double, D, 1>::Zero();
+    for (int k = D - usedDims; k < D; ++k) {
+        const auto e = es.eigenvectors().col(k);
+        x += e * (e.dot(v) / es.eigenvalues()(k));
+    }
+    return x;
+}
+
+/** Mean squared distance off the solved subspace: r_i^2 - |x - b_i|^2, averaged. */
+double outOfSubspace2(const Centred& c, const Vector3d& x, int dims) {
+    double w2 = 0;
+    for (size_t i = 0; i < c.b.size(); ++i) {
+        const Vector3d d = x - c.b[i];
+        w2 += c.r2[i] - (dims == 2 ? d.head<2>().squaredNorm() : d.squaredNorm());
+    }
+    return std::max(0.0, w2 / double(c.b.size()));
+}
+
+/** Gauss-Newton, seed 001 eq. (8)-(10): x(k+1) = x(k) - F'(x(k))^* F(x(k)). With J of full
+ *  column rank the pseudo-inverse is (J^T J)^-1 J^T, applied through the normal equations. */
+int gaussNewton(const std::vector<RangeMeasurement>& m, const Vector3d& centroid, Vector3d& x,
+                int dims, const MultilaterationOptions& o, double& lastStep) {
+    lastStep = 0;
+    for (int it = 1; it <= o.maxIterations; ++it) {
+        Matrix3d JtJ = Matrix3d::Zero();
+        Vector3d Jtf = Vector3d::Zero();
+        for (const auto& mi : m) {
+            const Vector3d d = x - (mi.beacon - centroid);
+            Vector3d g;
+            double f;
+            if (o.residual == Residual::SquaredRange) {
+                f = d.squaredNorm() - mi.range * mi.range;  // eq. (6)
+                g = 2.0 * d;                                // row of eq. (9)
+            } else {
+                const double n = d.norm();
+                if (n < 1e-12) continue;  // at a beacon: the range residual has no gradient
+                f = n - mi.range;
+                g = d / n;
+            }
+            if (dims == 2) g.z() = 0;
+            JtJ.noalias() += g * g.transpose();
+            Jtf.noalias() += g * f;
+        }
+        Vector3d step = Vector3d::Zero();
+        if (dims == 2) {
+            step.head<2>() = JtJ.topLeftCorner<2, 2>().ldlt().solve(Jtf.head<2>());
+        } else {
+            step = JtJ.ldlt().solve(Jtf);
+        }
+        if (!step.allFinite()) return -it;
+        x -= step;  // eq. (10)
+        lastStep = step.norm();
+        if (lastStep <= o.tolerance * (1.0 + x.norm())) return it;
+    }
+    return o.maxIterations;
+}
+
+bool finite(const RangeMeasurement& m) {
+    return m.beacon.allFinite() && std::isfinite(m.range) && m.range >= 0;
+}
+
+}  // namespace
+
+Fix multilaterate(const std::vector<RangeMeasurement>& m, const MultilaterationOptions& o) {
+    Fix fix;
+    for (const auto& mi : m)
+        if (!finite(mi)) return fix;  // InvalidInput
+    if (o.knownHeight && !std::isfinite(*o.knownHeight)) return fix;
+    if (m.size() < 3) {
+        fix.status = FixStatus::TooFewRanges;
+        return fix;
+    }
+    const bool planar2d = o.knownHeight.has_value();
+    const int dims = planar2d ? 2 : 3;
+
+    Centred c;
+    c.centroid = Vector3d::Zero();
+    for (const auto& mi : m) c.centroid += mi.beacon;
+    c.centroid /= double(m.size());
+    const double zKnown = planar2d ? *o.knownHeight - c.centroid.z() : 0.0;
+    c.b.reserve(m.size());
+    c.r2.reserve(m.size());
+    for (const auto& mi : m) {
+        c.b.push_back(mi.beacon - c.centroid);
+        const double dz = zKnown - c.b.back().z();
+        c.r2.push_back(mi.range * mi.range - (planar2d ? dz * dz : 0.0));
+    }
+
+    Vector3d x = Vector3d::Zero();
+    Vector3d normal = Vector3d::Zero();  // of the mirror plane (3-D) or line (2-D)
+    bool mirrored = false;
+    if (planar2d) {
+        Eigen::Matrix2d S = Eigen::Matrix2d::Zero();
+        for (const auto& b : c.b) S += b.head<2>() * b.head<2>().transpose();
+        Eigen::SelfAdjointEigenSolver<Eigen::Matrix2d> es;
+        es.computeDirect(S);
+        if (es.eigenvalues()(1) < kCoincident) {
+            fix.status = FixStatus::CoincidentBeacons;
+            return fix;
+        }
+        mirrored = es.eigenvalues()(0) < kPlanarRatio * es.eigenvalues()(1);
+        x.head<2>() = linearStart<2>(c, es, mirrored ? 1 : 2);
+        if (mirrored) normal.head<2>() = es.eigenvectors().col(0);
+    } else {
+        Matrix3d S = Matrix3d::Zero();
+        for (const auto& b : c.b) S += b * b.transpose();
+        Eigen::SelfAdjointEigenSolver<Matrix3d> es;
+        es.computeDirect(S);
+        const Vector3d& ev = es.eigenvalues();
+        if (ev(2) < kCoincident) {
+            fix.status = FixStatus::CoincidentBeacons;
+            return fix;
+        }
+        if (ev(1) < kCollinearRatio * ev(2)) {
+            fix.status = FixStatus::CollinearBeacons;  // any rotation about the line fits
+            return fix;
+        }
+        mirrored = ev(0) < kPlanarRatio * ev(2);
+        x = linearStart<3>(c, es, mirrored ? 2 : 3);
+        if (mirrored) normal = es.eigenvectors().col(0);
+    }
+
+    if (mirrored) {
+        // All beacons in one plane (3-D) or on one line (2-D): x and its mirror image fit the
+        // ranges equally well. Place the start on the side the rule asks for.
+        const double w = std::sqrt(outOfSubspace2(c, x, dims));
+        const Vector3d a = x + w * normal, b = x - w * normal;
+        const Vector3d hint = o.hint ? Vector3d(*o.hint - c.centroid) : Vector3d::Zero();
+        const bool useHint = o.mirror == MirrorRule::NearestToHint || planar2d ||
+                             std::abs(normal.z()) < 0.1;
+        if (useHint && !o.hint) {
+            fix.status = planar2d ? FixStatus::CollinearBeacons : FixStatus::AmbiguousMirror;
+            return fix;
+        }
+        if (useHint)
+            x = (a - hint).squaredNorm() <= (b - hint).squaredNorm() ? a : b;
+        else
+            x = (o.mirror == MirrorRule::Below) == (a.z() < b.z()) ? a : b;
+    }
+    if (planar2d) x.z() = zKnown;
+
+    double lastStep = 0;
+    fix.iterations = gaussNewton(m, c.centroid, x, dims, o, lastStep);
+    if (fix.iterations < 0 || !x.allFinite()) {
+        fix.iterations = std::abs(fix.iterations);
+        fix.status = FixStatus::IllConditioned;
+        return fix;
+    }
+
+    // Geometry at the solution: H has the unit line-of-sight vectors as rows.
+    Matrix3d HtH = Matrix3d::Zero();
+    Matrix3d JtJ = Matrix3d::Zero(), JtWJ = Matrix3d::Zero();  // squared-range covariance
+    double sumRes2 = 0;
+    const double s2 = o.rangeSigma * o.rangeSigma;
+    for (size_t i = 0; i < m.size(); ++i) {
+        const Vector3d d = x - c.b[i];
+        const double n = d.norm();
+        sumRes2 += (n - m[i].range) * (n - m[i].range);
+        Vector3d u = n > 1e-12 ? Vector3d(d / n) : Vector3d::Zero();
+        Vector3d g = 2.0 * d;
+        if (dims == 2) u.z() = g.z() = 0;
+        HtH += u * u.transpose();
+        JtJ += g * g.transpose();
+        // f_i = |x - x_i|^2 - r_i^2 moves by 2 r_i dr_i for a range error dr_i.
+        JtWJ += g * g.transpose() * (4.0 * m[i].range * m[i].range * s2);
+    }
+    fix.position = x + c.centroid;
+    fix.rmsResidual = std::sqrt(sumRes2 / double(m.size()));
+    if (mirrored) {
+        const Vector3d mirror = x - 2.0 * x.dot(normal) * normal;
+        fix.mirrorAmbiguous = (mirror - x).norm() > 1e-9;
+        fix.mirrorPosition = mirror + c.centroid;
+    }
+
+    const auto block = [dims](const Matrix3d& A) -> Eigen::MatrixXd {
+        return A.topLeftCorner(dims, dims);
+    };
+    Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd> hes(block(HtH), Eigen::EigenvaluesOnly);
+    const double minEig = hes.eigenvalues()(0);
+    if (!(minEig > 1e-12)) {
+        fix.status = FixStatus::IllConditioned;
+        fix.gdop = std::numeric_limits<double>::infinity();
+        return fix;
+    }
+    const Eigen::MatrixXd G = block(HtH).inverse();
+    fix.gdop = std::sqrt(G.trace());
+    Eigen::MatrixXd cov;
+    if (o.residual == Residual::Range) {
+        cov = s2 * G;
+    } else {
+        const Eigen::MatrixXd Ai = block(JtJ).inverse();
+        cov = Ai * block(JtWJ) * Ai;
+    }
+    fix.covariance.topLeftCorner(dims, dims) = cov;
+
+    if (fix.gdop > o.maxGdop)
+        fix.status = FixStatus::IllConditioned;
+    else if (lastStep > 1e-6 * (1.0 + x.norm()))
+        fix.status = FixStatus::NotConverged;
+    else
+        fix.status = FixStatus::Ok;
+    return fix;
+}
+
+Fix robustMultilaterate(const std::vector<RangeMeasurement>& m, const MultilaterationOptions& o,
+                        double outlierThreshold, int* rejectedIndex) {
+    if (rejectedIndex) *rejectedIndex = -1;
+    Fix all = multilaterate(m, o);
+    const size_t minLeft = o.knownHeight ? 3 : 4;  // one spare range to tell who is wrong
+    if ((all.ok() && all.rmsResidual <= outlierThreshold) || m.size() < minLeft + 1) return all;
+    Fix best;
+    int bestIndex = -1;
+    std::vector<RangeMeasurement> subset;
+    for (size_t skip = 0; skip < m.size(); ++skip) {
+        subset.clear();
+        for (size_t i = 0; i < m.size(); ++i)
+            if (i != skip) subset.push_back(m[i]);
+        Fix f = multilaterate(subset, o);
+        if (f.ok() && (bestIndex < 0 || f.rmsResidual < best.rmsResidual)) {
+            best = f;
+            bestIndex = int(skip);
+        }
+    }
+    if (bestIndex < 0 || best.rmsResidual > outlierThreshold) return all;
+    if (rejectedIndex) *rejectedIndex = bestIndex;
+    return best;
+}
+
+double cramerRaoBound(const std::vector<Vector3d>& beacons, const Vector3d& truth, double sigma,
+                      bool knownHeight) {
+    const int dims = knownHeight ? 2 : 3;
+    Eigen::MatrixXd HtH = Eigen::MatrixXd::Zero(dims, dims);
+    for (const auto& b : beacons) {
+        const Vector3d u = (truth - b).normalized();
+        HtH += u.head(dims) * u.head(dims).transpose();
+    }
+    return sigma * std::sqrt(HtH.inverse().trace());
+}
+
+}  // namespace mrloc::beacons

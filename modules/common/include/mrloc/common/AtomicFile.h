@@ -1,0 +1,32 @@
+#pragma once
+// Outputs are written to "<name>.tmp" and renamed when complete, so that an error or a crash
+// never leaves a half-written file under the final name.
+#include <string>
+
+namespace mrloc::common {
+
+/** Writes `content` to `path` atomically (temporary name, then rename). */
+void writeFileAtomically(const std::string& path, const std::string& content);
+
+/** Holds a temporary path; commit() renames it to the final path, otherwise the destructor
+ *  removes it. */
+class PendingFile {
+public:
+    explicit PendingFile(std::string finalPath);
+    ~PendingFile();
+    PendingFile(const PendingFile&) = delete;
+    PendingFile& operator=(const PendingFile&) = delete;
+
+    const std::string& tempPath() const { return temp_; }
+    const std::string& finalPath() const { return final_; }
+    void commit();
+
+private:
+    std::string final_, temp_;
+    bool committed_ = false;
+};
+
+/** Creates a directory and its parents; an error names the directory. */
+void makeDirectories(const std::string& dir);
+
+}  // namespace mrloc::common

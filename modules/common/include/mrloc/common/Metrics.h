@@ -1,0 +1,35 @@
+#pragma once
+// Error statistics of estimates against ground truth, and the metrics.json they go to.
+#include <mrloc/common/Trajectory.h>
+
+#include <nlohmann/json.hpp>
+#include <string>
+#include <vector>
+
+namespace mrloc::common {
+
+struct ErrorStats {
+    size_t n = 0;
+    double rmse = 0, mean = 0, median = 0, p95 = 0, max = 0;
+};
+
+/** Percentile by linear interpolation between order statistics (p in [0, 100]). */
+double percentile(std::vector<double> values, double p);
+ErrorStats computeStats(const std::vector<double>& errors);
+
+struct TimedError {
+    double t;
+    double error;  ///< horizontal (x, y) position error, metres
+};
+
+/** Horizontal position error of every estimate whose time lies inside the ground truth. */
+std::vector<TimedError> positionErrors(const Trajectory& estimate, const Trajectory& truth);
+
+/** The common keys of metrics.json: n, rmse_m, mean_m, median_m, p95_m, max_m. */
+nlohmann::json statsToJson(const ErrorStats& s);
+
+/** Pretty JSON text written atomically. */
+void saveJson(const std::string& path, const nlohmann::json& j);
+nlohmann::json loadJson(const std::string& path);
+
+}  // namespace mrloc::common

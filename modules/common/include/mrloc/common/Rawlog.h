@@ -1,0 +1,74 @@
+#pragma once
+// Streaming rawlog I/O in both of MRPT's formats.
+//
+// Reading yields observations one at a time without loading the file. The older
+// actions + sensory-frames format is flattened: each CSensoryFrame's observations are yielded
+// in turn, and each CActionRobotMovement2D becomes a CObservationOdometry carrying the
+// odometry pose integrated from the increments, so that consumers see one format only.
+// Writing is observations-only, gz-compressed, to a temporary name renamed on commit().
+#include <mrloc/common/AtomicFile.h>
+#include <mrpt/io/CFileGZInputStream.h>
+#include <mrpt/io/CFileGZOutputStream.h>
+#include <mrpt/obs/CObservation.h>
+#include <mrpt/obs/CSensoryFrame.h>
+#include <mrpt/poses/CPose2D.h>
+
+#include <deque>
+#include <memory>
+#include <string>
+
+namespace mrloc::common {
+
+enum class RawlogFormat { Unknown, ObservationsOnly, ActionsSensoryFrames };
+
+/** Robot a sensor label belongs to: "r1.beacons" -> "r1"; a label with no dot (rawlogs
+ *  recorded by other MRPT tools) -> "robot". */
+std::string robotOfLabel(const std::string& sensorLabel);
+/** Sensor part of the label: "r1.beacons" -> "beacons"; no dot -> the whole label. */
+std::string sensorOfLabel(const std::string& sensorLabel);
+
+/** Label given to odometry synthesised from CActionRobotMovement2D. */
+inline constexpr const char* kActionOdometryLabel = "odometry";
+
+class RawlogReader {
+public:
+    /** Opens the file; throws mrloc::Error if it is missing or not a rawlog. */
+    explicit RawlogReader(const std::string& path);
+
+    /** Next observation in file order; false at the clean end of the file. Throws
+     *  mrloc::Error naming the file and entry on a truncated or corrupt file or on an
+     *  object that is neither an observation, a sensory frame nor an action collection. */
+    bool next(mrpt::obs::CObservation::Ptr& obs);
+
+    RawlogFormat format() const { return format_; }
+    /** Serialized objects read so far (MRPT's "rawlog entry" counter). */
+    size_t entriesRead() const { return entries_; }
+    const std::string& path() const { return path_; }
+
+private:
+    void absorbActions(const mrpt::serialization::CSerializable::Ptr& obj);
+
+    std::string path_;
+    mrpt::io::CFileGZInputStream file_;
+    std::deque<mrpt::obs::CObservation::Ptr> pending_;
+    RawlogFormat format_ = RawlogFormat::Unknown;
+    size_t entries_ = 0;
+    mrpt::poses::CPose2D actionOdometry_;  // integrated CActionRobotMovement2D increments
+};
+
+class RawlogWriter {
+public:
+    /** Starts writing `path` (as path + ".tmp" until commit()). */
+    explicit RawlogWriter(const std::string& path, int compressionLevel = 1);
+    void write(const mrpt::serialization::CSerializable& obj);
+    /** Closes and renames to the final name. Without it nothing appears under that name. */
+    void commit();
+    size_t written() const { return written_; }
+
+private:
+    PendingFile pending_;
+    mrpt::io::CFileGZOutputStream file_;
+    size_t written_ = 0;
+};
+
+}  // namespace mrloc::common

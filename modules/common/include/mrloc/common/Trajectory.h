@@ -1,0 +1,31 @@
+#pragma once
+// Time-stamped poses and their text form: the TUM format, one pose per line,
+// "t x y z qx qy qz qw", '#' comments. Ground truth and estimates share it.
+#include <mrpt/poses/CPose3D.h>
+
+#include <optional>
+#include <string>
+#include <vector>
+
+namespace mrloc::common {
+
+struct StampedPose {
+    double t = 0;  ///< seconds (mrpt::Clock::toDouble of the observation's timestamp)
+    mrpt::poses::CPose3D pose;
+};
+
+using Trajectory = std::vector<StampedPose>;
+
+/** Writes atomically; times with 9 decimals, positions with 6 (micrometres). */
+void saveTum(const std::string& path, const Trajectory& traj);
+/** Reads a TUM file; errors name the file and line. Times must not decrease. */
+Trajectory loadTum(const std::string& path);
+
+/** Pose at time t by linear interpolation of the position (and yaw); nullopt outside the
+ *  covered span. Used to compare estimates with ground truth at the estimates' times. */
+std::optional<mrpt::poses::CPose3D> interpolate(const Trajectory& traj, double t);
+
+/** Ground-truth file of a robot beside a rawlog: "x.rawlog" -> "x.<robot>.gt.txt". */
+std::string groundTruthPath(const std::string& rawlogPath, const std::string& robot);
+
+}  // namespace mrloc::common

@@ -1,0 +1,59 @@
+#include <mrloc/common/BeaconMap.h>
+#include <mrloc/common/Error.h>
+#include <mrpt/core/format.h>
+#include <mrpt/system/string_utils.h>
+
+#include <cstdlib>
+
+namespace mrloc::common {
+
+BeaconMap readBeaconKeys(IniSection& section) {
+    const std::string prefix = "beacon_";
+    section.allowPrefix(prefix);
+    BeaconMap map;
+    for (const auto& key : section.keys()) {
+        if (mrpt::system::lowerCase(key).rfind(prefix, 0) != 0) continue;
+        const std::string idText = key.substr(prefix.size());
+        char* end = nullptr;
+        const long id = std::strtol(idText.c_str(), &end, 10);
+        if (idText.empty() || *end != '\0' || id < 0)
+            section.fail(key, "expected beacon_<id> with a non-negative integer id");
+        const auto xyz = section.reals(key, {}, 3);
+        map[int(id)] = {xyz[0], xyz[1], xyz[2]};
+    }
+    return map;
+}
+
+BeaconMap readMrptLandmarksMap(const mrpt::config::CConfigFileBase& cfg, const std::string& name) {
+    BeaconMap map;
+    if (!cfg.sectionExists(name)) return map;
+    IniSection sec(cfg, name);
+    const long n = sec.integer("nBeacons", 0, 0, 100000);
+    for (long q = 1; q <= n; ++q) {
+        const auto key = [&](const char* what) { return mrpt::format("beacon_%03ld_%s", q, what); };
+        for (const char* what : {"ID", "x", "y", "z"})
+            if (!sec.has(key(what))) sec.fail(key(what), "missing (nBeacons = " + std::to_string(n) + ")");
+        const int id = int(sec.integer(key("ID"), 0, 0, 1L << 30));
+        if (map.count(id)) sec.fail(key("ID"), "beacon ID " + std::to_string(id) + " appears twice");
+        map[id] = {sec.real(key("x"), 0), sec.real(key("y"), 0), sec.real(key("z"), 0)};
+    }
+    return map;
+}
+
+BeaconMap loadBeaconMap(const mrpt::config::CConfigFileBase& cfg, IniSection& beacons) {
+    BeaconMap map = readBeaconKeys(beacons);
+    if (map.empty()) map = readMrptLandmarksMap(cfg);
+    if (map.empty())
+        throw Error(configOrigin(cfg) + ": no beacons: give beacon_<id> = x y z keys in [" +
+                    beacons.section() + "] or MRPT's [" + kMrptLandmarksSection + "] keys");
+    return map;
+}
+
+void saveBeaconKeys(const BeaconMap& map, mrpt::config::CConfigFileBase& target,
+                    const std::string& section) {
+    for (const auto& [id, p] : map)
+        target.write(section, "beacon_" + std::to_string(id),
+                     mrpt::format("%.4f %.4f %.4f", p.x, p.y, p.z));
+}
+
+}  // namespace mrloc::common

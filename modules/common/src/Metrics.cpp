@@ -1,0 +1,66 @@
+#include <mrloc/common/AtomicFile.h>
+#include <mrloc/common/Error.h>
+#include <mrloc/common/Metrics.h>
+
+#include <algorithm>
+#include <cmath>
+#include <fstream>
+
+namespace mrloc::common {
+
+double percentile(std::vector<double> v, double p) {
+    if (v.empty()) return 0.0;
+    std::sort(v.begin(), v.end());
+    const double pos = std::clamp(p, 0.0, 100.0) / 100.0 * double(v.size() - 1);
+    const size_t i = size_t(std::floor(pos));
+    const size_t j = std::min(i + 1, v.size() - 1);
+    return v[i] + (pos - double(i)) * (v[j] - v[i]);
+}
+
+ErrorStats computeStats(const std::vector<double>& e) {
+    ErrorStats s;
+    s.n = e.size();
+    if (e.empty()) return s;
+    double sum = 0, sum2 = 0;
+    for (double x : e) {
+        sum += x;
+        sum2 += x * x;
+        s.max = std::max(s.max, x);
+    }
+    s.mean = sum / double(s.n);
+    s.rmse = std::sqrt(sum2 / double(s.n));
+    s.median = percentile(e, 50);
+    s.p95 = percentile(e, 95);
+    return s;
+}
+
+std::vector<TimedError> positionErrors(const Trajectory& estimate, const Trajectory& truth) {
+    std::vector<TimedError> out;
+    for (const auto& e : estimate) {
+        const auto gt = interpolate(truth, e.t);
+        if (!gt) continue;
+        out.push_back({e.t, std::hypot(e.pose.x() - gt->x(), e.pose.y() - gt->y())});
+    }
+    return out;
+}
+
+nlohmann::json statsToJson(const ErrorStats& s) {
+    return {{"n", s.n},           {"rmse_m", s.rmse}, {"mean_m", s.mean},
+            {"median_m", s.median}, {"p95_m", s.p95},   {"max_m", s.max}};
+}
+
+void saveJson(const std::string& path, const nlohmann::json& j) {
+    writeFileAtomically(path, j.dump(2) + "\n");
+}
+
+nlohmann::json loadJson(const std::string& path) {
+    std::ifstream in(path);
+    if (!in) throw Error(path + ": cannot open");
+    try {
+        return nlohmann::json::parse(in);
+    } catch (const std::exception& e) {
+        throw Error(path + ": not valid JSON: " + e.what());
+    }
+}
+
+}  // namespace mrloc::common

@@ -1,0 +1,78 @@
+#include <mrloc/common/AtomicFile.h>
+#include <mrloc/common/Error.h>
+#include <mrloc/common/Trajectory.h>
+#include <mrpt/math/CQuaternion.h>
+#include <mrpt/math/wrap2pi.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <fstream>
+#include <sstream>
+
+namespace mrloc::common {
+
+void saveTum(const std::string& path, const Trajectory& traj) {
+    std::string out = "# t x y z qx qy qz qw\n";
+    char line[256];
+    for (const auto& p : traj) {
+        mrpt::math::CQuaternionDouble q;
+        p.pose.getAsQuaternion(q);
+        std::snprintf(line, sizeof(line), "%.9f %.6f %.6f %.6f %.9f %.9f %.9f %.9f\n", p.t,
+                      p.pose.x(), p.pose.y(), p.pose.z(), q.x(), q.y(), q.z(), q.r());
+        out += line;
+    }
+    writeFileAtomically(path, out);
+}
+
+Trajectory loadTum(const std::string& path) {
+    std::ifstream in(path);
+    if (!in) throw Error("trajectory " + path + ": cannot open");
+    Trajectory traj;
+    std::string line;
+    for (int lineNo = 1; std::getline(in, line); ++lineNo) {
+        const auto first = line.find_first_not_of(" \t\r");
+        if (first == std::string::npos || line[first] == '#') continue;
+        std::istringstream s(line);
+        double v[8];
+        for (double& x : v) {
+            if (!(s >> x) || !std::isfinite(x))
+                throw Error("trajectory " + path + ":" + std::to_string(lineNo) +
+                            ": expected 't x y z qx qy qz qw'");
+        }
+        mrpt::math::CQuaternionDouble q(v[7], v[4], v[5], v[6]);
+        const double norm = std::sqrt(q.r() * q.r() + q.x() * q.x() + q.y() * q.y() + q.z() * q.z());
+        if (norm < 1e-6)
+            throw Error("trajectory " + path + ":" + std::to_string(lineNo) + ": zero quaternion");
+        q.normalize();
+        if (!traj.empty() && v[0] < traj.back().t)
+            throw Error("trajectory " + path + ":" + std::to_string(lineNo) +
+                        ": time goes backwards");
+        traj.push_back({v[0], mrpt::poses::CPose3D(q, v[1], v[2], v[3])});
+    }
+    return traj;
+}
+
+std::optional<mrpt::poses::CPose3D> interpolate(const Trajectory& traj, double t) {
+    if (traj.empty() || t < traj.front().t || t > traj.back().t) return std::nullopt;
+    auto hi = std::lower_bound(traj.begin(), traj.end(), t,
+                               [](const StampedPose& p, double time) { return p.t < time; });
+    if (hi->t == t || hi == traj.begin()) return hi->pose;
+    const auto lo = hi - 1;
+    const double a = (t - lo->t) / (hi->t - lo->t);
+    const auto& p0 = lo->pose;
+    const auto& p1 = hi->pose;
+    const double yaw = p0.yaw() + a * mrpt::math::wrapToPi(p1.yaw() - p0.yaw());
+    return mrpt::poses::CPose3D(p0.x() + a * (p1.x() - p0.x()), p0.y() + a * (p1.y() - p0.y()),
+                                p0.z() + a * (p1.z() - p0.z()), yaw, p0.pitch(), p0.roll());
+}
+
+std::string groundTruthPath(const std::string& rawlogPath, const std::string& robot) {
+    std::string stem = rawlogPath;
+    const std::string ext = ".rawlog";
+    if (stem.size() > ext.size() && stem.compare(stem.size() - ext.size(), ext.size(), ext) == 0)
+        stem.resize(stem.size() - ext.size());
+    return stem + "." + robot + ".gt.txt";
+}
+
+}  // namespace mrloc::common

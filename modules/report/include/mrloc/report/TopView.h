@@ -1,0 +1,23 @@
+#pragma once
+// Top view of a run rendered off screen with mrpt::opengl::CFBORender (EGL, no display).
+#include <mrloc/common/BeaconMap.h>
+#include <mrloc/common/Trajectory.h>
+#include <mrloc/sim/World.h>
+
+#include <map>
+#include <optional>
+#include <string>
+
+namespace mrloc::report {
+
+struct TopViewContent {
+    std::optional<sim::WorldOptions> world;
+    common::BeaconMap beacons;
+    std::map<std::string, common::Trajectory> groundTruth, estimates;  ///< per robot
+};
+
+/** Renders to a PNG (written to a temporary name, then renamed). */
+void renderTopView(const TopViewContent& content, const std::string& pngPath, unsigned width = 900,
+                   unsigned height = 900);
+
+}  // namespace mrloc::report

@@ -1,0 +1,108 @@
+#include <mrloc/common/AtomicFile.h>
+#include <mrloc/common/Error.h>
+#include <mrloc/common/IniSection.h>
+#include <mrloc/common/Metrics.h>
+#include <mrloc/common/RunDirectory.h>
+#include <mrloc/report/Plots.h>
+#include <mrloc/report/Report.h>
+#include <mrloc/report/TopView.h>
+#include <mrpt/config/CConfigFile.h>
+
+#include <filesystem>
+#include <sstream>
+
+namespace mrloc::report {
+
+namespace {
+
+std::string html(const std::string& s) {
+    std::string out;
+    for (char c : s) {
+        switch (c) {
+            case '<': out += "&lt;"; break;
+            case '>': out += "&gt;"; break;
+            case '&': out += "&amp;"; break;
+            default: out += c;
+        }
+    }
+    return out;
+}
+
+std::string cell(const nlohmann::json& v) {
+    if (v.is_number_float()) {
+        std::ostringstream s;
+        s.precision(4);
+        s << v.get<double>();
+        return s.str();
+    }
+    return html(v.is_string() ? v.get<std::string>() : v.dump());
+}
+
+std::string table(const nlohmann::json& j) {
+    std::string t = "<table>\n";
+    for (const auto& [k, v] : j.items())
+        if (!v.is_object()) t += "<tr><th>" + html(k) + "</th><td>" + cell(v) + "</td></tr>\n";
+    return t + "</table>\n";
+}
+
+}  // namespace
+
+std::string makeReport(const std::string& dir) {
+    if (!std::filesystem::exists(common::run_dir::metrics(dir)))
+        throw Error(dir + ": not a run directory (no metrics.json; run `mrloc localize` first)");
+    const auto metrics = common::loadJson(common::run_dir::metrics(dir));
+
+    TopViewContent view;
+    if (std::filesystem::exists(common::run_dir::effectiveIni(dir))) {
+        mrpt::config::CConfigFile ini(common::run_dir::effectiveIni(dir));
+        if (ini.sectionExists("world")) {
+            sim::WorldOptions w;
+            w.loadFromConfigFile(ini, "world");
+            view.world = w;
+        }
+        common::IniSection beacons(ini, "beacons");
+        view.beacons = common::readBeaconKeys(beacons);
+    }
+    RobotErrors errors;
+    if (!metrics.contains("robots")) throw Error(common::run_dir::metrics(dir) + ": no 'robots'");
+    for (const auto& [robot, r] : metrics["robots"].items()) {
+        view.estimates[robot] = common::loadTum(common::run_dir::estimates(dir, robot));
+        const auto gtPath = common::run_dir::groundTruth(dir, robot);
+        if (std::filesystem::exists(gtPath)) {
+            view.groundTruth[robot] = common::loadTum(gtPath);
+            errors[robot] = common::positionErrors(view.estimates[robot], view.groundTruth[robot]);
+        }
+    }
+    renderTopView(view, dir + "/topview.png");
+    const bool hasErrors = !errors.empty();
+    if (hasErrors) {
+        plotErrorOverTime(errors, dir + "/error_time.png");
+        plotErrorCdf(errors, dir + "/error_cdf.png");
+    }
+
+    std::string page =
+        "<!DOCTYPE html>\n<html><head><meta charset='utf-8'><title>mrloc report</title>\n"
+        "<style>body{font-family:sans-serif;max-width:960px;margin:2em auto}"
+        "table{border-collapse:collapse;margin:1em 0}th,td{border:1px solid #ccc;padding:3px 8px;"
+        "text-align:left}img{max-width:100%;border:1px solid #ddd}</style></head><body>\n";
+    page += "<h1>mrloc report: " + html(metrics.value("method", "?")) + "</h1>\n";
+    page += "<p>rawlog: <code>" + html(metrics.value("rawlog", "?")) + "</code></p>\n";
+    page += "<h2>Metrics (horizontal position error, metres)</h2>\n" + table(metrics);
+    for (const auto& [robot, r] : metrics["robots"].items())
+        page += "<h3>Robot " + html(robot) + "</h3>\n" + table(r);
+    const std::string method = metrics.value("method", "");
+    if (metrics.contains(method) && metrics[method].is_object())
+        page += "<h2>Method figures</h2>\n" + table(metrics[method]);
+    page += "<h2>Top view</h2>\n<p>Green: ground truth; red: estimates; blue: beacons; grey: "
+            "obstacles.</p>\n<img src='topview.png' alt='top view'>\n";
+    if (hasErrors)
+        page += "<h2>Error over time</h2>\n<img src='error_time.png' alt='error over time'>\n"
+                "<h2>Error CDF</h2>\n<img src='error_cdf.png' alt='error CDF'>\n";
+    else
+        page += "<p>No ground truth beside the rawlog: no errors to plot.</p>\n";
+    page += "</body></html>\n";
+    common::writeFileAtomically(common::run_dir::report(dir), page);
+    return common::run_dir::report(dir);
+}
+
+}  // namespace mrloc::report

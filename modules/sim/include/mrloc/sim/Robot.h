@@ -1,0 +1,53 @@
+#pragma once
+// A simulated robot: unicycle kinematics driven towards a list of waypoints at constant
+// speed with a bounded turn rate, and its sensors' options (section [robot.<name>]).
+#include <mrpt/config/CLoadableOptions.h>
+#include <mrpt/math/TPoint2D.h>
+#include <mrpt/math/TPoint3D.h>
+#include <mrpt/poses/CPose2D.h>
+
+#include <string>
+#include <vector>
+
+namespace mrloc::sim {
+
+struct RobotOptions : public mrpt::config::CLoadableOptions {
+    std::string name;
+    mrpt::poses::CPose2D start;                ///< start = x y phi_deg
+    std::vector<mrpt::math::TPoint2D> waypoints;  ///< waypoints = x y, x y, ...
+    bool loop = true;                          ///< go back to the first waypoint at the end
+    double speed = 0.3;                        ///< m/s
+    double maxTurnRate = 1.5;                  ///< rad/s
+    mrpt::math::TPoint3D receiver{0, 0, 0.3};  ///< beacon receiver on the robot (m)
+    double odometryRate = 20;                  ///< Hz
+    double beaconRate = 5;                     ///< Hz (ranging epochs)
+    double odometrySigmaXY = 0.02;             ///< per metre travelled
+    double odometrySigmaPhi = 0.01;            ///< per radian turned
+    double odometrySigmaPhiPerMetre = 0.005;   ///< rad per metre travelled
+
+    void loadFromConfigFile(const mrpt::config::CConfigFileBase& source,
+                            const std::string& section) override;
+    void saveToConfigFile(mrpt::config::CConfigFileBase& target,
+                          const std::string& section) const override;
+};
+
+/** Unicycle with a waypoint follower: turn towards the waypoint (at most maxTurnRate),
+ *  drive at `speed` scaled down while the heading error is large. */
+class Robot {
+public:
+    explicit Robot(RobotOptions options);
+    const RobotOptions& options() const { return options_; }
+    const mrpt::poses::CPose2D& pose() const { return pose_; }
+    /** Advances by dt; returns the motion in the robot frame (for odometry). */
+    mrpt::poses::CPose2D step(double dt);
+    /** Replaces the route (closed-loop control by a method). */
+    void setWaypoints(std::vector<mrpt::math::TPoint2D> waypoints, bool loop);
+    bool finished() const { return next_ >= options_.waypoints.size(); }
+
+private:
+    RobotOptions options_;
+    mrpt::poses::CPose2D pose_;
+    size_t next_ = 0;
+};
+
+}  // namespace mrloc::sim

@@ -1,0 +1,41 @@
+#pragma once
+// Everything a simulation run needs, read and validated from one INI:
+// [scenario], [world], [sensors], [robot.<name>] and the beacon map.
+#include <mrloc/common/BeaconMap.h>
+#include <mrloc/sim/Robot.h>
+#include <mrloc/sim/Sensors.h>
+#include <mrloc/sim/World.h>
+
+namespace mrloc::sim {
+
+/** Section [scenario]. */
+struct ScenarioOptions : public mrpt::config::CLoadableOptions {
+    std::string name = "run";      ///< names the output folder and files
+    std::string method = "beacons";  ///< localization method (registry name)
+    unsigned long seed = 1;
+    double duration = 60;          ///< s
+    double dt = 0.01;              ///< simulation step (s)
+    double startTime = 1.7e9;      ///< time stamp of t = 0 (seconds since 1970)
+    double groundTruthRate = 20;   ///< Hz
+    std::vector<std::string> robots;  ///< robots = r1 r2 ... ; each has [robot.<name>]
+
+    void loadFromConfigFile(const mrpt::config::CConfigFileBase& source,
+                            const std::string& section) override;
+    void saveToConfigFile(mrpt::config::CConfigFileBase& target,
+                          const std::string& section) const override;
+};
+
+struct ScenarioConfig {
+    ScenarioOptions scenario;
+    WorldOptions world;
+    SensorOptions sensors;
+    std::vector<RobotOptions> robots;
+    common::BeaconMap beacons;
+
+    /** Reads and validates; errors name the file, section and key. */
+    static ScenarioConfig load(const mrpt::config::CConfigFileBase& ini);
+    /** Writes the effective options (the beacon map is the method's to write). */
+    void save(mrpt::config::CConfigFileBase& target) const;
+};
+
+}  // namespace mrloc::sim

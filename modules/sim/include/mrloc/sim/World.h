@@ -1,0 +1,47 @@
+#pragma once
+// The simulated world: a rectangular room [0, size_x] x [0, size_y] x [0, height] whose
+// side walls and box obstacles are occupied voxels of an octomap::OcTree. Line of sight
+// between a beacon and a receiver is a ray cast in that tree.
+#include <mrpt/config/CLoadableOptions.h>
+#include <mrpt/math/TPoint3D.h>
+#include <octomap/OcTree.h>
+
+#include <memory>
+#include <string>
+#include <vector>
+
+namespace mrloc::sim {
+
+struct Box {
+    std::string name;
+    mrpt::math::TPoint3D min, max;
+};
+
+/** Section [world]. */
+struct WorldOptions : public mrpt::config::CLoadableOptions {
+    double sizeX = 5, sizeY = 5, height = 2.5;  ///< room extent (m)
+    double resolution = 0.05;                   ///< OcTree voxel size (m)
+    std::vector<Box> obstacles;                 ///< obstacle_<name> = xmin ymin zmin xmax ymax zmax
+
+    void loadFromConfigFile(const mrpt::config::CConfigFileBase& source,
+                            const std::string& section) override;
+    void saveToConfigFile(mrpt::config::CConfigFileBase& target,
+                          const std::string& section) const override;
+    bool contains(const mrpt::math::TPoint3D& p, double margin = 0) const;
+};
+
+class World {
+public:
+    explicit World(WorldOptions options);
+    const WorldOptions& options() const { return options_; }
+    /** True if the segment a-b crosses no occupied voxel. */
+    bool lineOfSight(const mrpt::math::TPoint3D& a, const mrpt::math::TPoint3D& b) const;
+    const octomap::OcTree& octree() const { return *tree_; }
+
+private:
+    void fillBox(const mrpt::math::TPoint3D& min, const mrpt::math::TPoint3D& max);
+    WorldOptions options_;
+    std::unique_ptr<octomap::OcTree> tree_;
+};
+
+}  // namespace mrloc::sim

@@ -1,0 +1,90 @@
+#include <mrloc/common/IniSection.h>
+#include <mrloc/sim/Robot.h>
+#include <mrpt/core/bits_math.h>
+#include <mrpt/core/format.h>
+#include <mrpt/math/wrap2pi.h>
+
+#include <cmath>
+#include <sstream>
+
+namespace mrloc::sim {
+
+void RobotOptions::loadFromConfigFile(const mrpt::config::CConfigFileBase& src,
+                                      const std::string& section) {
+    common::IniSection s(src, section);
+    const auto st = s.requireReals("start", 3);
+    start = mrpt::poses::CPose2D(st[0], st[1], mrpt::DEG2RAD(st[2]));
+    waypoints.clear();
+    std::stringstream list(s.requireText("waypoints"));
+    for (std::string item; std::getline(list, item, ',');) {
+        std::istringstream in(item);
+        double x, y;
+        std::string extra;
+        if (!(in >> x >> y) || (in >> extra) || !std::isfinite(x) || !std::isfinite(y))
+            s.fail("waypoints", "expected 'x y, x y, ...', got '" + item + "'");
+        waypoints.push_back({x, y});
+    }
+    loop = s.flag("loop", true);
+    speed = s.real("speed", 0.3, 1e-3, 10);
+    maxTurnRate = s.real("max_turn_rate", 1.5, 1e-3, 100);
+    const auto rc = s.reals("receiver", {0, 0, 0.3}, 3);
+    receiver = {rc[0], rc[1], rc[2]};
+    odometryRate = s.real("odometry_rate", 20, 0.1, 1000);
+    beaconRate = s.real("beacon_rate", 5, 0.01, 1000);
+    odometrySigmaXY = s.real("odometry_sigma_xy", 0.02, 0, 1);
+    odometrySigmaPhi = s.real("odometry_sigma_phi", 0.01, 0, 1);
+    odometrySigmaPhiPerMetre = s.real("odometry_sigma_phi_per_m", 0.005, 0, 1);
+    s.finish();
+}
+
+void RobotOptions::saveToConfigFile(mrpt::config::CConfigFileBase& t,
+                                    const std::string& section) const {
+    t.write(section, "start",
+            mrpt::format("%g %g %g", start.x(), start.y(), mrpt::RAD2DEG(start.phi())));
+    std::string wp;
+    for (const auto& p : waypoints) wp += (wp.empty() ? "" : ", ") + mrpt::format("%g %g", p.x, p.y);
+    t.write(section, "waypoints", wp);
+    t.write(section, "loop", loop);
+    t.write(section, "speed", speed);
+    t.write(section, "max_turn_rate", maxTurnRate);
+    t.write(section, "receiver", mrpt::format("%g %g %g", receiver.x, receiver.y, receiver.z));
+    t.write(section, "odometry_rate", odometryRate);
+    t.write(section, "beacon_rate", beaconRate);
+    t.write(section, "odometry_sigma_xy", odometrySigmaXY);
+    t.write(section, "odometry_sigma_phi", odometrySigmaPhi);
+    t.write(section, "odometry_sigma_phi_per_m", odometrySigmaPhiPerMetre);
+}
+
+Robot::Robot(RobotOptions options) : options_(std::move(options)), pose_(options_.start) {}
+
+void Robot::setWaypoints(std::vector<mrpt::math::TPoint2D> waypoints, bool loop) {
+    options_.waypoints = std::move(waypoints);
+    options_.loop = loop;
+    next_ = 0;
+}
+
+mrpt::poses::CPose2D Robot::step(double dt) {
+    auto& wps = options_.waypoints;
+    const double reach = std::max(0.02, options_.speed * dt);
+    while (next_ < wps.size() &&
+           std::hypot(wps[next_].x - pose_.x(), wps[next_].y - pose_.y()) < reach) {
+        ++next_;
+        if (next_ == wps.size() && options_.loop) next_ = 0;
+    }
+    if (next_ >= wps.size()) return {};  // route done: stand still
+    const auto& target = wps[next_];
+    const double bearing = std::atan2(target.y - pose_.y(), target.x - pose_.x());
+    const double err = mrpt::math::wrapToPi(bearing - pose_.phi());
+    const double maxTurn = options_.maxTurnRate * dt;
+    const double w = std::clamp(err, -maxTurn, maxTurn);
+    // Slow down while facing away from the waypoint, so that turns stay tight.
+    const double v = options_.speed * std::max(0.0, std::cos(err)) * dt;
+    // Exact unicycle arc for constant (v, w) over dt.
+    const mrpt::poses::CPose2D delta =
+        std::abs(w) < 1e-12 ? mrpt::poses::CPose2D(v, 0, 0)
+                            : mrpt::poses::CPose2D(v / w * std::sin(w), v / w * (1 - std::cos(w)), w);
+    pose_ = pose_ + delta;
+    return delta;
+}
+
+}  // namespace mrloc::sim

@@ -1,0 +1,81 @@
+#include <mrloc/common/IniSection.h>
+#include <mrloc/sim/World.h>
+#include <mrpt/core/format.h>
+
+#include <cmath>
+
+namespace mrloc::sim {
+
+using mrpt::math::TPoint3D;
+
+void WorldOptions::loadFromConfigFile(const mrpt::config::CConfigFileBase& src,
+                                      const std::string& section) {
+    common::IniSection s(src, section);
+    const auto size = s.reals("size", {sizeX, sizeY, height}, 3);
+    for (int i = 0; i < 3; ++i)
+        if (!(size[i] > 0)) s.fail("size", "every extent must be positive");
+    sizeX = size[0], sizeY = size[1], height = size[2];
+    resolution = s.real("resolution", 0.05, 0.005, 1.0);
+    s.allowPrefix("obstacle_");
+    obstacles.clear();
+    for (const auto& key : s.keys()) {
+        if (key.rfind("obstacle_", 0) != 0) continue;
+        const auto v = s.reals(key, {}, 6);
+        if (v[0] >= v[3] || v[1] >= v[4] || v[2] >= v[5])
+            s.fail(key, "expected xmin ymin zmin xmax ymax zmax with min < max");
+        obstacles.push_back({key.substr(9), {v[0], v[1], v[2]}, {v[3], v[4], v[5]}});
+    }
+    s.finish();
+}
+
+void WorldOptions::saveToConfigFile(mrpt::config::CConfigFileBase& t,
+                                    const std::string& section) const {
+    t.write(section, "size", mrpt::format("%g %g %g", sizeX, sizeY, height));
+    t.write(section, "resolution", resolution);
+    for (const auto& b : obstacles)
+        t.write(section, "obstacle_" + b.name,
+                mrpt::format("%g %g %g %g %g %g", b.min.x, b.min.y, b.min.z, b.max.x, b.max.y,
+                             b.max.z));
+}
+
+bool WorldOptions::contains(const TPoint3D& p, double m) const {
+    return p.x >= -m && p.x <= sizeX + m && p.y >= -m && p.y <= sizeY + m && p.z >= -m &&
+           p.z <= height + m;
+}
+
+World::World(WorldOptions options)
+    : options_(std::move(options)), tree_(std::make_unique<octomap::OcTree>(options_.resolution)) {
+    const double r = options_.resolution;
+    const double X = options_.sizeX, Y = options_.sizeY, H = options_.height;
+    // Side walls one voxel thick, just outside the room.
+    fillBox({-r, -r, 0}, {X + r, 0 - 1e-9, H});
+    fillBox({-r, Y + 1e-9, 0}, {X + r, Y + r, H});
+    fillBox({-r, 0, 0}, {0 - 1e-9, Y, H});
+    fillBox({X + 1e-9, 0, 0}, {X + r, Y, H});
+    for (const auto& b : options_.obstacles) fillBox(b.min, b.max);
+    tree_->updateInnerOccupancy();
+}
+
+void World::fillBox(const TPoint3D& min, const TPoint3D& max) {
+    const double r = options_.resolution;
+    for (double x = min.x + r / 2; x < max.x + r / 2; x += r)
+        for (double y = min.y + r / 2; y < max.y + r / 2; y += r)
+            for (double z = min.z + r / 2; z < max.z + r / 2; z += r)
+                tree_->updateNode(octomap::point3d(float(std::min(x, max.x)), float(std::min(y, max.y)),
+                                                   float(std::min(z, max.z))),
+                                  true, /*lazy_eval=*/true);
+}
+
+bool World::lineOfSight(const TPoint3D& a, const TPoint3D& b) const {
+    const octomap::point3d origin(float(a.x), float(a.y), float(a.z));
+    const octomap::point3d dir(float(b.x - a.x), float(b.y - a.y), float(b.z - a.z));
+    const double length = std::sqrt((b - a).sqrNorm());
+    if (length < 1e-9) return true;
+    octomap::point3d hit;
+    // An unknown voxel is free space here: only walls and obstacles are in the tree.
+    const bool blocked = tree_->castRay(origin, dir, hit, /*ignoreUnknownCells=*/true, length);
+    if (!blocked) return true;
+    return (hit - origin).norm() > length;  // the hit lies beyond the receiver
+}
+
+}  // namespace mrloc::sim

@@ -1,0 +1,29 @@
+#!/usr/bin/env bash
+# Installs every Debian package mrloc needs to build, test and render reports,
+# and only those that are missing: when all are present it returns in well under a second.
+set -euo pipefail
+
+packages=(
+  build-essential cmake pkg-config
+  libmrpt-dev            # MRPT 2.5: poses, observations, rawlogs, config, opengl (CFBORender)
+  libeigen3-dev liboctomap-dev libopencv-dev zlib1g-dev
+  nlohmann-json3-dev     # metrics.json writing and reading
+  libgtest-dev libbenchmark-dev
+  gnuplot-nox            # error-over-time and CDF plots (pngcairo terminal)
+  libegl1 libegl-mesa0 libgl1-mesa-dri   # head-less EGL rendering for CFBORender
+)
+
+missing=()
+for p in "${packages[@]}"; do
+  if ! dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed"; then
+    missing+=("$p")
+  fi
+done
+[ ${#missing[@]} -eq 0 ] && exit 0
+
+echo "install-deps: installing ${missing[*]}" >&2
+SUDO=""
+[ "$(id -u)" -ne 0 ] && SUDO="sudo"
+export DEBIAN_FRONTEND=noninteractive
+$SUDO apt-get update -qq
+$SUDO apt-get install -y -qq --no-install-recommends "${missing[@]}" >/dev/null
