@@ -67,15 +67,20 @@ void World::fillBox(const TPoint3D& min, const TPoint3D& max) {
 }
 
 bool World::lineOfSight(const TPoint3D& a, const TPoint3D& b) const {
-    const octomap::point3d origin(float(a.x), float(a.y), float(a.z));
-    const octomap::point3d dir(float(b.x - a.x), float(b.y - a.y), float(b.z - a.z));
     const double length = std::sqrt((b - a).sqrNorm());
-    if (length < 1e-9) return true;
+    // Beacons are mounted on walls and ceilings, so an end point may lie in (or touch) a wall
+    // voxel: the ray is cast between points pulled one and a half voxels in from both ends.
+    const double skip = 1.5 * options_.resolution;
+    if (length <= 2 * skip) return true;
+    const TPoint3D u = (b - a) * (1.0 / length);
+    const TPoint3D start = a + u * skip;
+    const octomap::point3d origin(float(start.x), float(start.y), float(start.z));
+    const octomap::point3d dir(float(u.x), float(u.y), float(u.z));
+    const double span = length - 2 * skip;
     octomap::point3d hit;
     // An unknown voxel is free space here: only walls and obstacles are in the tree.
-    const bool blocked = tree_->castRay(origin, dir, hit, /*ignoreUnknownCells=*/true, length);
-    if (!blocked) return true;
-    return (hit - origin).norm() > length;  // the hit lies beyond the receiver
+    const bool blocked = tree_->castRay(origin, dir, hit, /*ignoreUnknownCells=*/true, span);
+    return !blocked || (hit - origin).norm() > span;
 }
 
 }  // namespace mrloc::sim

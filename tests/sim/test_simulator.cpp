@@ -1,0 +1,135 @@
+// Simulator: kinematics, line of sight in the OctoMap, range model, determinism.
+#include <gtest/gtest.h>
+#include <mrloc/common/Error.h>
+#include <mrloc/common/Rawlog.h>
+#include <mrloc/sim/Simulator.h>
+#include <mrpt/config/CConfigFileMemory.h>
+#include <mrpt/obs/CObservationBeaconRanges.h>
+
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+
+using namespace mrloc;
+
+namespace {
+
+const char* kIni = R"(
+[scenario]
+name = simtest
+seed = 7
+duration = 10
+robots = r1
+[world]
+size = 4 4 2.5
+obstacle_wall = 1.9 0 0 2.1 4 2.5
+[sensors]
+range_sigma = 0
+range_dropout = 0
+range_outlier_probability = 0
+nlos = drop
+[robot.r1]
+start = 0.5 0.5 90
+waypoints = 0.5 3.5
+loop = false
+speed = 0.5
+receiver = 0 0 0.5
+[beacons]
+beacon_1 = 0.2 0.2 2.5
+beacon_2 = 1.5 3.8 2.5
+beacon_3 = 3.8 2.0 2.5
+)";
+
+sim::ScenarioConfig config(const std::string& extra = "") {
+    mrpt::config::CConfigFileMemory ini(std::string(kIni) + extra);
+    return sim::ScenarioConfig::load(ini);
+}
+
+std::string slurp(const std::string& p) {
+    std::ifstream in(p, std::ios::binary);
+    std::stringstream s;
+    s << in.rdbuf();
+    return s.str();
+}
+
+}  // namespace
+
+TEST(World, LineOfSightIsBlockedByObstacleOnly) {
+    const sim::World world(config().world);
+    EXPECT_TRUE(world.lineOfSight({0.5, 0.5, 0.5}, {0.2, 0.2, 2.5}));
+    EXPECT_TRUE(world.lineOfSight({0.5, 0.5, 0.5}, {1.5, 3.8, 2.5}));
+    EXPECT_FALSE(world.lineOfSight({0.5, 0.5, 0.5}, {3.8, 2.0, 2.5}));  // through the wall at x=2
+    EXPECT_TRUE(world.lineOfSight({2.5, 0.5, 0.5}, {3.8, 2.0, 2.5}));
+    // Beacons mounted in the corners of the room, on the wall surface.
+    EXPECT_TRUE(world.lineOfSight({0.5, 0.5, 0.5}, {0.0, 4.0, 2.5}));
+    EXPECT_TRUE(world.lineOfSight({3.0, 1.0, 0.5}, {4.0, 4.0, 2.5}));
+    EXPECT_TRUE(world.lineOfSight({3.0, 1.0, 0.5}, {4.0, 0.0, 2.5}));
+    EXPECT_FALSE(world.lineOfSight({3.0, 1.0, 0.5}, {0.0, 0.0, 2.5}));
+}
+
+TEST(Robot, UnicycleReachesWaypointAtConfiguredSpeed) {
+    auto cfg = config();
+    sim::Robot robot(cfg.robots[0]);
+    double travelled = 0;
+    for (int k = 0; k < 400; ++k) {
+        const auto d = robot.step(0.01);
+        travelled += std::hypot(d.x(), d.y());
+    }
+    // 4 s at 0.5 m/s straight north from (0.5, 0.5): heading already 90 degrees.
+    EXPECT_NEAR(robot.pose().y(), 2.5, 1e-6);
+    EXPECT_NEAR(robot.pose().x(), 0.5, 1e-9);
+    EXPECT_NEAR(travelled, 2.0, 1e-6);
+}
+
+TEST(Simulator, NoiseFreeRangesAreTheGeometricDistancesAndNlosIsDropped) {
+    const auto cfg = config();
+    const std::string dir = testing::TempDir() + "/simtest";
+    const std::string path = sim::simulateToFiles(cfg, dir, true);
+    const auto gt = common::loadTum(common::groundTruthPath(path, "r1"));
+    const sim::World world(cfg.world);
+    common::RawlogReader reader(path);
+    size_t epochs = 0, ranges = 0;
+    for (mrpt::obs::CObservation::Ptr obs; reader.next(obs);) {
+        auto r = std::dynamic_pointer_cast<mrpt::obs::CObservationBeaconRanges>(obs);
+        if (!r) continue;
+        ++epochs;
+        const auto pose = common::interpolate(gt, mrpt::Clock::toDouble(r->timestamp));
+        ASSERT_TRUE(pose);
+        const mrpt::math::TPoint3D rx(pose->x(), pose->y(), 0.5);
+        for (const auto& [id, b] : cfg.beacons) {
+            const auto it = std::find_if(r->sensedData.begin(), r->sensedData.end(),
+                                         [&](const auto& m) { return m.beaconID == id; });
+            const bool visible = world.lineOfSight(b, rx);
+            ASSERT_EQ(it != r->sensedData.end(), visible) << "beacon " << id;
+            if (!visible) continue;
+            ++ranges;
+            EXPECT_NEAR(it->sensedDistance, std::sqrt((b - rx).sqrNorm()), 1e-5);
+        }
+    }
+    EXPECT_EQ(epochs, 51u);  // 10 s at 5 Hz, both ends included
+    EXPECT_GT(ranges, 100u);
+}
+
+TEST(Simulator, SameSeedGivesByteIdenticalRawlogAndOtherSeedDoesNot) {
+    auto cfg = config("");
+    cfg.sensors.rangeSigma = 0.02;
+    cfg.sensors.dropout = 0.1;
+    const std::string a = sim::simulateToFiles(cfg, testing::TempDir() + "/det_a", true);
+    const std::string b = sim::simulateToFiles(cfg, testing::TempDir() + "/det_b", true);
+    EXPECT_EQ(slurp(a), slurp(b));
+    EXPECT_EQ(slurp(common::groundTruthPath(a, "r1")), slurp(common::groundTruthPath(b, "r1")));
+    cfg.scenario.seed = 8;
+    const std::string c = sim::simulateToFiles(cfg, testing::TempDir() + "/det_c", true);
+    EXPECT_NE(slurp(a), slurp(c));
+}
+
+TEST(Scenario, BeaconOutsideTheRoomIsAnError) {
+    try {
+        config("beacon_9 = 5 1 2\n");
+        FAIL() << "expected an error";
+    } catch (const Error& e) {
+        EXPECT_NE(std::string(e.what()).find("beacon_9"), std::string::npos) << e.what();
+        EXPECT_NE(std::string(e.what()).find("outside the room"), std::string::npos);
+    }
+}
