@@ -46,16 +46,19 @@ void renderTopView(const TopViewContent& c, const std::string& pngPath, unsigned
         const auto& w = *c.world;
         ext.add(0, 0);
         ext.add(w.sizeX, w.sizeY);
-        auto floor = CBox::Create(mrpt::math::TPoint3D(0, 0, -0.02), mrpt::math::TPoint3D(w.sizeX, w.sizeY, 0));
-        floor->setColor_u8(235, 235, 225);
-        scene.insert(floor);
-        auto border = CBox::Create(mrpt::math::TPoint3D(0, 0, 0), mrpt::math::TPoint3D(w.sizeX, w.sizeY, 0.01), true);
+        // Outlines only: in CFBORender's orthographic top view a filled box hides every line
+        // drawn with it, whatever the lines' height.
+        auto border = CSetOfLines::Create();
         border->setColor_u8(40, 40, 40);
-        border->setLineWidth(3);
+        const double X = w.sizeX, Y = w.sizeY;
+        border->appendLine(0, 0, 0, X, 0, 0);
+        border->appendLine(X, 0, 0, X, Y, 0);
+        border->appendLine(X, Y, 0, 0, Y, 0);
+        border->appendLine(0, Y, 0, 0, 0, 0);
         scene.insert(border);
         for (const auto& b : w.obstacles) {
-            auto box = CBox::Create(b.min, b.max);
-            box->setColor_u8(110, 110, 110);
+            auto box = CBox::Create(b.min, b.max, /*wireframe=*/true);
+            box->setColor_u8(90, 90, 90);
             scene.insert(box);
         }
     }
