@@ -87,6 +87,15 @@ std::string doLocalize(const std::string& method, const mrpt::config::CConfigFil
 
 }  // namespace
 
+std::optional<int> parseArgs(TCLAP::CmdLine& cmd, int argc, char** argv) {
+    if (cmd.parse(argc, argv)) return std::nullopt;
+    for (int i = 1; i < argc; ++i) {
+        const std::string a = argv[i];
+        if (a == "--help" || a == "-h" || a == "--version") return 0;
+    }
+    return 2;
+}
+
 int simulate(int argc, char** argv) {
     TCLAP::CmdLine cmd("mrloc simulate: simulate the INI's scenario into a rawlog "
                        "(<out>/<name>.rawlog) and ground truth (<out>/<name>.<robot>.gt.txt)",
@@ -96,7 +105,7 @@ int simulate(int argc, char** argv) {
     Common c;
     cmd.add(c.out);
     cmd.add(c.quiet);
-    cmd.parse(argc, argv);
+    if (const auto code = parseArgs(cmd, argc, argv)) return *code;
     const auto ini = openIni(iniArg.getValue());
     const auto cfg = loadScenario(*ini, seed);
     makeLocalizer(cfg.scenario.method, *ini);  // a bad method section fails before simulating
@@ -115,7 +124,7 @@ int localize(int argc, char** argv) {
     Common c;
     cmd.add(c.out);
     cmd.add(c.quiet);
-    cmd.parse(argc, argv);
+    if (const auto code = parseArgs(cmd, argc, argv)) return *code;
     const auto ini = openIni(iniArg.getValue());
     sim::ScenarioOptions scenario;
     scenario.loadFromConfigFile(*ini, "scenario");
@@ -130,7 +139,7 @@ int report(int argc, char** argv) {
                        "error_cdf.png in a directory written by `mrloc localize`",
                        ' ', kVersion);
     TCLAP::UnlabeledValueArg<std::string> dir("run-dir", "run directory", true, "", "DIR", cmd);
-    cmd.parse(argc, argv);
+    if (const auto code = parseArgs(cmd, argc, argv)) return *code;
     std::cout << report::makeReport(dir.getValue()) << "\n";
     return 0;
 }
@@ -144,7 +153,7 @@ int run(int argc, char** argv) {
     Common c;
     cmd.add(c.out);
     cmd.add(c.quiet);
-    cmd.parse(argc, argv);
+    if (const auto code = parseArgs(cmd, argc, argv)) return *code;
     const auto ini = openIni(iniArg.getValue());
     const auto cfg = loadScenario(*ini, seed);
     makeLocalizer(cfg.scenario.method, *ini);

@@ -16,7 +16,7 @@ int info(int argc, char** argv) {
                        "class, count, rate and time span",
                        ' ', "0.1.0");
     TCLAP::UnlabeledValueArg<std::string> path("rawlog", "rawlog file", true, "", "RAWLOG", cmd);
-    cmd.parse(argc, argv);
+    if (const auto code = parseArgs(cmd, argc, argv)) return *code;
 
     struct Stream {
         std::string cls;
@@ -41,13 +41,13 @@ int info(int argc, char** argv) {
                       ? "actions + sensory frames"
                       : "observations only")
               << "\nentries: " << reader.entriesRead() << ", observations: " << total << "\n\n";
-    std::cout << mrpt::format("%-10s %-18s %-28s %8s %9s %9s %9s\n", "robot", "label", "class",
+    std::cout << mrpt::format("%-10s %-18s %-36s %8s %9s %9s %9s\n", "robot", "label", "class",
                               "count", "rate_hz", "start_s", "span_s");
     double first = 1e300;
     for (const auto& [key, s] : streams) first = std::min(first, s.t0);
     for (const auto& [key, s] : streams) {
         const double span = s.t1 - s.t0;
-        std::cout << mrpt::format("%-10s %-18s %-28s %8zu %9.2f %9.3f %9.3f\n", key.first.c_str(),
+        std::cout << mrpt::format("%-10s %-18s %-36s %8zu %9.2f %9.3f %9.3f\n", key.first.c_str(),
                                   key.second.c_str(), s.cls.c_str(), s.count,
                                   span > 0 ? double(s.count - 1) / span : 0.0, s.t0 - first, span);
     }

@@ -1,0 +1,221 @@
+// End-to-end tests of the mrloc executable: run, determinism, other rawlog formats, info,
+// and bad input (clear message, non-zero exit, no output written).
+#include <gtest/gtest.h>
+#include <mrloc/common/Metrics.h>
+#include <mrloc/common/Rawlog.h>
+#include <mrpt/io/CFileGZOutputStream.h>
+#include <mrpt/obs/CActionCollection.h>
+#include <mrpt/obs/CActionRobotMovement2D.h>
+#include <mrpt/obs/CObservationBeaconRanges.h>
+#include <mrpt/obs/CObservationOdometry.h>
+#include <mrpt/serialization/CArchive.h>
+
+#include <array>
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+
+namespace fs = std::filesystem;
+using namespace mrloc;
+
+namespace {
+
+struct Result {
+    int code;
+    std::string output;  // stdout and stderr
+};
+
+Result mrlocCmd(const std::string& args) {
+    const std::string cmd = std::string(MRLOC_BINARY) + " " + args + " 2>&1";
+    FILE* p = popen(cmd.c_str(), "r");
+    std::string out;
+    std::array<char, 4096> buf;
+    while (size_t n = fread(buf.data(), 1, buf.size(), p)) out.append(buf.data(), n);
+    const int status = pclose(p);
+    return {WEXITSTATUS(status), out};
+}
+
+std::string tmp(const std::string& name) {
+    const std::string d = testing::TempDir() + "/apps_" + name;
+    fs::remove_all(d);
+    return d;
+}
+
+std::string slurp(const std::string& p) {
+    std::ifstream in(p, std::ios::binary);
+    std::stringstream s;
+    s << in.rdbuf();
+    return s.str();
+}
+
+std::string quickstart() { return std::string(MRLOC_SOURCE_DIR) + "/config/quickstart.ini"; }
+
+std::string writeIni(const std::string& name, const std::string& from, const std::string& to) {
+    std::string text = slurp(quickstart());
+    const auto pos = text.find(from);
+    EXPECT_NE(pos, std::string::npos) << from;
+    text.replace(pos, from.size(), to);
+    const std::string path = testing::TempDir() + "/" + name + ".ini";
+    std::ofstream(path) << text;
+    return path;
+}
+
+}  // namespace
+
+TEST(MrlocRun, QuickstartEndToEndWithinBound) {
+    const std::string out = tmp("run");
+    const auto r = mrlocCmd("run " + quickstart() + " --out " + out + " --quiet");
+    ASSERT_EQ(r.code, 0) << r.output;
+    const auto m = common::loadJson(out + "/metrics.json");
+    // Four ceiling beacons, 1 cm range noise, 2 % late echoes, 2 % dropouts, a pillar:
+    // the tracker must stay within 2 cm RMSE and 6 cm worst case over the 60 s loop.
+    EXPECT_EQ(m["method"], "beacons");
+    EXPECT_GT(m["n"].get<int>(), 290);
+    EXPECT_LT(m["rmse_m"].get<double>(), 0.02) << m.dump(2);
+    EXPECT_LT(m["max_m"].get<double>(), 0.06) << m.dump(2);
+    EXPECT_GT(m["beacons"]["ranges_gated"].get<int>(), 0);  // the late echoes were caught
+    for (const char* f : {"report.html", "topview.png", "error_time.png", "error_cdf.png",
+                          "effective.ini", "estimates.r1.txt", "groundtruth.r1.txt"})
+        EXPECT_TRUE(fs::exists(out + "/" + f)) << f;
+    for (const auto& e : fs::directory_iterator(out))
+        EXPECT_NE(e.path().extension(), ".tmp") << e.path();
+    EXPECT_NE(r.output.find("report: " + out + "/report.html"), std::string::npos) << r.output;
+
+    // The effective configuration runs again to the same result.
+    const std::string again = tmp("run_effective");
+    const auto r2 = mrlocCmd("localize " + out + "/effective.ini " + out + "/quickstart.rawlog --out " + again + " -q");
+    ASSERT_EQ(r2.code, 0) << r2.output;
+    EXPECT_EQ(slurp(out + "/estimates.r1.txt"), slurp(again + "/estimates.r1.txt"));
+}
+
+TEST(MrlocRun, SameIniAndSeedGiveByteIdenticalOutputs) {
+    const std::string a = tmp("det_a"), b = tmp("det_b"), c = tmp("det_c");
+    ASSERT_EQ(mrlocCmd("run " + quickstart() + " -q --out " + a).code, 0);
+    ASSERT_EQ(mrlocCmd("run " + quickstart() + " -q --out " + b).code, 0);
+    ASSERT_EQ(mrlocCmd("run " + quickstart() + " -q --seed 2 --out " + c).code, 0);
+    EXPECT_EQ(slurp(a + "/quickstart.rawlog"), slurp(b + "/quickstart.rawlog"));
+    EXPECT_EQ(slurp(a + "/estimates.r1.txt"), slurp(b + "/estimates.r1.txt"));
+    EXPECT_NE(slurp(a + "/quickstart.rawlog"), slurp(c + "/quickstart.rawlog"));
+    // The sample shipped in rawlogs/ is what the simulator makes today.
+    EXPECT_EQ(slurp(a + "/quickstart.rawlog"),
+              slurp(std::string(MRLOC_SOURCE_DIR) + "/rawlogs/quickstart.rawlog"));
+}
+
+// A rawlog as other MRPT tools record it: actions + sensory frames, labels without a robot
+// prefix, beacon map in MRPT's landmarks-map keys.
+TEST(MrlocLocalize, ForeignRawlogInActionsSensoryFrameFormat) {
+    const std::string dir = tmp("foreign");
+    fs::create_directories(dir);
+    const std::string src = std::string(MRLOC_SOURCE_DIR) + "/rawlogs/quickstart.rawlog";
+    const std::string dst = dir + "/recorded.rawlog";
+    {
+        common::RawlogReader in(src);
+        mrpt::io::CFileGZOutputStream f(dst);
+        auto arch = mrpt::serialization::archiveFrom(f);
+        // One movement action per sensory frame: the odometry since the previous frame.
+        std::optional<mrpt::poses::CPose2D> odo, odoAtFrame;
+        for (mrpt::obs::CObservation::Ptr obs; in.next(obs);) {
+            if (auto o = std::dynamic_pointer_cast<mrpt::obs::CObservationOdometry>(obs)) {
+                odo = o->odometry;
+                if (!odoAtFrame) odoAtFrame = odo;
+            } else if (auto b = std::dynamic_pointer_cast<mrpt::obs::CObservationBeaconRanges>(obs)) {
+                b->sensorLabel = "BEACONS";
+                mrpt::obs::CActionCollection acts;
+                mrpt::obs::CActionRobotMovement2D move;
+                move.timestamp = b->timestamp;
+                move.computeFromOdometry(*odo - *odoAtFrame, {});
+                acts.insert(move);
+                odoAtFrame = odo;
+                mrpt::obs::CSensoryFrame sf;
+                sf.insert(b);
+                arch << acts << sf;
+            }
+        }
+    }
+    fs::copy_file(std::string(MRLOC_SOURCE_DIR) + "/rawlogs/quickstart.r1.gt.txt", dir + "/recorded.robot.gt.txt");
+    std::ofstream(dir + "/mrpt.ini") << "[MetricMap_landmarksMap_00_creationOpts]\nnBeacons=4\n"
+                                        "beacon_001_ID=1\nbeacon_001_x=0\nbeacon_001_y=0\nbeacon_001_z=2.5\n"
+                                        "beacon_002_ID=2\nbeacon_002_x=3\nbeacon_002_y=0\nbeacon_002_z=2.5\n"
+                                        "beacon_003_ID=3\nbeacon_003_x=3\nbeacon_003_y=3\nbeacon_003_z=2.5\n"
+                                        "beacon_004_ID=4\nbeacon_004_x=0\nbeacon_004_y=3\nbeacon_004_z=2.5\n"
+                                        "[beacons]\nrange_sigma = 0.01\n";
+    const auto r = mrlocCmd("localize " + dir + "/mrpt.ini " + dst + " -q --out " + dir + "/out");
+    ASSERT_EQ(r.code, 0) << r.output;
+    const auto m = common::loadJson(dir + "/out/metrics.json");
+    EXPECT_EQ(m["rawlog_format"], "actions+sensory-frames");
+    EXPECT_TRUE(m["robots"].contains("robot"));
+    EXPECT_LT(m["rmse_m"].get<double>(), 0.02) << m.dump(2);
+}
+
+TEST(MrlocInfo, SummarisesLabelsCountsAndRates) {
+    const auto r = mrlocCmd("info " + std::string(MRLOC_SOURCE_DIR) + "/rawlogs/quickstart.rawlog");
+    ASSERT_EQ(r.code, 0) << r.output;
+    EXPECT_NE(r.output.find("observations only"), std::string::npos) << r.output;
+    // 60 s at 5 Hz and 20 Hz, both ends included.
+    const auto line = [&](const std::string& label) {
+        std::istringstream in(r.output);
+        for (std::string l; std::getline(in, l);)
+            if (l.find(" " + label + " ") != std::string::npos) return l;
+        return std::string();
+    };
+    const auto fields = [](const std::string& l) {
+        std::istringstream in(l);
+        std::vector<std::string> f;
+        for (std::string w; in >> w;) f.push_back(w);
+        return f;
+    };
+    EXPECT_EQ(fields(line("r1.beacons")),
+              (std::vector<std::string>{"r1", "r1.beacons", "mrpt::obs::CObservationBeaconRanges", "301", "5.00", "0.000", "60.000"}));
+    EXPECT_EQ(fields(line("r1.odom")),
+              (std::vector<std::string>{"r1", "r1.odom", "mrpt::obs::CObservationOdometry", "1201", "20.00", "0.000", "60.000"}));
+}
+
+TEST(MrlocErrors, MisspeltKeyStopsWithFileSectionKeyAndWritesNothing) {
+    const std::string ini = writeIni("misspelt", "range_sigma = 0.01\nbeacon_1", "range_sigam = 0.01\nbeacon_1");
+    const std::string out = tmp("misspelt");
+    const auto r = mrlocCmd("run " + ini + " -q --out " + out);
+    EXPECT_EQ(r.code, 1);
+    EXPECT_NE(r.output.find("misspelt.ini: [beacons] range_sigam: unknown key"), std::string::npos) << r.output;
+    EXPECT_FALSE(fs::exists(out));
+}
+
+TEST(MrlocErrors, BadValuesSectionsAndFiles) {
+    struct Case {
+        std::string from, to, expected;
+    };
+    const std::vector<Case> cases = {
+        {"speed     = 0.3", "speed = fast", "[robot.r1] speed: expected a number, got 'fast'"},
+        {"range_dropout             = 0.02", "range_dropout = 1.5", "[sensors] range_dropout: value 1.5 is out of range [0, 1]"},
+        {"[sensors]", "[sensor]", "[sensor]: unknown section"},
+        {"beacon_4 = 0.0 3.0 2.5", "beacon_4 = 0.0 9.0 2.5", "[beacons] beacon_4: position"},
+        {"method   = beacons", "method = magic", "unknown localization method 'magic' (known: beacons)"},
+        {"robots   = r1", "robots   = r1 r2", "robot 'r2' has no section [robot.r2]"},
+        {"start     = 0.5 0.5 0", "start = 0.5 nan 0", "[robot.r1] start: expected a finite number"},
+    };
+    for (const auto& c : cases) {
+        const std::string ini = writeIni("bad", c.from, c.to);
+        const std::string out = tmp("bad");
+        const auto r = mrlocCmd("run " + ini + " -q --out " + out);
+        EXPECT_EQ(r.code, 1) << c.to << "\n" << r.output;
+        EXPECT_NE(r.output.find(c.expected), std::string::npos) << c.to << "\n" << r.output;
+        EXPECT_FALSE(fs::exists(out)) << c.to;
+    }
+    EXPECT_NE(mrlocCmd("run /no/such.ini").output.find("config /no/such.ini: no such file"), std::string::npos);
+    const auto missing = mrlocCmd("localize " + quickstart() + " /no/such.rawlog -q --out " + tmp("x"));
+    EXPECT_EQ(missing.code, 1);
+    EXPECT_NE(missing.output.find("rawlog /no/such.rawlog: no such file"), std::string::npos) << missing.output;
+    EXPECT_NE(mrlocCmd("report /tmp").output.find("not a run directory"), std::string::npos);
+}
+
+TEST(MrlocCli, HelpAndUsage) {
+    const auto h = mrlocCmd("--help");
+    EXPECT_EQ(h.code, 0);
+    EXPECT_NE(h.output.find("simulate <ini>"), std::string::npos);
+    for (const char* sub : {"simulate", "localize", "report", "run", "info"}) {
+        const auto r = mrlocCmd(std::string(sub) + " --help");
+        EXPECT_EQ(r.code, 0) << sub;
+        EXPECT_NE(r.output.find("mrloc " + std::string(sub)), std::string::npos) << r.output;
+    }
+    EXPECT_EQ(mrlocCmd("frobnicate").code, 2);
+}

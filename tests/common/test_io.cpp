@@ -1,0 +1,201 @@
+// Rawlog I/O in both MRPT formats, bad files, TUM trajectories, metrics.
+#include <gtest/gtest.h>
+#include <mrloc/common/AtomicFile.h>
+#include <mrloc/common/Error.h>
+#include <mrloc/common/Metrics.h>
+#include <mrloc/common/Rawlog.h>
+#include <mrloc/common/Trajectory.h>
+#include <mrpt/io/CFileGZOutputStream.h>
+#include <mrpt/obs/CActionCollection.h>
+#include <mrpt/obs/CActionRobotMovement2D.h>
+#include <mrpt/obs/CObservationBeaconRanges.h>
+#include <mrpt/obs/CObservationOdometry.h>
+#include <mrpt/poses/CPose3DInterpolator.h>
+#include <mrpt/serialization/CArchive.h>
+
+#include <filesystem>
+#include <fstream>
+
+using namespace mrloc;
+using mrpt::obs::CObservationBeaconRanges;
+using mrpt::obs::CObservationOdometry;
+
+namespace {
+
+std::string tmp(const std::string& name) { return testing::TempDir() + "/" + name; }
+
+CObservationBeaconRanges::Ptr ranges(double t, float r) {
+    auto o = CObservationBeaconRanges::Create();
+    o->sensorLabel = "r1.beacons";
+    o->timestamp = mrpt::Clock::fromDouble(1000 + t);
+    CObservationBeaconRanges::TMeasurement m;
+    m.beaconID = 7;
+    m.sensedDistance = r;
+    o->sensedData.push_back(m);
+    return o;
+}
+
+}  // namespace
+
+TEST(Rawlog, ObservationsOnlyRoundTrip) {
+    const std::string path = tmp("obs.rawlog");
+    {
+        common::RawlogWriter w(path);
+        for (int i = 0; i < 100; ++i) w.write(*ranges(0.1 * i, float(i)));
+        EXPECT_FALSE(std::filesystem::exists(path));  // only the temporary name until commit
+        w.commit();
+    }
+    common::RawlogReader r(path);
+    int i = 0;
+    for (mrpt::obs::CObservation::Ptr obs; r.next(obs); ++i) {
+        auto b = std::dynamic_pointer_cast<CObservationBeaconRanges>(obs);
+        ASSERT_TRUE(b);
+        EXPECT_EQ(b->sensedData.at(0).sensedDistance, float(i));
+        EXPECT_EQ(b->sensorLabel, "r1.beacons");
+    }
+    EXPECT_EQ(i, 100);
+    EXPECT_EQ(r.format(), common::RawlogFormat::ObservationsOnly);
+}
+
+TEST(Rawlog, UncommittedWriterLeavesNoFile) {
+    const std::string path = tmp("aborted.rawlog");
+    {
+        common::RawlogWriter w(path);
+        w.write(*ranges(0, 1));
+    }
+    EXPECT_FALSE(std::filesystem::exists(path));
+    EXPECT_FALSE(std::filesystem::exists(path + ".tmp"));
+}
+
+TEST(Rawlog, ActionsAndSensoryFramesAreFlattenedWithIntegratedOdometry) {
+    const std::string path = tmp("sf.rawlog");
+    {
+        mrpt::io::CFileGZOutputStream f(path);
+        auto a = mrpt::serialization::archiveFrom(f);
+        for (int i = 0; i < 5; ++i) {
+            mrpt::obs::CActionCollection acts;
+            mrpt::obs::CActionRobotMovement2D move;
+            move.timestamp = mrpt::Clock::fromDouble(1000 + i);
+            mrpt::obs::CActionRobotMovement2D::TMotionModelOptions opts;
+            move.computeFromOdometry(mrpt::poses::CPose2D(0.5, 0, M_PI / 2), opts);
+            acts.insert(move);
+            mrpt::obs::CSensoryFrame sf;
+            sf.insert(ranges(i, float(i)));
+            a << acts << sf;
+        }
+    }
+    common::RawlogReader r(path);
+    std::vector<mrpt::poses::CPose2D> odo;
+    int nRanges = 0;
+    for (mrpt::obs::CObservation::Ptr obs; r.next(obs);) {
+        if (auto o = std::dynamic_pointer_cast<CObservationOdometry>(obs)) {
+            EXPECT_EQ(o->sensorLabel, common::kActionOdometryLabel);
+            odo.push_back(o->odometry);
+        } else if (std::dynamic_pointer_cast<CObservationBeaconRanges>(obs)) {
+            ++nRanges;
+        }
+    }
+    EXPECT_EQ(r.format(), common::RawlogFormat::ActionsSensoryFrames);
+    EXPECT_EQ(nRanges, 5);
+    ASSERT_EQ(odo.size(), 5u);
+    // Four increments of (0.5 forward, +90 deg) close a square: back at the origin.
+    EXPECT_NEAR(odo[3].x(), 0.0, 1e-9);
+    EXPECT_NEAR(odo[3].y(), 0.0, 1e-9);
+    EXPECT_NEAR(odo[1].x(), 0.5, 1e-9);
+    EXPECT_NEAR(odo[1].y(), 0.5, 1e-9);
+}
+
+TEST(Rawlog, MissingEmptyTruncatedAndWrongClassAreClearErrors) {
+    EXPECT_THROW(common::RawlogReader(tmp("nope.rawlog")), Error);
+    { std::ofstream(tmp("empty.rawlog")); }
+    EXPECT_THROW(common::RawlogReader(tmp("empty.rawlog")), Error);
+
+    // Truncate an uncompressed rawlog in the middle of its last object.
+    const std::string full = tmp("full.rawlog");
+    {
+        common::RawlogWriter w(full, /*compressionLevel=*/0);
+        for (int i = 0; i < 20; ++i) w.write(*ranges(i, 1));
+        w.commit();
+    }
+    std::string bytes;
+    {
+        std::ifstream in(full, std::ios::binary);
+        bytes.assign(std::istreambuf_iterator<char>(in), {});
+    }
+    const std::string cut = tmp("cut.rawlog");
+    {
+        std::ofstream out(cut, std::ios::binary);
+        out.write(bytes.data(), std::streamsize(bytes.size() - 40));
+    }
+    try {
+        common::RawlogReader r(cut);
+        for (mrpt::obs::CObservation::Ptr obs; r.next(obs);) {
+        }
+        FAIL() << "a truncated rawlog must not read as complete";
+    } catch (const Error& e) {
+        EXPECT_NE(std::string(e.what()).find("cut.rawlog"), std::string::npos) << e.what();
+        EXPECT_NE(std::string(e.what()).find("entry"), std::string::npos) << e.what();
+    }
+
+    // A serialized object that is no observation: a pose interpolator.
+    const std::string wrong = tmp("wrong.rawlog");
+    {
+        mrpt::io::CFileGZOutputStream f(wrong);
+        auto a = mrpt::serialization::archiveFrom(f);
+        a << mrpt::poses::CPose3DInterpolator();
+    }
+    try {
+        common::RawlogReader r(wrong);
+        mrpt::obs::CObservation::Ptr obs;
+        r.next(obs);
+        FAIL();
+    } catch (const Error& e) {
+        EXPECT_NE(std::string(e.what()).find("CPose3DInterpolator"), std::string::npos) << e.what();
+    }
+
+    // Not a rawlog at all.
+    const std::string text = tmp("text.rawlog");
+    { std::ofstream(text) << "hello, this is not a rawlog\n"; }
+    EXPECT_THROW(
+        {
+            common::RawlogReader r(text);
+            mrpt::obs::CObservation::Ptr obs;
+            r.next(obs);
+        },
+        Error);
+}
+
+TEST(Trajectory, TumRoundTripInterpolationAndBadLines) {
+    common::Trajectory t = {{10.0, mrpt::poses::CPose3D(0, 0, 0, 0, 0, 0)},
+                            {11.0, mrpt::poses::CPose3D(1, 2, 0, M_PI / 2, 0, 0)}};
+    const std::string p = tmp("traj.txt");
+    common::saveTum(p, t);
+    const auto back = common::loadTum(p);
+    ASSERT_EQ(back.size(), 2u);
+    EXPECT_NEAR(back[1].pose.yaw(), M_PI / 2, 1e-9);
+    EXPECT_NEAR(back[1].pose.y(), 2.0, 1e-9);
+    const auto mid = common::interpolate(back, 10.5);
+    ASSERT_TRUE(mid);
+    EXPECT_NEAR(mid->x(), 0.5, 1e-9);
+    EXPECT_NEAR(mid->yaw(), M_PI / 4, 1e-9);
+    EXPECT_FALSE(common::interpolate(back, 12.0));
+
+    { std::ofstream(tmp("bad.txt")) << "# header\n1 2 3\n"; }
+    try {
+        common::loadTum(tmp("bad.txt"));
+        FAIL();
+    } catch (const Error& e) {
+        EXPECT_NE(std::string(e.what()).find("bad.txt:2"), std::string::npos) << e.what();
+    }
+    EXPECT_EQ(common::groundTruthPath("a/run.rawlog", "r1"), "a/run.r1.gt.txt");
+}
+
+TEST(Metrics, StatsOfKnownValues) {
+    const auto s = common::computeStats({3, 4, 0, 5, 1, 2});
+    EXPECT_EQ(s.n, 6u);
+    EXPECT_DOUBLE_EQ(s.mean, 2.5);
+    EXPECT_DOUBLE_EQ(s.max, 5);
+    EXPECT_DOUBLE_EQ(s.median, 2.5);
+    EXPECT_DOUBLE_EQ(s.rmse, std::sqrt(55.0 / 6.0));
+    EXPECT_DOUBLE_EQ(common::percentile({0, 10}, 95), 9.5);
+}
