@@ -31,11 +31,20 @@ constexpr double kCollinearRatio = 1e-8;
 constexpr double kPlanarRatio = 1e-4;  // out-of-plane spread under 1 % of the in-plane one
 constexpr double kCoincident = 1e-12;  // m^2
 
-/** The problem in coordinates centred on the beacons' centroid (better conditioned). */
+/** The problem in coordinates centred on the beacons' centroid (better conditioned).
+ *  Nothing is copied: a fix allocates no memory. */
 struct Centred {
-    std::vector<Vector3d> b;  // beacons relative to the centroid
-    std::vector<double> r2;   // squared ranges (2-D: minus the known vertical offset)
+    const std::vector<RangeMeasurement>& m;
     Vector3d centroid;
+    bool planar2d;
+    double zKnown;  // 2-D: the receiver's z relative to the centroid
+
+    Vector3d b(size_t i) const { return m[i].beacon - centroid; }
+    /** Squared range; in 2-D minus the known vertical offset. */
+    double r2(size_t i) const {
+        const double dz = planar2d ? zKnown - b(i).z() : 0.0;
+        return m[i].range * m[i].range - dz * dz;
+    }
 };
 
 /** Closed-form start from the differences of eq. (5) against their mean, which removes the
@@ -46,17 +55,17 @@ Eigen::Matrix<double, D, 1> linearStart(const Centred& c,
                                         const Eigen::SelfAdjointEigenSolver<Eigen::Matrix<double, D, D>>& es,
                                         int usedDims) {
     double meanR2 = 0, meanB2 = 0;
-    const size_t n = c.b.size();
+    const size_t n = c.m.size();
     for (size_t i = 0; i < n; ++i) {
-        meanR2 += c.r2[i];
-        meanB2 += c.b[i].template head<D>().squaredNorm();
+        meanR2 += c.r2(i);
+        meanB2 += c.b(i).template head<D>().squaredNorm();
     }
     meanR2 /= double(n);
     meanB2 /= double(n);
     Eigen::Matrix<double, D, 1> v = Eigen::Matrix<double, D, 1>::Zero();
     for (size_t i = 0; i < n; ++i) {
-        const auto bi = c.b[i].template head<D>();
-        v += -0.5 * bi * (c.r2[i] - meanR2 - bi.squaredNorm() + meanB2);
+        const Eigen::Matrix<double, D, 1> bi = c.b(i).template head<D>();
+        v += -0.5 * bi * (c.r2(i) - meanR2 - bi.squaredNorm() + meanB2);
     }
     Eigen::Matrix<double, D, 1> x = Eigen::Matrix<double, D, 1>::Zero();
     for (int k = D - usedDims; k < D; ++k) {
@@ -69,11 +78,39 @@ Eigen::Matrix<double, D, 1> linearStart(const Centred& c,
 /** Mean squared distance off the solved subspace: r_i^2 - |x - b_i|^2, averaged. */
 double outOfSubspace2(const Centred& c, const Vector3d& x, int dims) {
     double w2 = 0;
-    for (size_t i = 0; i < c.b.size(); ++i) {
-        const Vector3d d = x - c.b[i];
-        w2 += c.r2[i] - (dims == 2 ? d.head<2>().squaredNorm() : d.squaredNorm());
+    for (size_t i = 0; i < c.m.size(); ++i) {
+        const Vector3d d = x - c.b(i);
+        w2 += c.r2(i) - (dims == 2 ? d.head<2>().squaredNorm() : d.squaredNorm());
     }
-    return std::max(0.0, w2 / double(c.b.size()));
+    return std::max(0.0, w2 / double(c.m.size()));
+}
+
+/** (H^T H)^-1 of the top-left dims x dims block (zero elsewhere); false if singular. */
+bool invertBlock(const Matrix3d& A, int dims, Matrix3d& inv) {
+    inv.setZero();
+    if (dims == 2) {
+        const Eigen::Matrix2d a = A.topLeftCorner<2, 2>();
+        const double det = a.determinant();
+        if (!(std::abs(det) > 1e-24)) return false;
+        inv.topLeftCorner<2, 2>() = a.inverse();
+        return true;
+    }
+    bool invertible = false;
+    double det = 0;
+    A.computeInverseAndDetWithCheck(inv, det, invertible, 1e-24);
+    return invertible;
+}
+
+/** Smallest eigenvalue of the dims x dims block of a symmetric matrix. */
+double minEigen(const Matrix3d& A, int dims) {
+    if (dims == 2) {
+        Eigen::SelfAdjointEigenSolver<Eigen::Matrix2d> es;
+        es.computeDirect(A.topLeftCorner<2, 2>(), Eigen::EigenvaluesOnly);
+        return es.eigenvalues()(0);
+    }
+    Eigen::SelfAdjointEigenSolver<Matrix3d> es;
+    es.computeDirect(A, Eigen::EigenvaluesOnly);
+    return es.eigenvalues()(0);
 }
 
 /** Gauss-Newton, seed 001 eq. (8)-(10): x(k+1) = x(k) - F'(x(k))^* F(x(k)). With J of full
@@ -101,12 +138,9 @@ int gaussNewton(const std::vector<RangeMeasurement>& m, const Vector3d& centroid
             JtJ.noalias() += g * g.transpose();
             Jtf.noalias() += g * f;
         }
-        Vector3d step = Vector3d::Zero();
-        if (dims == 2) {
-            step.head<2>() = JtJ.topLeftCorner<2, 2>().ldlt().solve(Jtf.head<2>());
-        } else {
-            step = JtJ.ldlt().solve(Jtf);
-        }
+        Matrix3d inv;
+        if (!invertBlock(JtJ, dims, inv)) return -it;  // J lost rank: degenerate geometry
+        const Vector3d step = inv * Jtf;
         if (!step.allFinite()) return -it;
         x -= step;  // eq. (10)
         lastStep = step.norm();
@@ -133,25 +167,21 @@ Fix multilaterate(const std::vector<RangeMeasurement>& m, const MultilaterationO
     const bool planar2d = o.knownHeight.has_value();
     const int dims = planar2d ? 2 : 3;
 
-    Centred c;
-    c.centroid = Vector3d::Zero();
-    for (const auto& mi : m) c.centroid += mi.beacon;
-    c.centroid /= double(m.size());
-    const double zKnown = planar2d ? *o.knownHeight - c.centroid.z() : 0.0;
-    c.b.reserve(m.size());
-    c.r2.reserve(m.size());
-    for (const auto& mi : m) {
-        c.b.push_back(mi.beacon - c.centroid);
-        const double dz = zKnown - c.b.back().z();
-        c.r2.push_back(mi.range * mi.range - (planar2d ? dz * dz : 0.0));
-    }
+    Vector3d centroid = Vector3d::Zero();
+    for (const auto& mi : m) centroid += mi.beacon;
+    centroid /= double(m.size());
+    const Centred c{m, centroid, planar2d, planar2d ? *o.knownHeight - centroid.z() : 0.0};
+    const double zKnown = c.zKnown;
 
     Vector3d x = Vector3d::Zero();
     Vector3d normal = Vector3d::Zero();  // of the mirror plane (3-D) or line (2-D)
     bool mirrored = false;
     if (planar2d) {
         Eigen::Matrix2d S = Eigen::Matrix2d::Zero();
-        for (const auto& b : c.b) S += b.head<2>() * b.head<2>().transpose();
+        for (size_t i = 0; i < m.size(); ++i) {
+            const Eigen::Vector2d b = c.b(i).head<2>();
+            S += b * b.transpose();
+        }
         Eigen::SelfAdjointEigenSolver<Eigen::Matrix2d> es;
         es.computeDirect(S);
         if (es.eigenvalues()(1) < kCoincident) {
@@ -163,7 +193,10 @@ Fix multilaterate(const std::vector<RangeMeasurement>& m, const MultilaterationO
         if (mirrored) normal.head<2>() = es.eigenvectors().col(0);
     } else {
         Matrix3d S = Matrix3d::Zero();
-        for (const auto& b : c.b) S += b * b.transpose();
+        for (size_t i = 0; i < m.size(); ++i) {
+            const Vector3d b = c.b(i);
+            S += b * b.transpose();
+        }
         Eigen::SelfAdjointEigenSolver<Matrix3d> es;
         es.computeDirect(S);
         const Vector3d& ev = es.eigenvalues();
@@ -213,7 +246,7 @@ Fix multilaterate(const std::vector<RangeMeasurement>& m, const MultilaterationO
     double sumRes2 = 0;
     const double s2 = o.rangeSigma * o.rangeSigma;
     for (size_t i = 0; i < m.size(); ++i) {
-        const Vector3d d = x - c.b[i];
+        const Vector3d d = x - c.b(i);
         const double n = d.norm();
         sumRes2 += (n - m[i].range) * (n - m[i].range);
         Vector3d u = n > 1e-12 ? Vector3d(d / n) : Vector3d::Zero();
@@ -232,26 +265,24 @@ Fix multilaterate(const std::vector<RangeMeasurement>& m, const MultilaterationO
         fix.mirrorPosition = mirror + c.centroid;
     }
 
-    const auto block = [dims](const Matrix3d& A) -> Eigen::MatrixXd {
-        return A.topLeftCorner(dims, dims);
-    };
-    Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd> hes(block(HtH), Eigen::EigenvaluesOnly);
-    const double minEig = hes.eigenvalues()(0);
-    if (!(minEig > 1e-12)) {
+    Matrix3d G;
+    if (!(minEigen(HtH, dims) > 1e-12) || !invertBlock(HtH, dims, G)) {
         fix.status = FixStatus::IllConditioned;
         fix.gdop = std::numeric_limits<double>::infinity();
         return fix;
     }
-    const Eigen::MatrixXd G = block(HtH).inverse();
     fix.gdop = std::sqrt(G.trace());
-    Eigen::MatrixXd cov;
     if (o.residual == Residual::Range) {
-        cov = s2 * G;
+        fix.covariance = s2 * G;
     } else {
-        const Eigen::MatrixXd Ai = block(JtJ).inverse();
-        cov = Ai * block(JtWJ) * Ai;
+        // First-order propagation through the pseudo-inverse of eq. (10): J^+ cov(f) J^+^T.
+        Matrix3d Ai;
+        if (!invertBlock(JtJ, dims, Ai)) {
+            fix.status = FixStatus::IllConditioned;
+            return fix;
+        }
+        fix.covariance = Ai * JtWJ * Ai;
     }
-    fix.covariance.topLeftCorner(dims, dims) = cov;
 
     if (fix.gdop > o.maxGdop)
         fix.status = FixStatus::IllConditioned;

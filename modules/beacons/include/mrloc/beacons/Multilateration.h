@@ -36,7 +36,7 @@ enum class MirrorRule {
 struct MultilaterationOptions {
     Residual residual = Residual::Range;
     int maxIterations = 20;
-    double tolerance = 1e-12;           ///< stop when the step is shorter (m)
+    double tolerance = 1e-10;  ///< stop when the step is shorter (m, relative to 1 + |x|)
     std::optional<double> knownHeight;  ///< 2-D variant: the receiver's z is known
     MirrorRule mirror = MirrorRule::Below;
     std::optional<Eigen::Vector3d> hint;
