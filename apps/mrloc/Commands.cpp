@@ -33,19 +33,21 @@ std::unique_ptr<mrpt::config::CConfigFile> openIni(const std::string& path) {
     auto ini = std::make_unique<mrpt::config::CConfigFile>(path);
     std::vector<std::string> sections;
     ini->getAllSections(sections);
-    static const std::set<std::string> known = {"scenario", "world", "sensors", "beacons", "report"};
+    static const std::set<std::string> known = {"scenario", "world", "sensors", "beacons",
+                                                "report"};
     for (const auto& s : sections) {
         if (s.empty() || !std::islower(static_cast<unsigned char>(s[0]))) continue;
         if (known.count(s) || s.rfind("robot.", 0) == 0) continue;
-        throw Error(path + ": [" + s + "]: unknown section (mrloc's sections: scenario, world, "
+        throw Error(path + ": [" + s +
+                    "]: unknown section (mrloc's sections: scenario, world, "
                     "sensors, robot.<name>, beacons, report; see doc/ini.md)");
     }
     return ini;
 }
 
 struct Common {
-    TCLAP::ValueArg<std::string> out{"o", "out", "output directory (default: out/<scenario name>)",
-                                     false, "", "DIR"};
+    TCLAP::ValueArg<std::string> out{
+        "o", "out", "output directory (default: out/<scenario name>)", false, "", "DIR"};
     TCLAP::SwitchArg quiet{"q", "quiet", "no progress bar, only errors"};
 };
 
@@ -53,7 +55,8 @@ std::string outDirOr(Common& c, const std::string& name) {
     return c.out.isSet() ? c.out.getValue() : "out/" + name;
 }
 
-sim::ScenarioConfig loadScenario(const mrpt::config::CConfigFile& ini, TCLAP::ValueArg<long>& seed) {
+sim::ScenarioConfig loadScenario(const mrpt::config::CConfigFile& ini,
+                                 TCLAP::ValueArg<long>& seed) {
     auto cfg = sim::ScenarioConfig::load(ini);
     if (seed.isSet()) {
         if (seed.getValue() < 0) throw Error("--seed must be non-negative");
@@ -97,11 +100,13 @@ std::optional<int> parseArgs(TCLAP::CmdLine& cmd, int argc, char** argv) {
 }
 
 int simulate(int argc, char** argv) {
-    TCLAP::CmdLine cmd("mrloc simulate: simulate the INI's scenario into a rawlog "
-                       "(<out>/<name>.rawlog) and ground truth (<out>/<name>.<robot>.gt.txt)",
-                       ' ', kVersion);
+    TCLAP::CmdLine cmd(
+        "mrloc simulate: simulate the INI's scenario into a rawlog "
+        "(<out>/<name>.rawlog) and ground truth (<out>/<name>.<robot>.gt.txt)",
+        ' ', kVersion);
     TCLAP::UnlabeledValueArg<std::string> iniArg("ini", "scenario INI file", true, "", "INI", cmd);
-    TCLAP::ValueArg<long> seed("s", "seed", "random seed (overrides [scenario] seed)", false, 0, "N", cmd);
+    TCLAP::ValueArg<long> seed("s", "seed", "random seed (overrides [scenario] seed)", false, 0,
+                               "N", cmd);
     Common c;
     cmd.add(c.out);
     cmd.add(c.quiet);
@@ -109,16 +114,18 @@ int simulate(int argc, char** argv) {
     const auto ini = openIni(iniArg.getValue());
     const auto cfg = loadScenario(*ini, seed);
     makeLocalizer(cfg.scenario.method, *ini);  // a bad method section fails before simulating
-    const std::string path = sim::simulateToFiles(cfg, outDirOr(c, cfg.scenario.name), c.quiet.getValue());
+    const std::string path =
+        sim::simulateToFiles(cfg, outDirOr(c, cfg.scenario.name), c.quiet.getValue());
     std::cout << path << "\n";
     return 0;
 }
 
 int localize(int argc, char** argv) {
-    TCLAP::CmdLine cmd("mrloc localize: run the INI's method ([scenario] method, default "
-                       "'beacons') on any MRPT rawlog, in either rawlog format. Ground truth "
-                       "is taken from <rawlog stem>.<robot>.gt.txt when present.",
-                       ' ', kVersion);
+    TCLAP::CmdLine cmd(
+        "mrloc localize: run the INI's method ([scenario] method, default "
+        "'beacons') on any MRPT rawlog, in either rawlog format. Ground truth "
+        "is taken from <rawlog stem>.<robot>.gt.txt when present.",
+        ' ', kVersion);
     TCLAP::UnlabeledValueArg<std::string> iniArg("ini", "INI file", true, "", "INI", cmd);
     TCLAP::UnlabeledValueArg<std::string> rawlog("rawlog", "rawlog file", true, "", "RAWLOG", cmd);
     Common c;
@@ -135,9 +142,10 @@ int localize(int argc, char** argv) {
 }
 
 int report(int argc, char** argv) {
-    TCLAP::CmdLine cmd("mrloc report: render report.html, topview.png, error_time.png and "
-                       "error_cdf.png in a directory written by `mrloc localize`",
-                       ' ', kVersion);
+    TCLAP::CmdLine cmd(
+        "mrloc report: render report.html, topview.png, error_time.png and "
+        "error_cdf.png in a directory written by `mrloc localize`",
+        ' ', kVersion);
     TCLAP::UnlabeledValueArg<std::string> dir("run-dir", "run directory", true, "", "DIR", cmd);
     if (const auto code = parseArgs(cmd, argc, argv)) return *code;
     std::cout << report::makeReport(dir.getValue()) << "\n";
@@ -145,11 +153,13 @@ int report(int argc, char** argv) {
 }
 
 int run(int argc, char** argv) {
-    TCLAP::CmdLine cmd("mrloc run: simulate, localize and report in a row; everything goes to "
-                       "<out> (default out/<scenario name>)",
-                       ' ', kVersion);
+    TCLAP::CmdLine cmd(
+        "mrloc run: simulate, localize and report in a row; everything goes to "
+        "<out> (default out/<scenario name>)",
+        ' ', kVersion);
     TCLAP::UnlabeledValueArg<std::string> iniArg("ini", "scenario INI file", true, "", "INI", cmd);
-    TCLAP::ValueArg<long> seed("s", "seed", "random seed (overrides [scenario] seed)", false, 0, "N", cmd);
+    TCLAP::ValueArg<long> seed("s", "seed", "random seed (overrides [scenario] seed)", false, 0,
+                               "N", cmd);
     Common c;
     cmd.add(c.out);
     cmd.add(c.quiet);

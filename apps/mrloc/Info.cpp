@@ -12,9 +12,10 @@
 namespace mrloc::app {
 
 int info(int argc, char** argv) {
-    TCLAP::CmdLine cmd("mrloc info: per robot and sensor label of a rawlog, the observation "
-                       "class, count, rate and time span",
-                       ' ', "0.1.0");
+    TCLAP::CmdLine cmd(
+        "mrloc info: per robot and sensor label of a rawlog, the observation "
+        "class, count, rate and time span",
+        ' ', "0.1.0");
     TCLAP::UnlabeledValueArg<std::string> path("rawlog", "rawlog file", true, "", "RAWLOG", cmd);
     if (const auto code = parseArgs(cmd, argc, argv)) return *code;
 

@@ -84,7 +84,8 @@ TEST(MrlocRun, QuickstartEndToEndWithinBound) {
 
     // The effective configuration runs again to the same result.
     const std::string again = tmp("run_effective");
-    const auto r2 = mrlocCmd("localize " + out + "/effective.ini " + out + "/quickstart.rawlog --out " + again + " -q");
+    const auto r2 = mrlocCmd("localize " + out + "/effective.ini " + out +
+                             "/quickstart.rawlog --out " + again + " -q");
     ASSERT_EQ(r2.code, 0) << r2.output;
     EXPECT_EQ(slurp(out + "/estimates.r1.txt"), slurp(again + "/estimates.r1.txt"));
 }
@@ -119,7 +120,8 @@ TEST(MrlocLocalize, ForeignRawlogInActionsSensoryFrameFormat) {
             if (auto o = std::dynamic_pointer_cast<mrpt::obs::CObservationOdometry>(obs)) {
                 odo = o->odometry;
                 if (!odoAtFrame) odoAtFrame = odo;
-            } else if (auto b = std::dynamic_pointer_cast<mrpt::obs::CObservationBeaconRanges>(obs)) {
+            } else if (auto b =
+                           std::dynamic_pointer_cast<mrpt::obs::CObservationBeaconRanges>(obs)) {
                 b->sensorLabel = "BEACONS";
                 mrpt::obs::CActionCollection acts;
                 mrpt::obs::CActionRobotMovement2D move;
@@ -133,13 +135,15 @@ TEST(MrlocLocalize, ForeignRawlogInActionsSensoryFrameFormat) {
             }
         }
     }
-    fs::copy_file(std::string(MRLOC_SOURCE_DIR) + "/rawlogs/quickstart.r1.gt.txt", dir + "/recorded.robot.gt.txt");
-    std::ofstream(dir + "/mrpt.ini") << "[MetricMap_landmarksMap_00_creationOpts]\nnBeacons=4\n"
-                                        "beacon_001_ID=1\nbeacon_001_x=0\nbeacon_001_y=0\nbeacon_001_z=2.5\n"
-                                        "beacon_002_ID=2\nbeacon_002_x=3\nbeacon_002_y=0\nbeacon_002_z=2.5\n"
-                                        "beacon_003_ID=3\nbeacon_003_x=3\nbeacon_003_y=3\nbeacon_003_z=2.5\n"
-                                        "beacon_004_ID=4\nbeacon_004_x=0\nbeacon_004_y=3\nbeacon_004_z=2.5\n"
-                                        "[beacons]\nrange_sigma = 0.01\n";
+    fs::copy_file(std::string(MRLOC_SOURCE_DIR) + "/rawlogs/quickstart.r1.gt.txt",
+                  dir + "/recorded.robot.gt.txt");
+    std::ofstream(dir + "/mrpt.ini")
+        << "[MetricMap_landmarksMap_00_creationOpts]\nnBeacons=4\n"
+           "beacon_001_ID=1\nbeacon_001_x=0\nbeacon_001_y=0\nbeacon_001_z=2.5\n"
+           "beacon_002_ID=2\nbeacon_002_x=3\nbeacon_002_y=0\nbeacon_002_z=2.5\n"
+           "beacon_003_ID=3\nbeacon_003_x=3\nbeacon_003_y=3\nbeacon_003_z=2.5\n"
+           "beacon_004_ID=4\nbeacon_004_x=0\nbeacon_004_y=3\nbeacon_004_z=2.5\n"
+           "[beacons]\nrange_sigma = 0.01\n";
     const auto r = mrlocCmd("localize " + dir + "/mrpt.ini " + dst + " -q --out " + dir + "/out");
     ASSERT_EQ(r.code, 0) << r.output;
     const auto m = common::loadJson(dir + "/out/metrics.json");
@@ -166,17 +170,21 @@ TEST(MrlocInfo, SummarisesLabelsCountsAndRates) {
         return f;
     };
     EXPECT_EQ(fields(line("r1.beacons")),
-              (std::vector<std::string>{"r1", "r1.beacons", "mrpt::obs::CObservationBeaconRanges", "301", "5.00", "0.000", "60.000"}));
+              (std::vector<std::string>{"r1", "r1.beacons", "mrpt::obs::CObservationBeaconRanges",
+                                        "301", "5.00", "0.000", "60.000"}));
     EXPECT_EQ(fields(line("r1.odom")),
-              (std::vector<std::string>{"r1", "r1.odom", "mrpt::obs::CObservationOdometry", "1201", "20.00", "0.000", "60.000"}));
+              (std::vector<std::string>{"r1", "r1.odom", "mrpt::obs::CObservationOdometry", "1201",
+                                        "20.00", "0.000", "60.000"}));
 }
 
 TEST(MrlocErrors, MisspeltKeyStopsWithFileSectionKeyAndWritesNothing) {
-    const std::string ini = writeIni("misspelt", "range_sigma = 0.01\nbeacon_1", "range_sigam = 0.01\nbeacon_1");
+    const std::string ini =
+        writeIni("misspelt", "range_sigma = 0.01\nbeacon_1", "range_sigam = 0.01\nbeacon_1");
     const std::string out = tmp("misspelt");
     const auto r = mrlocCmd("run " + ini + " -q --out " + out);
     EXPECT_EQ(r.code, 1);
-    EXPECT_NE(r.output.find("misspelt.ini: [beacons] range_sigam: unknown key"), std::string::npos) << r.output;
+    EXPECT_NE(r.output.find("misspelt.ini: [beacons] range_sigam: unknown key"), std::string::npos)
+        << r.output;
     EXPECT_FALSE(fs::exists(out));
 }
 
@@ -186,12 +194,15 @@ TEST(MrlocErrors, BadValuesSectionsAndFiles) {
     };
     const std::vector<Case> cases = {
         {"speed     = 0.3", "speed = fast", "[robot.r1] speed: expected a number, got 'fast'"},
-        {"range_dropout             = 0.02", "range_dropout = 1.5", "[sensors] range_dropout: value 1.5 is out of range [0, 1]"},
+        {"range_dropout             = 0.02", "range_dropout = 1.5",
+         "[sensors] range_dropout: value 1.5 is out of range [0, 1]"},
         {"[sensors]", "[sensor]", "[sensor]: unknown section"},
         {"beacon_4 = 0.0 3.0 2.5", "beacon_4 = 0.0 9.0 2.5", "[beacons] beacon_4: position"},
-        {"method   = beacons", "method = magic", "unknown localization method 'magic' (known: beacons)"},
+        {"method   = beacons", "method = magic",
+         "unknown localization method 'magic' (known: beacons)"},
         {"robots   = r1", "robots   = r1 r2", "robot 'r2' has no section [robot.r2]"},
-        {"start     = 0.5 0.5 0", "start = 0.5 nan 0", "[robot.r1] start: expected a finite number"},
+        {"start     = 0.5 0.5 0", "start = 0.5 nan 0",
+         "[robot.r1] start: expected a finite number"},
     };
     for (const auto& c : cases) {
         const std::string ini = writeIni("bad", c.from, c.to);
@@ -201,10 +212,13 @@ TEST(MrlocErrors, BadValuesSectionsAndFiles) {
         EXPECT_NE(r.output.find(c.expected), std::string::npos) << c.to << "\n" << r.output;
         EXPECT_FALSE(fs::exists(out)) << c.to;
     }
-    EXPECT_NE(mrlocCmd("run /no/such.ini").output.find("config /no/such.ini: no such file"), std::string::npos);
-    const auto missing = mrlocCmd("localize " + quickstart() + " /no/such.rawlog -q --out " + tmp("x"));
+    EXPECT_NE(mrlocCmd("run /no/such.ini").output.find("config /no/such.ini: no such file"),
+              std::string::npos);
+    const auto missing =
+        mrlocCmd("localize " + quickstart() + " /no/such.rawlog -q --out " + tmp("x"));
     EXPECT_EQ(missing.code, 1);
-    EXPECT_NE(missing.output.find("rawlog /no/such.rawlog: no such file"), std::string::npos) << missing.output;
+    EXPECT_NE(missing.output.find("rawlog /no/such.rawlog: no such file"), std::string::npos)
+        << missing.output;
     EXPECT_NE(mrlocCmd("report /tmp").output.find("not a run directory"), std::string::npos);
 }
 

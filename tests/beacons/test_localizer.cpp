@@ -20,7 +20,8 @@ robots = r1
 [world]
 size = 3 3 2.5
 [sensors]
-)" + sensors + R"(
+)" + sensors +
+           R"(
 [robot.r1]
 start = 0.5 0.5 0
 waypoints = 2.5 0.5, 2.5 2.5, 0.5 2.5, 0.5 0.5
@@ -49,7 +50,8 @@ Outcome runOn(const std::string& iniText, const std::string& tag) {
     for (mrpt::obs::CObservation::Ptr obs; reader.next(obs);) loc.process(obs);
     const auto gt = common::loadTum(common::groundTruthPath(rawlog, "r1"));
     std::vector<double> e;
-    for (const auto& te : common::positionErrors(loc.estimates().at("r1"), gt)) e.push_back(te.error);
+    for (const auto& te : common::positionErrors(loc.estimates().at("r1"), gt))
+        e.push_back(te.error);
     return {common::computeStats(e), loc.methodMetrics()};
 }
 

@@ -13,7 +13,8 @@ namespace {
 
 std::vector<RangeMeasurement> exactRanges(const std::vector<Vector3d>& beacons, const Vector3d& x) {
     std::vector<RangeMeasurement> m;
-    for (size_t i = 0; i < beacons.size(); ++i) m.push_back({beacons[i], (x - beacons[i]).norm(), int(i)});
+    for (size_t i = 0; i < beacons.size(); ++i)
+        m.push_back({beacons[i], (x - beacons[i]).norm(), int(i)});
     return m;
 }
 
@@ -40,8 +41,8 @@ TEST(Multilateration, ExactOnNoiseFreeNonCoplanarBothResiduals) {
 
 TEST(Multilateration, ExactOnNoiseFreeCeilingBeaconsResolvesMirrorBelow) {
     // Seed 001 Table 2 test points at 500 mm height.
-    const std::vector<Vector3d> points = {{0.5, 2.5, 0.5}, {0.5, 0.5, 0.5}, {2.5, 0.5, 0.5},
-                                          {2.5, 2.5, 0.5}, {1.5, 1.5, 0.5}};
+    const std::vector<Vector3d> points = {
+        {0.5, 2.5, 0.5}, {0.5, 0.5, 0.5}, {2.5, 0.5, 0.5}, {2.5, 2.5, 0.5}, {1.5, 1.5, 0.5}};
     for (const auto& beacons : {kCeiling3, kCeiling4}) {
         for (const auto& truth : points) {
             for (auto residual : {Residual::Range, Residual::SquaredRange}) {
@@ -170,7 +171,8 @@ TEST(Multilateration, MonteCarloRmseWithinTenPercentOfCramerRao) {
 
 TEST(Multilateration, RobustFixDropsOneOutlier) {
     const Vector3d truth(1.0, 2.0, 0.5);
-    const std::vector<Vector3d> five = {{0, 0, 2.5}, {3, 0, 2.5}, {3, 3, 2.5}, {0, 3, 2.5}, {1.5, 1.5, 2.5}};
+    const std::vector<Vector3d> five = {
+        {0, 0, 2.5}, {3, 0, 2.5}, {3, 3, 2.5}, {0, 3, 2.5}, {1.5, 1.5, 2.5}};
     auto m = exactRanges(five, truth);
     m[2].range += 0.8;  // a late echo
     MultilaterationOptions o;

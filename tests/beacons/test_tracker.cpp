@@ -10,7 +10,8 @@ using mrpt::poses::CPose2D;
 
 namespace {
 
-const common::BeaconMap kMap = {{1, {0, 0, 2.5}}, {2, {3, 0, 2.5}}, {3, {3, 3, 2.5}}, {4, {0, 3, 2.5}}};
+const common::BeaconMap kMap = {
+    {1, {0, 0, 2.5}}, {2, {3, 0, 2.5}}, {3, {3, 3, 2.5}}, {4, {0, 3, 2.5}}};
 
 struct Drive {
     beacons::BeaconTracker tracker{kMap, beacons::TrackerOptions{}};
@@ -37,13 +38,16 @@ struct Drive {
             mrpt::obs::CObservationBeaconRanges::TMeasurement m;
             m.beaconID = id;
             m.sensorLocationOnRobot = mrpt::poses::CPoint3D(0, 0, 0.5);
-            const double d = std::sqrt(std::pow(b.x - truth.x(), 2) + std::pow(b.y - truth.y(), 2) + 4.0);
+            const double d =
+                std::sqrt(std::pow(b.x - truth.x(), 2) + std::pow(b.y - truth.y(), 2) + 4.0);
             m.sensedDistance = float(d + rng.drawGaussian1D(0, 0.01) + (id == biased ? bias : 0));
             obs.sensedData.push_back(m);
         }
         return tracker.onRanges(t, obs);
     }
-    double error(const CPose2D& p) const { return std::hypot(p.x() - truth.x(), p.y() - truth.y()); }
+    double error(const CPose2D& p) const {
+        return std::hypot(p.x() - truth.x(), p.y() - truth.y());
+    }
     CPose2D odometry{5, -2, 1.0};  // an odometry frame unrelated to the world frame
 };
 

@@ -46,11 +46,14 @@ void fixes(benchmark::State& state, beacons::Residual residual, bool twoD) {
     if (failed) state.SkipWithError("a fix failed");
     state.SetItemsProcessed(int64_t(state.iterations()));
     state.counters["gn_iterations"] = double(iterations) / double(state.iterations());
-    state.counters["fixes_per_s"] = benchmark::Counter(double(state.iterations()), benchmark::Counter::kIsRate);
+    state.counters["fixes_per_s"] =
+        benchmark::Counter(double(state.iterations()), benchmark::Counter::kIsRate);
 }
 
 void BM_Fix3D_Range(benchmark::State& s) { fixes(s, beacons::Residual::Range, false); }
-void BM_Fix3D_SquaredRange_Seed001(benchmark::State& s) { fixes(s, beacons::Residual::SquaredRange, false); }
+void BM_Fix3D_SquaredRange_Seed001(benchmark::State& s) {
+    fixes(s, beacons::Residual::SquaredRange, false);
+}
 void BM_Fix2D_Range(benchmark::State& s) { fixes(s, beacons::Residual::Range, true); }
 BENCHMARK(BM_Fix3D_Range)->Arg(4)->Arg(8);
 BENCHMARK(BM_Fix3D_SquaredRange_Seed001)->Arg(4)->Arg(8);
@@ -58,7 +61,8 @@ BENCHMARK(BM_Fix2D_Range)->Arg(4)->Arg(8);
 
 // Playback: read a 200,000-observation rawlog (beacon ranges, 4 beacons each).
 void BM_RawlogPlayback(benchmark::State& state) {
-    const std::string path = (std::filesystem::temp_directory_path() / "mrloc_bench_playback.rawlog").string();
+    const std::string path =
+        (std::filesystem::temp_directory_path() / "mrloc_bench_playback.rawlog").string();
     const size_t n = 200000;
     {
         common::RawlogWriter w(path);
@@ -83,7 +87,8 @@ void BM_RawlogPlayback(benchmark::State& state) {
         if (count != n) state.SkipWithError("wrong count");
     }
     state.SetItemsProcessed(int64_t(state.iterations() * n));
-    state.counters["obs_per_s"] = benchmark::Counter(double(state.iterations() * n), benchmark::Counter::kIsRate);
+    state.counters["obs_per_s"] =
+        benchmark::Counter(double(state.iterations() * n), benchmark::Counter::kIsRate);
     std::filesystem::remove(path);
 }
 BENCHMARK(BM_RawlogPlayback)->Unit(benchmark::kMillisecond);

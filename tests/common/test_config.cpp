@@ -27,7 +27,8 @@ std::string errorOf(const std::string& text, F read) {
 }  // namespace
 
 TEST(IniSection, ReadsValuesAndDefaults) {
-    mrpt::config::CConfigFileMemory ini("[s]\nx = 2.5 // metres\nn = 7\nb = true\nw = a b\nv = 1 2 3\n");
+    mrpt::config::CConfigFileMemory ini(
+        "[s]\nx = 2.5 // metres\nn = 7\nb = true\nw = a b\nv = 1 2 3\n");
     IniSection s(ini, "s");
     EXPECT_DOUBLE_EQ(s.real("x", 0), 2.5);
     EXPECT_DOUBLE_EQ(s.real("missing", 4.0), 4.0);
@@ -39,7 +40,8 @@ TEST(IniSection, ReadsValuesAndDefaults) {
 }
 
 TEST(IniSection, UnknownKeyIsAnError) {
-    const auto e = errorOf("[s]\nrange_sigam = 1\n", [](IniSection& s) { s.real("range_sigma", 0); });
+    const auto e =
+        errorOf("[s]\nrange_sigam = 1\n", [](IniSection& s) { s.real("range_sigma", 0); });
     EXPECT_NE(e.find("<memory>: [s] range_sigam: unknown key"), std::string::npos) << e;
 }
 
@@ -49,18 +51,34 @@ TEST(IniSection, MissingRequiredKeyIsAnError) {
 }
 
 TEST(IniSection, WrongTypeIsAnError) {
-    EXPECT_NE(errorOf("[s]\nx = abc\n", [](IniSection& s) { s.real("x", 0); }).find("[s] x: expected a number, got 'abc'"), std::string::npos);
-    EXPECT_NE(errorOf("[s]\nx = 1.5\n", [](IniSection& s) { s.integer("x", 0, 0, 9); }).find("expected an integer"), std::string::npos);
-    EXPECT_NE(errorOf("[s]\nx = maybe\n", [](IniSection& s) { s.flag("x", 0); }).find("expected true or false"), std::string::npos);
-    EXPECT_NE(errorOf("[s]\nx = nan\n", [](IniSection& s) { s.real("x", 0); }).find("finite"), std::string::npos);
-    EXPECT_NE(errorOf("[s]\nx = 1 2\n", [](IniSection& s) { s.reals("x", {}, 3); }).find("expected 3 numbers, got 2"), std::string::npos);
-    EXPECT_NE(errorOf("[s]\nx = fast\n", [](IniSection& s) { s.choice("x", "a", {"a", "b"}); }).find("'fast' is not one of: a, b"), std::string::npos);
+    EXPECT_NE(errorOf("[s]\nx = abc\n", [](IniSection& s) { s.real("x", 0); })
+                  .find("[s] x: expected a number, got 'abc'"),
+              std::string::npos);
+    EXPECT_NE(errorOf("[s]\nx = 1.5\n", [](IniSection& s) { s.integer("x", 0, 0, 9); })
+                  .find("expected an integer"),
+              std::string::npos);
+    EXPECT_NE(errorOf("[s]\nx = maybe\n", [](IniSection& s) { s.flag("x", 0); })
+                  .find("expected true or false"),
+              std::string::npos);
+    EXPECT_NE(errorOf("[s]\nx = nan\n", [](IniSection& s) { s.real("x", 0); }).find("finite"),
+              std::string::npos);
+    EXPECT_NE(errorOf("[s]\nx = 1 2\n", [](IniSection& s) { s.reals("x", {}, 3); })
+                  .find("expected 3 numbers, got 2"),
+              std::string::npos);
+    EXPECT_NE(errorOf("[s]\nx = fast\n",
+                      [](IniSection& s) {
+                          s.choice("x", "a", {"a", "b"});
+                      })
+                  .find("'fast' is not one of: a, b"),
+              std::string::npos);
 }
 
 TEST(IniSection, OutOfRangeIsAnError) {
     const auto e = errorOf("[s]\np = 1.5\n", [](IniSection& s) { s.real("p", 0.5, 0, 1); });
     EXPECT_NE(e.find("[s] p: value 1.5 is out of range [0, 1]"), std::string::npos) << e;
-    EXPECT_NE(errorOf("[s]\nn = -2\n", [](IniSection& s) { s.integer("n", 0, 0, 9); }).find("out of range"), std::string::npos);
+    EXPECT_NE(errorOf("[s]\nn = -2\n", [](IniSection& s) { s.integer("n", 0, 0, 9); })
+                  .find("out of range"),
+              std::string::npos);
 }
 
 TEST(BeaconMap, OurKeysAndMrptLandmarksMapKeys) {
@@ -84,13 +102,15 @@ TEST(BeaconMap, OurKeysAndMrptLandmarksMapKeys) {
 
     // MRPT would read a missing coordinate as 0; here it is an error.
     mrpt::config::CConfigFileMemory broken(
-        "[MetricMap_landmarksMap_00_creationOpts]\nnBeacons = 1\nbeacon_001_ID = 5\nbeacon_001_x = 1\n");
+        "[MetricMap_landmarksMap_00_creationOpts]\nnBeacons = 1\nbeacon_001_ID = 5\nbeacon_001_x = "
+        "1\n");
     IniSection e3(broken, "beacons");
     try {
         common::loadBeaconMap(broken, e3);
         FAIL();
     } catch (const Error& e) {
-        EXPECT_NE(std::string(e.what()).find("beacon_001_y: missing"), std::string::npos) << e.what();
+        EXPECT_NE(std::string(e.what()).find("beacon_001_y: missing"), std::string::npos)
+            << e.what();
     }
     mrpt::config::CConfigFileMemory none("[beacons]\n");
     IniSection e4(none, "beacons");

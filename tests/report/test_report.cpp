@@ -37,8 +37,10 @@ TEST(TopView, DrawsPathsAndBeaconsWhereTheyAre) {
     c.beacons = {{1, {0.5, 3.5, 2.5}}};
     // A horizontal estimated path along y = 1 and a vertical true path along x = 3.
     for (int i = 0; i <= 10; ++i) {
-        c.estimates["r"].push_back({double(i), mrpt::poses::CPose3D(0.5 + 0.3 * i, 1.0, 0, 0, 0, 0)});
-        c.groundTruth["r"].push_back({double(i), mrpt::poses::CPose3D(3.0, 0.5 + 0.3 * i, 0, 0, 0, 0)});
+        c.estimates["r"].push_back(
+            {double(i), mrpt::poses::CPose3D(0.5 + 0.3 * i, 1.0, 0, 0, 0, 0)});
+        c.groundTruth["r"].push_back(
+            {double(i), mrpt::poses::CPose3D(3.0, 0.5 + 0.3 * i, 0, 0, 0, 0)});
     }
     const std::string png = testing::TempDir() + "/mrloc_topview.png";
     report::renderTopView(c, png, 400, 400);

@@ -13,7 +13,7 @@ void BeaconOptions::loadFromConfigFile(const mrpt::config::CConfigFileBase& src,
                                        const std::string& section) {
     IniSection s(src, section);
     mode = s.choice("mode", "tracker", {"tracker", "fixes"}) == "tracker" ? Mode::Tracker
-                                                                           : Mode::Fixes;
+                                                                          : Mode::Fixes;
     threeD = s.choice("dimension", "2d", {"2d", "3d"}) == "3d";
     auto& f = tracker.fix;
     f.residual = s.choice("residual", "range", {"range", "squared"}) == "range"
@@ -96,54 +96,21 @@ void BeaconLocalizer::process(const mrpt::obs::CObservation::Ptr& obs) {
 
 void BeaconLocalizer::fixOnly(const std::string& robot, double t,
                               const mrpt::obs::CObservationBeaconRanges& obs) {
-    // Seed 001 as published: one multilateration per epoch, no filtering.
-    std::vector<RangeMeasurement> m;
-    double sensorZ = 0;
-    for (const auto& r : obs.sensedData) {
-        const auto it = options_.map.find(r.beaconID);
-        if (it == options_.map.end() || !(r.sensedDistance > 0)) continue;
-        m.push_back({{it->second.x, it->second.y, it->second.z}, double(r.sensedDistance), r.beaconID});
-        sensorZ = r.sensorLocationOnRobot.z();
-    }
-    auto& stats = fixStats_[robot];
-    ++stats.epochs;
-    stats.rangesReceived += obs.sensedData.size();
-    stats.rangesUsed += m.size();
-    MultilaterationOptions fo = options_.tracker.fix;
-    fo.rangeSigma = options_.tracker.rangeSigma;
-    if (fo.knownHeight) fo.knownHeight = sensorZ;
-    auto& traj = estimates_[robot];
-    if (!traj.empty())
-        fo.hint = Eigen::Vector3d(traj.back().pose.x(), traj.back().pose.y(), sensorZ);
-    ++stats.fixes;
-    const Fix f = multilaterate(m, fo);
-    if (!f.ok()) {
-        ++stats.fixFailures;
-        return;
-    }
-    if (f.mirrorAmbiguous) ++stats.mirrorResolved;
-    const double z = options_.threeD ? f.position.z() - sensorZ : 0.0;
-    traj.push_back({t, mrpt::poses::CPose3D(f.position.x(), f.position.y(), z,
-                                            lastHeading_.count(robot) ? lastHeading_[robot] : 0.0,
-                                            0, 0)});
+    const auto f = trackerOf(robot).fixOnly(obs);
+    if (!f) return;
+    // The fix locates the receiver; the robot's reference is sensor z below it.
+    const double sensorZ = obs.sensedData.front().sensorLocationOnRobot.z();
+    const double z = options_.threeD ? f->position.z() - sensorZ : 0.0;
+    const auto heading = lastHeading_.find(robot);
+    estimates_[robot].push_back(
+        {t, mrpt::poses::CPose3D(f->position.x(), f->position.y(), z,
+                                 heading == lastHeading_.end() ? 0.0 : heading->second, 0, 0)});
 }
 
 nlohmann::json BeaconLocalizer::methodMetrics() const {
     nlohmann::json j;
     TrackerStats total;
-    const auto add = [&](const TrackerStats& s) {
-        total.epochs += s.epochs;
-        total.rangesReceived += s.rangesReceived;
-        total.rangesUsed += s.rangesUsed;
-        total.rangesGated += s.rangesGated;
-        total.rangesUnknownBeacon += s.rangesUnknownBeacon;
-        total.fixes += s.fixes;
-        total.fixFailures += s.fixFailures;
-        total.mirrorResolved += s.mirrorResolved;
-        total.resets += s.resets;
-    };
-    for (const auto& [robot, tr] : trackers_) add(tr.stats());
-    for (const auto& [robot, s] : fixStats_) add(s);
+    for (const auto& [robot, tr] : trackers_) total += tr.stats();
     j["mode"] = options_.mode == BeaconOptions::Mode::Tracker ? "tracker" : "fixes";
     j["beacons"] = options_.map.size();
     j["epochs"] = total.epochs;

@@ -30,8 +30,8 @@ void BeaconTracker::onOdometry(const CPose2D& odo) {
         const CPose2D delta = odo - *lastOdometry_;  // increment in the robot frame
         const double d = std::hypot(delta.x(), delta.y());
         const double sxy = o_.odomSigmaPerMetre * d + 1e-4;
-        const double sphi = o_.odomSigmaPhiPerRad * std::abs(delta.phi()) +
-                            o_.odomSigmaPhiPerMetre * d + 1e-4;
+        const double sphi =
+            o_.odomSigmaPhiPerRad * std::abs(delta.phi()) + o_.odomSigmaPhiPerMetre * d + 1e-4;
         mrpt::math::CMatrixDouble33 Q;
         Q.setZero();
         Q(0, 0) = Q(1, 1) = sxy * sxy;
@@ -54,13 +54,13 @@ std::vector<BeaconTracker::Range> BeaconTracker::usableRanges(
         if (!std::isfinite(m.sensedDistance) || m.sensedDistance <= 0) continue;
         const auto& b = it->second;
         const auto& s = m.sensorLocationOnRobot;
-        out.push_back({Vector3d(b.x, b.y, b.z), Vector3d(s.x(), s.y(), s.z()),
-                       double(m.sensedDistance)});
+        out.push_back(
+            {Vector3d(b.x, b.y, b.z), Vector3d(s.x(), s.y(), s.z()), double(m.sensedDistance)});
     }
     return out;
 }
 
-std::optional<Fix> BeaconTracker::fixFrom(const std::vector<Range>& ranges) {
+std::optional<Fix> BeaconTracker::fixFrom(const std::vector<Range>& ranges, bool robust) {
     if (ranges.size() < 3) return std::nullopt;
     std::vector<RangeMeasurement> m;
     for (const auto& r : ranges) m.push_back({r.beacon, r.range});
@@ -69,7 +69,7 @@ std::optional<Fix> BeaconTracker::fixFrom(const std::vector<Range>& ranges) {
     if (fo.knownHeight) fo.knownHeight = ranges.front().sensorOnRobot.z();  // robot on the floor
     if (lastFix_) fo.hint = *lastFix_;
     ++stats_.fixes;
-    Fix f = robustMultilaterate(m, fo, 3.0 * o_.rangeSigma);
+    Fix f = robust ? robustMultilaterate(m, fo, 3.0 * o_.rangeSigma) : multilaterate(m, fo);
     if (!f.ok()) {
         ++stats_.fixFailures;
         return std::nullopt;
@@ -101,7 +101,8 @@ bool BeaconTracker::updateWithRange(const Range& r, double gate) {
     const Vector3d K = P * H.transpose() / S;
     const Matrix3d IKH = Matrix3d::Identity() - K * H;
     // Joseph form keeps P symmetric positive definite.
-    const Matrix3d newP = IKH * P * IKH.transpose() + K * K.transpose() * (o_.rangeSigma * o_.rangeSigma);
+    const Matrix3d newP =
+        IKH * P * IKH.transpose() + K * K.transpose() * (o_.rangeSigma * o_.rangeSigma);
     pdf_.mean = CPose2D(mean.x() + K(0) * innovation, mean.y() + K(1) * innovation,
                         mrpt::math::wrapToPi(mean.phi() + K(2) * innovation));
     pdf_.cov = mrpt::math::CMatrixDouble33(newP);
@@ -139,6 +140,13 @@ std::optional<CPose2D> BeaconTracker::bootstrap(const std::vector<Range>& ranges
         }
     }
     return CPose2D(p.x(), p.y(), odo.phi());
+}
+
+std::optional<Fix> BeaconTracker::fixOnly(const mrpt::obs::CObservationBeaconRanges& obs) {
+    ++stats_.epochs;
+    const auto ranges = usableRanges(obs);
+    stats_.rangesUsed += ranges.size();
+    return fixFrom(ranges, /*robust=*/false);
 }
 
 std::optional<CPose2D> BeaconTracker::onRanges(double t,

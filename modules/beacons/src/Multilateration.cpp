@@ -12,14 +12,22 @@ using Eigen::Vector3d;
 
 const char* toString(FixStatus s) {
     switch (s) {
-        case FixStatus::Ok: return "ok";
-        case FixStatus::InvalidInput: return "invalid input (NaN, infinite or negative value)";
-        case FixStatus::TooFewRanges: return "fewer than 3 ranges";
-        case FixStatus::CoincidentBeacons: return "the beacons coincide";
-        case FixStatus::CollinearBeacons: return "the beacons are collinear";
-        case FixStatus::IllConditioned: return "ill-conditioned geometry (GDOP too large)";
-        case FixStatus::AmbiguousMirror: return "mirror ambiguity that the rule cannot resolve";
-        case FixStatus::NotConverged: return "Gauss-Newton did not converge";
+        case FixStatus::Ok:
+            return "ok";
+        case FixStatus::InvalidInput:
+            return "invalid input (NaN, infinite or negative value)";
+        case FixStatus::TooFewRanges:
+            return "fewer than 3 ranges";
+        case FixStatus::CoincidentBeacons:
+            return "the beacons coincide";
+        case FixStatus::CollinearBeacons:
+            return "the beacons are collinear";
+        case FixStatus::IllConditioned:
+            return "ill-conditioned geometry (GDOP too large)";
+        case FixStatus::AmbiguousMirror:
+            return "mirror ambiguity that the rule cannot resolve";
+        case FixStatus::NotConverged:
+            return "Gauss-Newton did not converge";
     }
     return "?";
 }
@@ -51,9 +59,9 @@ struct Centred {
  *  quadratic term: -2 b_i . x = r_i^2 - mean(r^2) - |b_i|^2 + mean(|b|^2). Solved over the
  *  eigenvectors of the scatter S = sum b_i b_i^T whose eigenvalues are not negligible. */
 template <int D>
-Eigen::Matrix<double, D, 1> linearStart(const Centred& c,
-                                        const Eigen::SelfAdjointEigenSolver<Eigen::Matrix<double, D, D>>& es,
-                                        int usedDims) {
+Eigen::Matrix<double, D, 1> linearStart(
+    const Centred& c, const Eigen::SelfAdjointEigenSolver<Eigen::Matrix<double, D, D>>& es,
+    int usedDims) {
     double meanR2 = 0, meanB2 = 0;
     const size_t n = c.m.size();
     for (size_t i = 0; i < n; ++i) {
@@ -219,8 +227,8 @@ Fix multilaterate(const std::vector<RangeMeasurement>& m, const MultilaterationO
         const double w = std::sqrt(outOfSubspace2(c, x, dims));
         const Vector3d a = x + w * normal, b = x - w * normal;
         const Vector3d hint = o.hint ? Vector3d(*o.hint - c.centroid) : Vector3d::Zero();
-        const bool useHint = o.mirror == MirrorRule::NearestToHint || planar2d ||
-                             std::abs(normal.z()) < 0.1;
+        const bool useHint =
+            o.mirror == MirrorRule::NearestToHint || planar2d || std::abs(normal.z()) < 0.1;
         if (useHint && !o.hint) {
             fix.status = planar2d ? FixStatus::CollinearBeacons : FixStatus::AmbiguousMirror;
             return fix;

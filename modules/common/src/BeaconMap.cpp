@@ -32,9 +32,11 @@ BeaconMap readMrptLandmarksMap(const mrpt::config::CConfigFileBase& cfg, const s
     for (long q = 1; q <= n; ++q) {
         const auto key = [&](const char* what) { return mrpt::format("beacon_%03ld_%s", q, what); };
         for (const char* what : {"ID", "x", "y", "z"})
-            if (!sec.has(key(what))) sec.fail(key(what), "missing (nBeacons = " + std::to_string(n) + ")");
+            if (!sec.has(key(what)))
+                sec.fail(key(what), "missing (nBeacons = " + std::to_string(n) + ")");
         const int id = int(sec.integer(key("ID"), 0, 0, 1L << 30));
-        if (map.count(id)) sec.fail(key("ID"), "beacon ID " + std::to_string(id) + " appears twice");
+        if (map.count(id))
+            sec.fail(key("ID"), "beacon ID " + std::to_string(id) + " appears twice");
         map[id] = {sec.real(key("x"), 0), sec.real(key("y"), 0), sec.real(key("z"), 0)};
     }
     return map;

@@ -15,7 +15,8 @@ std::string lower(std::string s) { return mrpt::system::lowerCase(s); }
 }  // namespace
 
 std::string configOrigin(const mrpt::config::CConfigFileBase& cfg) {
-    if (auto* f = dynamic_cast<const mrpt::config::CConfigFile*>(&cfg)) return f->getAssociatedFile();
+    if (auto* f = dynamic_cast<const mrpt::config::CConfigFile*>(&cfg))
+        return f->getAssociatedFile();
     return "<memory>";
 }
 
@@ -136,10 +137,10 @@ void IniSection::finish() const {
     for (const auto& key : keys()) {
         const std::string k = lower(key);
         if (used_.count(k)) continue;
-        const bool allowed = std::any_of(prefixes_.begin(), prefixes_.end(), [&](const auto& p) {
-            return k.rfind(lower(p), 0) == 0;
-        });
-        if (!allowed) fail(key, "unknown key (misspelt? see doc/ini.md for the keys of this section)");
+        const bool allowed = std::any_of(prefixes_.begin(), prefixes_.end(),
+                                         [&](const auto& p) { return k.rfind(lower(p), 0) == 0; });
+        if (!allowed)
+            fail(key, "unknown key (misspelt? see doc/ini.md for the keys of this section)");
     }
 }
 

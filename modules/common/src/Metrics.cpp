@@ -45,8 +45,8 @@ std::vector<TimedError> positionErrors(const Trajectory& estimate, const Traject
 }
 
 nlohmann::json statsToJson(const ErrorStats& s) {
-    return {{"n", s.n},           {"rmse_m", s.rmse}, {"mean_m", s.mean},
-            {"median_m", s.median}, {"p95_m", s.p95},   {"max_m", s.max}};
+    return {{"n", s.n},       {"rmse_m", s.rmse}, {"mean_m", s.mean}, {"median_m", s.median},
+            {"p95_m", s.p95}, {"max_m", s.max}};
 }
 
 void saveJson(const std::string& path, const nlohmann::json& j) {

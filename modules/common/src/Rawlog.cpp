@@ -25,7 +25,8 @@ RawlogReader::RawlogReader(const std::string& path) : path_(path) {
     std::error_code ec;
     if (!std::filesystem::is_regular_file(path, ec))
         throw Error("rawlog " + path + ": no such file");
-    if (std::filesystem::file_size(path, ec) == 0) throw Error("rawlog " + path + ": the file is empty");
+    if (std::filesystem::file_size(path, ec) == 0)
+        throw Error("rawlog " + path + ": the file is empty");
     if (!file_.open(path)) throw Error("rawlog " + path + ": cannot open");
 }
 
@@ -81,8 +82,8 @@ bool RawlogReader::next(CObservation::Ptr& obs) {
             format_ = RawlogFormat::ActionsSensoryFrames;
             absorbActions(obj);
         } else {
-            throw Error("rawlog " + path_ + ": entry " + std::to_string(entries_) +
-                        " is a " + obj->GetRuntimeClass()->className +
+            throw Error("rawlog " + path_ + ": entry " + std::to_string(entries_) + " is a " +
+                        obj->GetRuntimeClass()->className +
                         ", expected observations, sensory frames or actions");
         }
     }

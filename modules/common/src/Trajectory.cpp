@@ -41,7 +41,8 @@ Trajectory loadTum(const std::string& path) {
                             ": expected 't x y z qx qy qz qw'");
         }
         mrpt::math::CQuaternionDouble q(v[7], v[4], v[5], v[6]);
-        const double norm = std::sqrt(q.r() * q.r() + q.x() * q.x() + q.y() * q.y() + q.z() * q.z());
+        const double norm =
+            std::sqrt(q.r() * q.r() + q.x() * q.x() + q.y() * q.y() + q.z() * q.z());
         if (norm < 1e-6)
             throw Error("trajectory " + path + ":" + std::to_string(lineNo) + ": zero quaternion");
         q.normalize();

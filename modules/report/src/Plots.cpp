@@ -32,7 +32,8 @@ void runGnuplot(const std::string& body, const std::string& pngPath) {
     }
     std::filesystem::remove(script);
     std::filesystem::remove(script + ".err");
-    if (rc != 0) throw Error("gnuplot failed for " + pngPath + " (is gnuplot-nox installed?): " + err);
+    if (rc != 0)
+        throw Error("gnuplot failed for " + pngPath + " (is gnuplot-nox installed?): " + err);
     out.commit();
 }
 
@@ -61,7 +62,8 @@ void plotErrorOverTime(const RobotErrors& errors, const std::string& pngPath) {
         ++i;
     }
     if (plot.empty()) throw Error("no errors to plot for " + pngPath);
-    runGnuplot(body + "set xlabel 'time (s)'\nset ylabel 'position error (m)'\n" + plot + "\n", pngPath);
+    runGnuplot(body + "set xlabel 'time (s)'\nset ylabel 'position error (m)'\n" + plot + "\n",
+               pngPath);
 }
 
 void plotErrorCdf(const RobotErrors& errors, const std::string& pngPath) {
@@ -73,15 +75,18 @@ void plotErrorCdf(const RobotErrors& errors, const std::string& pngPath) {
         for (const auto& te : e) v.push_back(te.error);
         std::sort(v.begin(), v.end());
         std::vector<std::pair<double, double>> xy;
-        for (size_t k = 0; k < v.size(); ++k) xy.emplace_back(v[k], double(k + 1) / double(v.size()));
+        for (size_t k = 0; k < v.size(); ++k)
+            xy.emplace_back(v[k], double(k + 1) / double(v.size()));
         body += dataBlock("c" + std::to_string(i), xy);
         plot += std::string(plot.empty() ? "plot " : ", ") + "$c" + std::to_string(i) +
                 " using 1:2 with steps lw 1.5 title '" + robot + "'";
         ++i;
     }
     if (plot.empty()) throw Error("no errors to plot for " + pngPath);
-    runGnuplot(body + "set xlabel 'position error (m)'\nset ylabel 'fraction of estimates'\n"
-                      "set yrange [0:1]\nset key bottom right\n" + plot + "\n",
+    runGnuplot(body +
+                   "set xlabel 'position error (m)'\nset ylabel 'fraction of estimates'\n"
+                   "set yrange [0:1]\nset key bottom right\n" +
+                   plot + "\n",
                pngPath);
 }
 

@@ -19,10 +19,17 @@ std::string html(const std::string& s) {
     std::string out;
     for (char c : s) {
         switch (c) {
-            case '<': out += "&lt;"; break;
-            case '>': out += "&gt;"; break;
-            case '&': out += "&amp;"; break;
-            default: out += c;
+            case '<':
+                out += "&lt;";
+                break;
+            case '>':
+                out += "&gt;";
+                break;
+            case '&':
+                out += "&amp;";
+                break;
+            default:
+                out += c;
         }
     }
     return out;
@@ -93,11 +100,13 @@ std::string makeReport(const std::string& dir) {
     const std::string method = metrics.value("method", "");
     if (metrics.contains(method) && metrics[method].is_object())
         page += "<h2>Method figures</h2>\n" + table(metrics[method]);
-    page += "<h2>Top view</h2>\n<p>Green: ground truth; red: estimates; blue: beacons; grey: "
-            "obstacles.</p>\n<img src='topview.png' alt='top view'>\n";
+    page +=
+        "<h2>Top view</h2>\n<p>Green: ground truth; red: estimates; blue: beacons; grey: "
+        "obstacles.</p>\n<img src='topview.png' alt='top view'>\n";
     if (hasErrors)
-        page += "<h2>Error over time</h2>\n<img src='error_time.png' alt='error over time'>\n"
-                "<h2>Error CDF</h2>\n<img src='error_cdf.png' alt='error CDF'>\n";
+        page +=
+            "<h2>Error over time</h2>\n<img src='error_time.png' alt='error over time'>\n"
+            "<h2>Error CDF</h2>\n<img src='error_cdf.png' alt='error CDF'>\n";
     else
         page += "<p>No ground truth beside the rawlog: no errors to plot.</p>\n";
     page += "</body></html>\n";

@@ -69,10 +69,12 @@ void renderTopView(const TopViewContent& c, const std::string& pngPath, unsigned
     for (const auto& [id, b] : c.beacons) ext.add(b.x, b.y);
     if (ext.x0 > ext.x1) throw Error("top view: nothing to draw");
 
-    const double grid = std::max(0.5, std::pow(10.0, std::floor(std::log10(std::max(ext.x1 - ext.x0, ext.y1 - ext.y0)))) / 2);
-    auto gridPlane = CGridPlaneXY::Create(std::floor(ext.x0 / grid) * grid, std::ceil(ext.x1 / grid) * grid,
-                                          std::floor(ext.y0 / grid) * grid, std::ceil(ext.y1 / grid) * grid,
-                                          0.005, grid);
+    const double grid = std::max(
+        0.5,
+        std::pow(10.0, std::floor(std::log10(std::max(ext.x1 - ext.x0, ext.y1 - ext.y0)))) / 2);
+    auto gridPlane = CGridPlaneXY::Create(
+        std::floor(ext.x0 / grid) * grid, std::ceil(ext.x1 / grid) * grid,
+        std::floor(ext.y0 / grid) * grid, std::ceil(ext.y1 / grid) * grid, 0.005, grid);
     gridPlane->setColor_u8(200, 200, 200);
     scene.insert(gridPlane);
     // Beacons sit on the ceiling; drawn at floor level as discs so paths stay visible.

@@ -42,7 +42,8 @@ void RobotOptions::saveToConfigFile(mrpt::config::CConfigFileBase& t,
     t.write(section, "start",
             mrpt::format("%g %g %g", start.x(), start.y(), mrpt::RAD2DEG(start.phi())));
     std::string wp;
-    for (const auto& p : waypoints) wp += (wp.empty() ? "" : ", ") + mrpt::format("%g %g", p.x, p.y);
+    for (const auto& p : waypoints)
+        wp += (wp.empty() ? "" : ", ") + mrpt::format("%g %g", p.x, p.y);
     t.write(section, "waypoints", wp);
     t.write(section, "loop", loop);
     t.write(section, "speed", speed);
@@ -81,8 +82,9 @@ mrpt::poses::CPose2D Robot::step(double dt) {
     const double v = options_.speed * std::max(0.0, std::cos(err)) * dt;
     // Exact unicycle arc for constant (v, w) over dt.
     const mrpt::poses::CPose2D delta =
-        std::abs(w) < 1e-12 ? mrpt::poses::CPose2D(v, 0, 0)
-                            : mrpt::poses::CPose2D(v / w * std::sin(w), v / w * (1 - std::cos(w)), w);
+        std::abs(w) < 1e-12
+            ? mrpt::poses::CPose2D(v, 0, 0)
+            : mrpt::poses::CPose2D(v / w * std::sin(w), v / w * (1 - std::cos(w)), w);
     pose_ = pose_ + delta;
     return delta;
 }

@@ -50,7 +50,8 @@ ScenarioConfig ScenarioConfig::load(const mrpt::config::CConfigFileBase& ini) {
     c.world.loadFromConfigFile(ini, "world");
     c.sensors.loadFromConfigFile(ini, "sensors");
     if (c.scenario.robots.empty())
-        throw Error(common::configOrigin(ini) + ": [scenario] robots: required key is missing "
+        throw Error(common::configOrigin(ini) +
+                    ": [scenario] robots: required key is missing "
                     "(robots = <name> ..., each with a [robot.<name>] section)");
     for (const auto& name : c.scenario.robots) {
         const std::string section = "robot." + name;

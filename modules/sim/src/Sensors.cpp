@@ -27,15 +27,14 @@ void SensorOptions::saveToConfigFile(mrpt::config::CConfigFileBase& t,
     t.write(section, "nlos", nlosReflect ? "reflect" : "drop");
 }
 
-OdometrySensor::OdometrySensor(const RobotOptions& robot)
-    : robot_(robot), odometry_(robot.start) {}
+OdometrySensor::OdometrySensor(const RobotOptions& robot) : robot_(robot), odometry_(robot.start) {}
 
 void OdometrySensor::accumulate(const mrpt::poses::CPose2D& d,
                                 mrpt::random::CRandomGenerator& rng) {
     const double dist = std::hypot(d.x(), d.y());
     const double sxy = robot_.odometrySigmaXY * dist;
-    const double sphi = robot_.odometrySigmaPhi * std::abs(d.phi()) +
-                        robot_.odometrySigmaPhiPerMetre * dist;
+    const double sphi =
+        robot_.odometrySigmaPhi * std::abs(d.phi()) + robot_.odometrySigmaPhiPerMetre * dist;
     const double ex = rng.drawGaussian1D(0, sxy), ey = rng.drawGaussian1D(0, sxy);
     const double ephi = rng.drawGaussian1D(0, sphi);
     odometry_ = odometry_ + mrpt::poses::CPose2D(d.x() + ex, d.y() + ey, d.phi() + ephi);

@@ -20,7 +20,9 @@ SimulationResult Simulator::run(common::RawlogWriter& out, common::Progress* pro
         odometers.emplace_back(robots.back().options());
     }
     const BeaconRanger ranger(world_, config_.beacons, config_.sensors);
-    const auto every = [&](double rate) { return std::max<long>(1, std::lround(1.0 / (rate * sc.dt))); };
+    const auto every = [&](double rate) {
+        return std::max<long>(1, std::lround(1.0 / (rate * sc.dt)));
+    };
     const long steps = std::lround(sc.duration / sc.dt);
     const long gtEvery = every(sc.groundTruthRate);
 
@@ -37,7 +39,8 @@ SimulationResult Simulator::run(common::RawlogWriter& out, common::Progress* pro
                 ++result.observations;
             }
             if (k % every(ro.beaconRate) == 0) {
-                out.write(*ranger.read(ro.name + ".beacons", stamp, robot.pose(), ro.receiver, rng));
+                out.write(
+                    *ranger.read(ro.name + ".beacons", stamp, robot.pose(), ro.receiver, rng));
                 ++result.observations;
             }
             if (k % gtEvery == 0)
@@ -54,10 +57,12 @@ std::string simulateToFiles(const ScenarioConfig& config, const std::string& dir
     const std::string path = dir + "/" + config.scenario.name + ".rawlog";
     Simulator sim(config);
     common::RawlogWriter writer(path);
-    common::Progress progress("simulating", size_t(std::lround(config.scenario.duration / config.scenario.dt)), quiet);
+    common::Progress progress(
+        "simulating", size_t(std::lround(config.scenario.duration / config.scenario.dt)), quiet);
     const auto result = sim.run(writer, &progress);
     progress.finish();
-    for (const auto& [robot, traj] : result.groundTruth) common::saveTum(common::groundTruthPath(path, robot), traj);
+    for (const auto& [robot, traj] : result.groundTruth)
+        common::saveTum(common::groundTruthPath(path, robot), traj);
     writer.commit();
     return path;
 }

@@ -61,9 +61,10 @@ void World::fillBox(const TPoint3D& min, const TPoint3D& max) {
     for (double x = min.x + r / 2; x < max.x + r / 2; x += r)
         for (double y = min.y + r / 2; y < max.y + r / 2; y += r)
             for (double z = min.z + r / 2; z < max.z + r / 2; z += r)
-                tree_->updateNode(octomap::point3d(float(std::min(x, max.x)), float(std::min(y, max.y)),
-                                                   float(std::min(z, max.z))),
-                                  true, /*lazy_eval=*/true);
+                tree_->updateNode(
+                    octomap::point3d(float(std::min(x, max.x)), float(std::min(y, max.y)),
+                                     float(std::min(z, max.z))),
+                    true, /*lazy_eval=*/true);
 }
 
 bool World::lineOfSight(const TPoint3D& a, const TPoint3D& b) const {

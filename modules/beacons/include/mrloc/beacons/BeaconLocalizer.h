@@ -26,7 +26,7 @@ struct BeaconOptions : public mrpt::config::CLoadableOptions {
 };
 
 class BeaconLocalizer : public common::Localizer {
-public:
+ public:
     void configure(const mrpt::config::CConfigFileBase& ini) override;
     void saveConfig(mrpt::config::CConfigFileBase& target) const override;
     void process(const mrpt::obs::CObservation::Ptr& obs) override;
@@ -35,13 +35,13 @@ public:
 
     const BeaconOptions& options() const { return options_; }
 
-private:
-    void fixOnly(const std::string& robot, double t, const mrpt::obs::CObservationBeaconRanges& obs);
+ private:
+    void fixOnly(const std::string& robot, double t,
+                 const mrpt::obs::CObservationBeaconRanges& obs);
     BeaconTracker& trackerOf(const std::string& robot);
 
     BeaconOptions options_;
     std::map<std::string, BeaconTracker> trackers_;
-    std::map<std::string, TrackerStats> fixStats_;  // fixes-only mode
     std::map<std::string, common::Trajectory> estimates_;
     std::map<std::string, double> lastHeading_;  // from odometry, for fixes-only mode
 };

@@ -19,24 +19,32 @@
 namespace mrloc::beacons {
 
 struct TrackerOptions {
-    double rangeSigma = 0.03;          ///< m
-    double gateProbability = 0.999;    ///< chi-square(1) gate on each range innovation
-    double odomSigmaPerMetre = 0.05;   ///< translation noise per metre travelled
-    double odomSigmaPhiPerRad = 0.05;  ///< heading noise per radian turned
+    double rangeSigma = 0.03;            ///< m
+    double gateProbability = 0.999;      ///< chi-square(1) gate on each range innovation
+    double odomSigmaPerMetre = 0.05;     ///< translation noise per metre travelled
+    double odomSigmaPhiPerRad = 0.05;    ///< heading noise per radian turned
     double odomSigmaPhiPerMetre = 0.02;  ///< heading noise per metre travelled (rad/m)
-    double randomWalkSigma = 0.5;      ///< m/sqrt(s), when the rawlog has no odometry
-    double bootstrapBaseline = 0.3;    ///< m between the two fixes that give the heading
-    int resetAfter = 5;                ///< epochs with every range rejected before a reset
-    MultilaterationOptions fix;        ///< for start-up and reset fixes (2-D: knownHeight set per epoch)
+    double randomWalkSigma = 0.5;        ///< m/sqrt(s), when the rawlog has no odometry
+    double bootstrapBaseline = 0.3;      ///< m between the two fixes that give the heading
+    int resetAfter = 5;                  ///< epochs with every range rejected before a reset
+    MultilaterationOptions fix;  ///< for start-up and reset fixes (2-D: knownHeight set per epoch)
 };
 
 struct TrackerStats {
     size_t epochs = 0, rangesReceived = 0, rangesUsed = 0, rangesGated = 0, rangesUnknownBeacon = 0;
     size_t fixes = 0, fixFailures = 0, mirrorResolved = 0, resets = 0;
+
+    TrackerStats& operator+=(const TrackerStats& o) {
+        epochs += o.epochs, rangesReceived += o.rangesReceived, rangesUsed += o.rangesUsed;
+        rangesGated += o.rangesGated, rangesUnknownBeacon += o.rangesUnknownBeacon;
+        fixes += o.fixes, fixFailures += o.fixFailures, mirrorResolved += o.mirrorResolved;
+        resets += o.resets;
+        return *this;
+    }
 };
 
 class BeaconTracker {
-public:
+ public:
     BeaconTracker(common::BeaconMap map, TrackerOptions options);
 
     void onOdometry(const mrpt::poses::CPose2D& odometry);
@@ -44,17 +52,21 @@ public:
     std::optional<mrpt::poses::CPose2D> onRanges(double t,
                                                  const mrpt::obs::CObservationBeaconRanges& obs);
 
+    /** Seed 001 as published: one multilateration from this epoch's ranges alone (no
+     *  filter, no outlier rejection); the filter state is left untouched. */
+    std::optional<Fix> fixOnly(const mrpt::obs::CObservationBeaconRanges& obs);
+
     bool initialized() const { return initialized_; }
     const mrpt::poses::CPosePDFGaussian& pdf() const { return pdf_; }
     const TrackerStats& stats() const { return stats_; }
 
-private:
+ private:
     struct Range {
         Eigen::Vector3d beacon, sensorOnRobot;
         double range;
     };
     std::vector<Range> usableRanges(const mrpt::obs::CObservationBeaconRanges& obs);
-    std::optional<Fix> fixFrom(const std::vector<Range>& ranges);
+    std::optional<Fix> fixFrom(const std::vector<Range>& ranges, bool robust = true);
     bool updateWithRange(const Range& r, double gate);
     std::optional<mrpt::poses::CPose2D> bootstrap(const std::vector<Range>& ranges);
 

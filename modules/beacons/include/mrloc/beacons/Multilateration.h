@@ -7,7 +7,6 @@
 // range noise and is better conditioned (its Jacobian rows are unit vectors). Both start
 // from a closed-form linear solution, so no initial guess is needed.
 #include <Eigen/Core>
-
 #include <optional>
 #include <string>
 #include <vector>
@@ -36,7 +35,7 @@ enum class MirrorRule {
 struct MultilaterationOptions {
     Residual residual = Residual::Range;
     int maxIterations = 20;
-    double tolerance = 1e-10;  ///< stop when the step is shorter (m, relative to 1 + |x|)
+    double tolerance = 1e-10;           ///< stop when the step is shorter (m, relative to 1 + |x|)
     std::optional<double> knownHeight;  ///< 2-D variant: the receiver's z is known
     MirrorRule mirror = MirrorRule::Below;
     std::optional<Eigen::Vector3d> hint;

@@ -11,7 +11,7 @@ void writeFileAtomically(const std::string& path, const std::string& content);
 /** Holds a temporary path; commit() renames it to the final path, otherwise the destructor
  *  removes it. */
 class PendingFile {
-public:
+ public:
     explicit PendingFile(std::string finalPath);
     ~PendingFile();
     PendingFile(const PendingFile&) = delete;
@@ -21,7 +21,7 @@ public:
     const std::string& finalPath() const { return final_; }
     void commit();
 
-private:
+ private:
     std::string final_, temp_;
     bool committed_ = false;
 };

@@ -6,7 +6,7 @@
 namespace mrloc {
 
 class Error : public std::runtime_error {
-public:
+ public:
     explicit Error(const std::string& what) : std::runtime_error(what) {}
 };
 

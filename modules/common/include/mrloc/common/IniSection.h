@@ -18,7 +18,7 @@ namespace mrloc::common {
 std::string configOrigin(const mrpt::config::CConfigFileBase& cfg);
 
 class IniSection {
-public:
+ public:
     static constexpr double kInf = std::numeric_limits<double>::infinity();
 
     IniSection(const mrpt::config::CConfigFileBase& cfg, std::string section);
@@ -48,7 +48,7 @@ public:
 
     [[noreturn]] void fail(const std::string& key, const std::string& problem) const;
 
-private:
+ private:
     std::optional<std::string> raw(const std::string& key);
     double parseReal(const std::string& key, const std::string& value) const;
 

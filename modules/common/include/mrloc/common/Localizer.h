@@ -16,7 +16,7 @@
 namespace mrloc::common {
 
 class Localizer {
-public:
+ public:
     virtual ~Localizer() = default;
 
     /** Reads and validates the method's INI section(s); throws mrloc::Error. */
@@ -33,7 +33,7 @@ public:
 };
 
 class LocalizerRegistry {
-public:
+ public:
     using Factory = std::function<std::unique_ptr<Localizer>()>;
 
     void add(const std::string& name, Factory factory);
@@ -41,7 +41,7 @@ public:
     std::unique_ptr<Localizer> create(const std::string& name) const;
     std::vector<std::string> names() const;
 
-private:
+ private:
     std::map<std::string, Factory> factories_;
 };
 

@@ -7,14 +7,14 @@
 namespace mrloc::common {
 
 class Progress {
-public:
+ public:
     /** total = 0: unknown total, a counter is shown instead of a bar. */
     Progress(std::string label, size_t total, bool quiet);
     ~Progress();
     void update(size_t done);
     void finish();
 
-private:
+ private:
     std::string label_;
     size_t total_;
     bool enabled_;

@@ -31,7 +31,7 @@ std::string sensorOfLabel(const std::string& sensorLabel);
 inline constexpr const char* kActionOdometryLabel = "odometry";
 
 class RawlogReader {
-public:
+ public:
     /** Opens the file; throws mrloc::Error if it is missing or not a rawlog. */
     explicit RawlogReader(const std::string& path);
 
@@ -45,7 +45,7 @@ public:
     size_t entriesRead() const { return entries_; }
     const std::string& path() const { return path_; }
 
-private:
+ private:
     void absorbActions(const mrpt::serialization::CSerializable::Ptr& obj);
 
     std::string path_;
@@ -57,7 +57,7 @@ private:
 };
 
 class RawlogWriter {
-public:
+ public:
     /** Starts writing `path` (as path + ".tmp" until commit()). */
     explicit RawlogWriter(const std::string& path, int compressionLevel = 1);
     void write(const mrpt::serialization::CSerializable& obj);
@@ -65,7 +65,7 @@ public:
     void commit();
     size_t written() const { return written_; }
 
-private:
+ private:
     PendingFile pending_;
     mrpt::io::CFileGZOutputStream file_;
     size_t written_ = 0;

@@ -13,17 +13,17 @@ namespace mrloc::sim {
 
 struct RobotOptions : public mrpt::config::CLoadableOptions {
     std::string name;
-    mrpt::poses::CPose2D start;                ///< start = x y phi_deg
+    mrpt::poses::CPose2D start;                   ///< start = x y phi_deg
     std::vector<mrpt::math::TPoint2D> waypoints;  ///< waypoints = x y, x y, ...
-    bool loop = true;                          ///< go back to the first waypoint at the end
-    double speed = 0.3;                        ///< m/s
-    double maxTurnRate = 1.5;                  ///< rad/s
-    mrpt::math::TPoint3D receiver{0, 0, 0.3};  ///< beacon receiver on the robot (m)
-    double odometryRate = 20;                  ///< Hz
-    double beaconRate = 5;                     ///< Hz (ranging epochs)
-    double odometrySigmaXY = 0.02;             ///< per metre travelled
-    double odometrySigmaPhi = 0.01;            ///< per radian turned
-    double odometrySigmaPhiPerMetre = 0.005;   ///< rad per metre travelled
+    bool loop = true;                             ///< go back to the first waypoint at the end
+    double speed = 0.3;                           ///< m/s
+    double maxTurnRate = 1.5;                     ///< rad/s
+    mrpt::math::TPoint3D receiver{0, 0, 0.3};     ///< beacon receiver on the robot (m)
+    double odometryRate = 20;                     ///< Hz
+    double beaconRate = 5;                        ///< Hz (ranging epochs)
+    double odometrySigmaXY = 0.02;                ///< per metre travelled
+    double odometrySigmaPhi = 0.01;               ///< per radian turned
+    double odometrySigmaPhiPerMetre = 0.005;      ///< rad per metre travelled
 
     void loadFromConfigFile(const mrpt::config::CConfigFileBase& source,
                             const std::string& section) override;
@@ -34,7 +34,7 @@ struct RobotOptions : public mrpt::config::CLoadableOptions {
 /** Unicycle with a waypoint follower: turn towards the waypoint (at most maxTurnRate),
  *  drive at `speed` scaled down while the heading error is large. */
 class Robot {
-public:
+ public:
     explicit Robot(RobotOptions options);
     const RobotOptions& options() const { return options_; }
     const mrpt::poses::CPose2D& pose() const { return pose_; }
@@ -44,7 +44,7 @@ public:
     void setWaypoints(std::vector<mrpt::math::TPoint2D> waypoints, bool loop);
     bool finished() const { return next_ >= options_.waypoints.size(); }
 
-private:
+ private:
     RobotOptions options_;
     mrpt::poses::CPose2D pose_;
     size_t next_ = 0;

@@ -10,13 +10,13 @@ namespace mrloc::sim {
 
 /** Section [scenario]. */
 struct ScenarioOptions : public mrpt::config::CLoadableOptions {
-    std::string name = "run";      ///< names the output folder and files
+    std::string name = "run";        ///< names the output folder and files
     std::string method = "beacons";  ///< localization method (registry name)
     unsigned long seed = 1;
-    double duration = 60;          ///< s
-    double dt = 0.01;              ///< simulation step (s)
-    double startTime = 1.7e9;      ///< time stamp of t = 0 (seconds since 1970)
-    double groundTruthRate = 20;   ///< Hz
+    double duration = 60;             ///< s
+    double dt = 0.01;                 ///< simulation step (s)
+    double startTime = 1.7e9;         ///< time stamp of t = 0 (seconds since 1970)
+    double groundTruthRate = 20;      ///< Hz
     std::vector<std::string> robots;  ///< robots = r1 r2 ... ; each has [robot.<name>]
 
     void loadFromConfigFile(const mrpt::config::CConfigFileBase& source,

@@ -13,12 +13,12 @@ namespace mrloc::sim {
 
 /** Section [sensors]: the beacon ranging model. */
 struct SensorOptions : public mrpt::config::CLoadableOptions {
-    double rangeSigma = 0.01;        ///< Gaussian TOF range noise (m)
-    double rangeMax = 10;            ///< no reading beyond (m)
-    double dropout = 0.02;           ///< probability a line-of-sight range is missed
+    double rangeSigma = 0.01;          ///< Gaussian TOF range noise (m)
+    double rangeMax = 10;              ///< no reading beyond (m)
+    double dropout = 0.02;             ///< probability a line-of-sight range is missed
     double outlierProbability = 0.01;  ///< probability a range reads long (late trigger)
-    double outlierMax = 1.0;         ///< such a range is long by U(0.1, outlierMax) m
-    bool nlosReflect = true;         ///< blocked path: a long reflected range (else none)
+    double outlierMax = 1.0;           ///< such a range is long by U(0.1, outlierMax) m
+    bool nlosReflect = true;           ///< blocked path: a long reflected range (else none)
 
     void loadFromConfigFile(const mrpt::config::CConfigFileBase& source,
                             const std::string& section) override;
@@ -28,19 +28,19 @@ struct SensorOptions : public mrpt::config::CLoadableOptions {
 
 /** Integrates the true motion increments with multiplicative Gaussian noise. */
 class OdometrySensor {
-public:
+ public:
     explicit OdometrySensor(const RobotOptions& robot);
     void accumulate(const mrpt::poses::CPose2D& trueDelta, mrpt::random::CRandomGenerator& rng);
     mrpt::obs::CObservationOdometry::Ptr read(const std::string& label,
                                               mrpt::Clock::time_point t) const;
 
-private:
+ private:
     const RobotOptions& robot_;
     mrpt::poses::CPose2D odometry_;
 };
 
 class BeaconRanger {
-public:
+ public:
     BeaconRanger(const World& world, const common::BeaconMap& beacons, SensorOptions options);
     mrpt::obs::CObservationBeaconRanges::Ptr read(const std::string& label,
                                                   mrpt::Clock::time_point t,
@@ -48,7 +48,7 @@ public:
                                                   const mrpt::math::TPoint3D& receiver,
                                                   mrpt::random::CRandomGenerator& rng) const;
 
-private:
+ private:
     const World& world_;
     const common::BeaconMap& beacons_;
     SensorOptions o_;

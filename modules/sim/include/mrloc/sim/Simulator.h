@@ -16,7 +16,7 @@ struct SimulationResult {
 };
 
 class Simulator {
-public:
+ public:
     explicit Simulator(ScenarioConfig config);
     const ScenarioConfig& config() const { return config_; }
     const World& world() const { return world_; }
@@ -24,7 +24,7 @@ public:
     /** Simulates the whole duration. Deterministic for a given configuration and seed. */
     SimulationResult run(common::RawlogWriter& out, common::Progress* progress = nullptr);
 
-private:
+ private:
     ScenarioConfig config_;
     World world_;
 };

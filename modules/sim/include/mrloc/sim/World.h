@@ -31,14 +31,14 @@ struct WorldOptions : public mrpt::config::CLoadableOptions {
 };
 
 class World {
-public:
+ public:
     explicit World(WorldOptions options);
     const WorldOptions& options() const { return options_; }
     /** True if the segment a-b crosses no occupied voxel. */
     bool lineOfSight(const mrpt::math::TPoint3D& a, const mrpt::math::TPoint3D& b) const;
     const octomap::OcTree& octree() const { return *tree_; }
 
-private:
+ private:
     void fillBox(const mrpt::math::TPoint3D& min, const mrpt::math::TPoint3D& max);
     WorldOptions options_;
     std::unique_ptr<octomap::OcTree> tree_;
