@@ -73,9 +73,9 @@ std::unique_ptr<common::Localizer> makeLocalizer(const std::string& method,
     return loc;
 }
 
-std::string doLocalize(const std::string& method, const mrpt::config::CConfigFileBase& ini,
-                       const mrpt::config::CConfigFileBase& effective, const std::string& rawlog,
-                       const std::string& outDir, bool quiet) {
+void doLocalize(const std::string& method, const mrpt::config::CConfigFileBase& ini,
+                const mrpt::config::CConfigFileBase& effective, const std::string& rawlog,
+                const std::string& outDir, bool quiet) {
     auto loc = makeLocalizer(method, ini);
     const auto m = common::runLocalization(*loc, {method, rawlog, outDir, quiet}, effective);
     if (!quiet) {
@@ -85,7 +85,6 @@ std::string doLocalize(const std::string& method, const mrpt::config::CConfigFil
                       << m["max_m"].get<double>() << " m over " << m["n"] << " estimates";
         std::cerr << "\n";
     }
-    return outDir;
 }
 
 }  // namespace

@@ -22,7 +22,7 @@ double chi2Quantile1(double p) {
 }
 
 BeaconTracker::BeaconTracker(common::BeaconMap map, TrackerOptions options)
-    : map_(std::move(map)), o_(std::move(options)) {}
+    : map_(std::move(map)), o_(std::move(options)), gate_(chi2Quantile1(o_.gateProbability)) {}
 
 void BeaconTracker::onOdometry(const CPose2D& odo) {
     hasOdometry_ = true;
@@ -164,10 +164,9 @@ std::optional<CPose2D> BeaconTracker::onRanges(double t,
     }
     lastT_ = t;
 
-    const double gate = chi2Quantile1(o_.gateProbability);
     size_t used = 0;
     for (const auto& r : ranges) {
-        if (updateWithRange(r, gate)) {
+        if (updateWithRange(r, gate_)) {
             ++used;
         } else {
             ++stats_.rangesGated;

@@ -1,6 +1,5 @@
 #include <mrloc/beacons/Multilateration.h>
 
-#include <Eigen/Cholesky>
 #include <Eigen/Eigenvalues>
 #include <Eigen/LU>
 #include <cmath>

@@ -8,8 +8,8 @@ namespace fs = std::filesystem;
 
 namespace mrloc::common {
 
-PendingFile::PendingFile(std::string finalPath)
-    : final_(std::move(finalPath)), temp_(final_ + ".tmp") {
+PendingFile::PendingFile(std::string finalPath, const std::string& tempSuffix)
+    : final_(std::move(finalPath)), temp_(final_ + tempSuffix) {
     const auto parent = fs::path(final_).parent_path();
     if (!parent.empty()) makeDirectories(parent.string());
 }

@@ -100,7 +100,6 @@ RawlogWriter::RawlogWriter(const std::string& path, int compressionLevel) : pend
 void RawlogWriter::write(const mrpt::serialization::CSerializable& obj) {
     auto archive = mrpt::serialization::archiveFrom(file_);
     archive << obj;
-    ++written_;
 }
 
 void RawlogWriter::commit() {

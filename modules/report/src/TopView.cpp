@@ -98,9 +98,8 @@ void renderTopView(const TopViewContent& c, const std::string& pngPath, unsigned
     cam.setZoomDistance(float(2.2 * std::max(ext.y1 - ext.y0, (ext.x1 - ext.x0) / aspect) + 0.2));
     mrpt::img::CImage img;
     render.render_RGB(scene, img);
-    common::PendingFile out(pngPath);
-    if (!img.saveToFile(out.tempPath() + ".png")) throw Error("cannot write " + pngPath);
-    std::rename((out.tempPath() + ".png").c_str(), out.tempPath().c_str());
+    common::PendingFile out(pngPath, ".tmp.png");  // CImage picks the format by extension
+    if (!img.saveToFile(out.tempPath())) throw Error("cannot write " + pngPath);
     out.commit();
 }
 

@@ -25,6 +25,11 @@ SimulationResult Simulator::run(common::RawlogWriter& out, common::Progress* pro
     };
     const long steps = std::lround(sc.duration / sc.dt);
     const long gtEvery = every(sc.groundTruthRate);
+    std::vector<long> odometryEvery, beaconEvery;  // sensor periods in steps, per robot
+    for (const auto& r : robots) {
+        odometryEvery.push_back(every(r.options().odometryRate));
+        beaconEvery.push_back(every(r.options().beaconRate));
+    }
 
     SimulationResult result;
     for (long k = 0; k <= steps; ++k) {
@@ -34,11 +39,11 @@ SimulationResult Simulator::run(common::RawlogWriter& out, common::Progress* pro
             Robot& robot = robots[i];
             const auto& ro = robot.options();
             if (k > 0) odometers[i].accumulate(robot.step(sc.dt), rng);
-            if (k % every(ro.odometryRate) == 0) {
+            if (k % odometryEvery[i] == 0) {
                 out.write(*odometers[i].read(ro.name + ".odom", stamp));
                 ++result.observations;
             }
-            if (k % every(ro.beaconRate) == 0) {
+            if (k % beaconEvery[i] == 0) {
                 out.write(
                     *ranger.read(ro.name + ".beacons", stamp, robot.pose(), ro.receiver, rng));
                 ++result.observations;

@@ -72,6 +72,7 @@ class BeaconTracker {
 
     common::BeaconMap map_;
     TrackerOptions o_;
+    double gate_;  // chi-square(1) threshold for o_.gateProbability
     mrpt::poses::CPosePDFGaussian pdf_;
     bool initialized_ = false;
     bool hasOdometry_ = false;

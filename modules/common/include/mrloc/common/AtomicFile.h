@@ -12,7 +12,9 @@ void writeFileAtomically(const std::string& path, const std::string& content);
  *  removes it. */
 class PendingFile {
  public:
-    explicit PendingFile(std::string finalPath);
+    /** The temporary name is finalPath + tempSuffix; give it the final extension when the
+     *  writer picks the format by extension (e.g. ".tmp.png" for CImage::saveToFile). */
+    explicit PendingFile(std::string finalPath, const std::string& tempSuffix = ".tmp");
     ~PendingFile();
     PendingFile(const PendingFile&) = delete;
     PendingFile& operator=(const PendingFile&) = delete;

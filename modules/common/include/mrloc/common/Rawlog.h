@@ -63,12 +63,10 @@ class RawlogWriter {
     void write(const mrpt::serialization::CSerializable& obj);
     /** Closes and renames to the final name. Without it nothing appears under that name. */
     void commit();
-    size_t written() const { return written_; }
 
  private:
     PendingFile pending_;
     mrpt::io::CFileGZOutputStream file_;
-    size_t written_ = 0;
 };
 
 }  // namespace mrloc::common

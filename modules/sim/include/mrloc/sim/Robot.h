@@ -42,7 +42,6 @@ class Robot {
     mrpt::poses::CPose2D step(double dt);
     /** Replaces the route (closed-loop control by a method). */
     void setWaypoints(std::vector<mrpt::math::TPoint2D> waypoints, bool loop);
-    bool finished() const { return next_ >= options_.waypoints.size(); }
 
  private:
     RobotOptions options_;
