@@ -33,14 +33,14 @@ std::unique_ptr<mrpt::config::CConfigFile> openIni(const std::string& path) {
     auto ini = std::make_unique<mrpt::config::CConfigFile>(path);
     std::vector<std::string> sections;
     ini->getAllSections(sections);
-    static const std::set<std::string> known = {"scenario", "world", "sensors", "beacons",
-                                                "report"};
+    static const std::set<std::string> known = {"scenario", "world",   "sensors",
+                                                "ultrasonic", "beacons", "report"};
     for (const auto& s : sections) {
         if (s.empty() || !std::islower(static_cast<unsigned char>(s[0]))) continue;
         if (known.count(s) || s.rfind("robot.", 0) == 0) continue;
         throw Error(path + ": [" + s +
                     "]: unknown section (mrloc's sections: scenario, world, "
-                    "sensors, robot.<name>, beacons, report; see doc/ini.md)");
+                    "sensors, ultrasonic, robot.<name>, beacons, report; see doc/ini.md)");
     }
     return ini;
 }
@@ -71,6 +71,18 @@ std::unique_ptr<common::Localizer> makeLocalizer(const std::string& method,
     auto loc = makeRegistry().create(method);
     loc->configure(ini);
     return loc;
+}
+
+/** The method's on-board part in a closed-loop simulation (none for a method without). */
+std::unique_ptr<beacons::OnboardBeacons> makeOnboard(const std::string& method,
+                                                     const mrpt::config::CConfigFileBase& ini) {
+    if (method != "beacons") return nullptr;
+    return std::make_unique<beacons::OnboardBeacons>(ini);
+}
+
+sim::SimulationHooks hooksOf(const std::unique_ptr<beacons::OnboardBeacons>& o) {
+    if (!o) return {};
+    return {&o->localizer, &o->rfBeacon};
 }
 
 void doLocalize(const std::string& method, const mrpt::config::CConfigFileBase& ini,
@@ -113,8 +125,9 @@ int simulate(int argc, char** argv) {
     const auto ini = openIni(iniArg.getValue());
     const auto cfg = loadScenario(*ini, seed);
     makeLocalizer(cfg.scenario.method, *ini);  // a bad method section fails before simulating
-    const std::string path =
-        sim::simulateToFiles(cfg, outDirOr(c, cfg.scenario.name), c.quiet.getValue());
+    const auto onboard = makeOnboard(cfg.scenario.method, *ini);
+    const std::string path = sim::simulateToFiles(cfg, outDirOr(c, cfg.scenario.name),
+                                                  c.quiet.getValue(), hooksOf(onboard));
     std::cout << path << "\n";
     return 0;
 }
@@ -167,7 +180,9 @@ int run(int argc, char** argv) {
     const auto cfg = loadScenario(*ini, seed);
     makeLocalizer(cfg.scenario.method, *ini);
     const std::string dir = outDirOr(c, cfg.scenario.name);
-    const std::string rawlog = sim::simulateToFiles(cfg, dir, c.quiet.getValue());
+    const auto onboard = makeOnboard(cfg.scenario.method, *ini);
+    const std::string rawlog =
+        sim::simulateToFiles(cfg, dir, c.quiet.getValue(), hooksOf(onboard));
     mrpt::config::CConfigFileMemory effective;
     cfg.save(effective);
     doLocalize(cfg.scenario.method, *ini, effective, rawlog, dir, c.quiet.getValue());

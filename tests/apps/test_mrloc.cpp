@@ -68,12 +68,13 @@ TEST(MrlocRun, QuickstartEndToEndWithinBound) {
     const auto r = mrlocCmd("run " + quickstart() + " --out " + out + " --quiet");
     ASSERT_EQ(r.code, 0) << r.output;
     const auto m = common::loadJson(out + "/metrics.json");
-    // Four ceiling beacons, 1 cm range noise, 2 % late echoes, 2 % dropouts, a pillar:
-    // the tracker must stay within 2 cm RMSE and 6 cm worst case over the 60 s loop.
+    // Four active ceiling beacons, 1 cm range noise, 2 % late echoes, 2 % dropouts, a
+    // pillar, and the link's trigger delay (ranges 2-4 m away read 1-4 cm long): the tracker
+    // must stay within 4 cm RMSE and 8 cm worst case over the 60 s loop.
     EXPECT_EQ(m["method"], "beacons");
     EXPECT_GT(m["n"].get<int>(), 290);
-    EXPECT_LT(m["rmse_m"].get<double>(), 0.02) << m.dump(2);
-    EXPECT_LT(m["max_m"].get<double>(), 0.06) << m.dump(2);
+    EXPECT_LT(m["rmse_m"].get<double>(), 0.04) << m.dump(2);
+    EXPECT_LT(m["max_m"].get<double>(), 0.08) << m.dump(2);
     EXPECT_GT(m["beacons"]["ranges_gated"].get<int>(), 0);  // the late echoes were caught
     for (const char* f : {"report.html", "topview.png", "error_time.png", "error_cdf.png",
                           "effective.ini", "estimates.r1.txt", "groundtruth.r1.txt"})
@@ -149,14 +150,15 @@ TEST(MrlocLocalize, ForeignRawlogInActionsSensoryFrameFormat) {
     const auto m = common::loadJson(dir + "/out/metrics.json");
     EXPECT_EQ(m["rawlog_format"], "actions+sensory-frames");
     EXPECT_TRUE(m["robots"].contains("robot"));
-    EXPECT_LT(m["rmse_m"].get<double>(), 0.02) << m.dump(2);
+    EXPECT_LT(m["rmse_m"].get<double>(), 0.04) << m.dump(2);
 }
 
 TEST(MrlocInfo, SummarisesLabelsCountsAndRates) {
     const auto r = mrlocCmd("info " + std::string(MRLOC_SOURCE_DIR) + "/rawlogs/quickstart.rawlog");
     ASSERT_EQ(r.code, 0) << r.output;
     EXPECT_NE(r.output.find("observations only"), std::string::npos) << r.output;
-    // 60 s at 5 Hz and 20 Hz, both ends included.
+    // 60 s of odometry at 20 Hz, both ends included; ranging epochs at 5 Hz from the end of
+    // the heads' first slew (0.559 s) on.
     const auto line = [&](const std::string& label) {
         std::istringstream in(r.output);
         for (std::string l; std::getline(in, l);)
@@ -171,7 +173,7 @@ TEST(MrlocInfo, SummarisesLabelsCountsAndRates) {
     };
     EXPECT_EQ(fields(line("r1.beacons")),
               (std::vector<std::string>{"r1", "r1.beacons", "mrpt::obs::CObservationBeaconRanges",
-                                        "301", "5.00", "0.000", "60.000"}));
+                                        "298", "5.01", "0.559", "59.325"}));
     EXPECT_EQ(fields(line("r1.odom")),
               (std::vector<std::string>{"r1", "r1.odom", "mrpt::obs::CObservationOdometry", "1201",
                                         "20.00", "0.000", "60.000"}));

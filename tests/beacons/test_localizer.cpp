@@ -10,18 +10,24 @@ using namespace mrloc;
 
 namespace {
 
+// A link with no trigger delay and no misses, so that ranges are the geometry + [sensors].
+const char* kIdealLink = "beam_angle = 360\nsource_margin_db = 200\nfading_sigma_db = 0\n";
+
 std::string scenarioIni(const std::string& sensors, const std::string& beaconsExtra) {
     return R"(
 [scenario]
 name = loc
 seed = 3
 duration = 30
+ground_truth_rate = 100
 robots = r1
 [world]
 size = 3 3 2.5
 [sensors]
 )" + sensors +
            R"(
+[ultrasonic]
+)" + std::string(kIdealLink) + R"(
 [robot.r1]
 start = 0.5 0.5 0
 waypoints = 2.5 0.5, 2.5 2.5, 0.5 2.5, 0.5 0.5
@@ -40,10 +46,14 @@ struct Outcome {
     nlohmann::json metrics;
 };
 
-Outcome runOn(const std::string& iniText, const std::string& tag) {
+/** Errors from `settle` seconds on (the first fix of a run may take two late echoes at once,
+ *  which no single fix can detect; the filter recovers, and that is what is measured). */
+Outcome runOn(const std::string& iniText, const std::string& tag, double settle = 0) {
     mrpt::config::CConfigFileMemory ini(iniText);
     const auto cfg = sim::ScenarioConfig::load(ini);
-    const std::string rawlog = sim::simulateToFiles(cfg, testing::TempDir() + "/loc_" + tag, true);
+    beacons::OnboardBeacons onboard(ini);  // aims the heads at the robot, schedules epochs
+    const std::string rawlog = sim::simulateToFiles(cfg, testing::TempDir() + "/loc_" + tag, true,
+                                                    {&onboard.localizer, &onboard.rfBeacon});
     beacons::BeaconLocalizer loc;
     loc.configure(ini);
     common::RawlogReader reader(rawlog);
@@ -51,7 +61,7 @@ Outcome runOn(const std::string& iniText, const std::string& tag) {
     const auto gt = common::loadTum(common::groundTruthPath(rawlog, "r1"));
     std::vector<double> e;
     for (const auto& te : common::positionErrors(loc.estimates().at("r1"), gt))
-        e.push_back(te.error);
+        if (te.t >= gt.front().t + settle) e.push_back(te.error);
     return {common::computeStats(e), loc.methodMetrics()};
 }
 
@@ -61,14 +71,19 @@ const char* kNoisy = "range_sigma = 0.01\nrange_dropout = 0.05\nrange_outlier_pr
 }  // namespace
 
 TEST(BeaconLocalizer, FixesModeIsExactOnNoiseFreeRanges) {
-    const auto o = runOn(scenarioIni(kClean, "mode = fixes\n"), "clean_fixes");
-    EXPECT_EQ(o.stats.n, 151u);
-    // Ranges are stored as float in CObservationBeaconRanges: ~1e-7 relative.
-    EXPECT_LT(o.stats.max, 1e-5);
+    // All four shots of an epoch within one simulation step: the robot does not move
+    // between them, so each fix is exact.
+    const auto o = runOn(scenarioIni(kClean, "mode = fixes\nshot_interval = 0.0001\n"),
+                         "clean_fixes");
+    // 30 s at 5 Hz, less the heads' first slew.
+    EXPECT_NEAR(double(o.stats.n), 150.0, 2.0);
+    // The robot moves 0.09 mm while the four shots fly (0.3 ms at 0.3 m/s); ranges are
+    // stored as float in CObservationBeaconRanges (~1e-7 relative).
+    EXPECT_LT(o.stats.max, 2e-4);
 }
 
 TEST(BeaconLocalizer, TrackerFollowsNoisyRangesWithOutliers) {
-    const auto o = runOn(scenarioIni(kNoisy, "range_sigma = 0.01\n"), "noisy_tracker");
+    const auto o = runOn(scenarioIni(kNoisy, "range_sigma = 0.01\n"), "noisy_tracker", 2.0);
     EXPECT_LT(o.stats.rmse, 0.03) << o.metrics.dump();
     EXPECT_LT(o.stats.max, 0.10) << o.metrics.dump();
     EXPECT_GT(o.metrics["ranges_gated"].get<int>(), 0);

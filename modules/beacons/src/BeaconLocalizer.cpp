@@ -5,6 +5,8 @@
 #include <mrpt/obs/CObservationOdometry.h>
 #include <mrpt/system/datetime.h>
 
+#include <cmath>
+
 namespace mrloc::beacons {
 
 using mrloc::common::IniSection;
@@ -35,6 +37,7 @@ void BeaconOptions::loadFromConfigFile(const mrpt::config::CConfigFileBase& src,
     tracker.bootstrapBaseline = s.real("bootstrap_baseline", 0.3, 0.01, 100);
     tracker.resetAfter = int(s.integer("reset_after", 5, 1, 100000));
     map = common::loadBeaconMap(src, s);
+    system.load(s, map);
     s.finish();
 }
 
@@ -58,6 +61,7 @@ void BeaconOptions::saveToConfigFile(mrpt::config::CConfigFileBase& t,
     t.write(section, "random_walk_sigma", tracker.randomWalkSigma);
     t.write(section, "bootstrap_baseline", tracker.bootstrapBaseline);
     t.write(section, "reset_after", tracker.resetAfter);
+    system.save(t, section);
     common::saveBeaconKeys(map, t, section);
 }
 
@@ -81,7 +85,16 @@ void BeaconLocalizer::process(const mrpt::obs::CObservation::Ptr& obs) {
     const double t = mrpt::Clock::toDouble(obs->timestamp);
     if (auto odo = std::dynamic_pointer_cast<mrpt::obs::CObservationOdometry>(obs)) {
         trackerOf(robot).onOdometry(odo->odometry);
+        if (const auto it = lastOdometry_.find(robot); it != lastOdometry_.end() && t > it->second.first)
+            forwardSpeed_[robot] =
+                (odo->odometry - it->second.second).x() / (t - it->second.first);
+        lastOdometry_[robot] = {t, odo->odometry};
         lastHeading_[robot] = odo->odometry.phi();
+        auto& sp = spacing_[robot];
+        if (sp.lastOdometry)
+            sp.sinceLast += std::hypot(odo->odometry.x() - sp.lastOdometry->x(),
+                                       odo->odometry.y() - sp.lastOdometry->y());
+        sp.lastOdometry = odo->odometry;
         return;
     }
     auto ranges = std::dynamic_pointer_cast<mrpt::obs::CObservationBeaconRanges>(obs);
@@ -90,8 +103,54 @@ void BeaconLocalizer::process(const mrpt::obs::CObservation::Ptr& obs) {
         fixOnly(robot, t, *ranges);
         return;
     }
-    if (const auto pose = trackerOf(robot).onRanges(t, *ranges))
-        estimates_[robot].push_back({t, mrpt::poses::CPose3D(*pose)});
+    if (const auto pose = trackerOf(robot).onRanges(t, compensateMotion(robot, *ranges)))
+        addEstimate(robot, t, mrpt::poses::CPose3D(*pose));
+}
+
+mrpt::obs::CObservationBeaconRanges BeaconLocalizer::compensateMotion(
+    const std::string& robot, const mrpt::obs::CObservationBeaconRanges& obs) {
+    mrpt::obs::CObservationBeaconRanges out = obs;
+    const BeaconTracker& tracker = trackerOf(robot);
+    const auto speed = forwardSpeed_.find(robot);
+    if (!tracker.initialized() || speed == forwardSpeed_.end()) return out;
+    // The beacons fire one after another and the epoch is stamped at its last shot: a
+    // range fired `age` earlier was read `age * v` back along the path. To first order it
+    // grows by (u . v) age over that time, u the unit vector from beacon to receiver.
+    const auto& mean = tracker.pdf().mean;
+    const double vx = speed->second * std::cos(mean.phi()), vy = speed->second * std::sin(mean.phi());
+    for (auto& m : out.sensedData) {
+        const auto b = options_.map.find(m.beaconID);
+        if (b == options_.map.end()) continue;
+        const auto rx = mean.composePoint(
+            mrpt::math::TPoint2D(m.sensorLocationOnRobot.x(), m.sensorLocationOnRobot.y()));
+        const double dx = rx.x - b->second.x, dy = rx.y - b->second.y,
+                     dz = m.sensorLocationOnRobot.z() - b->second.z;
+        const double d = std::sqrt(dx * dx + dy * dy + dz * dz);
+        if (d < 1e-9) continue;
+        m.sensedDistance += float((dx * vx + dy * vy) / d * options_.system.shotAge(m.beaconID));
+    }
+    return out;
+}
+
+void BeaconLocalizer::addEstimate(const std::string& robot, double t,
+                                  const mrpt::poses::CPose3D& pose) {
+    auto& traj = estimates_[robot];
+    auto& sp = spacing_[robot];
+    if (!traj.empty()) {
+        sp.maxDistance = std::max(sp.maxDistance, sp.sinceLast);
+        sp.sumDistance += sp.sinceLast;
+        sp.maxTime = std::max(sp.maxTime, t - traj.back().t);
+        ++sp.gaps;
+    }
+    sp.sinceLast = 0;
+    traj.push_back({t, pose});
+}
+
+std::optional<mrpt::poses::CPose3D> BeaconLocalizer::latestEstimate(
+    const std::string& robot) const {
+    const auto it = estimates_.find(robot);
+    if (it == estimates_.end() || it->second.empty()) return std::nullopt;
+    return it->second.back().pose;
 }
 
 void BeaconLocalizer::fixOnly(const std::string& robot, double t,
@@ -102,9 +161,10 @@ void BeaconLocalizer::fixOnly(const std::string& robot, double t,
     const double sensorZ = obs.sensedData.front().sensorLocationOnRobot.z();
     const double z = options_.threeD ? f->position.z() - sensorZ : 0.0;
     const auto heading = lastHeading_.find(robot);
-    estimates_[robot].push_back(
-        {t, mrpt::poses::CPose3D(f->position.x(), f->position.y(), z,
-                                 heading == lastHeading_.end() ? 0.0 : heading->second, 0, 0)});
+    addEstimate(robot, t,
+                mrpt::poses::CPose3D(f->position.x(), f->position.y(), z,
+                                     heading == lastHeading_.end() ? 0.0 : heading->second, 0,
+                                     0));
 }
 
 nlohmann::json BeaconLocalizer::methodMetrics() const {
@@ -122,11 +182,29 @@ nlohmann::json BeaconLocalizer::methodMetrics() const {
     j["fix_failures"] = total.fixFailures;
     j["mirror_resolved"] = total.mirrorResolved;
     j["filter_resets"] = total.resets;
+    for (const auto& [robot, sp] : spacing_) {
+        auto& r = j["robots"][robot];
+        r["estimates"] = estimates_.count(robot) ? estimates_.at(robot).size() : 0;
+        r["max_distance_between_fixes_m"] = sp.maxDistance;
+        r["mean_distance_between_fixes_m"] = sp.gaps ? sp.sumDistance / double(sp.gaps) : 0.0;
+        r["max_time_between_fixes_s"] = sp.maxTime;
+    }
     j["reception_rate"] = total.epochs == 0 ? 0.0
                                             : double(total.rangesReceived) /
                                                   double(total.epochs * options_.map.size());
     return j;
 }
+
+namespace {
+BeaconLocalizer configured(const mrpt::config::CConfigFileBase& ini) {
+    BeaconLocalizer l;
+    l.configure(ini);
+    return l;
+}
+}  // namespace
+
+OnboardBeacons::OnboardBeacons(const mrpt::config::CConfigFileBase& ini)
+    : localizer(configured(ini)), rfBeacon(localizer.options().system) {}
 
 void registerLocalizers(common::LocalizerRegistry& registry) {
     registry.add("beacons", [] { return std::make_unique<BeaconLocalizer>(); });

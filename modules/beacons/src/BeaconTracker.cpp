@@ -70,7 +70,12 @@ std::optional<Fix> BeaconTracker::fixFrom(const std::vector<Range>& ranges, bool
     if (lastFix_) fo.hint = *lastFix_;
     ++stats_.fixes;
     Fix f = robust ? robustMultilaterate(m, fo, 3.0 * o_.rangeSigma) : multilaterate(m, fo);
-    if (!f.ok()) {
+    // With a spare range the residual tells an inconsistent set (two late echoes, say)
+    // that leave-one-out could not repair: the filter must not start or restart from it.
+    const size_t unknowns = fo.knownHeight ? 2 : 3;
+    const bool inconsistent =
+        robust && f.ok() && m.size() > unknowns && f.rmsResidual > 5.0 * o_.rangeSigma;
+    if (!f.ok() || inconsistent) {
         ++stats_.fixFailures;
         return std::nullopt;
     }

@@ -3,6 +3,13 @@
 
 namespace mrloc::common {
 
+std::optional<mrpt::poses::CPose3D> Localizer::latestEstimate(const std::string& robot) const {
+    const auto all = estimates();
+    const auto it = all.find(robot);
+    if (it == all.end() || it->second.empty()) return std::nullopt;
+    return it->second.back().pose;
+}
+
 void LocalizerRegistry::add(const std::string& name, Factory factory) {
     if (factories_.count(name)) throw Error("localizer '" + name + "' registered twice");
     factories_[name] = std::move(factory);

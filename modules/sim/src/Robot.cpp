@@ -3,6 +3,7 @@
 #include <mrpt/core/bits_math.h>
 #include <mrpt/core/format.h>
 #include <mrpt/math/wrap2pi.h>
+#include <mrpt/poses/CPose3D.h>
 
 #include <cmath>
 #include <sstream>
@@ -15,7 +16,7 @@ void RobotOptions::loadFromConfigFile(const mrpt::config::CConfigFileBase& src,
     const auto st = s.requireReals("start", 3);
     start = mrpt::poses::CPose2D(st[0], st[1], mrpt::DEG2RAD(st[2]));
     waypoints.clear();
-    std::stringstream list(s.requireText("waypoints"));
+    std::stringstream list(s.text("waypoints", ""));
     for (std::string item; std::getline(list, item, ',');) {
         std::istringstream in(item);
         double x, y;
@@ -31,6 +32,7 @@ void RobotOptions::loadFromConfigFile(const mrpt::config::CConfigFileBase& src,
     receiver = {rc[0], rc[1], rc[2]};
     odometryRate = s.real("odometry_rate", 20, 0.1, 1000);
     beaconRate = s.real("beacon_rate", 5, 0.01, 1000);
+    rangingEpochs = s.integer("ranging_epochs", 0, 0, 1L << 40);
     odometrySigmaXY = s.real("odometry_sigma_xy", 0.02, 0, 1);
     odometrySigmaPhi = s.real("odometry_sigma_phi", 0.01, 0, 1);
     odometrySigmaPhiPerMetre = s.real("odometry_sigma_phi_per_m", 0.005, 0, 1);
@@ -51,9 +53,15 @@ void RobotOptions::saveToConfigFile(mrpt::config::CConfigFileBase& t,
     t.write(section, "receiver", mrpt::format("%g %g %g", receiver.x, receiver.y, receiver.z));
     t.write(section, "odometry_rate", odometryRate);
     t.write(section, "beacon_rate", beaconRate);
+    t.write(section, "ranging_epochs", std::to_string(rangingEpochs));
     t.write(section, "odometry_sigma_xy", odometrySigmaXY);
     t.write(section, "odometry_sigma_phi", odometrySigmaPhi);
     t.write(section, "odometry_sigma_phi_per_m", odometrySigmaPhiPerMetre);
+}
+
+mrpt::math::TPoint3D receiverAt(const mrpt::poses::CPose2D& pose,
+                                const mrpt::math::TPoint3D& onRobot) {
+    return mrpt::poses::CPose3D(pose).composePoint(onRobot);
 }
 
 Robot::Robot(RobotOptions options) : options_(std::move(options)), pose_(options_.start) {}

@@ -49,6 +49,7 @@ ScenarioConfig ScenarioConfig::load(const mrpt::config::CConfigFileBase& ini) {
     c.scenario.loadFromConfigFile(ini, "scenario");
     c.world.loadFromConfigFile(ini, "world");
     c.sensors.loadFromConfigFile(ini, "sensors");
+    c.ultrasonic.loadFromConfigFile(ini, "ultrasonic");
     if (c.scenario.robots.empty())
         throw Error(common::configOrigin(ini) +
                     ": [scenario] robots: required key is missing "
@@ -78,6 +79,7 @@ void ScenarioConfig::save(mrpt::config::CConfigFileBase& t) const {
     scenario.saveToConfigFile(t, "scenario");
     world.saveToConfigFile(t, "world");
     sensors.saveToConfigFile(t, "sensors");
+    ultrasonic.saveToConfigFile(t, "ultrasonic");
     for (const auto& r : robots) r.saveToConfigFile(t, "robot." + r.name);
 }
 

@@ -1,73 +1,163 @@
 #include <mrloc/common/AtomicFile.h>
+#include <mrloc/common/Error.h>
+#include <mrloc/sim/BeaconRanging.h>
 #include <mrloc/sim/Simulator.h>
 #include <mrpt/random/RandomGenerators.h>
 
+#include <mrpt/math/wrap2pi.h>
+
+#include <algorithm>
 #include <cmath>
+#include <limits>
 
 namespace mrloc::sim {
 
+namespace {
+
+/** What the simulator keeps per robot besides its kinematics. */
+struct RobotState {
+    long odometryEvery = 1;  ///< odometry period in steps
+    double minEpochGap = 0;  ///< 1 / beacon_rate
+    double lastEpoch = -std::numeric_limits<double>::infinity();
+    long epochs = 0;
+    double speed = 0;  ///< from the last two odometry readings
+    std::optional<std::pair<double, mrpt::poses::CPose2D>> lastOdometry;
+};
+
+}  // namespace
+
 Simulator::Simulator(ScenarioConfig config) : config_(std::move(config)), world_(config_.world) {}
 
-SimulationResult Simulator::run(common::RawlogWriter& out, common::Progress* progress) {
+SimulationResult Simulator::run(common::RawlogWriter& out, SimulationHooks hooks,
+                                common::Progress* progress) {
     const auto& sc = config_.scenario;
     mrpt::random::CRandomGenerator rng(uint32_t(sc.seed));
     std::vector<Robot> robots;
     std::vector<OdometrySensor> odometers;
+    std::vector<RobotState> state(config_.robots.size());
     robots.reserve(config_.robots.size());
     odometers.reserve(config_.robots.size());
-    for (const auto& r : config_.robots) {
-        robots.emplace_back(r);
-        odometers.emplace_back(robots.back().options());
-    }
-    const BeaconRanger ranger(world_, config_.beacons, config_.sensors);
     const auto every = [&](double rate) {
         return std::max<long>(1, std::lround(1.0 / (rate * sc.dt)));
     };
+    for (size_t i = 0; i < config_.robots.size(); ++i) {
+        robots.emplace_back(config_.robots[i]);
+        odometers.emplace_back(robots.back().options());
+        state[i].odometryEvery = every(config_.robots[i].odometryRate);
+        state[i].minEpochGap = 1.0 / config_.robots[i].beaconRate;
+    }
+    const auto indexOf = [&](const std::string& name) {
+        for (size_t i = 0; i < robots.size(); ++i)
+            if (robots[i].options().name == name) return i;
+        throw Error("ranging: the controller chose robot '" + name + "', which does not exist");
+    };
+    BeaconRanging ranging(world_, config_.beacons, config_.sensors, config_.ultrasonic);
     const long steps = std::lround(sc.duration / sc.dt);
     const long gtEvery = every(sc.groundTruthRate);
-    std::vector<long> odometryEvery, beaconEvery;  // sensor periods in steps, per robot
-    for (const auto& r : robots) {
-        odometryEvery.push_back(every(r.options().odometryRate));
-        beaconEvery.push_back(every(r.options().beaconRate));
-    }
+    double channelFree = 0;
 
     SimulationResult result;
+    const auto emit = [&](const mrpt::obs::CObservation::Ptr& obs) {
+        out.write(*obs);
+        ++result.observations;
+        if (hooks.onboard) hooks.onboard->process(obs);
+    };
+    std::vector<mrpt::poses::CPose2D> previousPose(robots.size());
+    const auto fireDue = [&](double t) {
+        if (!ranging.inEpoch()) return;
+        const size_t i = indexOf(ranging.epoch().robot);
+        const Robot& robot = robots[i];
+        // A shot falls between two steps: the receiver is where the robot was at that time.
+        const auto receiverAtTime = [&](double when) {
+            const double a = std::clamp(1.0 - (t - when) / sc.dt, 0.0, 1.0);
+            const auto& p0 = previousPose[i];
+            const auto& p1 = robot.pose();
+            const mrpt::poses::CPose2D p(
+                p0.x() + a * (p1.x() - p0.x()), p0.y() + a * (p1.y() - p0.y()),
+                p0.phi() + a * mrpt::math::wrapToPi(p1.phi() - p0.phi()));
+            return receiverAt(p, robot.options().receiver);
+        };
+        auto obs = ranging.fireDue(t, receiverAtTime, robot.options().receiver, rng, result.shots);
+        if (!obs) return;
+        obs->sensorLabel = robot.options().name + ".beacons";
+        obs->timestamp = mrpt::Clock::fromDouble(sc.startTime + ranging.lastShotTime());
+        emit(obs);
+    };
+    // What a robot tells the RF beacon: the receiver where its own estimate puts it (its
+    // configured start before the first estimate: robots start at a surveyed spot).
+    const auto report = [&](size_t i) {
+        const Robot& robot = robots[i];
+        const auto& ro = robot.options();
+        common::RobotReport r;
+        r.robot = ro.name;
+        r.speed = state[i].speed;
+        std::optional<mrpt::poses::CPose3D> est;
+        if (hooks.onboard) est = hooks.onboard->latestEstimate(ro.name);
+        const mrpt::poses::CPose2D believed =
+            est ? mrpt::poses::CPose2D(est->x(), est->y(), est->yaw()) : ro.start;
+        r.receiver = receiverAt(believed, ro.receiver);
+        return r;
+    };
+
     for (long k = 0; k <= steps; ++k) {
         const double t = double(k) * sc.dt;
         const auto stamp = mrpt::Clock::fromDouble(sc.startTime + t);
         for (size_t i = 0; i < robots.size(); ++i) {
             Robot& robot = robots[i];
             const auto& ro = robot.options();
+            previousPose[i] = robot.pose();
             if (k > 0) odometers[i].accumulate(robot.step(sc.dt), rng);
-            if (k % odometryEvery[i] == 0) {
-                out.write(*odometers[i].read(ro.name + ".odom", stamp));
-                ++result.observations;
-            }
-            if (k % beaconEvery[i] == 0) {
-                out.write(
-                    *ranger.read(ro.name + ".beacons", stamp, robot.pose(), ro.receiver, rng));
-                ++result.observations;
+            if (k % state[i].odometryEvery == 0) {
+                auto odo = odometers[i].read(ro.name + ".odom", stamp);
+                if (state[i].lastOdometry) {
+                    const auto& [t0, p0] = *state[i].lastOdometry;
+                    state[i].speed = std::hypot(odo->odometry.x() - p0.x(),
+                                                odo->odometry.y() - p0.y()) /
+                                     (t - t0);
+                }
+                state[i].lastOdometry = std::make_pair(t, odo->odometry);
+                emit(odo);
             }
             if (k % gtEvery == 0)
                 result.groundTruth[ro.name].push_back(
                     {mrpt::Clock::toDouble(stamp), mrpt::poses::CPose3D(robot.pose())});
+        }
+        fireDue(t);
+        if (hooks.ranging && !ranging.inEpoch() && t >= channelFree - 1e-9) {
+            std::vector<common::RobotReport> requests;
+            for (size_t i = 0; i < robots.size(); ++i) {
+                const long cap = robots[i].options().rangingEpochs;
+                if (t - state[i].lastEpoch >= state[i].minEpochGap - 1e-9 &&
+                    (cap == 0 || state[i].epochs < cap))
+                    requests.push_back(report(i));
+            }
+            if (!requests.empty())
+                if (const auto epoch = hooks.ranging->nextEpoch(t, requests)) {
+                    const size_t i = indexOf(epoch->robot);
+                    state[i].lastEpoch = t;
+                    ++state[i].epochs;
+                    channelFree = ranging.begin(t, *epoch);
+                    fireDue(t);  // heads already aimed: the first shot leaves now
+                }
         }
         if (progress) progress->update(size_t(k));
     }
     return result;
 }
 
-std::string simulateToFiles(const ScenarioConfig& config, const std::string& dir, bool quiet) {
+std::string simulateToFiles(const ScenarioConfig& config, const std::string& dir, bool quiet,
+                            SimulationHooks hooks) {
     common::makeDirectories(dir);
     const std::string path = dir + "/" + config.scenario.name + ".rawlog";
     Simulator sim(config);
     common::RawlogWriter writer(path);
     common::Progress progress(
         "simulating", size_t(std::lround(config.scenario.duration / config.scenario.dt)), quiet);
-    const auto result = sim.run(writer, &progress);
+    const auto result = sim.run(writer, hooks, &progress);
     progress.finish();
     for (const auto& [robot, traj] : result.groundTruth)
         common::saveTum(common::groundTruthPath(path, robot), traj);
+    saveShotLog(shotLogPath(path), result.shots);
     writer.commit();
     return path;
 }

@@ -3,6 +3,7 @@
 // Runs on any MRPT rawlog that carries CObservationBeaconRanges, with or without odometry,
 // in either rawlog format; robots are told apart by the sensor label prefix ("r1.beacons").
 #include <mrloc/beacons/BeaconTracker.h>
+#include <mrloc/beacons/RfBeacon.h>
 #include <mrloc/common/BeaconMap.h>
 #include <mrloc/common/Localizer.h>
 #include <mrpt/config/CLoadableOptions.h>
@@ -18,6 +19,7 @@ struct BeaconOptions : public mrpt::config::CLoadableOptions {
     bool threeD = false;  ///< 3-D fixes; default 2-D with the receiver height known
     common::BeaconMap map;
     TrackerOptions tracker;
+    RfBeaconOptions system;  ///< aiming, scheduling and sections (the RF beacon's side)
 
     void loadFromConfigFile(const mrpt::config::CConfigFileBase& source,
                             const std::string& section) override;
@@ -31,6 +33,7 @@ class BeaconLocalizer : public common::Localizer {
     void saveConfig(mrpt::config::CConfigFileBase& target) const override;
     void process(const mrpt::obs::CObservation::Ptr& obs) override;
     std::map<std::string, common::Trajectory> estimates() const override { return estimates_; }
+    std::optional<mrpt::poses::CPose3D> latestEstimate(const std::string& robot) const override;
     nlohmann::json methodMetrics() const override;
 
     const BeaconOptions& options() const { return options_; }
@@ -43,7 +46,32 @@ class BeaconLocalizer : public common::Localizer {
     BeaconOptions options_;
     std::map<std::string, BeaconTracker> trackers_;
     std::map<std::string, common::Trajectory> estimates_;
+    /** Ranges as they would have been read at the epoch's time stamp (see doc/beacons.md). */
+    mrpt::obs::CObservationBeaconRanges compensateMotion(
+        const std::string& robot, const mrpt::obs::CObservationBeaconRanges& obs);
+    void addEstimate(const std::string& robot, double t, const mrpt::poses::CPose3D& pose);
+
+    /** How far apart (by odometry) and how long apart a robot's estimates are. */
+    struct Spacing {
+        std::optional<mrpt::poses::CPose2D> lastOdometry;
+        double sinceLast = 0;  ///< odometry path length since the last estimate (m)
+        double maxDistance = 0, sumDistance = 0, maxTime = 0;
+        size_t gaps = 0;
+    };
+
+    std::map<std::string, std::pair<double, mrpt::poses::CPose2D>> lastOdometry_;  // t, pose
+    std::map<std::string, double> forwardSpeed_;  // m/s, from the last two odometry readings
     std::map<std::string, double> lastHeading_;  // from odometry, for fixes-only mode
+    std::map<std::string, Spacing> spacing_;
+};
+
+/** What runs on board in a closed-loop simulation of the beacon system: the robots'
+ *  estimator and the RF beacon that aims and schedules from what they report. Hand both to
+ *  sim::SimulationHooks. */
+struct OnboardBeacons {
+    explicit OnboardBeacons(const mrpt::config::CConfigFileBase& ini);
+    BeaconLocalizer localizer;
+    RfBeacon rfBeacon;
 };
 
 void registerLocalizers(common::LocalizerRegistry& registry);

@@ -9,6 +9,7 @@
 #include <functional>
 #include <map>
 #include <memory>
+#include <optional>
 #include <nlohmann/json.hpp>
 #include <string>
 #include <vector>
@@ -28,6 +29,9 @@ class Localizer {
     virtual void process(const mrpt::obs::CObservation::Ptr& obs) = 0;
     /** Estimated trajectories, per robot name. */
     virtual std::map<std::string, Trajectory> estimates() const = 0;
+    /** The robot's newest estimate, if any: what it reports on board in a closed-loop
+     *  simulation. The default searches estimates(); methods override it to be O(1). */
+    virtual std::optional<mrpt::poses::CPose3D> latestEstimate(const std::string& robot) const;
     /** The method's own figures for metrics.json (fixes, rejected ranges, ...). */
     virtual nlohmann::json methodMetrics() const { return nlohmann::json::object(); }
 };

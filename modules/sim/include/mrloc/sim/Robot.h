@@ -14,13 +14,14 @@ namespace mrloc::sim {
 struct RobotOptions : public mrpt::config::CLoadableOptions {
     std::string name;
     mrpt::poses::CPose2D start;                   ///< start = x y phi_deg
-    std::vector<mrpt::math::TPoint2D> waypoints;  ///< waypoints = x y, x y, ...
+    std::vector<mrpt::math::TPoint2D> waypoints;  ///< waypoints = x y, x y, ... (none: stands)
     bool loop = true;                             ///< go back to the first waypoint at the end
     double speed = 0.3;                           ///< m/s
     double maxTurnRate = 1.5;                     ///< rad/s
     mrpt::math::TPoint3D receiver{0, 0, 0.3};     ///< beacon receiver on the robot (m)
     double odometryRate = 20;                     ///< Hz
-    double beaconRate = 5;                        ///< Hz (ranging epochs)
+    double beaconRate = 5;                        ///< Hz: most ranging epochs it asks for
+    long rangingEpochs = 0;                       ///< stops asking after this many (0: never)
     double odometrySigmaXY = 0.02;                ///< per metre travelled
     double odometrySigmaPhi = 0.01;               ///< per radian turned
     double odometrySigmaPhiPerMetre = 0.005;      ///< rad per metre travelled
@@ -31,6 +32,10 @@ struct RobotOptions : public mrpt::config::CLoadableOptions {
                           const std::string& section) const override;
 };
 
+/** Where a receiver mounted at `onRobot` is when the robot is at `pose`. */
+mrpt::math::TPoint3D receiverAt(const mrpt::poses::CPose2D& pose,
+                                const mrpt::math::TPoint3D& onRobot);
+
 /** Unicycle with a waypoint follower: turn towards the waypoint (at most maxTurnRate),
  *  drive at `speed` scaled down while the heading error is large. */
 class Robot {
@@ -38,6 +43,8 @@ class Robot {
     explicit Robot(RobotOptions options);
     const RobotOptions& options() const { return options_; }
     const mrpt::poses::CPose2D& pose() const { return pose_; }
+    /** The beacon receiver's position in the world at the current pose. */
+    mrpt::math::TPoint3D receiverInWorld() const { return receiverAt(pose_, options_.receiver); }
     /** Advances by dt; returns the motion in the robot frame (for odometry). */
     mrpt::poses::CPose2D step(double dt);
     /** Replaces the route (closed-loop control by a method). */

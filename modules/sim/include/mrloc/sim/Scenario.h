@@ -1,9 +1,10 @@
 #pragma once
 // Everything a simulation run needs, read and validated from one INI:
-// [scenario], [world], [sensors], [robot.<name>] and the beacon map.
+// [scenario], [world], [sensors], [ultrasonic], [robot.<name>] and the beacon map.
 #include <mrloc/common/BeaconMap.h>
 #include <mrloc/sim/Robot.h>
 #include <mrloc/sim/Sensors.h>
+#include <mrloc/sim/Ultrasonic.h>
 #include <mrloc/sim/World.h>
 
 namespace mrloc::sim {
@@ -29,6 +30,7 @@ struct ScenarioConfig {
     ScenarioOptions scenario;
     WorldOptions world;
     SensorOptions sensors;
+    UltrasonicOptions ultrasonic;
     std::vector<RobotOptions> robots;
     common::BeaconMap beacons;
 

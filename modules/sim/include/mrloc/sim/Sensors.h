@@ -1,17 +1,14 @@
 #pragma once
 // Sensor models of the simulator. Each draws from the generator it is given, in a fixed
 // order, so that a seed reproduces a rawlog byte for byte.
-#include <mrloc/common/BeaconMap.h>
 #include <mrloc/sim/Robot.h>
-#include <mrloc/sim/World.h>
 #include <mrpt/config/CLoadableOptions.h>
-#include <mrpt/obs/CObservationBeaconRanges.h>
 #include <mrpt/obs/CObservationOdometry.h>
 #include <mrpt/random/RandomGenerators.h>
 
 namespace mrloc::sim {
 
-/** Section [sensors]: the beacon ranging model. */
+/** Section [sensors]: TOF noise and failures on top of the ultrasonic link. */
 struct SensorOptions : public mrpt::config::CLoadableOptions {
     double rangeSigma = 0.01;          ///< Gaussian TOF range noise (m)
     double rangeMax = 10;              ///< no reading beyond (m)
@@ -37,21 +34,6 @@ class OdometrySensor {
  private:
     const RobotOptions& robot_;
     mrpt::poses::CPose2D odometry_;
-};
-
-class BeaconRanger {
- public:
-    BeaconRanger(const World& world, const common::BeaconMap& beacons, SensorOptions options);
-    mrpt::obs::CObservationBeaconRanges::Ptr read(const std::string& label,
-                                                  mrpt::Clock::time_point t,
-                                                  const mrpt::poses::CPose2D& robotPose,
-                                                  const mrpt::math::TPoint3D& receiver,
-                                                  mrpt::random::CRandomGenerator& rng) const;
-
- private:
-    const World& world_;
-    const common::BeaconMap& beacons_;
-    SensorOptions o_;
 };
 
 }  // namespace mrloc::sim

@@ -1,0 +1,79 @@
+#include <mrloc/beacons/RfBeacon.h>
+
+namespace mrloc::beacons {
+
+void RfBeaconOptions::load(common::IniSection& s, const common::BeaconMap& map) {
+    activeAiming = s.choice("aiming", "active", {"active", "fixed"}) == "active";
+    scheduling = s.choice("scheduling", "priority", {"priority", "round_robin"}) == "priority"
+                     ? Scheduling::Priority
+                     : Scheduling::RoundRobin;
+    minSpeed = s.real("min_speed", 0.05, 1e-6, 100);
+    handoverMargin = s.real("handover_margin", 0.5, 0, 1000);
+    registrationTime = s.real("registration_time", 0.5, 0, 1000);
+    shotInterval = s.real("shot_interval", 0.03, 1e-4, 10);
+    sections = readSections(s, map);
+}
+
+void RfBeaconOptions::save(mrpt::config::CConfigFileBase& t, const std::string& section) const {
+    t.write(section, "aiming", activeAiming ? "active" : "fixed");
+    t.write(section, "scheduling", scheduling == Scheduling::Priority ? "priority" : "round_robin");
+    t.write(section, "min_speed", minSpeed);
+    t.write(section, "handover_margin", handoverMargin);
+    t.write(section, "registration_time", registrationTime);
+    t.write(section, "shot_interval", shotInterval);
+    saveSections(sections, t, section);
+}
+
+double RfBeaconOptions::shotAge(int id) const {
+    for (const auto& s : sections.sections())
+        for (size_t k = 0; k < s.beacons.size(); ++k)
+            if (s.beacons[k] == id) return double(s.beacons.size() - 1 - k) * shotInterval;
+    return 0;
+}
+
+RfBeacon::RfBeacon(RfBeaconOptions options)
+    : o_(std::move(options)), scheduler_(o_.scheduling, o_.minSpeed) {}
+
+std::optional<size_t> RfBeacon::servingSection(double t, const common::RobotReport& r) {
+    const mrpt::math::TPoint2D p(r.receiver.x, r.receiver.y);
+    const size_t here = o_.sections.at(p);
+    auto& ready = tableReadyAt_[r.robot];
+    if (ready.empty()) ready[here] = t;  // the start section's table is loaded beforehand
+    const auto ask = [&](size_t s) {
+        if (ready.emplace(s, t + o_.registrationTime).second) ++stats_.registrations;
+    };
+    ask(here);
+    if (o_.handoverMargin > 0)
+        for (size_t s = 0; s < o_.sections.size(); ++s)
+            if (o_.sections[s].distanceTo(p) <= o_.handoverMargin) ask(s);
+    if (ready.at(here) > t + 1e-12) return std::nullopt;
+    return here;
+}
+
+std::optional<common::RangingEpoch> RfBeacon::nextEpoch(
+    double t, const std::vector<common::RobotReport>& requests) {
+    std::vector<common::RobotReport> candidates;
+    std::vector<size_t> sectionOf;
+    for (const auto& r : requests) {
+        if (const auto s = servingSection(t, r)) {
+            candidates.push_back(r);
+            sectionOf.push_back(*s);
+        } else {
+            ++stats_.waits;
+        }
+    }
+    if (candidates.empty()) return std::nullopt;
+    const size_t i = scheduler_.pick(t, candidates);
+    scheduler_.served(candidates[i].robot, t);
+    ++stats_.epochs;
+    const Section& sec = o_.sections[sectionOf[i]];
+    common::RangingEpoch e;
+    e.robot = candidates[i].robot;
+    e.section = sec.name;
+    e.beacons = sec.beacons;
+    e.shotInterval = o_.shotInterval;
+    e.aimPoints.assign(sec.beacons.size(), o_.activeAiming ? candidates[i].receiver : sec.aim);
+    return e;
+}
+
+}  // namespace mrloc::beacons

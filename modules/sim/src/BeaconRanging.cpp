@@ -1,0 +1,116 @@
+#include <mrloc/common/Error.h>
+#include <mrloc/sim/BeaconRanging.h>
+
+#include <algorithm>
+#include <cmath>
+
+namespace mrloc::sim {
+
+using mrpt::math::TPoint3D;
+
+namespace {
+// A reflected echo (no line of sight) loses this much at the wall, on top of its longer path.
+constexpr double kReflectionLossDb = 3.0;
+}  // namespace
+
+BeaconRanging::BeaconRanging(const World& world, const common::BeaconMap& beacons,
+                             SensorOptions sensors, UltrasonicOptions ultrasonic)
+    : world_(world), beacons_(beacons), sensors_(sensors), link_(ultrasonic) {
+    for (const auto& [id, p] : beacons_)
+        heads_.emplace(id, Head{common::PanTiltHead(p, ultrasonic.head), {}});
+}
+
+double BeaconRanging::begin(double t, const common::RangingEpoch& epoch) {
+    if (inEpoch_) throw Error("ranging: an epoch began before the previous one ended");
+    if (epoch.beacons.empty() || epoch.beacons.size() != epoch.aimPoints.size() ||
+        !(epoch.shotInterval > 0))
+        throw Error("ranging: an epoch for robot '" + epoch.robot +
+                    "' needs one aim point per beacon, at least one beacon and a "
+                    "positive shot interval");
+    double slew = 0;
+    for (size_t j = 0; j < epoch.beacons.size(); ++j) {
+        const auto it = heads_.find(epoch.beacons[j]);
+        if (it == heads_.end())
+            throw Error("ranging: beacon " + std::to_string(epoch.beacons[j]) +
+                        " of section '" + epoch.section + "' is not in the beacon map");
+        Head& h = it->second;
+        const auto target = h.head.aimAt(epoch.aimPoints[j], h.angles.pan);
+        slew = std::max(slew, h.head.slewTime(h.angles, target));
+        h.angles = target;  // no shot is fired before every head has arrived
+    }
+    epoch_ = epoch;
+    inEpoch_ = true;
+    firstShot_ = t + slew;
+    fired_ = 0;
+    obs_ = mrpt::obs::CObservationBeaconRanges::Create();
+    obs_->minSensorDistance = 0;
+    obs_->maxSensorDistance = float(sensors_.rangeMax);
+    obs_->stdError = float(sensors_.rangeSigma);
+    return firstShot_ + double(epoch.beacons.size()) * epoch.shotInterval;
+}
+
+ShotRecord BeaconRanging::shoot(int id, const TPoint3D& rx,
+                                mrpt::random::CRandomGenerator& rng) const {
+    const Head& h = heads_.at(id);
+    const TPoint3D& b = beacons_.at(id);
+    ShotRecord r;
+    r.beacon = id;
+    r.pan = h.angles.pan;
+    r.tilt = h.angles.tilt;
+    r.offAxis = h.head.offAxisAngle(h.angles, rx);
+    r.distance = std::sqrt((b - rx).sqrNorm());
+    // Every draw is made whatever the branch, so one shot's fate never shifts the random
+    // stream of the others.
+    const double fading = rng.drawGaussian1D(0, link_.options().fadingSigmaDb);
+    const double noise = rng.drawGaussian1D(0, sensors_.rangeSigma);
+    const double u = rng.drawUniform(0.0, 1.0), v = rng.drawUniform(0.0, 1.0);
+    const double extra = rng.drawUniform(0.1, sensors_.outlierMax);
+
+    r.lineOfSight = world_.lineOfSight(b, rx);
+    double path = r.distance;
+    double loss = 0;
+    if (!r.lineOfSight) {
+        if (!sensors_.nlosReflect) return r;
+        path += extra;  // the first echo arrives by a longer, reflected path
+        loss = kReflectionLossDb;
+    }
+    r.marginDb = link_.marginDb(path, r.offAxis) + fading - loss;
+    if (r.distance > sensors_.rangeMax) return r;
+    const auto bias = link_.rangeBias(r.marginDb);  // late trigger of a weak burst
+    if (!bias) return r;
+    if (r.lineOfSight && u < sensors_.dropout) return r;
+    if (r.lineOfSight && v < sensors_.outlierProbability) path += extra;
+    r.detected = true;
+    r.range = std::max(0.0, path + *bias + noise);
+    return r;
+}
+
+mrpt::obs::CObservationBeaconRanges::Ptr BeaconRanging::fireDue(
+    double t, const std::function<TPoint3D(double)>& receiverAt, const TPoint3D& onRobot,
+    mrpt::random::CRandomGenerator& rng, ShotLog& log) {
+    if (!inEpoch_) return nullptr;
+    const double interval = epoch_.shotInterval;
+    const size_t n = epoch_.beacons.size();
+    while (fired_ < n && firstShot_ + double(fired_) * interval <= t + 1e-9) {
+        const double when = firstShot_ + double(fired_) * interval;
+        ShotRecord r = shoot(epoch_.beacons[fired_], receiverAt(when), rng);
+        r.start = lastShot_ = when;
+        r.end = r.start + interval;
+        r.robot = epoch_.robot;
+        r.section = epoch_.section;
+        if (r.detected) {
+            mrpt::obs::CObservationBeaconRanges::TMeasurement m;
+            m.beaconID = r.beacon;
+            m.sensedDistance = float(r.range);
+            m.sensorLocationOnRobot = mrpt::poses::CPoint3D(onRobot);
+            obs_->sensedData.push_back(m);
+        }
+        log.push_back(std::move(r));
+        ++fired_;
+    }
+    if (fired_ < n) return nullptr;
+    inEpoch_ = false;
+    return std::move(obs_);
+}
+
+}  // namespace mrloc::sim
