@@ -4,6 +4,7 @@
 #include <mrloc/common/Error.h>
 #include <mrloc/common/LocalizationRun.h>
 #include <mrloc/report/Report.h>
+#include <mrloc/report/ReportOptions.h>
 #include <mrloc/sim/Simulator.h>
 #include <mrpt/3rdparty/tclap/CmdLine.h>
 #include <mrpt/config/CConfigFile.h>
@@ -58,6 +59,7 @@ std::string outDirOr(Common& c, const std::string& name) {
 sim::ScenarioConfig loadScenario(const mrpt::config::CConfigFile& ini,
                                  TCLAP::ValueArg<long>& seed) {
     auto cfg = sim::ScenarioConfig::load(ini);
+    report::ReportOptions().loadFromConfigFile(ini, "report");  // checked before any output
     if (seed.isSet()) {
         if (seed.getValue() < 0) throw Error("--seed must be non-negative");
         cfg.scenario.seed = (unsigned long)seed.getValue();
@@ -185,6 +187,9 @@ int run(int argc, char** argv) {
         sim::simulateToFiles(cfg, dir, c.quiet.getValue(), hooksOf(onboard));
     mrpt::config::CConfigFileMemory effective;
     cfg.save(effective);
+    report::ReportOptions paper;
+    paper.loadFromConfigFile(*ini, "report");
+    paper.saveToConfigFile(effective, "report");
     doLocalize(cfg.scenario.method, *ini, effective, rawlog, dir, c.quiet.getValue());
     const std::string page = report::makeReport(dir);
     std::cout << "report: " << page << "\n";

@@ -235,3 +235,28 @@ TEST(MrlocCli, HelpAndUsage) {
     }
     EXPECT_EQ(mrlocCmd("frobnicate").code, 2);
 }
+
+TEST(MrlocRun, BeaconsFixedReportShowsReceptionBesideSeed001Table3) {
+    const std::string out = tmp("fixed");
+    const auto r = mrlocCmd("run " + std::string(MRLOC_SOURCE_DIR) +
+                            "/config/beacons_fixed.ini -q --out " + out);
+    ASSERT_EQ(r.code, 0) << r.output;
+    const std::string page = slurp(out + "/report.html");
+    EXPECT_NE(page.find("successful receiving rate"), std::string::npos);
+    EXPECT_NE(page.find("seed 001 Table 3"), std::string::npos);
+    EXPECT_NE(page.find(" (40)</td>"), std::string::npos);  // the paper's beacon 2 at point 4
+    EXPECT_TRUE(fs::exists(out + "/beacons_fixed.shots.txt"));
+}
+
+TEST(MrlocErrors, MisspeltReportKeyStopsBeforeAnyOutput) {
+    const std::string dir = tmp("badreport");
+    fs::create_directories(dir);
+    std::ifstream in(std::string(MRLOC_SOURCE_DIR) + "/config/beacons_fixed.ini");
+    std::stringstream text;
+    text << in.rdbuf() << "paper_recepton_2 = 1 2 3\n";
+    std::ofstream(dir + "/bad.ini") << text.str();
+    const auto r = mrlocCmd("run " + dir + "/bad.ini -q --out " + dir + "/out");
+    EXPECT_EQ(r.code, 1);
+    EXPECT_NE(r.output.find("paper_recepton_2"), std::string::npos) << r.output;
+    EXPECT_FALSE(fs::exists(dir + "/out"));
+}

@@ -5,10 +5,14 @@
 #include <mrloc/common/RunDirectory.h>
 #include <mrloc/report/Plots.h>
 #include <mrloc/report/Report.h>
+#include <mrloc/report/ReportOptions.h>
+#include <mrloc/sim/ShotLog.h>
 #include <mrloc/report/TopView.h>
 #include <mrpt/config/CConfigFile.h>
 
+#include <algorithm>
 #include <filesystem>
+#include <map>
 #include <sstream>
 
 namespace mrloc::report {
@@ -52,6 +56,64 @@ std::string table(const nlohmann::json& j) {
     return t + "</table>\n";
 }
 
+/** Seed 001 Tables 3/4 and Figs. 10/11 for this run: per robot (test point) the reception
+ *  rate of each beacon from the simulator's shot log, and the mean and max error, beside
+ *  the paper's figures from [report]. */
+std::string beaconSystemSection(const nlohmann::json& metrics, const ReportOptions& paper) {
+    const std::string shotsPath = sim::shotLogPath(metrics.value("rawlog", ""));
+    if (!std::filesystem::exists(shotsPath)) return "";
+    const auto shots = sim::loadShotLog(shotsPath);
+    if (shots.empty()) return "";
+    std::vector<std::string> robots;
+    std::map<int, std::map<std::string, std::pair<int, int>>> heard;  // beacon, robot: n, ok
+    for (const auto& s : shots) {
+        if (std::find(robots.begin(), robots.end(), s.robot) == robots.end())
+            robots.push_back(s.robot);
+        auto& c = heard[s.beacon][s.robot];
+        ++c.first;
+        c.second += s.detected;
+    }
+    std::string t = "<h2>Beacon system: reception and errors per robot</h2>\n";
+    if (!paper.paperCaption.empty())
+        t += "<p>Ours, with the paper's in brackets: " + html(paper.paperCaption) + "</p>\n";
+    t += "<table><tr><th>successful receiving rate (%)</th>";
+    for (const auto& r : robots) t += "<th>" + html(r) + "</th>";
+    t += "</tr>\n";
+    for (const auto& [beacon, perRobot] : heard) {
+        t += "<tr><th>beacon " + std::to_string(beacon) + "</th>";
+        const auto p = paper.paperReception.find(beacon);
+        for (size_t i = 0; i < robots.size(); ++i) {
+            const auto c = perRobot.find(robots[i]);
+            t += "<td>";
+            if (c != perRobot.end())
+                t += mrpt::format("%.0f", 100.0 * c->second.second / c->second.first);
+            if (p != paper.paperReception.end() && i < p->second.size())
+                t += mrpt::format(" (%g)", p->second[i]);
+            t += "</td>";
+        }
+        t += "</tr>\n";
+    }
+    const auto row = [&](const char* name, const char* key, double scale, const char* fmt) {
+        std::string r = std::string("<tr><th>") + name + "</th>";
+        for (const auto& robot : robots) {
+            const auto& m = metrics["robots"];
+            r += "<td>";
+            if (m.contains(robot) && m[robot].contains(key))
+                r += mrpt::format(fmt, scale * m[robot][key].get<double>());
+            r += "</td>";
+        }
+        return r + "</tr>\n";
+    };
+    t += row("mean error (mm)", "mean_m", 1000, "%.1f");
+    t += row("max error (mm)", "max_m", 1000, "%.1f");
+    t += row("fixes", "n", 1, "%.0f");
+    t += "</table>\n";
+    if (!paper.paperNote.empty()) t += "<p>Paper: " + html(paper.paperNote) + "</p>\n";
+    t += "<p>Shots fired: " + std::to_string(shots.size()) + " (log: <code>" + html(shotsPath) +
+         "</code>).</p>\n";
+    return t;
+}
+
 }  // namespace
 
 std::string makeReport(const std::string& dir) {
@@ -60,8 +122,10 @@ std::string makeReport(const std::string& dir) {
     const auto metrics = common::loadJson(common::run_dir::metrics(dir));
 
     TopViewContent view;
+    ReportOptions paper;
     if (std::filesystem::exists(common::run_dir::effectiveIni(dir))) {
         mrpt::config::CConfigFile ini(common::run_dir::effectiveIni(dir));
+        paper.loadFromConfigFile(ini, "report");
         if (ini.sectionExists("world")) {
             sim::WorldOptions w;
             w.loadFromConfigFile(ini, "world");
@@ -97,6 +161,7 @@ std::string makeReport(const std::string& dir) {
     page += "<h2>Metrics (horizontal position error, metres)</h2>\n" + table(metrics);
     for (const auto& [robot, r] : metrics["robots"].items())
         page += "<h3>Robot " + html(robot) + "</h3>\n" + table(r);
+    page += beaconSystemSection(metrics, paper);
     const std::string method = metrics.value("method", "");
     if (metrics.contains(method) && metrics[method].is_object())
         page += "<h2>Method figures</h2>\n" + table(metrics[method]);
