@@ -34,7 +34,7 @@ std::unique_ptr<mrpt::config::CConfigFile> openIni(const std::string& path) {
     auto ini = std::make_unique<mrpt::config::CConfigFile>(path);
     std::vector<std::string> sections;
     ini->getAllSections(sections);
-    static const std::set<std::string> known = {"scenario", "world",   "sensors",
+    static const std::set<std::string> known = {"scenario",   "world",   "sensors",
                                                 "ultrasonic", "beacons", "report"};
     for (const auto& s : sections) {
         if (s.empty() || !std::islower(static_cast<unsigned char>(s[0]))) continue;
@@ -183,8 +183,7 @@ int run(int argc, char** argv) {
     makeLocalizer(cfg.scenario.method, *ini);
     const std::string dir = outDirOr(c, cfg.scenario.name);
     const auto onboard = makeOnboard(cfg.scenario.method, *ini);
-    const std::string rawlog =
-        sim::simulateToFiles(cfg, dir, c.quiet.getValue(), hooksOf(onboard));
+    const std::string rawlog = sim::simulateToFiles(cfg, dir, c.quiet.getValue(), hooksOf(onboard));
     mrpt::config::CConfigFileMemory effective;
     cfg.save(effective);
     report::ReportOptions paper;

@@ -9,9 +9,9 @@
 
 #include <array>
 #include <fstream>
-#include <sstream>
 #include <map>
 #include <set>
+#include <sstream>
 
 using namespace mrloc;
 
@@ -90,7 +90,9 @@ TEST(ActiveBeacons, NoTwoShotsOverlapInTimeAcrossRobotsAndSections) {
         sections.insert(shots[k].section);
         robots.insert(shots[k].robot);
         EXPECT_NEAR(shots[k].end - shots[k].start, 0.03, 1e-12);
-        if (k > 0) ASSERT_GE(shots[k].start, shots[k - 1].end - 1e-9) << "shot " << k;
+        if (k > 0) {
+            ASSERT_GE(shots[k].start, shots[k - 1].end - 1e-9) << "shot " << k;
+        }
     }
     EXPECT_EQ(sections.size(), 2u);
     EXPECT_EQ(robots.size(), 4u);
@@ -117,11 +119,10 @@ TEST(ActiveBeacons, PrioritySchedulingEqualisesTheDistanceBetweenFixes) {
 TEST(ActiveBeacons, HandoverKeepsFixesFlowingAcrossTheSectionBoundary) {
     // One robot drives from the west section into the east one and back.
     const auto ini = [](const std::string& margin) {
-        return shippedIni("beacons_multi_robot.ini",
-                          {{"scenario", "robots", "fast"},
-                           {"scenario", "duration", "40"},
-                           {"beacons", "handover_margin", margin},
-                           {"beacons", "registration_time", "1.0"}});
+        return shippedIni("beacons_multi_robot.ini", {{"scenario", "robots", "fast"},
+                                                      {"scenario", "duration", "40"},
+                                                      {"beacons", "handover_margin", margin},
+                                                      {"beacons", "registration_time", "1.0"}});
     };
     const auto with = runClosedLoop(*ini("0.6"), "handover");
     const auto without = runClosedLoop(*ini("0"), "no_handover");
@@ -134,7 +135,7 @@ TEST(ActiveBeacons, HandoverKeepsFixesFlowingAcrossTheSectionBoundary) {
     // Fixes every 0.1-0.2 s, boundary or not; the east heads' first slew (at most half a turn
     // at 360 deg/s) is the longest pause.
     EXPECT_LT(gap(with), 0.7);
-    EXPECT_GE(gap(without), 1.0);    // waits for the east section's table
+    EXPECT_GE(gap(without), 1.0);  // waits for the east section's table
     EXPECT_LT(with.errors.at("fast").rmse, 0.10);
 }
 

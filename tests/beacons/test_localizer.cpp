@@ -27,7 +27,8 @@ size = 3 3 2.5
 )" + sensors +
            R"(
 [ultrasonic]
-)" + std::string(kIdealLink) + R"(
+)" + std::string(kIdealLink) +
+           R"(
 [robot.r1]
 start = 0.5 0.5 0
 waypoints = 2.5 0.5, 2.5 2.5, 0.5 2.5, 0.5 0.5
@@ -73,8 +74,8 @@ const char* kNoisy = "range_sigma = 0.01\nrange_dropout = 0.05\nrange_outlier_pr
 TEST(BeaconLocalizer, FixesModeIsExactOnNoiseFreeRanges) {
     // All four shots of an epoch within one simulation step: the robot does not move
     // between them, so each fix is exact.
-    const auto o = runOn(scenarioIni(kClean, "mode = fixes\nshot_interval = 0.0001\n"),
-                         "clean_fixes");
+    const auto o =
+        runOn(scenarioIni(kClean, "mode = fixes\nshot_interval = 0.0001\n"), "clean_fixes");
     // 30 s at 5 Hz, less the heads' first slew.
     EXPECT_NEAR(double(o.stats.n), 150.0, 2.0);
     // The robot moves 0.09 mm while the four shots fly (0.3 ms at 0.3 m/s); ranges are

@@ -6,11 +6,10 @@
 #include <mrpt/config/CConfigFileMemory.h>
 #include <mrpt/obs/CObservationBeaconRanges.h>
 
-#include <functional>
-
 #include <cmath>
 #include <filesystem>
 #include <fstream>
+#include <functional>
 #include <sstream>
 
 using namespace mrloc;

@@ -40,8 +40,8 @@ TEST(UltrasonicLink, BeamPointedAtTheReceiverAlwaysBeatsOnePointedAway) {
                                           2.5);
         const mrpt::math::TPoint3D rx(rng.drawUniform(0.0, 6.0), rng.drawUniform(0.0, 6.0),
                                       rng.drawUniform(0.0, 1.0));
-        const mrpt::math::TPoint3D elsewhere(rng.drawUniform(0.0, 6.0),
-                                             rng.drawUniform(0.0, 6.0), 0.0);
+        const mrpt::math::TPoint3D elsewhere(rng.drawUniform(0.0, 6.0), rng.drawUniform(0.0, 6.0),
+                                             0.0);
         const common::PanTiltHead head(beacon);
         const auto at = head.aimAt(rx), away = head.aimAt(elsewhere);
         const double d = std::sqrt((rx - beacon).sqrNorm());

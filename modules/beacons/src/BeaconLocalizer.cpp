@@ -85,9 +85,9 @@ void BeaconLocalizer::process(const mrpt::obs::CObservation::Ptr& obs) {
     const double t = mrpt::Clock::toDouble(obs->timestamp);
     if (auto odo = std::dynamic_pointer_cast<mrpt::obs::CObservationOdometry>(obs)) {
         trackerOf(robot).onOdometry(odo->odometry);
-        if (const auto it = lastOdometry_.find(robot); it != lastOdometry_.end() && t > it->second.first)
-            forwardSpeed_[robot] =
-                (odo->odometry - it->second.second).x() / (t - it->second.first);
+        if (const auto it = lastOdometry_.find(robot);
+            it != lastOdometry_.end() && t > it->second.first)
+            forwardSpeed_[robot] = (odo->odometry - it->second.second).x() / (t - it->second.first);
         lastOdometry_[robot] = {t, odo->odometry};
         lastHeading_[robot] = odo->odometry.phi();
         auto& sp = spacing_[robot];
@@ -117,7 +117,8 @@ mrpt::obs::CObservationBeaconRanges BeaconLocalizer::compensateMotion(
     // range fired `age` earlier was read `age * v` back along the path. To first order it
     // grows by (u . v) age over that time, u the unit vector from beacon to receiver.
     const auto& mean = tracker.pdf().mean;
-    const double vx = speed->second * std::cos(mean.phi()), vy = speed->second * std::sin(mean.phi());
+    const double vx = speed->second * std::cos(mean.phi()),
+                 vy = speed->second * std::sin(mean.phi());
     for (auto& m : out.sensedData) {
         const auto b = options_.map.find(m.beaconID);
         if (b == options_.map.end()) continue;
@@ -163,8 +164,7 @@ void BeaconLocalizer::fixOnly(const std::string& robot, double t,
     const auto heading = lastHeading_.find(robot);
     addEstimate(robot, t,
                 mrpt::poses::CPose3D(f->position.x(), f->position.y(), z,
-                                     heading == lastHeading_.end() ? 0.0 : heading->second, 0,
-                                     0));
+                                     heading == lastHeading_.end() ? 0.0 : heading->second, 0, 0));
 }
 
 nlohmann::json BeaconLocalizer::methodMetrics() const {

@@ -61,8 +61,7 @@ SectionMap readSections(common::IniSection& s, const common::BeaconMap& map) {
             sec.beacons.push_back(int(id));
         }
         if (sec.beacons.empty()) s.fail(key + "_beacons", "lists no beacon");
-        const auto aim =
-            s.reals(key + "_aim", {(r[0] + r[2]) / 2, (r[1] + r[3]) / 2, 0.0}, 3);
+        const auto aim = s.reals(key + "_aim", {(r[0] + r[2]) / 2, (r[1] + r[3]) / 2, 0.0}, 3);
         sec.aim = {aim[0], aim[1], aim[2]};
         sections.push_back(sec);
     }

@@ -6,8 +6,8 @@
 #include <mrloc/report/Plots.h>
 #include <mrloc/report/Report.h>
 #include <mrloc/report/ReportOptions.h>
-#include <mrloc/sim/ShotLog.h>
 #include <mrloc/report/TopView.h>
+#include <mrloc/sim/ShotLog.h>
 #include <mrpt/config/CConfigFile.h>
 
 #include <algorithm>

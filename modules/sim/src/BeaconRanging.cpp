@@ -31,8 +31,8 @@ double BeaconRanging::begin(double t, const common::RangingEpoch& epoch) {
     for (size_t j = 0; j < epoch.beacons.size(); ++j) {
         const auto it = heads_.find(epoch.beacons[j]);
         if (it == heads_.end())
-            throw Error("ranging: beacon " + std::to_string(epoch.beacons[j]) +
-                        " of section '" + epoch.section + "' is not in the beacon map");
+            throw Error("ranging: beacon " + std::to_string(epoch.beacons[j]) + " of section '" +
+                        epoch.section + "' is not in the beacon map");
         Head& h = it->second;
         const auto target = h.head.aimAt(epoch.aimPoints[j], h.angles.pan);
         slew = std::max(slew, h.head.slewTime(h.angles, target));

@@ -21,10 +21,10 @@ void saveShotLog(const std::string& path, const ShotLog& log) {
         "# start_s end_s robot section beacon pan_rad tilt_rad off_axis_rad distance_m "
         "margin_db line_of_sight detected range_m\n";
     for (const auto& s : log)
-        text += mrpt::format("%.6f %.6f %s %s %d %.6f %.6f %.6f %.6f %.3f %d %d %.6f\n", s.start,
-                             s.end, s.robot.c_str(), s.section.c_str(), s.beacon, s.pan, s.tilt,
-                             s.offAxis, s.distance, s.marginDb, int(s.lineOfSight),
-                             int(s.detected), s.range);
+        text +=
+            mrpt::format("%.6f %.6f %s %s %d %.6f %.6f %.6f %.6f %.3f %d %d %.6f\n", s.start, s.end,
+                         s.robot.c_str(), s.section.c_str(), s.beacon, s.pan, s.tilt, s.offAxis,
+                         s.distance, s.marginDb, int(s.lineOfSight), int(s.detected), s.range);
     common::writeFileAtomically(path, text);
 }
 
@@ -41,8 +41,7 @@ ShotLog loadShotLog(const std::string& path) {
         int los = 0, det = 0;
         if (!(s >> r.start >> r.end >> r.robot >> r.section >> r.beacon >> r.pan >> r.tilt >>
               r.offAxis >> r.distance >> r.marginDb >> los >> det >> r.range))
-            throw Error("shot log " + path + ":" + std::to_string(lineNo) +
-                        ": expected 13 fields");
+            throw Error("shot log " + path + ":" + std::to_string(lineNo) + ": expected 13 fields");
         r.lineOfSight = los != 0;
         r.detected = det != 0;
         log.push_back(r);

@@ -2,9 +2,8 @@
 #include <mrloc/common/Error.h>
 #include <mrloc/sim/BeaconRanging.h>
 #include <mrloc/sim/Simulator.h>
-#include <mrpt/random/RandomGenerators.h>
-
 #include <mrpt/math/wrap2pi.h>
+#include <mrpt/random/RandomGenerators.h>
 
 #include <algorithm>
 #include <cmath>
@@ -72,9 +71,9 @@ SimulationResult Simulator::run(common::RawlogWriter& out, SimulationHooks hooks
             const double a = std::clamp(1.0 - (t - when) / sc.dt, 0.0, 1.0);
             const auto& p0 = previousPose[i];
             const auto& p1 = robot.pose();
-            const mrpt::poses::CPose2D p(
-                p0.x() + a * (p1.x() - p0.x()), p0.y() + a * (p1.y() - p0.y()),
-                p0.phi() + a * mrpt::math::wrapToPi(p1.phi() - p0.phi()));
+            const mrpt::poses::CPose2D p(p0.x() + a * (p1.x() - p0.x()),
+                                         p0.y() + a * (p1.y() - p0.y()),
+                                         p0.phi() + a * mrpt::math::wrapToPi(p1.phi() - p0.phi()));
             return receiverAt(p, robot.options().receiver);
         };
         auto obs = ranging.fireDue(t, receiverAtTime, robot.options().receiver, rng, result.shots);
@@ -111,9 +110,9 @@ SimulationResult Simulator::run(common::RawlogWriter& out, SimulationHooks hooks
                 auto odo = odometers[i].read(ro.name + ".odom", stamp);
                 if (state[i].lastOdometry) {
                     const auto& [t0, p0] = *state[i].lastOdometry;
-                    state[i].speed = std::hypot(odo->odometry.x() - p0.x(),
-                                                odo->odometry.y() - p0.y()) /
-                                     (t - t0);
+                    state[i].speed =
+                        std::hypot(odo->odometry.x() - p0.x(), odo->odometry.y() - p0.y()) /
+                        (t - t0);
                 }
                 state[i].lastOdometry = std::make_pair(t, odo->odometry);
                 emit(odo);

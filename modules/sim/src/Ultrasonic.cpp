@@ -49,16 +49,16 @@ UltrasonicLink::UltrasonicLink(UltrasonicOptions options) : o_(options) {
     minMarginDb_ = -20 * std::log10(1 - std::exp(-o_.firingTime / o_.riseTime));
     const auto cal = triggerDelay(marginDb(o_.calibrationDistance, 0));
     if (!cal)
-        throw Error("[ultrasonic]: the receiver cannot even hear a beacon on the axis at "
-                    "calibration_distance; raise source_margin_db or shorten the distance");
+        throw Error(
+            "[ultrasonic]: the receiver cannot even hear a beacon on the axis at "
+            "calibration_distance; raise source_margin_db or shorten the distance");
     calibrationDelay_ = *cal;
 }
 
 double UltrasonicLink::marginDb(double distance, double offAxis) const {
     const double d = std::max(distance, 1e-3);
     const double lobe = 2 * offAxis / o_.beamAngle;
-    return o_.sourceMarginDb - 20 * std::log10(d) - o_.absorptionDbPerM * (d - 1) -
-           6 * lobe * lobe;
+    return o_.sourceMarginDb - 20 * std::log10(d) - o_.absorptionDbPerM * (d - 1) - 6 * lobe * lobe;
 }
 
 std::optional<double> UltrasonicLink::triggerDelay(double margin) const {

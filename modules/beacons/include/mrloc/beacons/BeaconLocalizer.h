@@ -61,7 +61,7 @@ class BeaconLocalizer : public common::Localizer {
 
     std::map<std::string, std::pair<double, mrpt::poses::CPose2D>> lastOdometry_;  // t, pose
     std::map<std::string, double> forwardSpeed_;  // m/s, from the last two odometry readings
-    std::map<std::string, double> lastHeading_;  // from odometry, for fixes-only mode
+    std::map<std::string, double> lastHeading_;   // from odometry, for fixes-only mode
     std::map<std::string, Spacing> spacing_;
 };
 

@@ -24,10 +24,10 @@ namespace mrloc::beacons {
 struct RfBeaconOptions {
     bool activeAiming = true;  ///< aiming = active | fixed
     Scheduling scheduling = Scheduling::Priority;
-    double minSpeed = 0.05;          ///< m/s, floor of the priority's speed
-    double handoverMargin = 0.5;     ///< m; 0 turns handover off
-    double registrationTime = 0.5;   ///< s to receive a section's beacon table
-    double shotInterval = 0.03;      ///< s between two beacons' shots in an epoch
+    double minSpeed = 0.05;         ///< m/s, floor of the priority's speed
+    double handoverMargin = 0.5;    ///< m; 0 turns handover off
+    double registrationTime = 0.5;  ///< s to receive a section's beacon table
+    double shotInterval = 0.03;     ///< s between two beacons' shots in an epoch
     SectionMap sections;
 
     /** How long before the end of its epoch beacon `id` fired (its section's firing order

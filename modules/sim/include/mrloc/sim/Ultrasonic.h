@@ -26,15 +26,15 @@
 namespace mrloc::sim {
 
 struct UltrasonicOptions : public mrpt::config::CLoadableOptions {
-    double speedOfSound = 343;         ///< m/s
+    double speedOfSound = 343;           ///< m/s
     double beamAngle = 50 * M_PI / 180;  ///< full beam width at -6 dB (rad)
-    double sourceMarginDb = 23;        ///< level above the threshold at 1 m on the axis (dB)
-    double absorptionDbPerM = 1.3;     ///< air absorption at 40 kHz (dB/m)
-    double fadingSigmaDb = 1.5;        ///< shot-to-shot level scatter (dB)
-    double riseTime = 150e-6;          ///< envelope time constant at the receiver (s)
-    double firingTime = 450e-6;        ///< burst length, seed 001 section 5.2 (s)
-    double calibrationDistance = 1.0;  ///< on-axis distance of the receiver's calibration (m)
-    common::PanTiltLimits head;        ///< pan_min, pan_max, tilt_max, slew_rate
+    double sourceMarginDb = 23;          ///< level above the threshold at 1 m on the axis (dB)
+    double absorptionDbPerM = 1.3;       ///< air absorption at 40 kHz (dB/m)
+    double fadingSigmaDb = 1.5;          ///< shot-to-shot level scatter (dB)
+    double riseTime = 150e-6;            ///< envelope time constant at the receiver (s)
+    double firingTime = 450e-6;          ///< burst length, seed 001 section 5.2 (s)
+    double calibrationDistance = 1.0;    ///< on-axis distance of the receiver's calibration (m)
+    common::PanTiltLimits head;          ///< pan_min, pan_max, tilt_max, slew_rate
 
     void loadFromConfigFile(const mrpt::config::CConfigFileBase& source,
                             const std::string& section) override;
