@@ -8,18 +8,10 @@
 namespace mrloc::common {
 
 BeaconMap readBeaconKeys(IniSection& section) {
-    const std::string prefix = "beacon_";
-    section.allowPrefix(prefix);
     BeaconMap map;
-    for (const auto& key : section.keys()) {
-        if (mrpt::system::lowerCase(key).rfind(prefix, 0) != 0) continue;
-        const std::string idText = key.substr(prefix.size());
-        char* end = nullptr;
-        const long id = std::strtol(idText.c_str(), &end, 10);
-        if (idText.empty() || *end != '\0' || id < 0)
-            section.fail(key, "expected beacon_<id> with a non-negative integer id");
+    for (const auto& [id, key] : section.numberedKeys("beacon_")) {
         const auto xyz = section.reals(key, {}, 3);
-        map[int(id)] = {xyz[0], xyz[1], xyz[2]};
+        map[id] = {xyz[0], xyz[1], xyz[2]};
     }
     return map;
 }

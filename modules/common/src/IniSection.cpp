@@ -10,6 +10,21 @@
 
 namespace mrloc::common {
 
+std::map<int, std::string> IniSection::numberedKeys(const std::string& prefix) {
+    allowPrefix(prefix);
+    std::map<int, std::string> out;
+    for (const auto& key : keys()) {
+        if (mrpt::system::lowerCase(key).rfind(prefix, 0) != 0) continue;
+        const std::string idText = key.substr(prefix.size());
+        char* end = nullptr;
+        const long id = std::strtol(idText.c_str(), &end, 10);
+        if (idText.empty() || *end != '\0' || id < 0 || id > (1L << 30))
+            fail(key, "expected " + prefix + "<id> with a non-negative integer id");
+        out[int(id)] = key;
+    }
+    return out;
+}
+
 namespace {
 std::string lower(std::string s) { return mrpt::system::lowerCase(s); }
 }  // namespace

@@ -11,20 +11,12 @@ void ReportOptions::loadFromConfigFile(const mrpt::config::CConfigFileBase& src,
     common::IniSection s(src, section);
     paperCaption = s.text("paper_caption", "");
     paperNote = s.text("paper_note", "");
-    const std::string prefix = "paper_reception_";
-    s.allowPrefix(prefix);
     paperReception.clear();
-    for (const auto& key : s.keys()) {
-        if (mrpt::system::lowerCase(key).rfind(prefix, 0) != 0) continue;
-        const std::string idText = key.substr(prefix.size());
-        char* end = nullptr;
-        const long id = std::strtol(idText.c_str(), &end, 10);
-        if (idText.empty() || *end != '\0' || id < 0)
-            s.fail(key, "expected paper_reception_<beacon id>");
+    for (const auto& [id, key] : s.numberedKeys("paper_reception_")) {
         const auto rates = s.reals(key, {});
         for (double r : rates)
             if (r < 0 || r > 100) s.fail(key, "rates are percentages, 0 to 100");
-        paperReception[int(id)] = rates;
+        paperReception[id] = rates;
     }
     s.finish();
 }

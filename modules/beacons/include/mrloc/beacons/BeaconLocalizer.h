@@ -53,7 +53,6 @@ class BeaconLocalizer : public common::Localizer {
 
     /** How far apart (by odometry) and how long apart a robot's estimates are. */
     struct Spacing {
-        std::optional<mrpt::poses::CPose2D> lastOdometry;
         double sinceLast = 0;  ///< odometry path length since the last estimate (m)
         double maxDistance = 0, sumDistance = 0, maxTime = 0;
         size_t gaps = 0;
@@ -61,7 +60,6 @@ class BeaconLocalizer : public common::Localizer {
 
     std::map<std::string, std::pair<double, mrpt::poses::CPose2D>> lastOdometry_;  // t, pose
     std::map<std::string, double> forwardSpeed_;  // m/s, from the last two odometry readings
-    std::map<std::string, double> lastHeading_;   // from odometry, for fixes-only mode
     std::map<std::string, Spacing> spacing_;
 };
 

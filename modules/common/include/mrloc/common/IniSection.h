@@ -7,6 +7,7 @@
 #include <mrpt/config/CConfigFileBase.h>
 
 #include <limits>
+#include <map>
 #include <optional>
 #include <set>
 #include <string>
@@ -41,6 +42,9 @@ class IniSection {
 
     /** Keys beginning with this prefix are accepted by finish() (e.g. "beacon_"). */
     void allowPrefix(const std::string& prefix) { prefixes_.push_back(prefix); }
+    /** Keys `<prefix><id>` with a non-negative integer id, by id (the prefix is allowed;
+     *  a key with the prefix and anything else after it is an error). */
+    std::map<int, std::string> numberedKeys(const std::string& prefix);
     /** All keys present in the section, as written. */
     std::vector<std::string> keys() const;
     /** Throws mrloc::Error if the section holds a key that was never read nor allowed. */
