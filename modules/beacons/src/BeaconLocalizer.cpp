@@ -85,13 +85,13 @@ void BeaconLocalizer::process(const mrpt::obs::CObservation::Ptr& obs) {
     const double t = mrpt::Clock::toDouble(obs->timestamp);
     if (auto odo = std::dynamic_pointer_cast<mrpt::obs::CObservationOdometry>(obs)) {
         trackerOf(robot).onOdometry(odo->odometry);
-        if (const auto prev = lastOdometry_.find(robot); prev != lastOdometry_.end()) {
+        if (const auto prev = previousOdometry_.find(robot); prev != previousOdometry_.end()) {
             const auto& [t0, p0] = prev->second;
             const mrpt::poses::CPose2D step = odo->odometry - p0;  // in the robot's frame
             spacing_[robot].sinceLast += std::hypot(step.x(), step.y());
             if (t > t0) forwardSpeed_[robot] = step.x() / (t - t0);
         }
-        lastOdometry_[robot] = {t, odo->odometry};
+        previousOdometry_[robot] = {t, odo->odometry};
         return;
     }
     auto ranges = std::dynamic_pointer_cast<mrpt::obs::CObservationBeaconRanges>(obs);
@@ -158,11 +158,12 @@ void BeaconLocalizer::fixOnly(const std::string& robot, double t,
     // The fix locates the receiver; the robot's reference is sensor z below it.
     const double sensorZ = obs.sensedData.front().sensorLocationOnRobot.z();
     const double z = options_.threeD ? f->position.z() - sensorZ : 0.0;
-    const auto odometry = lastOdometry_.find(robot);
-    addEstimate(robot, t,
-                mrpt::poses::CPose3D(
-                    f->position.x(), f->position.y(), z,
-                    odometry == lastOdometry_.end() ? 0.0 : odometry->second.second.phi(), 0, 0));
+    const auto odometry = previousOdometry_.find(robot);
+    addEstimate(
+        robot, t,
+        mrpt::poses::CPose3D(
+            f->position.x(), f->position.y(), z,
+            odometry == previousOdometry_.end() ? 0.0 : odometry->second.second.phi(), 0, 0));
 }
 
 nlohmann::json BeaconLocalizer::methodMetrics() const {

@@ -58,7 +58,7 @@ class BeaconLocalizer : public common::Localizer {
         size_t gaps = 0;
     };
 
-    std::map<std::string, std::pair<double, mrpt::poses::CPose2D>> lastOdometry_;  // t, pose
+    std::map<std::string, std::pair<double, mrpt::poses::CPose2D>> previousOdometry_;  // t, pose
     std::map<std::string, double> forwardSpeed_;  // m/s, from the last two odometry readings
     std::map<std::string, Spacing> spacing_;
 };
