@@ -20,7 +20,7 @@ struct RobotState {
     double lastEpoch = -std::numeric_limits<double>::infinity();
     long epochs = 0;
     double speed = 0;  ///< from the last two odometry readings
-    std::optional<std::pair<double, mrpt::poses::CPose2D>> lastOdometry;
+    std::optional<std::pair<double, mrpt::poses::CPose2D>> previousOdometry;
 };
 
 }  // namespace
@@ -62,9 +62,10 @@ SimulationResult Simulator::run(common::RawlogWriter& out, SimulationHooks hooks
         if (hooks.onboard) hooks.onboard->process(obs);
     };
     std::vector<mrpt::poses::CPose2D> previousPose(robots.size());
+    size_t epochRobot = 0;  // index of the robot the current epoch serves
     const auto fireDue = [&](double t) {
         if (!ranging.inEpoch()) return;
-        const size_t i = indexOf(ranging.epoch().robot);
+        const size_t i = epochRobot;
         const Robot& robot = robots[i];
         // A shot falls between two steps: the receiver is where the robot was at that time.
         const auto receiverAtTime = [&](double when) {
@@ -108,13 +109,13 @@ SimulationResult Simulator::run(common::RawlogWriter& out, SimulationHooks hooks
             if (k > 0) odometers[i].accumulate(robot.step(sc.dt), rng);
             if (k % state[i].odometryEvery == 0) {
                 auto odo = odometers[i].read(ro.name + ".odom", stamp);
-                if (state[i].lastOdometry) {
-                    const auto& [t0, p0] = *state[i].lastOdometry;
+                if (state[i].previousOdometry) {
+                    const auto& [t0, p0] = *state[i].previousOdometry;
                     state[i].speed =
                         std::hypot(odo->odometry.x() - p0.x(), odo->odometry.y() - p0.y()) /
                         (t - t0);
                 }
-                state[i].lastOdometry = std::make_pair(t, odo->odometry);
+                state[i].previousOdometry = std::make_pair(t, odo->odometry);
                 emit(odo);
             }
             if (k % gtEvery == 0)
@@ -132,7 +133,7 @@ SimulationResult Simulator::run(common::RawlogWriter& out, SimulationHooks hooks
             }
             if (!requests.empty())
                 if (const auto epoch = hooks.ranging->nextEpoch(t, requests)) {
-                    const size_t i = indexOf(epoch->robot);
+                    const size_t i = epochRobot = indexOf(epoch->robot);
                     state[i].lastEpoch = t;
                     ++state[i].epochs;
                     channelFree = ranging.begin(t, *epoch);
