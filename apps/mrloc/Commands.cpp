@@ -3,6 +3,7 @@
 #include <mrloc/beacons/BeaconLocalizer.h>
 #include <mrloc/common/Error.h>
 #include <mrloc/common/LocalizationRun.h>
+#include <mrloc/polymap/PolymapLocalizer.h>
 #include <mrloc/report/Report.h>
 #include <mrloc/report/ReportOptions.h>
 #include <mrloc/sim/Simulator.h>
@@ -24,6 +25,7 @@ constexpr const char* kVersion = "0.1.0";
 common::LocalizerRegistry makeRegistry() {
     common::LocalizerRegistry r;
     beacons::registerLocalizers(r);
+    polymap::registerLocalizers(r);
     return r;
 }
 
@@ -34,14 +36,15 @@ std::unique_ptr<mrpt::config::CConfigFile> openIni(const std::string& path) {
     auto ini = std::make_unique<mrpt::config::CConfigFile>(path);
     std::vector<std::string> sections;
     ini->getAllSections(sections);
-    static const std::set<std::string> known = {"scenario",   "world",   "sensors",
-                                                "ultrasonic", "beacons", "report"};
+    static const std::set<std::string> known = {"scenario", "world",   "sensors", "ultrasonic",
+                                                "beacons",  "polymap", "report"};
     for (const auto& s : sections) {
         if (s.empty() || !std::islower(static_cast<unsigned char>(s[0]))) continue;
         if (known.count(s) || s.rfind("robot.", 0) == 0) continue;
         throw Error(path + ": [" + s +
                     "]: unknown section (mrloc's sections: scenario, world, "
-                    "sensors, ultrasonic, robot.<name>, beacons, report; see doc/ini.md)");
+                    "sensors, ultrasonic, robot.<name>, beacons, polymap, report; see "
+                    "doc/ini.md)");
     }
     return ini;
 }
@@ -56,9 +59,24 @@ std::string outDirOr(Common& c, const std::string& name) {
     return c.out.isSet() ? c.out.getValue() : "out/" + name;
 }
 
+/** A floor-plan scenario takes its map, start and scanner from [polymap]. */
+sim::ScenarioConfig loadScenarioOf(const mrpt::config::CConfigFile& ini) {
+    sim::ScenarioOptions scenario;
+    scenario.loadFromConfigFile(ini, "scenario");
+    if (scenario.method != "polymap") return sim::ScenarioConfig::load(ini);
+    polymap::PolymapOptions o;
+    o.loadFromConfigFile(ini, "polymap");
+    auto map = o.buildMap();
+    const auto start = o.startIn(map);
+    sim::FloorPlan plan{std::move(map.polygon),
+                        {o.scanRays, o.scanRangeSigma, o.scanMaxRange, o.scanRate}};
+    return sim::ScenarioConfig::load(ini, std::move(plan),
+                                     {start.x, start.y, mrpt::DEG2RAD(o.heading)});
+}
+
 sim::ScenarioConfig loadScenario(const mrpt::config::CConfigFile& ini,
                                  TCLAP::ValueArg<long>& seed) {
-    auto cfg = sim::ScenarioConfig::load(ini);
+    auto cfg = loadScenarioOf(ini);
     report::ReportOptions().loadFromConfigFile(ini, "report");  // checked before any output
     if (seed.isSet()) {
         if (seed.getValue() < 0) throw Error("--seed must be non-negative");

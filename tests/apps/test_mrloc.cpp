@@ -16,49 +16,18 @@
 #include <fstream>
 #include <sstream>
 
+#include "MrlocCli.h"
+
 namespace fs = std::filesystem;
 using namespace mrloc;
+using namespace mrloc::testing_cli;
 
 namespace {
-
-struct Result {
-    int code;
-    std::string output;  // stdout and stderr
-};
-
-Result mrlocCmd(const std::string& args) {
-    const std::string cmd = std::string(MRLOC_BINARY) + " " + args + " 2>&1";
-    FILE* p = popen(cmd.c_str(), "r");
-    std::string out;
-    std::array<char, 4096> buf;
-    while (size_t n = fread(buf.data(), 1, buf.size(), p)) out.append(buf.data(), n);
-    const int status = pclose(p);
-    return {WEXITSTATUS(status), out};
-}
-
-std::string tmp(const std::string& name) {
-    const std::string d = testing::TempDir() + "/apps_" + name;
-    fs::remove_all(d);
-    return d;
-}
-
-std::string slurp(const std::string& p) {
-    std::ifstream in(p, std::ios::binary);
-    std::stringstream s;
-    s << in.rdbuf();
-    return s.str();
-}
 
 std::string quickstart() { return std::string(MRLOC_SOURCE_DIR) + "/config/quickstart.ini"; }
 
 std::string writeIni(const std::string& name, const std::string& from, const std::string& to) {
-    std::string text = slurp(quickstart());
-    const auto pos = text.find(from);
-    EXPECT_NE(pos, std::string::npos) << from;
-    text.replace(pos, from.size(), to);
-    const std::string path = testing::TempDir() + "/" + name + ".ini";
-    std::ofstream(path) << text;
-    return path;
+    return writeIniFrom(quickstart(), name, from, to);
 }
 
 }  // namespace
@@ -201,7 +170,7 @@ TEST(MrlocErrors, BadValuesSectionsAndFiles) {
         {"[sensors]", "[sensor]", "[sensor]: unknown section"},
         {"beacon_4 = 0.0 3.0 2.5", "beacon_4 = 0.0 9.0 2.5", "[beacons] beacon_4: position"},
         {"method   = beacons", "method = magic",
-         "unknown localization method 'magic' (known: beacons)"},
+         "unknown localization method 'magic' (known: beacons, polymap)"},
         {"robots   = r1", "robots   = r1 r2", "robot 'r2' has no section [robot.r2]"},
         {"start     = 0.5 0.5 0", "start = 0.5 nan 0",
          "[robot.r1] start: expected a finite number"},

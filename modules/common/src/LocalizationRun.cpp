@@ -52,6 +52,7 @@ nlohmann::json runLocalization(Localizer& localizer, const LocalizationRunOption
             for (const auto& te : positionErrors(traj, gt)) e.push_back(te.error);
             allErrors.insert(allErrors.end(), e.begin(), e.end());
             r.update(statsToJson(computeStats(e)));
+            r.update(localizer.groundTruthMetrics(robot, gt));
         }
         metrics["robots"][robot] = r;
     }
@@ -69,6 +70,7 @@ nlohmann::json runLocalization(Localizer& localizer, const LocalizationRunOption
         for (const auto& k : keys) eff.write(s, k, effective.read_string(s, k, ""));
     }
     localizer.saveConfig(eff);
+    localizer.writeOutputs(o.outDir);
     writeFileAtomically(run_dir::effectiveIni(o.outDir), eff.getContent());
     saveJson(run_dir::metrics(o.outDir), metrics);
     return metrics;

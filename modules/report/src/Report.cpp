@@ -4,14 +4,17 @@
 #include <mrloc/common/Metrics.h>
 #include <mrloc/common/RunDirectory.h>
 #include <mrloc/report/Plots.h>
+#include <mrloc/report/PolygonView.h>
 #include <mrloc/report/Report.h>
 #include <mrloc/report/ReportOptions.h>
 #include <mrloc/report/TopView.h>
 #include <mrloc/sim/ShotLog.h>
 #include <mrpt/config/CConfigFile.h>
+#include <mrpt/core/format.h>
 
 #include <algorithm>
 #include <filesystem>
+#include <fstream>
 #include <map>
 #include <sstream>
 
@@ -114,6 +117,65 @@ std::string beaconSystemSection(const nlohmann::json& metrics, const ReportOptio
     return t;
 }
 
+/** Rows of numbers from a text file written by a method ('#' lines are comments). */
+std::vector<std::vector<double>> readRows(const std::string& path) {
+    std::ifstream in(path);
+    if (!in) throw Error(path + ": cannot open");
+    std::vector<std::vector<double>> rows;
+    std::string line;
+    for (int lineNo = 1; std::getline(in, line); ++lineNo) {
+        if (line.empty() || line[0] == '#') continue;
+        std::istringstream ls(line);
+        std::vector<double> row;
+        for (double x; ls >> x;) row.push_back(x);
+        if (!ls.eof() || row.size() < 2)
+            throw Error(path + ":" + std::to_string(lineNo) + ": expected numbers");
+        rows.push_back(row);
+    }
+    return rows;
+}
+
+/** The polygon-map section: the picture of P, V and H per robot, and H as a table. */
+std::string polymapSection(const std::string& dir, const nlohmann::json& metrics) {
+    const std::string mapPath = dir + "/map.poly";
+    if (!std::filesystem::exists(mapPath)) return "";
+    std::string out =
+        "<h2>Polygon map: hypotheses</h2>\n<p>Black: the map P; green: the sensed "
+        "visibility polygon V at the true start; orange: V placed at each "
+        "hypothesis; red: the hypotheses (seed 002, hypothesis generation).</p>\n";
+    const auto P = common::Polygon::load(mapPath);
+    for (const auto& [robot, r] : metrics["robots"].items()) {
+        PolygonViewContent view;
+        view.map = P;
+        for (const auto& row : readRows(dir + "/visibility." + robot + ".txt"))
+            view.sensed.push_back({row[0], row[1]});
+        const auto hyps = readRows(dir + "/hypotheses." + robot + ".txt");
+        for (const auto& row : hyps) view.hypotheses.push_back({row[0], row[1]});
+        const auto gtPath = common::run_dir::groundTruth(dir, robot);
+        if (std::filesystem::exists(gtPath))
+            if (const auto gt = common::loadTum(gtPath); !gt.empty())
+                view.truth = common::TPoint2D{gt.front().pose.x(), gt.front().pose.y()};
+        const std::string png = "polymap." + robot + ".png";
+        renderPolygonView(view, dir + "/" + png);
+        out += "<h3>Robot " + html(robot) + ": " + std::to_string(hyps.size()) +
+               " hypotheses</h3>\n<img src='" + png + "' alt='map, V and hypotheses'>\n";
+        out +=
+            "<table><tr><th>#</th><th>x (m)</th><th>y (m)</th><th>translation (m)</th>"
+            "<th>mismatch (m)</th><th>distance to truth (m)</th></tr>\n";
+        for (size_t i = 0; i < hyps.size(); ++i) {
+            const auto& h = hyps[i];
+            const double d = view.truth ? (view.hypotheses[i] - *view.truth).norm() : -1;
+            out += mrpt::format(
+                "<tr><td>%zu</td><td>%.3f</td><td>%.3f</td><td>%.3f %.3f</td>"
+                "<td>%.4f</td><td>%s</td></tr>\n",
+                i + 1, h[0], h[1], h.size() > 3 ? h[2] : 0.0, h.size() > 3 ? h[3] : 0.0,
+                h.size() > 4 ? h[4] : 0.0, d >= 0 ? mrpt::format("%.3f", d).c_str() : "-");
+        }
+        out += "</table>\n";
+    }
+    return out;
+}
+
 }  // namespace
 
 std::string makeReport(const std::string& dir) {
@@ -141,10 +203,12 @@ std::string makeReport(const std::string& dir) {
         const auto gtPath = common::run_dir::groundTruth(dir, robot);
         if (std::filesystem::exists(gtPath)) {
             view.groundTruth[robot] = common::loadTum(gtPath);
-            errors[robot] = common::positionErrors(view.estimates[robot], view.groundTruth[robot]);
+            auto e = common::positionErrors(view.estimates[robot], view.groundTruth[robot]);
+            if (!e.empty()) errors[robot] = std::move(e);
         }
     }
-    renderTopView(view, dir + "/topview.png");
+    const bool polygonMap = std::filesystem::exists(dir + "/map.poly");
+    if (!polygonMap) renderTopView(view, dir + "/topview.png");  // the polygon view replaces it
     const bool hasErrors = !errors.empty();
     if (hasErrors) {
         plotErrorOverTime(errors, dir + "/error_time.png");
@@ -165,15 +229,17 @@ std::string makeReport(const std::string& dir) {
     const std::string method = metrics.value("method", "");
     if (metrics.contains(method) && metrics[method].is_object())
         page += "<h2>Method figures</h2>\n" + table(metrics[method]);
-    page +=
-        "<h2>Top view</h2>\n<p>Green: ground truth; red: estimates; blue: beacons; grey: "
-        "obstacles.</p>\n<img src='topview.png' alt='top view'>\n";
+    page += polymapSection(dir, metrics);
+    if (!polygonMap)
+        page +=
+            "<h2>Top view</h2>\n<p>Green: ground truth; red: estimates; blue: beacons; grey: "
+            "obstacles.</p>\n<img src='topview.png' alt='top view'>\n";
     if (hasErrors)
         page +=
             "<h2>Error over time</h2>\n<img src='error_time.png' alt='error over time'>\n"
             "<h2>Error CDF</h2>\n<img src='error_cdf.png' alt='error CDF'>\n";
     else
-        page += "<p>No ground truth beside the rawlog: no errors to plot.</p>\n";
+        page += "<p>No estimate with ground truth beside it: no errors to plot.</p>\n";
     page += "</body></html>\n";
     common::writeFileAtomically(common::run_dir::report(dir), page);
     return common::run_dir::report(dir);

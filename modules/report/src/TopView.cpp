@@ -87,15 +87,20 @@ void renderTopView(const TopViewContent& c, const std::string& pngPath, unsigned
     for (const auto& [robot, t] : c.groundTruth) scene.insert(pathLines(t, {20, 150, 50}, 0.02f));
     for (const auto& [robot, t] : c.estimates) scene.insert(pathLines(t, {220, 40, 30}, 0.03f));
 
+    saveTopDown(scene, ext.x0, ext.y0, ext.x1, ext.y1, pngPath, width, height);
+}
+
+void saveTopDown(mrpt::opengl::COpenGLScene& scene, double x0, double y0, double x1, double y1,
+                 const std::string& pngPath, unsigned width, unsigned height) {
     CFBORender render(width, height);
     auto& cam = render.getCamera(scene);
     cam.setOrthogonal(true);
     cam.setElevationDegrees(90);
     cam.setAzimuthDegrees(-90);
-    cam.setPointingAt((ext.x0 + ext.x1) / 2, (ext.y0 + ext.y1) / 2, 0);
+    cam.setPointingAt((x0 + x1) / 2, (y0 + y1) / 2, 0);
     // CFBORender's orthographic view is zoomDistance/2 high (measured); fit with a margin.
     const double aspect = double(width) / double(height);
-    cam.setZoomDistance(float(2.2 * std::max(ext.y1 - ext.y0, (ext.x1 - ext.x0) / aspect) + 0.2));
+    cam.setZoomDistance(float(2.2 * std::max(y1 - y0, (x1 - x0) / aspect) + 0.2));
     mrpt::img::CImage img;
     render.render_RGB(scene, img);
     common::PendingFile out(pngPath, ".tmp.png");  // CImage picks the format by extension

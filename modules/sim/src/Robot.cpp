@@ -13,8 +13,10 @@ namespace mrloc::sim {
 void RobotOptions::loadFromConfigFile(const mrpt::config::CConfigFileBase& src,
                                       const std::string& section) {
     common::IniSection s(src, section);
-    const auto st = s.requireReals("start", 3);
-    start = mrpt::poses::CPose2D(st[0], st[1], mrpt::DEG2RAD(st[2]));
+    if (startInSection) {
+        const auto st = s.requireReals("start", 3);
+        start = mrpt::poses::CPose2D(st[0], st[1], mrpt::DEG2RAD(st[2]));
+    }
     waypoints.clear();
     std::stringstream list(s.text("waypoints", ""));
     for (std::string item; std::getline(list, item, ',');) {
@@ -41,8 +43,9 @@ void RobotOptions::loadFromConfigFile(const mrpt::config::CConfigFileBase& src,
 
 void RobotOptions::saveToConfigFile(mrpt::config::CConfigFileBase& t,
                                     const std::string& section) const {
-    t.write(section, "start",
-            mrpt::format("%g %g %g", start.x(), start.y(), mrpt::RAD2DEG(start.phi())));
+    if (startInSection)
+        t.write(section, "start",
+                mrpt::format("%g %g %g", start.x(), start.y(), mrpt::RAD2DEG(start.phi())));
     std::string wp;
     for (const auto& p : waypoints)
         wp += (wp.empty() ? "" : ", ") + mrpt::format("%g %g", p.x, p.y);

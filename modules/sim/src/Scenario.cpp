@@ -1,6 +1,7 @@
 #include <mrloc/common/Error.h>
 #include <mrloc/common/IniSection.h>
 #include <mrloc/sim/Scenario.h>
+#include <mrpt/core/format.h>
 
 #include <set>
 #include <sstream>
@@ -44,12 +45,42 @@ void ScenarioOptions::saveToConfigFile(mrpt::config::CConfigFileBase& t,
     t.write(section, "robots", list);
 }
 
-ScenarioConfig ScenarioConfig::load(const mrpt::config::CConfigFileBase& ini) {
+namespace {
+
+ScenarioConfig loadCommon(const mrpt::config::CConfigFileBase& ini) {
     ScenarioConfig c;
     c.scenario.loadFromConfigFile(ini, "scenario");
     c.world.loadFromConfigFile(ini, "world");
     c.sensors.loadFromConfigFile(ini, "sensors");
     c.ultrasonic.loadFromConfigFile(ini, "ultrasonic");
+    return c;
+}
+
+}  // namespace
+
+ScenarioConfig ScenarioConfig::load(const mrpt::config::CConfigFileBase& ini, FloorPlan plan,
+                                    const mrpt::poses::CPose2D& start) {
+    ScenarioConfig c = loadCommon(ini);
+    if (c.scenario.robots.empty()) c.scenario.robots = {"r1"};
+    if (c.scenario.robots.size() != 1)
+        throw Error(common::configOrigin(ini) +
+                    ": [scenario] robots: a floor-plan scenario has one robot");
+    RobotOptions r;
+    r.name = c.scenario.robots[0];
+    r.startInSection = false;  // the method's section has it
+    if (ini.sectionExists("robot." + r.name)) r.loadFromConfigFile(ini, "robot." + r.name);
+    r.start = start;
+    if (!plan.polygon.contains({start.x(), start.y()}))
+        throw Error(common::configOrigin(ini) + mrpt::format(": the start (%g %g) is outside the "
+                                                             "floor plan",
+                                                             start.x(), start.y()));
+    c.robots.push_back(r);
+    c.floorPlan = std::move(plan);
+    return c;
+}
+
+ScenarioConfig ScenarioConfig::load(const mrpt::config::CConfigFileBase& ini) {
+    ScenarioConfig c = loadCommon(ini);
     if (c.scenario.robots.empty())
         throw Error(common::configOrigin(ini) +
                     ": [scenario] robots: required key is missing "

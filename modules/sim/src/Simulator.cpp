@@ -53,6 +53,8 @@ SimulationResult Simulator::run(common::RawlogWriter& out, SimulationHooks hooks
     BeaconRanging ranging(world_, config_.beacons, config_.sensors, config_.ultrasonic);
     const long steps = std::lround(sc.duration / sc.dt);
     const long gtEvery = every(sc.groundTruthRate);
+    const auto& plan = config_.floorPlan;
+    const long scanEvery = plan && plan->scanner.rate > 0 ? every(plan->scanner.rate) : 0;
     double channelFree = 0;
 
     SimulationResult result;
@@ -117,6 +119,12 @@ SimulationResult Simulator::run(common::RawlogWriter& out, SimulationHooks hooks
                 }
                 state[i].previousOdometry = std::make_pair(t, odo->odometry);
                 emit(odo);
+            }
+            if (plan && (k == 0 || (scanEvery > 0 && k % scanEvery == 0))) {
+                auto scan = scanFloorPlan(plan->polygon, robot.pose(), plan->scanner, rng);
+                scan->sensorLabel = ro.name + ".scan";
+                scan->timestamp = stamp;
+                emit(scan);
             }
             if (k % gtEvery == 0)
                 result.groundTruth[ro.name].push_back(

@@ -34,6 +34,14 @@ class Localizer {
     virtual std::optional<mrpt::poses::CPose3D> latestEstimate(const std::string& robot) const;
     /** The method's own figures for metrics.json (fixes, rejected ranges, ...). */
     virtual nlohmann::json methodMetrics() const { return nlohmann::json::object(); }
+    /** Figures against a robot's ground truth beyond the position errors (e.g. whether the
+     *  truth is among the hypotheses); merged into metrics.json's robots.<name>. */
+    virtual nlohmann::json groundTruthMetrics(const std::string& /*robot*/,
+                                              const Trajectory& /*groundTruth*/) const {
+        return nlohmann::json::object();
+    }
+    /** Writes the method's own files into the run directory (atomically), for the report. */
+    virtual void writeOutputs(const std::string& /*outDir*/) const {}
 };
 
 class LocalizerRegistry {

@@ -25,6 +25,8 @@ struct RobotOptions : public mrpt::config::CLoadableOptions {
     double odometrySigmaXY = 0.02;                ///< per metre travelled
     double odometrySigmaPhi = 0.01;               ///< per radian turned
     double odometrySigmaPhiPerMetre = 0.005;      ///< rad per metre travelled
+    /** start is a required key (false: the scenario sets it, and the key is an error). */
+    bool startInSection = true;
 
     void loadFromConfigFile(const mrpt::config::CConfigFileBase& source,
                             const std::string& section) override;

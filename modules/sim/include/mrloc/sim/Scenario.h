@@ -1,11 +1,16 @@
 #pragma once
 // Everything a simulation run needs, read and validated from one INI:
-// [scenario], [world], [sensors], [ultrasonic], [robot.<name>] and the beacon map.
+// [scenario], [world], [sensors], [ultrasonic], [robot.<name>] and the beacon map; or, for a
+// floor-plan scenario, the polygon, its scanner and the robot's start, which the app reads
+// from the method's section and hands over (the simulator knows no method).
 #include <mrloc/common/BeaconMap.h>
 #include <mrloc/sim/Robot.h>
+#include <mrloc/sim/Scanner.h>
 #include <mrloc/sim/Sensors.h>
 #include <mrloc/sim/Ultrasonic.h>
 #include <mrloc/sim/World.h>
+
+#include <optional>
 
 namespace mrloc::sim {
 
@@ -32,10 +37,15 @@ struct ScenarioConfig {
     SensorOptions sensors;
     UltrasonicOptions ultrasonic;
     std::vector<RobotOptions> robots;
-    common::BeaconMap beacons;
+    common::BeaconMap beacons;           ///< empty in a floor-plan scenario
+    std::optional<FloorPlan> floorPlan;  ///< walls to scan; one robot
 
-    /** Reads and validates; errors name the file, section and key. */
+    /** Reads and validates; errors name the file, section and key. With a floor plan,
+     *  [scenario] robots defaults to r1, [robot.<name>] is optional, the robot starts at
+     *  `start` (which must lie in the polygon) and no beacon map is read. */
     static ScenarioConfig load(const mrpt::config::CConfigFileBase& ini);
+    static ScenarioConfig load(const mrpt::config::CConfigFileBase& ini, FloorPlan plan,
+                               const mrpt::poses::CPose2D& start);
     /** Writes the effective options (the beacon map is the method's to write). */
     void save(mrpt::config::CConfigFileBase& target) const;
 };

@@ -7,6 +7,9 @@
 // a RangingController, which picks the next epoch; BeaconRanging fires it. Everything the
 // robots sense is also fed to the onboard estimator, so a later `mrloc localize` on the
 // rawlog reproduces the estimates the beacons were aimed with.
+//
+// In a floor-plan scenario each robot also scans the polygon (<robot>.scan) at the start and
+// then at the scanner's rate.
 #include <mrloc/common/Localizer.h>
 #include <mrloc/common/Progress.h>
 #include <mrloc/common/RangingController.h>

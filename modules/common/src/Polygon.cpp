@@ -1,0 +1,180 @@
+#include <mrloc/common/AtomicFile.h>
+#include <mrloc/common/Error.h>
+#include <mrloc/common/Polygon.h>
+#include <mrpt/core/format.h>
+
+#include <algorithm>
+#include <cmath>
+#include <fstream>
+#include <limits>
+#include <sstream>
+
+namespace mrloc::common {
+
+double distanceToSegment(const TPoint2D& p, const TPoint2D& a, const TPoint2D& b) {
+    return (p - closestOnSegment(p, a, b)).norm();
+}
+
+TPoint2D closestOnSegment(const TPoint2D& p, const TPoint2D& a, const TPoint2D& b) {
+    const TVector2D ab = b - a;
+    const double len2 = dot(ab, ab);
+    if (len2 == 0) return a;
+    const double s = std::clamp(dot(p - a, ab) / len2, 0.0, 1.0);
+    return a + ab * s;
+}
+
+namespace {
+
+std::string vertexName(size_t i, const std::vector<TPoint2D>& v) {
+    return mrpt::format("vertex %zu (%g %g)", i + 1, v[i].x, v[i].y);
+}
+
+/** Closed segments a-b and c-d share a point (within eps). */
+bool segmentsTouch(const TPoint2D& a, const TPoint2D& b, const TPoint2D& c, const TPoint2D& d,
+                   double eps) {
+    const TVector2D ab = b - a, cd = d - c;
+    const double d1 = cross(ab, c - a), d2 = cross(ab, d - a);
+    const double d3 = cross(cd, a - c), d4 = cross(cd, b - c);
+    const double lab = ab.norm(), lcd = cd.norm();
+    const auto side = [eps](double c, double len) {
+        return c > eps * len ? 1 : (c < -eps * len ? -1 : 0);
+    };
+    const int s1 = side(d1, lab), s2 = side(d2, lab), s3 = side(d3, lcd), s4 = side(d4, lcd);
+    if (s1 * s2 < 0 && s3 * s4 < 0) return true;  // proper crossing
+    // Touching or collinear overlap: some endpoint lies on the other segment.
+    return distanceToSegment(c, a, b) <= eps || distanceToSegment(d, a, b) <= eps ||
+           distanceToSegment(a, c, d) <= eps || distanceToSegment(b, c, d) <= eps;
+}
+
+}  // namespace
+
+Polygon Polygon::fromVertices(std::vector<TPoint2D> v, const std::string& what) {
+    const size_t n = v.size();
+    if (n < 3)
+        throw Error(what + ": a polygon needs at least 3 vertices, got " + std::to_string(n));
+    Polygon P;
+    P.min_ = {std::numeric_limits<double>::infinity(), std::numeric_limits<double>::infinity()};
+    P.max_ = -P.min_;
+    for (size_t i = 0; i < n; ++i) {
+        if (!std::isfinite(v[i].x) || !std::isfinite(v[i].y))
+            throw Error(what + ": vertex " + std::to_string(i + 1) + " is not a finite number");
+        P.min_ = {std::min(P.min_.x, v[i].x), std::min(P.min_.y, v[i].y)};
+        P.max_ = {std::max(P.max_.x, v[i].x), std::max(P.max_.y, v[i].y)};
+    }
+    P.eps_ = 1e-9 * std::max((P.max_ - P.min_).norm(), 1e-300);
+    const double eps = P.eps_;
+    for (size_t i = 0; i < n; ++i)
+        for (size_t j = i + 1; j < n; ++j)
+            if ((v[i] - v[j]).norm() <= eps)
+                throw Error(what + ": " + vertexName(i, v) + " repeats " + vertexName(j, v));
+    double twiceArea = 0;
+    for (size_t i = 0; i < n; ++i) twiceArea += cross(v[i], v[(i + 1) % n]);
+    if (std::abs(twiceArea) <= eps * (P.max_ - P.min_).norm())
+        throw Error(what + ": the polygon has no area (all vertices on one line?)");
+    if (twiceArea < 0) std::reverse(v.begin(), v.end());  // clockwise input: reorient
+    for (size_t i = 0; i < n; ++i) {
+        const TPoint2D &a = v[(i + n - 1) % n], &b = v[i], &c = v[(i + 1) % n];
+        const TVector2D ba = a - b, bc = c - b;
+        if (std::abs(cross(ba, bc)) <= eps * std::max(ba.norm(), bc.norm()) && dot(ba, bc) > 0)
+            throw Error(what + ": " + vertexName(i, v) +
+                        " is a collinear duplicate: its two edges overlap (a zero-width spike)");
+    }
+    for (size_t i = 0; i < n; ++i)
+        for (size_t j = i + 2; j < n; ++j) {
+            if (i == 0 && j == n - 1) continue;  // adjacent through the closing edge
+            if (segmentsTouch(v[i], v[i + 1], v[j], v[(j + 1) % n], eps))
+                throw Error(what + mrpt::format(": the polygon intersects itself: edge %zu-%zu "
+                                                "meets edge %zu-%zu",
+                                                i + 1, i + 2, j + 1, (j + 1) % n + 1));
+        }
+    P.v_ = std::move(v);
+    return P;
+}
+
+Polygon Polygon::load(const std::string& path) {
+    std::ifstream in(path);
+    if (!in) throw Error("polygon map " + path + ": cannot open the file");
+    std::vector<TPoint2D> v;
+    std::string line;
+    for (int lineNo = 1; std::getline(in, line); ++lineNo) {
+        if (const auto hash = line.find('#'); hash != std::string::npos) line.erase(hash);
+        std::istringstream ls(line);
+        std::string first;
+        if (!(ls >> first)) continue;
+        ls.clear();
+        ls.str(line);
+        double x, y;
+        std::string rest;
+        if (!(ls >> x >> y) || (ls >> rest))
+            throw Error(path + ":" + std::to_string(lineNo) + ": expected \"x y\", got \"" + line +
+                        "\"");
+        v.push_back({x, y});
+    }
+    return fromVertices(std::move(v), path);
+}
+
+void Polygon::save(const std::string& path, const std::string& comment) const {
+    std::ostringstream out;
+    out << "# polygon map, " << v_.size() << " vertices, counter-clockwise\n";
+    if (!comment.empty()) out << "# " << comment << "\n";
+    out.precision(17);
+    for (const auto& p : v_) out << p.x << " " << p.y << "\n";
+    writeFileAtomically(path, out.str());
+}
+
+bool Polygon::isReflex(size_t i) const {
+    return cross(v_[i] - v_[prev(i)], v_[next(i)] - v_[i]) < 0;
+}
+
+double Polygon::area() const {
+    double a = 0;
+    for (size_t i = 0; i < v_.size(); ++i) a += cross(v_[i], v_[next(i)]);
+    return 0.5 * a;
+}
+
+Polygon::Where Polygon::locate(const TPoint2D& p, double tol) const {
+    if (tol < 0) tol = eps_;
+    bool inside = false;
+    for (size_t i = 0, j = v_.size() - 1; i < v_.size(); j = i++) {
+        const TPoint2D &a = v_[j], &b = v_[i];
+        if (distanceToSegment(p, a, b) <= tol) return Where::Boundary;
+        if ((a.y > p.y) != (b.y > p.y) && p.x < a.x + (p.y - a.y) * (b.x - a.x) / (b.y - a.y))
+            inside = !inside;
+    }
+    return inside ? Where::Inside : Where::Outside;
+}
+
+std::pair<TPoint2D, size_t> Polygon::closestBoundaryPoint(const TPoint2D& p) const {
+    std::pair<TPoint2D, size_t> best{v_[0], 0};
+    double bestDist = std::numeric_limits<double>::infinity();
+    for (size_t i = 0; i < v_.size(); ++i) {
+        const TPoint2D c = closestOnSegment(p, v_[i], v_[next(i)]);
+        if (const double d = (p - c).norm(); d < bestDist) best = {c, i}, bestDist = d;
+    }
+    return best;
+}
+
+std::optional<std::pair<double, size_t>> Polygon::rayCastEdge(const TPoint2D& o,
+                                                              const TVector2D& dir,
+                                                              double tMin) const {
+    std::optional<std::pair<double, size_t>> best;
+    for (size_t i = 0; i < v_.size(); ++i) {
+        const TPoint2D& a = v_[i];
+        const TVector2D e = v_[next(i)] - a;
+        const double denom = cross(dir, e);
+        if (denom == 0) continue;  // parallel: its endpoints are met through the neighbours
+        const TVector2D ao = a - o;
+        const double s = cross(ao, dir) / denom;
+        if (s < -1e-12 || s > 1 + 1e-12) continue;
+        const double t = cross(ao, e) / denom;
+        if (t > tMin && (!best || t < best->first)) best = std::make_pair(t, i);
+    }
+    return best;
+}
+
+std::optional<double> Polygon::rayCast(const TPoint2D& o, const TVector2D& dir, double tMin) const {
+    if (const auto hit = rayCastEdge(o, dir, tMin)) return hit->first;
+    return std::nullopt;
+}
+
+}  // namespace mrloc::common

@@ -1,0 +1,52 @@
+#pragma once
+// Self-similar polygon maps: the "steps" family of seed 002 (sec. 3, figs. 2-5) and rooms
+// repeated along a corridor. Each generator also returns the self-similar sites: points
+// that see congruent visibility polygons, which are the hypotheses a robot standing at any
+// one of them must find.
+#include <mrloc/common/Polygon.h>
+#include <mrpt/random/RandomGenerators.h>
+
+#include <string>
+#include <vector>
+
+namespace mrloc::polymap {
+
+struct GeneratedMap {
+    common::Polygon polygon;
+    std::vector<common::TPoint2D> sites;  ///< congruent viewpoints, in the paper's order
+    std::string description;
+};
+
+/** A staircase corridor of `steps` identical steps; each step's ceiling carries
+ *  `branchesPerStep` identical branches, a corridor with three bends ending in a dead end.
+ *  n = steps * (4 + 10 * branchesPerStep) + 4 (an entrance alcove on the left end), k =
+ *  steps * branchesPerStep sites (one deep in each branch, which sees only its branch):
+ *  3 steps give the paper's n = 76, k = 6, 6 steps n = 148, k = 12. */
+struct StepsMapOptions {
+    int steps = 6;
+    int branchesPerStep = 2;
+    double stepWidth = 16, stepRise = 2, corridorHeight = 4;  ///< m
+    double branchWidth = 1, branchLeg = 2;  ///< a branch's width and the length of each leg
+};
+GeneratedMap stepsMap(const StepsMapOptions& options);
+
+/** `rooms` copies of one random room (a skyline of `roomSteps` random heights) above a
+ *  corridor, each joined to it by a neck. Corridor margins are wide enough that nobody in
+ *  a room sees a corridor end; `rightMargin` > 0 lengthens the right one (an asymmetric
+ *  join). Coordinates are multiples of 1/8 m. n = 4 + rooms * (6 + 2 * roomSteps). The
+ *  site is a random point of the room, the same in every copy. */
+struct RoomsMapOptions {
+    int rooms = 4;
+    int roomSteps = 4;
+    double roomWidth = 6, roomHeightMin = 2, roomHeightMax = 5;  ///< m
+    double neckWidth = 1, neckLength = 1.5, corridorHeight = 2.5, roomGap = 1.5;
+    double rightMargin = 0;  ///< extra length of the corridor's right end (m)
+};
+GeneratedMap roomsMap(const RoomsMapOptions& options, mrpt::random::CRandomGenerator& rng);
+
+/** A random star-shaped simple polygon of n vertices around the origin, radii in
+ *  [rMin, rMax] (no self-similarity in general). */
+common::Polygon randomStarPolygon(int n, double rMin, double rMax,
+                                  mrpt::random::CRandomGenerator& rng);
+
+}  // namespace mrloc::polymap

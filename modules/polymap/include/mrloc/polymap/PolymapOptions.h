@@ -1,0 +1,49 @@
+#pragma once
+// Section [polymap]: the map (a .poly file or a generator), the robot's true start and
+// heading, its 360-degree scanner, and the hypothesis tolerances. The simulator gets the
+// map, start and scanner through the app; the localizer reads the same section.
+#include <mrloc/polymap/Hypotheses.h>
+#include <mrloc/polymap/MapGenerators.h>
+#include <mrloc/polymap/ScanPolygon.h>
+#include <mrpt/config/CLoadableOptions.h>
+
+#include <optional>
+#include <string>
+
+namespace mrloc::polymap {
+
+struct PolymapOptions : public mrpt::config::CLoadableOptions {
+    std::string mapFile;              ///< map = <file.poly> (relative to the working dir)
+    std::string generator = "steps";  ///< generator = steps | rooms (when no map file)
+    StepsMapOptions steps;
+    RoomsMapOptions rooms;
+    unsigned long mapSeed = 1;      ///< map_seed: the rooms generator's random seed
+    std::optional<TPoint2D> start;  ///< start = x y
+    int startSite = 1;              ///< start_site = i: the generator's i-th site
+    double heading = 0;             ///< heading (deg): known to the robot
+    int scanRays = 1440;            ///< scan_rays
+    double scanRangeSigma = 0.005;  ///< scan_range_sigma (m)
+    double scanMaxRange = 100;      ///< scan_max_range (m)
+    double scanRate = 0;            ///< scan_rate (Hz; 0: one scan at the start)
+    double tolerance = 0;           ///< tolerance (m); 0: from the scan (see doc)
+    double angleTolerance = 3;      ///< angle_tolerance (deg)
+    double breakAngle = 10;         ///< break_angle (deg): scan segmentation
+
+    void loadFromConfigFile(const mrpt::config::CConfigFileBase& source,
+                            const std::string& section) override;
+    void saveToConfigFile(mrpt::config::CConfigFileBase& target,
+                          const std::string& section) const override;
+
+    /** The polygon and its sites (none for a map file); throws mrloc::Error. */
+    GeneratedMap buildMap() const;
+    /** The true start: `start`, or the `start_site`-th site of a generated map. */
+    TPoint2D startIn(const GeneratedMap& map) const;
+    /** The tolerance used for a scan whose farthest return is rMax: the key's value, or
+     *  6 sigma + a beam step times rMax (a window's end is within half a step). */
+    double toleranceFor(double rMax) const;
+
+ private:
+    std::string origin_;  ///< file, for errors raised after loading
+};
+
+}  // namespace mrloc::polymap

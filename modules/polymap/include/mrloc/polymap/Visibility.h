@@ -1,0 +1,44 @@
+#pragma once
+// The visibility polygon V(q) of a point q in a simple polygon P: every point of P that the
+// segment from q reaches without leaving P. V is star-shaped about q and is kept in the
+// robot's frame: vertices relative to q, axes along the map's (the robot knows its heading,
+// seed 002 sec. 1), counter-clockwise.
+#include <mrloc/common/Polygon.h>
+
+#include <vector>
+
+namespace mrloc::polymap {
+
+using common::TPoint2D;
+using common::TVector2D;
+
+struct VisibilityPolygon {
+    std::vector<TPoint2D> vertices;  ///< relative to the viewpoint, counter-clockwise
+    /** Directions closer than this (radians) are one direction: 0 for an exact polygon,
+     *  about one beam step for a polygon built from a scan. */
+    double angularTolerance = 1e-9;
+
+    size_t size() const { return vertices.size(); }
+    /** Edge i (vertex i to i+1) lies on a line through the viewpoint: a window (a
+     *  constructed edge, seed 002 [2]) or a wall seen edge-on. */
+    bool isRadial(size_t i) const;
+    /** Distance from the viewpoint to the boundary along a unit direction (0 if the
+     *  viewpoint is on the boundary and the direction leaves the polygon). */
+    double radius(const TVector2D& dir) const;
+    /** The same polygon placed with its viewpoint at p (map frame). */
+    std::vector<TPoint2D> placedAt(const TPoint2D& p) const;
+};
+
+/** Exact V(q) by sweeping the directions of P's vertices around q: between two consecutive
+ *  directions one edge is nearest, so the boundary is that edge's piece; along each
+ *  direction it steps from the left neighbour's edge to the right one's (a window, or a
+ *  vertex). O(n^2) with n = |P|. Works for q strictly inside, on an edge or on a vertex
+ *  (within P.epsilon()); collinear vertices are allowed. Throws mrloc::Error if q is
+ *  outside P. */
+VisibilityPolygon visibilityPolygon(const common::Polygon& P, const TPoint2D& q);
+
+/** Symmetric Hausdorff distance between the boundaries of two visibility polygons placed at
+ *  the same viewpoint, sampled every `step` along the edges (error at most step / 2). */
+double boundaryDistance(const VisibilityPolygon& a, const VisibilityPolygon& b, double step);
+
+}  // namespace mrloc::polymap

@@ -1,0 +1,154 @@
+#include <mrloc/common/Error.h>
+#include <mrloc/polymap/Hypotheses.h>
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+namespace mrloc::polymap {
+
+namespace {
+
+double angleOf(const TVector2D& d) { return std::atan2(d.y, d.x); }
+
+double angleGap(double a, double b) {
+    const double d = std::abs(std::remainder(a - b, 2 * M_PI));
+    return d;
+}
+
+long long cellKey(long long ix, long long iy) { return ix * 73856093LL ^ iy * 19349663LL; }
+
+}  // namespace
+
+HypothesisGenerator::HypothesisGenerator(const common::Polygon& map, HypothesisOptions options)
+    : map_(map), options_(options) {
+    if (!(options_.tolerance > 0) || !(options_.angleTolerance > 0))
+        throw Error("hypothesis generation: tolerance and angle tolerance must be positive");
+    const size_t n = map_.size();
+    inAngle_.resize(n);
+    outAngle_.resize(n);
+    for (size_t i = 0; i < n; ++i) {
+        inAngle_[i] = angleOf(map_[i] - map_[map_.prev(i)]);
+        outAngle_[i] = angleOf(map_[map_.next(i)] - map_[i]);
+    }
+    cell_ = std::max(4 * options_.tolerance, 1e-6);
+    for (size_t i = 0; i < n; ++i)
+        grid_[cellKey((long long)std::floor(map_[i].x / cell_),
+                      (long long)std::floor(map_[i].y / cell_))]
+            .push_back(i);
+}
+
+std::vector<HypothesisGenerator::Feature> HypothesisGenerator::featuresOf(
+    const VisibilityPolygon& V) const {
+    std::vector<Feature> corners, windowEnds;
+    const size_t n = V.size();
+    const double nan = std::numeric_limits<double>::quiet_NaN();
+    for (size_t i = 0; i < n; ++i) {
+        const size_t prev = (i + n - 1) % n, next = (i + 1) % n;
+        const TPoint2D& p = V.vertices[i];
+        if (p.norm() <= options_.tolerance) continue;  // the viewpoint itself, on a wall
+        // An edge shorter than twice the tolerance gives no reliable direction (from a
+        // scan it is often a corner's rounding): its ends are not features.
+        const double minEdge = 2 * options_.tolerance;
+        if ((p - V.vertices[prev]).norm() < minEdge || (V.vertices[next] - p).norm() < minEdge)
+            continue;
+        const bool radialIn = V.isRadial(prev), radialOut = V.isRadial(i);
+        const double in = angleOf(p - V.vertices[prev]), out = angleOf(V.vertices[next] - p);
+        if (!radialIn && !radialOut) {
+            if (angleGap(in, out) > options_.angleTolerance) corners.push_back({p, in, out});
+        } else if (!radialIn && radialOut && V.vertices[next].norm() > p.norm()) {
+            windowEnds.push_back({p, in, nan});  // a window (or a wall seen edge-on) leaves
+        } else if (radialIn && !radialOut && V.vertices[prev].norm() > p.norm()) {
+            windowEnds.push_back({p, nan, out});  // one arrives
+        }
+    }
+    return corners.empty() ? windowEnds : corners;
+}
+
+bool HypothesisGenerator::matches(const Feature& f, size_t j) const {
+    const double tol = options_.angleTolerance;
+    if (!std::isnan(f.inAngle) && angleGap(f.inAngle, inAngle_[j]) > tol) return false;
+    if (!std::isnan(f.outAngle) && angleGap(f.outAngle, outAngle_[j]) > tol) return false;
+    // A half-seen vertex is usually reflex (a window leaves it), but not when the radial
+    // edge is a wall through the viewpoint, seen edge-on: no convexity test.
+    return true;
+}
+
+std::optional<size_t> HypothesisGenerator::vertexNear(const TPoint2D& p, const Feature& f) const {
+    const long long cx = (long long)std::floor(p.x / cell_),
+                    cy = (long long)std::floor(p.y / cell_);
+    std::optional<size_t> best;
+    double bestDist = options_.tolerance;
+    for (long long dx = -1; dx <= 1; ++dx)
+        for (long long dy = -1; dy <= 1; ++dy) {
+            const auto it = grid_.find(cellKey(cx + dx, cy + dy));
+            if (it == grid_.end()) continue;
+            for (size_t j : it->second)
+                if (const double d = (map_[j] - p).norm(); d <= bestDist && matches(f, j))
+                    best = j, bestDist = d;
+        }
+    return best;
+}
+
+std::vector<Hypothesis> HypothesisGenerator::generate(const VisibilityPolygon& V,
+                                                      HypothesisStats* stats) const {
+    if (V.size() < 3) throw Error("hypothesis generation: the visibility polygon has < 3 vertices");
+    const std::vector<Feature> features = featuresOf(V);
+    if (features.empty())
+        throw Error(
+            "hypothesis generation: the visibility polygon has no corner and no window "
+            "end to match against the map");
+    // The anchor: the feature that the fewest map vertices match.
+    std::vector<size_t> bestMatches;
+    size_t anchor = 0;
+    for (size_t f = 0; f < features.size(); ++f) {
+        std::vector<size_t> m;
+        for (size_t j = 0; j < map_.size(); ++j)
+            if (matches(features[f], j)) m.push_back(j);
+        if (f == 0 || m.size() < bestMatches.size()) bestMatches = std::move(m), anchor = f;
+        if (bestMatches.empty()) break;
+    }
+    HypothesisStats st;
+    st.corners = features.size();
+    st.proposed = bestMatches.size();
+
+    TPoint2D lo{std::numeric_limits<double>::infinity(), std::numeric_limits<double>::infinity()};
+    TPoint2D hi = -lo;
+    for (const auto& p : V.vertices)
+        lo = {std::min(lo.x, p.x), std::min(lo.y, p.y)},
+        hi = {std::max(hi.x, p.x), std::max(hi.y, p.y)};
+    const double step = std::max(options_.tolerance / 4, (hi - lo).norm() / 500);
+
+    std::vector<Hypothesis> H;
+    for (size_t j : bestMatches) {
+        const TPoint2D guess = map_[j] - features[anchor].at;
+        // Every feature must land on a matching vertex; their mean offset refines the guess.
+        TVector2D sum{0, 0};
+        bool all = true;
+        for (const auto& f : features) {
+            const auto v = vertexNear(guess + f.at, f);
+            if (!v) {
+                all = false;
+                break;
+            }
+            sum += map_[*v] - f.at;
+        }
+        if (!all) continue;
+        TPoint2D p = sum * (1.0 / features.size());
+        const auto where = map_.locate(p, options_.tolerance);
+        if (where == common::Polygon::Where::Outside) continue;
+        if (where == common::Polygon::Where::Boundary && !map_.contains(p))
+            p = map_.closestBoundaryPoint(p).first;  // sensing noise pushed it out
+        ++st.verified;
+        const double mismatch = boundaryDistance(V, visibilityPolygon(map_, p), step);
+        if (mismatch <= options_.tolerance) H.push_back({p, {0, 0}, mismatch});
+    }
+    std::sort(H.begin(), H.end(), [](const Hypothesis& a, const Hypothesis& b) {
+        return a.point.x < b.point.x || (a.point.x == b.point.x && a.point.y < b.point.y);
+    });
+    for (auto& h : H) h.translation = h.point - H.front().point;
+    if (stats) *stats = st;
+    return H;
+}
+
+}  // namespace mrloc::polymap

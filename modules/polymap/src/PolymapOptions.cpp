@@ -1,0 +1,115 @@
+#include <mrloc/common/Error.h>
+#include <mrloc/common/IniSection.h>
+#include <mrloc/polymap/PolymapOptions.h>
+#include <mrpt/core/format.h>
+
+#include <cmath>
+
+namespace mrloc::polymap {
+
+void PolymapOptions::loadFromConfigFile(const mrpt::config::CConfigFileBase& src,
+                                        const std::string& section) {
+    common::IniSection s(src, section);
+    origin_ = common::configOrigin(src) + ": [" + section + "]";
+    mapFile = s.text("map", "");
+    generator = s.choice("generator", "steps", {"steps", "rooms"});
+    if (!mapFile.empty() && s.has("generator"))
+        s.fail("generator", "give either map = <file.poly> or a generator, not both");
+    steps.steps = (int)s.integer("steps", 6, 1, 1000);
+    steps.branchesPerStep = (int)s.integer("branches_per_step", 2, 1, 100);
+    steps.stepWidth = s.real("step_width", 16, 1e-3, 1e4);
+    steps.stepRise = s.real("step_rise", 2, 1e-3, 1e4);
+    steps.corridorHeight = s.real("corridor_height", 4, 1e-3, 1e4);
+    steps.branchWidth = s.real("branch_width", 1, 1e-3, 1e4);
+    steps.branchLeg = s.real("branch_leg", 2, 1e-3, 1e4);
+    rooms.rooms = (int)s.integer("rooms", 4, 1, 1000);
+    rooms.roomSteps = (int)s.integer("room_steps", 4, 1, 1000);
+    rooms.roomWidth = s.real("room_width", 6, 1e-3, 1e4);
+    rooms.roomHeightMin = s.real("room_height_min", 2, 1e-3, 1e4);
+    rooms.roomHeightMax = s.real("room_height_max", 5, 1e-3, 1e4);
+    rooms.neckWidth = s.real("neck_width", 1, 1e-3, 1e4);
+    rooms.neckLength = s.real("neck_length", 1.5, 1e-3, 1e4);
+    rooms.roomGap = s.real("room_gap", 1.5, 1e-3, 1e4);
+    rooms.rightMargin = s.real("right_margin", 0, 0, 1e4);
+    mapSeed = (unsigned long)s.integer("map_seed", 1, 0, 4294967295L);
+    start.reset();
+    if (s.has("start")) {
+        const auto xy = s.requireReals("start", 2);
+        start = TPoint2D{xy[0], xy[1]};
+        if (s.has("start_site")) s.fail("start_site", "give either start = x y or start_site");
+    }
+    startSite = (int)s.integer("start_site", 1, 1, 1000000);
+    if (!start && !mapFile.empty()) s.fail("start", "required with a map file (start = x y)");
+    heading = s.real("heading", 0, -360, 360);
+    scanRays = (int)s.integer("scan_rays", 1440, 16, 1000000);
+    scanRangeSigma = s.real("scan_range_sigma", 0.005, 0, 10);
+    scanMaxRange = s.real("scan_max_range", 100, 1e-3, 1e6);
+    scanRate = s.real("scan_rate", 0, 0, 1000);
+    tolerance = s.real("tolerance", 0, 0, 1e3);
+    angleTolerance = s.real("angle_tolerance", 3, 1e-6, 45);
+    breakAngle = s.real("break_angle", 10, 1, 45);
+    s.finish();
+}
+
+void PolymapOptions::saveToConfigFile(mrpt::config::CConfigFileBase& t,
+                                      const std::string& section) const {
+    if (!mapFile.empty()) {
+        t.write(section, "map", mapFile);
+    } else {
+        t.write(section, "generator", generator);
+        t.write(section, "map_seed", std::to_string(mapSeed));
+    }
+    t.write(section, "steps", steps.steps);
+    t.write(section, "branches_per_step", steps.branchesPerStep);
+    t.write(section, "step_width", steps.stepWidth);
+    t.write(section, "step_rise", steps.stepRise);
+    t.write(section, "corridor_height", steps.corridorHeight);
+    t.write(section, "branch_width", steps.branchWidth);
+    t.write(section, "branch_leg", steps.branchLeg);
+    t.write(section, "rooms", rooms.rooms);
+    t.write(section, "room_steps", rooms.roomSteps);
+    t.write(section, "room_width", rooms.roomWidth);
+    t.write(section, "room_height_min", rooms.roomHeightMin);
+    t.write(section, "room_height_max", rooms.roomHeightMax);
+    t.write(section, "neck_width", rooms.neckWidth);
+    t.write(section, "neck_length", rooms.neckLength);
+    t.write(section, "room_gap", rooms.roomGap);
+    t.write(section, "right_margin", rooms.rightMargin);
+    if (start)
+        t.write(section, "start", mrpt::format("%.17g %.17g", start->x, start->y));
+    else
+        t.write(section, "start_site", startSite);
+    t.write(section, "heading", heading);
+    t.write(section, "scan_rays", scanRays);
+    t.write(section, "scan_range_sigma", scanRangeSigma);
+    t.write(section, "scan_max_range", scanMaxRange);
+    t.write(section, "scan_rate", scanRate);
+    t.write(section, "tolerance", tolerance);
+    t.write(section, "angle_tolerance", angleTolerance);
+    t.write(section, "break_angle", breakAngle);
+}
+
+GeneratedMap PolymapOptions::buildMap() const {
+    if (!mapFile.empty()) {
+        auto P = common::Polygon::load(mapFile);
+        return {std::move(P), {}, "map " + mapFile};
+    }
+    if (generator == "steps") return stepsMap(steps);
+    mrpt::random::CRandomGenerator rng{static_cast<uint32_t>(mapSeed)};
+    return roomsMap(rooms, rng);
+}
+
+TPoint2D PolymapOptions::startIn(const GeneratedMap& map) const {
+    if (start) return *start;
+    if (size_t(startSite) > map.sites.size())
+        throw Error(origin_ + mrpt::format(" start_site: %d, but the %s has %zu sites", startSite,
+                                           map.description.c_str(), map.sites.size()));
+    return map.sites[size_t(startSite) - 1];
+}
+
+double PolymapOptions::toleranceFor(double rMax) const {
+    if (tolerance > 0) return tolerance;
+    return 6 * scanRangeSigma + 2 * M_PI / scanRays * rMax + 0.01;
+}
+
+}  // namespace mrloc::polymap

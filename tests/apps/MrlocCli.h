@@ -1,0 +1,55 @@
+#pragma once
+// Helpers of the end-to-end tests: run the mrloc executable, temporary folders, INI edits.
+#include <gtest/gtest.h>
+
+#include <array>
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+#include <string>
+
+namespace mrloc::testing_cli {
+
+struct Result {
+    int code;
+    std::string output;  // stdout and stderr
+};
+
+inline Result mrlocCmd(const std::string& args) {
+    const std::string cmd = std::string(MRLOC_BINARY) + " " + args + " 2>&1";
+    FILE* p = popen(cmd.c_str(), "r");
+    std::string out;
+    std::array<char, 4096> buf;
+    while (size_t n = fread(buf.data(), 1, buf.size(), p)) out.append(buf.data(), n);
+    const int status = pclose(p);
+    return {WEXITSTATUS(status), out};
+}
+
+/** An empty temporary folder name (removed if it exists). */
+inline std::string tmp(const std::string& name) {
+    const std::string d = testing::TempDir() + "/apps_" + name;
+    std::filesystem::remove_all(d);
+    return d;
+}
+
+inline std::string slurp(const std::string& p) {
+    std::ifstream in(p, std::ios::binary);
+    std::stringstream s;
+    s << in.rdbuf();
+    return s.str();
+}
+
+/** A copy of the INI `base` with the first `from` replaced by `to`, as <TempDir>/<name>.ini. */
+inline std::string writeIniFrom(const std::string& base, const std::string& name,
+                                const std::string& from, const std::string& to) {
+    std::string text = slurp(base);
+    const auto pos = text.find(from);
+    EXPECT_NE(pos, std::string::npos) << from;
+    text.replace(pos, from.size(), to);
+    const std::string path = testing::TempDir() + "/" + name + ".ini";
+    std::ofstream(path) << text;
+    return path;
+}
+
+}  // namespace mrloc::testing_cli

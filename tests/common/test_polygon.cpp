@@ -1,0 +1,85 @@
+// common::Polygon: validation, orientation, .poly I/O and the predicates.
+#include <gtest/gtest.h>
+#include <mrloc/common/Error.h>
+#include <mrloc/common/Polygon.h>
+
+#include <filesystem>
+#include <fstream>
+
+using mrloc::Error;
+using mrloc::common::Polygon;
+using mrloc::common::TPoint2D;
+
+namespace {
+
+std::string errorOf(const std::vector<TPoint2D>& v) {
+    try {
+        Polygon::fromVertices(v, "test.poly");
+    } catch (const Error& e) {
+        return e.what();
+    }
+    return "";
+}
+
+std::string writeTemp(const std::string& name, const std::string& text) {
+    const auto path = std::filesystem::temp_directory_path() / name;
+    std::ofstream(path) << text;
+    return path.string();
+}
+
+}  // namespace
+
+TEST(Polygon, ClockwiseInputIsReoriented) {
+    const auto P = Polygon::fromVertices({{0, 0}, {0, 2}, {3, 2}, {3, 0}}, "cw");
+    EXPECT_DOUBLE_EQ(P.area(), 6.0);
+    EXPECT_EQ(P[0], TPoint2D(3, 0));  // reversed order
+}
+
+TEST(Polygon, InvalidInputIsAClearError) {
+    EXPECT_NE(errorOf({{0, 0}, {1, 0}}).find("at least 3 vertices"), std::string::npos);
+    EXPECT_NE(errorOf({{0, 0}, {1, 0}, {1, 1}, {1, 0}, {0, 1}}).find("repeats"), std::string::npos);
+    // (2,0) goes back along the edge it came on: a zero-width spike.
+    EXPECT_NE(errorOf({{0, 0}, {2, 0}, {1, 0}, {1, 1}}).find("collinear duplicate"),
+              std::string::npos);
+    // A bow tie crosses itself.
+    EXPECT_NE(errorOf({{0, 0}, {3, 3}, {3, 0}, {0, 2}}).find("intersects itself"),
+              std::string::npos);
+    // A vertex touching a non-adjacent edge.
+    EXPECT_NE(errorOf({{0, 0}, {4, 0}, {4, 4}, {2, 0}, {0, 4}}).find("intersects itself"),
+              std::string::npos);
+    EXPECT_NE(errorOf({{0, 0}, {1, 1}, {2, 2}}).find("no area"), std::string::npos);
+    EXPECT_NE(errorOf({{0, 0}, {1, 0}, {NAN, 1}}).find("finite"), std::string::npos);
+    // A straight-through collinear vertex is allowed.
+    EXPECT_EQ(errorOf({{0, 0}, {1, 0}, {2, 0}, {2, 1}}), "");
+}
+
+TEST(Polygon, PolyFileRoundTripAndErrors) {
+    const auto path = writeTemp("mrloc_square.poly", "# a square\n0 0\n\n2 0 # corner\n2 2\n0 2\n");
+    const auto P = Polygon::load(path);
+    EXPECT_EQ(P.size(), 4u);
+    const auto copy = path + ".copy";
+    P.save(copy, "copied");
+    const auto Q = Polygon::load(copy);
+    ASSERT_EQ(Q.size(), 4u);
+    for (size_t i = 0; i < 4; ++i) EXPECT_EQ(P[i], Q[i]);
+    const auto bad = writeTemp("mrloc_bad.poly", "0 0\n1 0\n1 x\n");
+    try {
+        Polygon::load(bad);
+        FAIL() << "no error";
+    } catch (const Error& e) {
+        EXPECT_NE(std::string(e.what()).find("mrloc_bad.poly:3"), std::string::npos) << e.what();
+    }
+    EXPECT_THROW(Polygon::load("/nonexistent/x.poly"), Error);
+}
+
+TEST(Polygon, LocateAndRayCast) {
+    const auto P = Polygon::fromVertices({{0, 0}, {4, 0}, {4, 4}, {2, 2}, {0, 4}}, "notch");
+    EXPECT_EQ(P.locate({1, 1}), Polygon::Where::Inside);
+    EXPECT_EQ(P.locate({2, 3}), Polygon::Where::Outside);
+    EXPECT_EQ(P.locate({2, 0}), Polygon::Where::Boundary);
+    EXPECT_EQ(P.locate({2, 2}), Polygon::Where::Boundary);
+    EXPECT_TRUE(P.isReflex(3));
+    EXPECT_FALSE(P.isReflex(0));
+    EXPECT_NEAR(*P.rayCast({1, 1}, {1, 0}), 3.0, 1e-12);
+    EXPECT_NEAR(*P.rayCast({1, 1}, {0, 1}), 2.0, 1e-12);  // the notch's edge (0,4)-(2,2) at y=3
+}
