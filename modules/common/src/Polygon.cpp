@@ -154,21 +154,42 @@ std::pair<TPoint2D, size_t> Polygon::closestBoundaryPoint(const TPoint2D& p) con
     return best;
 }
 
+namespace {
+
+/** Distance along the ray to edge a-b, if the ray meets it beyond tMin. */
+std::optional<double> hitEdge(const TPoint2D& a, const TPoint2D& b, const TPoint2D& o,
+                              const TVector2D& dir, double tMin) {
+    const TVector2D e = b - a;
+    const double denom = cross(dir, e);
+    if (denom == 0) return std::nullopt;  // parallel: its ends are met through the neighbours
+    const TVector2D ao = a - o;
+    const double s = cross(ao, dir) / denom;
+    if (s < -1e-12 || s > 1 + 1e-12) return std::nullopt;
+    const double t = cross(ao, e) / denom;
+    if (t > tMin) return t;
+    return std::nullopt;
+}
+
+}  // namespace
+
 std::optional<std::pair<double, size_t>> Polygon::rayCastEdge(const TPoint2D& o,
                                                               const TVector2D& dir,
                                                               double tMin) const {
     std::optional<std::pair<double, size_t>> best;
-    for (size_t i = 0; i < v_.size(); ++i) {
-        const TPoint2D& a = v_[i];
-        const TVector2D e = v_[next(i)] - a;
-        const double denom = cross(dir, e);
-        if (denom == 0) continue;  // parallel: its endpoints are met through the neighbours
-        const TVector2D ao = a - o;
-        const double s = cross(ao, dir) / denom;
-        if (s < -1e-12 || s > 1 + 1e-12) continue;
-        const double t = cross(ao, e) / denom;
-        if (t > tMin && (!best || t < best->first)) best = std::make_pair(t, i);
-    }
+    for (size_t i = 0; i < v_.size(); ++i)
+        if (const auto t = hitEdge(v_[i], v_[next(i)], o, dir, tMin);
+            t && (!best || *t < best->first))
+            best = std::make_pair(*t, i);
+    return best;
+}
+
+std::optional<std::pair<double, size_t>> Polygon::rayCastEdge(
+    const TPoint2D& o, const TVector2D& dir, double tMin, const std::vector<size_t>& edges) const {
+    std::optional<std::pair<double, size_t>> best;
+    for (size_t i : edges)
+        if (const auto t = hitEdge(v_[i], v_[next(i)], o, dir, tMin);
+            t && (!best || *t < best->first))
+            best = std::make_pair(*t, i);
     return best;
 }
 

@@ -129,6 +129,21 @@ VisibilityPolygon visibilityPolygon(const common::Polygon& P, const TPoint2D& vi
     const size_t m = dirs.size();
     if (m < 2) throw Error("visibility polygon: degenerate map around the viewpoint");
 
+    // The wedges each edge spans as seen from q: a wedge's ray is cast against those edges
+    // only, which keeps the sweep near-linear unless many long edges cross many wedges.
+    std::vector<size_t> groupOf(P.size(), m);
+    for (size_t k = 0; k < m; ++k)
+        for (size_t i : dirs[k].members) groupOf[i] = k;
+    std::vector<std::vector<size_t>> spanning(m);
+    for (size_t e = 0; e < P.size(); ++e) {
+        const size_t ga = groupOf[e], gb = groupOf[P.next(e)];
+        if (ga == m || gb == m) continue;  // an edge from q itself
+        const double c = cross(P[e] - q, P[P.next(e)] - q);
+        if (c == 0) continue;  // seen edge-on
+        for (size_t k = c > 0 ? ga : gb, to = c > 0 ? gb : ga; k != to; k = (k + 1) % m)
+            spanning[k].push_back(e);
+    }
+
     // Nearest edge in each open wedge (dirs[k], dirs[k+1]); none if the wedge leaves P.
     std::vector<std::optional<size_t>> wedgeEdge(m);
     for (size_t k = 0; k < m; ++k) {
@@ -141,7 +156,8 @@ VisibilityPolygon visibilityPolygon(const common::Polygon& P, const TPoint2D& vi
             mid = TVector2D(-a.y, a.x);  // the wedge spans half a turn or more
         mid = mid * (1 / mid.norm());
         if (!entersInterior(P, seat, mid)) continue;
-        const auto hit = P.rayCastEdge(q, mid, eps);
+        auto hit = P.rayCastEdge(q, mid, eps, spanning[k]);
+        if (!hit) hit = P.rayCastEdge(q, mid, eps);  // only if rounding misfiled an edge
         if (!hit) throw Error("visibility polygon: a ray from the viewpoint left the map");
         wedgeEdge[k] = hit->second;
     }

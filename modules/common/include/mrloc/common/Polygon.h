@@ -68,6 +68,10 @@ class Polygon {
     std::optional<std::pair<double, size_t>> rayCastEdge(const TPoint2D& origin,
                                                          const TVector2D& dir,
                                                          double tMin = 0) const;
+    /** The same among some edges only (edge i runs from vertex i to i+1). */
+    std::optional<std::pair<double, size_t>> rayCastEdge(const TPoint2D& origin,
+                                                         const TVector2D& dir, double tMin,
+                                                         const std::vector<size_t>& edges) const;
 
  private:
     std::vector<TPoint2D> v_;

@@ -32,9 +32,9 @@ struct VisibilityPolygon {
 /** Exact V(q) by sweeping the directions of P's vertices around q: between two consecutive
  *  directions one edge is nearest, so the boundary is that edge's piece; along each
  *  direction it steps from the left neighbour's edge to the right one's (a window, or a
- *  vertex). O(n^2) with n = |P|. Works for q strictly inside, on an edge or on a vertex
- *  (within P.epsilon()); collinear vertices are allowed. Throws mrloc::Error if q is
- *  outside P. */
+ *  vertex). O(n log n + the wedges each edge spans), O(n^2) at worst. Works for q strictly inside,
+ * on an edge or on a vertex (within P.epsilon()); collinear vertices are allowed. Throws
+ * mrloc::Error if q is outside P. */
 VisibilityPolygon visibilityPolygon(const common::Polygon& P, const TPoint2D& q);
 
 /** Symmetric Hausdorff distance between the boundaries of two visibility polygons placed at
