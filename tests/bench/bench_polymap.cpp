@@ -30,7 +30,8 @@ std::vector<TPoint2D> viewpoints(const common::Polygon& P, int count) {
     mrpt::random::CRandomGenerator rng(1);
     std::vector<TPoint2D> out;
     while ((int)out.size() < count) {
-        const TPoint2D p{rng.drawUniform(P.min().x, P.max().x), rng.drawUniform(P.min().y, P.max().y)};
+        const TPoint2D p{rng.drawUniform(P.min().x, P.max().x),
+                         rng.drawUniform(P.min().y, P.max().y)};
         if (P.locate(p) == common::Polygon::Where::Inside) out.push_back(p);
     }
     return out;
@@ -60,13 +61,14 @@ void BM_Hypotheses_Exact(benchmark::State& state) {
 void BM_Hypotheses_FromScan(benchmark::State& state) {
     const auto map = mapOfSize((int)state.range(0));
     mrpt::random::CRandomGenerator rng(2);
-    const auto scan = sim::scanFloorPlan(map.polygon, {map.sites[0].x, map.sites[0].y, 0.4}, {}, rng);
+    const auto scan =
+        sim::scanFloorPlan(map.polygon, {map.sites[0].x, map.sites[0].y, 0.4}, {}, rng);
     // The app's automatic tolerance: 6 sigma + a beam step times the farthest range + 1 cm.
     double rMax = 0;
     for (const auto& v : polymap::visibilityFromScan(*scan, 0.4, {}).vertices)
         rMax = std::max(rMax, v.norm());
-    const polymap::HypothesisGenerator gen(map.polygon,
-                                           {6 * 0.005 + 2 * M_PI / 1440 * rMax + 0.01, 3 * M_PI / 180});
+    const polymap::HypothesisGenerator gen(
+        map.polygon, {6 * 0.005 + 2 * M_PI / 1440 * rMax + 0.01, 3 * M_PI / 180});
     size_t k = 0;
     for (auto _ : state) k = gen.generate(polymap::visibilityFromScan(*scan, 0.4, {})).size();
     state.counters["n"] = double(map.polygon.size());

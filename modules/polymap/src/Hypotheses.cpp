@@ -109,7 +109,7 @@ std::vector<Hypothesis> HypothesisGenerator::generate(const VisibilityPolygon& V
         if (bestMatches.empty()) break;
     }
     HypothesisStats st;
-    st.corners = features.size();
+    st.features = features.size();
     st.proposed = bestMatches.size();
 
     TPoint2D lo{std::numeric_limits<double>::infinity(), std::numeric_limits<double>::infinity()};

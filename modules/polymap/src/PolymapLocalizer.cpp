@@ -63,7 +63,7 @@ nlohmann::json PolymapLocalizer::methodMetrics() const {
         rj["localized"] = r.hypotheses.size() == 1;
         rj["tolerance_m"] = r.tolerance;
         rj["sensed_vertices"] = r.sensed.size();
-        rj["features"] = r.stats.corners;
+        rj["features"] = r.stats.features;
         rj["proposed"] = r.stats.proposed;
         rj["verified"] = r.stats.verified;
         for (const auto& h : r.hypotheses)
