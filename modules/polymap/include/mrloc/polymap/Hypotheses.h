@@ -34,7 +34,7 @@ struct Hypothesis {
 };
 
 struct HypothesisStats {
-    size_t corners = 0;   ///< features of V used
+    size_t features = 0;  ///< features of V used (corners, else window ends)
     size_t proposed = 0;  ///< translations proposed by the anchor feature
     size_t verified = 0;  ///< exact visibility polygons computed
 };
