@@ -154,11 +154,8 @@ std::pair<TPoint2D, size_t> Polygon::closestBoundaryPoint(const TPoint2D& p) con
     return best;
 }
 
-namespace {
-
-/** Distance along the ray to edge a-b, if the ray meets it beyond tMin. */
-std::optional<double> hitEdge(const TPoint2D& a, const TPoint2D& b, const TPoint2D& o,
-                              const TVector2D& dir, double tMin) {
+std::optional<double> raySegmentHit(const TPoint2D& a, const TPoint2D& b, const TPoint2D& o,
+                                    const TVector2D& dir, double tMin) {
     const TVector2D e = b - a;
     const double denom = cross(dir, e);
     if (denom == 0) return std::nullopt;  // parallel: its ends are met through the neighbours
@@ -170,14 +167,12 @@ std::optional<double> hitEdge(const TPoint2D& a, const TPoint2D& b, const TPoint
     return std::nullopt;
 }
 
-}  // namespace
-
 std::optional<std::pair<double, size_t>> Polygon::rayCastEdge(const TPoint2D& o,
                                                               const TVector2D& dir,
                                                               double tMin) const {
     std::optional<std::pair<double, size_t>> best;
     for (size_t i = 0; i < v_.size(); ++i)
-        if (const auto t = hitEdge(v_[i], v_[next(i)], o, dir, tMin);
+        if (const auto t = raySegmentHit(v_[i], v_[next(i)], o, dir, tMin);
             t && (!best || *t < best->first))
             best = std::make_pair(*t, i);
     return best;
@@ -187,7 +182,7 @@ std::optional<std::pair<double, size_t>> Polygon::rayCastEdge(
     const TPoint2D& o, const TVector2D& dir, double tMin, const std::vector<size_t>& edges) const {
     std::optional<std::pair<double, size_t>> best;
     for (size_t i : edges)
-        if (const auto t = hitEdge(v_[i], v_[next(i)], o, dir, tMin);
+        if (const auto t = raySegmentHit(v_[i], v_[next(i)], o, dir, tMin);
             t && (!best || *t < best->first))
             best = std::make_pair(*t, i);
     return best;

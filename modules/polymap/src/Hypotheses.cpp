@@ -11,10 +11,7 @@ namespace {
 
 double angleOf(const TVector2D& d) { return std::atan2(d.y, d.x); }
 
-double angleGap(double a, double b) {
-    const double d = std::abs(std::remainder(a - b, 2 * M_PI));
-    return d;
-}
+double angleGap(double a, double b) { return std::abs(std::remainder(a - b, 2 * M_PI)); }
 
 long long cellKey(long long ix, long long iy) { return ix * 73856093LL ^ iy * 19349663LL; }
 

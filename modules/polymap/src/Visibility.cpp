@@ -20,15 +20,11 @@ bool VisibilityPolygon::isRadial(size_t i) const {
 }
 
 double VisibilityPolygon::radius(const TVector2D& dir) const {
-    double best = 0;
-    for (size_t i = 0; i < vertices.size(); ++i) {
-        const TPoint2D& a = vertices[i];
-        const TVector2D e = vertices[(i + 1) % vertices.size()] - a;
-        const double denom = cross(dir, e);
-        if (denom == 0) continue;
-        const double s = cross(a, dir) / denom, t = cross(a, e) / denom;
-        if (s >= -1e-12 && s <= 1 + 1e-12) best = std::max(best, t);
-    }
+    double best = 0;  // star-shaped about the origin: the farthest crossing is the boundary
+    for (size_t i = 0; i < vertices.size(); ++i)
+        if (const auto t = common::raySegmentHit(vertices[i], vertices[(i + 1) % vertices.size()],
+                                                 {0, 0}, dir, 0))
+            best = std::max(best, *t);
     return best;
 }
 
@@ -88,6 +84,11 @@ bool entersInterior(const common::Polygon& P, const Seat& seat, const TVector2D&
     return true;
 }
 
+/** One direction from the viewpoint, up to rounding. */
+bool sameDirection(const TVector2D& a, const TVector2D& b) {
+    return dot(a, b) > 0 && std::abs(cross(a, b)) <= 1e-12 * a.norm() * b.norm();
+}
+
 struct Direction {
     TVector2D d;                  ///< towards the first vertex of the group
     std::vector<size_t> members;  ///< P's vertices in this direction
@@ -111,7 +112,7 @@ VisibilityPolygon visibilityPolygon(const common::Polygon& P, const TPoint2D& vi
         const TVector2D d = P[i] - q;
         if (!dirs.empty()) {
             const TVector2D& last = dirs.back().d;
-            if (dot(last, d) > 0 && std::abs(cross(last, d)) <= 1e-12 * last.norm() * d.norm()) {
+            if (sameDirection(last, d)) {
                 dirs.back().members.push_back(i);
                 continue;
             }
@@ -120,7 +121,7 @@ VisibilityPolygon visibilityPolygon(const common::Polygon& P, const TPoint2D& vi
     }
     if (dirs.size() > 1) {  // the first and last groups may be one direction (angle -pi)
         const TVector2D &a = dirs.front().d, &b = dirs.back().d;
-        if (dot(a, b) > 0 && std::abs(cross(a, b)) <= 1e-12 * a.norm() * b.norm()) {
+        if (sameDirection(a, b)) {
             dirs.front().members.insert(dirs.front().members.end(), dirs.back().members.begin(),
                                         dirs.back().members.end());
             dirs.pop_back();

@@ -22,6 +22,10 @@ inline double cross(const TVector2D& a, const TVector2D& b) { return a.x * b.y -
 inline double dot(const TVector2D& a, const TVector2D& b) { return a.x * b.x + a.y * b.y; }
 /** Distance from p to the segment a-b. */
 double distanceToSegment(const TPoint2D& p, const TPoint2D& a, const TPoint2D& b);
+/** Distance t along o + t * dir to segment a-b, if the ray meets it with t > tMin (a
+ *  segment parallel to the ray is never met: its ends are, through its neighbours). */
+std::optional<double> raySegmentHit(const TPoint2D& a, const TPoint2D& b, const TPoint2D& o,
+                                    const TVector2D& dir, double tMin);
 /** The point of segment a-b nearest to p. */
 TPoint2D closestOnSegment(const TPoint2D& p, const TPoint2D& a, const TPoint2D& b);
 
