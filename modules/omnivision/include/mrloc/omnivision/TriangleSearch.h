@@ -1,0 +1,70 @@
+#pragma once
+// Triangle search and image identification (seed 000 section 2, Fig. 4-6).
+//
+// Three angles measured by three different robots that sum to 180 degrees are the interior
+// angles of the triangle those robots form; two such triangles sharing two robots identify
+// the image both angles use at each of them (Fig. 6: at A, the image in both 72.3 and 45.7
+// degrees is B). Two searches give the same answer:
+//  - identifyBruteForce(): the paper's search over every triple of angles (eq. (9)), then
+//    the identification by votes of triangle pairs. O(N^9) for N mutually visible robots;
+//    kept as the test oracle.
+//  - identify(): seed and grow. One triangle whose identities are fixed places three
+//    robots (up to scale) and their headings; every further robot must then appear where
+//    the rays of placed robots meet, and see them at the bearings that point predicts.
+//    Each acceptance is checked against every placed robot, so chance sums near 180
+//    degrees do not survive. Seeds come first from robots on the swarm's hull (their
+//    images span less than 180 degrees; the extreme images are hull neighbours).
+// Both report labels (which robot each image is), the triangles consistent with them
+// (every triple of mutually identified robots whose angles sum to 180 within tolerance)
+// and the robots left unresolved.
+#include <mrloc/omnivision/Snapshot.h>
+
+#include <array>
+#include <vector>
+
+namespace mrloc::omnivision {
+
+/** Three robots and, at each, the two images forming its interior angle. */
+struct Triangle {
+    std::array<int, 3> robot{};
+    std::array<std::array<int, 2>, 3> images{};  ///< at robot[v]: images of the other two
+    std::array<double, 3> angle{};               ///< interior angles (rad)
+    double sum() const { return angle[0] + angle[1] + angle[2]; }
+};
+
+/** labels[r][image] = the robot that image of robot r's camera shows, or -1. */
+using Labels = std::vector<std::vector<int>>;
+
+struct SearchOptions {
+    double sumTolerance = 0.5 * M_PI / 180;      ///< |sum - 180 deg| accepted (rad)
+    double bearingTolerance = 0.3 * M_PI / 180;  ///< a predicted bearing matches (rad)
+    size_t maxSeeds = 20000;                     ///< seed triangles tried by identify()
+};
+
+struct Identification {
+    Labels labels;
+    std::vector<Triangle> triangles;  ///< consistent with labels, sorted by robots
+    std::vector<int> unresolved;      ///< robots in no consistent triangle
+    size_t candidates = 0;            ///< angle triples (brute force) or seeds (fast) tried
+};
+
+/** Every triple of angles from three different robots summing to 180 degrees within
+ *  tolerance (seed 000 eq. (9)): the paper's search, chance sums included. */
+std::vector<Triangle> bruteForceTriangles(const Snapshot& s, double sumTolerance);
+
+/** Fig. 4-6: each pair of candidate triangles sharing two robots votes, at each shared
+ *  robot, for the image both angles use (and the other two images); each camera's images
+ *  take the labels with most votes, one image per robot. */
+Labels labelsByVotes(const Snapshot& s, const std::vector<Triangle>& candidates);
+
+/** The triangles of mutually identified robots whose angles sum to 180 within tolerance. */
+Identification consistentTriangles(const Snapshot& s, Labels labels, double sumTolerance);
+
+/** The paper's search and identification: the test oracle. */
+Identification identifyBruteForce(const Snapshot& s, const SearchOptions& o);
+
+/** Seed and grow (see above): the same answer, far faster. Uses the sign of the bearings
+ *  (all cameras share one handedness), which the paper's unsigned angles do not. */
+Identification identify(const Snapshot& s, const SearchOptions& o);
+
+}  // namespace mrloc::omnivision

@@ -1,0 +1,61 @@
+#pragma once
+// Omni-directional cameras on every robot (seed 000): each robot carries the same marker,
+// a coloured band around the camera, so that a camera sees the others but cannot tell
+// them apart.
+//  - render mode: the panorama (common::Panorama) rendered off screen with CFBORender,
+//    `views` pinhole views stitched into one strip, as a CObservationImage <robot>.omni;
+//  - bearings mode: the bearings of the visible markers with Gaussian noise, as a
+//    CObservationBearingRange <robot>.omni_bearings (range and identity unknown), for
+//    fast Monte Carlo.
+// A marker is visible within max_range when no other marker blocks the line of sight.
+#include <mrloc/common/Panorama.h>
+#include <mrpt/img/CImage.h>
+#include <mrpt/obs/CObservationBearingRange.h>
+#include <mrpt/obs/CObservationImage.h>
+#include <mrpt/poses/CPose2D.h>
+#include <mrpt/random/RandomGenerators.h>
+
+#include <memory>
+#include <string>
+#include <vector>
+
+namespace mrloc::sim {
+
+struct OmniCameraOptions {
+    bool render = true;                       ///< false: bearings mode
+    common::Panorama panorama;                ///< render mode
+    double bearingSigma = 0.05 * M_PI / 180;  ///< bearings mode noise (rad)
+    double maxRange = 0;                      ///< m; 0: unlimited
+    double markerRadius = 0.15;               ///< m: the band's radius (and what blocks sight)
+    double markerHeight = 0.2;                ///< m
+    double cameraHeight = 0.5;                ///< m: camera and band centre above the floor
+};
+
+/** What robot `observer` would see: the true bearings (robot frame) of the visible
+ *  robots, and which robot each is. */
+struct TrueSighting {
+    std::vector<double> bearings;
+    std::vector<int> robots;
+};
+TrueSighting sightingsOf(const std::vector<mrpt::poses::CPose2D>& poses, size_t observer,
+                         const OmniCameraOptions& o);
+
+/** Bearings mode: the sightings with noise, in a random order (the image carries no
+ *  identity). */
+mrpt::obs::CObservationBearingRange::Ptr senseBearings(
+    const std::vector<mrpt::poses::CPose2D>& poses, size_t observer, const OmniCameraOptions& o,
+    mrpt::random::CRandomGenerator& rng);
+
+/** Render mode: one CFBORender context reused for every robot and instant. */
+class OmniRenderer {
+ public:
+    explicit OmniRenderer(const OmniCameraOptions& o);
+    ~OmniRenderer();
+    mrpt::img::CImage render(const std::vector<mrpt::poses::CPose2D>& poses, size_t observer);
+
+ private:
+    struct Impl;
+    std::unique_ptr<Impl> impl_;
+};
+
+}  // namespace mrloc::sim

@@ -1,0 +1,124 @@
+#include <mrloc/common/Error.h>
+#include <mrloc/sim/OmniCamera.h>
+#include <mrpt/img/TCamera.h>
+#include <mrpt/math/CMatrixFixed.h>
+#include <mrpt/math/wrap2pi.h>
+#include <mrpt/opengl/CCylinder.h>
+#include <mrpt/opengl/CDisk.h>
+#include <mrpt/opengl/CFBORender.h>
+#include <mrpt/opengl/COpenGLScene.h>
+#include <mrpt/poses/CPose3D.h>
+
+#include <algorithm>
+#include <cmath>
+#include <numeric>
+
+namespace mrloc::sim {
+
+TrueSighting sightingsOf(const std::vector<mrpt::poses::CPose2D>& poses, size_t observer,
+                         const OmniCameraOptions& o) {
+    TrueSighting out;
+    const auto& me = poses[observer];
+    for (size_t j = 0; j < poses.size(); ++j) {
+        if (j == observer) continue;
+        const double dx = poses[j].x() - me.x(), dy = poses[j].y() - me.y();
+        const double dist = std::hypot(dx, dy);
+        if (o.maxRange > 0 && dist > o.maxRange) continue;
+        bool blocked = false;
+        for (size_t k = 0; k < poses.size() && !blocked; ++k) {
+            if (k == observer || k == j) continue;
+            const double kx = poses[k].x() - me.x(), ky = poses[k].y() - me.y();
+            const double along = (kx * dx + ky * dy) / dist;
+            if (along <= 0 || along >= dist) continue;
+            blocked = std::abs(kx * dy - ky * dx) / dist < o.markerRadius;
+        }
+        if (blocked) continue;
+        out.bearings.push_back(mrpt::math::wrapToPi(std::atan2(dy, dx) - me.phi()));
+        out.robots.push_back(int(j));
+    }
+    return out;
+}
+
+mrpt::obs::CObservationBearingRange::Ptr senseBearings(
+    const std::vector<mrpt::poses::CPose2D>& poses, size_t observer, const OmniCameraOptions& o,
+    mrpt::random::CRandomGenerator& rng) {
+    auto seen = sightingsOf(poses, observer, o);
+    std::vector<size_t> order(seen.bearings.size());
+    std::iota(order.begin(), order.end(), 0);
+    for (size_t i = order.size(); i > 1; --i)  // Fisher-Yates with MRPT's generator
+        std::swap(order[i - 1], order[size_t(rng.drawUniform32bit() % i)]);
+    auto obs = mrpt::obs::CObservationBearingRange::Create();
+    obs->fieldOfView_yaw = float(2 * M_PI);
+    obs->fieldOfView_pitch = 0;
+    obs->maxSensorDistance = float(o.maxRange);
+    obs->sensor_std_yaw = float(o.bearingSigma);
+    obs->sensorLocationOnRobot = mrpt::poses::CPose3D(0, 0, o.cameraHeight, 0, 0, 0);
+    for (size_t i : order) {
+        mrpt::obs::CObservationBearingRange::TMeasurement m;
+        m.range = 0;  // unknown: a camera measures directions only
+        m.yaw =
+            float(mrpt::math::wrapToPi(seen.bearings[i] + rng.drawGaussian1D(0, o.bearingSigma)));
+        m.pitch = 0;
+        m.landmarkID = -1;  // identity unknown: every robot carries the same marker
+        obs->sensedData.push_back(m);
+    }
+    return obs;
+}
+
+struct OmniRenderer::Impl {
+    OmniCameraOptions o;
+    mrpt::opengl::CFBORender fbo;
+    explicit Impl(const OmniCameraOptions& opts)
+        : o(opts), fbo(unsigned(opts.panorama.viewWidth), unsigned(opts.panorama.height)) {}
+};
+
+OmniRenderer::OmniRenderer(const OmniCameraOptions& o) : impl_(std::make_unique<Impl>(o)) {}
+OmniRenderer::~OmniRenderer() = default;
+
+mrpt::img::CImage OmniRenderer::render(const std::vector<mrpt::poses::CPose2D>& poses,
+                                       size_t observer) {
+    const auto& o = impl_->o;
+    const auto& pano = o.panorama;
+    mrpt::opengl::COpenGLScene scene;
+    scene.getViewport()->setCustomBackgroundColor({0.85f, 0.9f, 0.95f});
+    auto floor = mrpt::opengl::CDisk::Create(200.0f, 0.0f);
+    floor->setColor_u8(120, 120, 120);
+    scene.insert(floor);
+    for (size_t j = 0; j < poses.size(); ++j) {
+        if (j == observer) continue;  // the camera sits inside its own band
+        auto band = mrpt::opengl::CCylinder::Create(o.markerRadius, o.markerRadius, o.markerHeight);
+        band->setColor_u8(230, 20, 20);
+        band->setLocation(poses[j].x(), poses[j].y(), o.cameraHeight - 0.5 * o.markerHeight);
+        scene.insert(band);
+    }
+    mrpt::img::TCamera intrinsics;
+    intrinsics.ncols = uint32_t(pano.viewWidth);
+    intrinsics.nrows = uint32_t(pano.height);
+    intrinsics.setIntrinsicParamsFromValues(pano.focal(), pano.focal(), 0.5 * (pano.viewWidth - 1),
+                                            0.5 * (pano.height - 1));
+    mrpt::opengl::CCamera camera;
+    camera.set6DOFMode(true);
+    camera.setProjectiveFromPinhole(intrinsics);
+    mrpt::img::CImage strip(pano.width(), pano.height, mrpt::img::CH_RGB);
+    const auto& me = poses[observer];
+    for (int k = 0; k < pano.views; ++k) {
+        const double psi = me.phi() + pano.viewAzimuth(k);
+        // Camera axes in the world: +Z forward, +X right, +Y down (MRPT's 6DOF camera).
+        mrpt::math::CMatrixDouble33 R;
+        R(0, 0) = std::sin(psi), R(0, 1) = 0, R(0, 2) = std::cos(psi);
+        R(1, 0) = -std::cos(psi), R(1, 1) = 0, R(1, 2) = std::sin(psi);
+        R(2, 0) = 0, R(2, 1) = -1, R(2, 2) = 0;
+        const mrpt::math::CVectorFixedDouble<3> t(
+            std::array<double, 3>{me.x(), me.y(), o.cameraHeight}.data());
+        camera.setPose(mrpt::poses::CPose3D::FromRotationAndTranslation(R, t));
+        impl_->fbo.setCamera(scene, camera);
+        mrpt::img::CImage view;
+        impl_->fbo.render_RGB(scene, view);
+        if (int(view.getWidth()) != pano.viewWidth || int(view.getHeight()) != pano.height)
+            throw Error("omni camera: the renderer returned a view of the wrong size");
+        strip.drawImage(k * pano.viewWidth, 0, view);
+    }
+    return strip;
+}
+
+}  // namespace mrloc::sim

@@ -1,0 +1,178 @@
+// Triangle search and identification: seed 000 Fig. 6, the fast search against the
+// brute-force oracle, and robustness to chance sums near 180 degrees.
+#include <gtest/gtest.h>
+#include <mrloc/omnivision/TriangleSearch.h>
+
+#include "Swarm.h"
+
+using namespace mrloc;
+using namespace mrloc::omnivision;
+
+namespace {
+
+constexpr double kDeg = M_PI / 180;
+
+struct LabelScore {
+    size_t right = 0, wrong = 0, images = 0;
+};
+
+LabelScore score(const Labels& got, const Labels& truth) {
+    LabelScore s;
+    for (size_t r = 0; r < truth.size(); ++r)
+        for (size_t i = 0; i < truth[r].size(); ++i) {
+            ++s.images;
+            if (got[r][i] >= 0) (got[r][i] == truth[r][i] ? s.right : s.wrong)++;
+        }
+    return s;
+}
+
+/** Seed 000 Fig. 6: the angles each robot measured. A, B and C see three images, D four,
+ *  E none; a view's bearings are rebuilt from its angles (0, then cumulative sums). */
+Snapshot figure6() {
+    const auto view = [](std::vector<double> deg) {
+        for (auto& d : deg) d *= kDeg;
+        return makeView(deg, "fig6");
+    };
+    Snapshot s;
+    s.views = {view({0, 45.7, 72.3}),         // A: 45.7, 72.3, 26.6
+               view({0, 49.7, 93.0}),         // B: 49.7, 43.3, 93.0
+               view({0, 58.0, 123.8}),        // C: 58.0, 65.8, 123.8
+               view({0, 29.6, 70.9, 167.8}),  // D: the six angles of Fig. 6
+               view({})};                     // E: sees nothing
+    return s;
+}
+
+}  // namespace
+
+TEST(TriangleSearch, AnglesOfAViewAreAllPairs) {
+    const auto v = makeView({0, 29.6 * kDeg, 70.9 * kDeg, 167.8 * kDeg}, "D");
+    const auto a = anglesOf(v);
+    ASSERT_EQ(a.size(), 6u);  // n(n-1)/2
+    std::vector<double> deg;
+    for (const auto& x : a) deg.push_back(std::round(x.angle / kDeg * 10) / 10);
+    std::sort(deg.begin(), deg.end());
+    EXPECT_EQ(deg, (std::vector<double>{29.6, 41.3, 70.9, 96.9, 138.2, 167.8}));
+    EXPECT_NEAR(interiorAngle(makeView({-170 * kDeg, 170 * kDeg}, "wrap"), 0, 1), 20 * kDeg, 1e-12);
+}
+
+TEST(TriangleSearch, Figure6FindsTrianglesABCAndABDAndResolvesTheImages) {
+    const auto s = figure6();
+    const auto candidates = bruteForceTriangles(s, 0.06 * kDeg);
+    const auto has = [&](std::array<int, 3> robots, std::array<double, 3> deg) {
+        return std::any_of(candidates.begin(), candidates.end(), [&](const Triangle& t) {
+            if (t.robot != robots) return false;
+            for (size_t v = 0; v < 3; ++v)
+                if (std::abs(t.angle[v] / kDeg - deg[v]) > 0.051) return false;
+            return true;
+        });
+    };
+    EXPECT_TRUE(has({0, 1, 2}, {72.3, 49.7, 58.0}));  // ABC
+    EXPECT_TRUE(has({0, 1, 3}, {45.7, 93.0, 41.3}));  // ABD
+    // The other two faces of the tetrahedron ABCD close too: ACD and BCD.
+    EXPECT_TRUE(has({0, 2, 3}, {26.6, 123.8, 29.6}));
+    EXPECT_TRUE(has({1, 2, 3}, {43.3, 65.8, 70.9}));
+    EXPECT_EQ(candidates.size(), 4u);
+
+    SearchOptions o;
+    o.sumTolerance = 0.06 * kDeg;
+    const auto id = identifyBruteForce(s, o);
+    // At A (images at 0, 45.7, 72.3 deg): the image in both 72.3 and 45.7 is B, the one
+    // only in 72.3 is C and the one only in 45.7 is D (seed 000 section 2).
+    EXPECT_EQ(id.labels[0], (std::vector<int>{1, 3, 2}));
+    EXPECT_EQ(id.labels[1], (std::vector<int>{0, 2, 3}));  // B: 49.7 is A-C, 93.0 is A-D
+    EXPECT_EQ(id.labels[2], (std::vector<int>{0, 1, 3}));  // C: 58.0 is A-B, 65.8 is B-D
+    // D's fourth image (E, seen by D alone) is in no triangle: it stays unidentified.
+    EXPECT_EQ(id.labels[3], (std::vector<int>{2, 0, 1, -1}));
+    EXPECT_EQ(id.triangles.size(), 4u);
+    EXPECT_EQ(id.unresolved, (std::vector<int>{4}));  // E
+}
+
+TEST(TriangleSearch, FastFindsEveryLabelOfAMutuallyVisibleSwarm) {
+    for (size_t n : {5, 10, 20, 30}) {
+        const auto sw = testing_omni::randomSwarm(n, unsigned(n), 0.02);
+        SearchOptions o;
+        o.sumTolerance = 0.2 * kDeg;
+        o.bearingTolerance = 0.1 * kDeg;
+        const auto id = identify(sw.snapshot, o);
+        const auto sc = score(id.labels, sw.truth);
+        EXPECT_EQ(sc.wrong, 0u) << "N = " << n;
+        // Images of two robots nearly in line from a camera stay unlabeled (ambiguous).
+        EXPECT_GE(double(sc.right), 0.97 * double(sc.images)) << "N = " << n;
+        EXPECT_TRUE(id.unresolved.empty()) << "N = " << n;
+        // A missing label removes the N - 2 triangles through that pair.
+        EXPECT_GE(id.triangles.size(), size_t(0.6 * double(n * (n - 1) * (n - 2) / 6)));
+        for (const auto& t : id.triangles) EXPECT_LE(std::abs(t.sum() - M_PI), o.sumTolerance);
+    }
+}
+
+TEST(TriangleSearch, FastAgreesWithTheBruteForceOracle) {
+    for (unsigned seed = 1; seed <= 6; ++seed) {
+        const size_t n = 5 + seed % 4;  // 5..8 robots
+        // Noise-free: the paper's search then has no chance sums and is exact.
+        const auto sw = testing_omni::randomSwarm(n, seed * 31, 0.0, 10, 1.0);
+        SearchOptions o;
+        o.sumTolerance = 1e-6;
+        o.bearingTolerance = 1e-6;
+        const auto fast = identify(sw.snapshot, o);
+        const auto brute = identifyBruteForce(sw.snapshot, o);
+        EXPECT_EQ(score(brute.labels, sw.truth).wrong, 0u) << "seed " << seed;
+        size_t visibleTriples = 0;  // markers may hide one another
+        const auto sees = [&](size_t a, size_t b) {
+            return std::count(sw.truth[a].begin(), sw.truth[a].end(), int(b)) > 0;
+        };
+        for (size_t i = 0; i < n; ++i)
+            for (size_t j = i + 1; j < n; ++j)
+                for (size_t k = j + 1; k < n; ++k)
+                    visibleTriples += sees(i, j) && sees(j, i) && sees(i, k) && sees(k, i) &&
+                                      sees(j, k) && sees(k, j);
+        EXPECT_EQ(brute.triangles.size(), visibleTriples) << "seed " << seed;
+        ASSERT_EQ(fast.triangles.size(), brute.triangles.size()) << "seed " << seed;
+        for (size_t t = 0; t < fast.triangles.size(); ++t)
+            EXPECT_EQ(fast.triangles[t].robot, brute.triangles[t].robot);
+        EXPECT_EQ(fast.unresolved, brute.unresolved);
+        // Labels agree wherever the oracle decided.
+        for (size_t r = 0; r < n; ++r)
+            for (size_t i = 0; i < sw.truth[r].size(); ++i)
+                if (brute.labels[r][i] >= 0) {
+                    EXPECT_EQ(fast.labels[r][i], brute.labels[r][i]);
+                }
+    }
+}
+
+TEST(TriangleSearch, ChanceSumsDoNotSurviveConsistency) {
+    // N = 10 with a loose tolerance: the paper's search finds far more angle triples than
+    // the 120 true triangles (and its votes go astray); the fast search keeps only
+    // triangles consistent with one layout.
+    const auto sw = testing_omni::randomSwarm(10, 77, 0.05);
+    SearchOptions o;
+    o.sumTolerance = 0.5 * kDeg;
+    o.bearingTolerance = 0.2 * kDeg;
+    const auto raw = bruteForceTriangles(sw.snapshot, o.sumTolerance);
+    EXPECT_GT(raw.size(), 500u);
+    const auto fast = identify(sw.snapshot, o);
+    EXPECT_EQ(score(fast.labels, sw.truth).wrong, 0u);
+    EXPECT_LE(fast.triangles.size(), 120u);
+    EXPECT_GE(fast.triangles.size(), 100u);
+    // Every reported triangle is a true one.
+    for (const auto& t : fast.triangles)
+        for (size_t v = 0; v < 3; ++v)
+            for (int img : t.images[v]) {
+                const int who = sw.truth[size_t(t.robot[v])][size_t(img)];
+                EXPECT_NE(std::find(t.robot.begin(), t.robot.end(), who), t.robot.end());
+            }
+}
+
+TEST(TriangleSearch, PartialVisibilityLeavesRobotsUnresolved) {
+    // A robot seen by one camera only is in no triangle: reported, not guessed.
+    std::vector<mrpt::poses::CPose2D> poses = {
+        {0, 0, 0.3}, {6, 0, -1}, {3, 5, 2}, {2, 2, 0.1}, {40, 40, 0}};
+    auto sw = testing_omni::viewsOf(poses, 0.0, 3, /*maxRange=*/20);
+    // Give robot 3 a sighting of the far robot 4 only it has (a lone image).
+    SearchOptions o;
+    o.sumTolerance = 0.05 * kDeg;
+    o.bearingTolerance = 0.05 * kDeg;
+    const auto id = identify(sw.snapshot, o);
+    EXPECT_EQ(id.unresolved, (std::vector<int>{4}));
+    EXPECT_EQ(score(id.labels, sw.truth).wrong, 0u);
+    EXPECT_EQ(id.triangles.size(), 4u);  // the four robots 0..3 are mutually visible
+}
