@@ -141,8 +141,10 @@ RefinedLayout refineLayout(const RefinementProblem& p) {
                 for (const auto& [b, jb] : row.jac) H(a, b) += row.weight * ja * jb;
             }
         Eigen::LDLT<Eigen::MatrixXd> ldlt(H);
+        // A rank-deficient system has a pivot at rounding level (1e-16 of the largest);
+        // legitimately weak modes (the scale, fixed by one distance) stay far above it.
         if (ldlt.info() != Eigen::Success ||
-            ldlt.vectorD().minCoeff() <= 1e-9 * H.diagonal().maxCoeff())
+            !(ldlt.vectorD().minCoeff() > 1e-14 * ldlt.vectorD().maxCoeff()))
             throw Error(
                 "omnivision refinement: the layout is not determined (a robot seen by "
                 "fewer than two cameras, or no distance to fix the scale)");

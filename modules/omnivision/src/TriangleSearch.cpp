@@ -12,7 +12,13 @@
 
 namespace mrloc::omnivision {
 
-using mrpt::math::wrapToPi;
+/** Wraps to (-pi, pi] for angles a few turns away at most: the hot loops call it often
+ *  and mrpt::math::wrapToPi's fmod dominated their profile. */
+inline double wrapToPi(double a) {
+    while (a > M_PI) a -= 2 * M_PI;
+    while (a <= -M_PI) a += 2 * M_PI;
+    return a;
+}
 using Vec2 = Eigen::Vector2d;
 
 // ---------------------------------------------------------------------------------------
@@ -205,7 +211,32 @@ struct Candidate {
 
 class Grower {
  public:
-    Grower(const Snapshot& s, const SearchOptions& o) : s_(s), o_(o), n_(int(s.robots())) {}
+    Grower(const Snapshot& s, const SearchOptions& o) : s_(s), o_(o), n_(int(s.robots())) {
+        pairs_.resize(size_t(n_));
+        for (int r = 0; r < n_; ++r) {
+            const auto& v = s_.views[size_t(r)];
+            for (int e = 0; e < int(v.size()); ++e)
+                for (int f = 0; f < int(v.size()); ++f)
+                    if (e != f) pairs_[size_t(r)].push_back({signedAngle(v, e, f), e, f});
+            std::sort(pairs_[size_t(r)].begin(), pairs_[size_t(r)].end(),
+                      [](const PairAngle& a, const PairAngle& b) { return a.angle < b.angle; });
+        }
+    }
+
+    /** Calls f(e, g) for every ordered pair of robot r's images whose signed angle is
+     *  within tol of delta. */
+    template <class F>
+    void forPairsNear(int r, double delta, double tol, F&& f) const {
+        const auto& ps = pairs_[size_t(r)];
+        const auto scan = [&](double lo, double hi) {
+            auto it = std::lower_bound(ps.begin(), ps.end(), lo,
+                                       [](const PairAngle& p, double v) { return p.angle < v; });
+            for (; it != ps.end() && it->angle <= hi; ++it) f(it->from, it->to);
+        };
+        scan(delta - tol, delta + tol);
+        if (delta - tol < -M_PI) scan(delta - tol + 2 * M_PI, M_PI);
+        if (delta + tol > M_PI) scan(-M_PI, delta + tol - 2 * M_PI);
+    }
 
     /** The unlabeled image of robot r nearest the bearing b (robot frame), within tol. */
     int findImage(const Labels& labels, int r, double b, double tol) const {
@@ -282,33 +313,50 @@ class Grower {
     /** Robots that could stand where a ray of s1 meets a ray of s2. */
     std::vector<Candidate> candidates(const Layout& L, int s1, int s2, size_t minRays,
                                       size_t minSeen) const {
-        std::vector<Candidate> out;
+        std::vector<Candidate> out, points;
+        std::vector<std::pair<int, int>> rays;
+        size_t maxRays = 0;
         const auto& lab = L.labels;
+        std::vector<std::pair<int, Vec2>> rays2;  // s2's unlabeled images and their rays
+        for (size_t d = 0; d < lab[size_t(s2)].size(); ++d)
+            if (lab[size_t(s2)][d] < 0)
+                rays2.push_back({int(d), unit(L.heading[size_t(s2)] + bearing(s2, int(d)))});
         for (size_t c = 0; c < lab[size_t(s1)].size(); ++c) {
             if (lab[size_t(s1)][c] >= 0) continue;
             const Vec2 u1 = unit(L.heading[size_t(s1)] + bearing(s1, int(c)));
-            for (size_t d = 0; d < lab[size_t(s2)].size(); ++d) {
-                if (lab[size_t(s2)][d] >= 0) continue;
-                const Vec2 u2 = unit(L.heading[size_t(s2)] + bearing(s2, int(d)));
+            for (const auto& [d, u2] : rays2) {
                 const double den = cross(u1, u2);
                 if (std::abs(den) < kMinRayAngle) continue;  // nearly parallel: ill-conditioned
                 const Vec2 w = L.p[size_t(s2)] - L.p[size_t(s1)];
                 const double t1 = cross(w, u2) / den, t2 = cross(w, u1) / den;
                 if (t1 <= 1e-9 || t2 <= 1e-9) continue;  // the rays meet behind a camera
-                Candidate cand;
-                cand.at = L.p[size_t(s1)] + t1 * u1;
-                cand.raysIn = {{s1, int(c)}, {s2, int(d)}};
+                const Vec2 at = L.p[size_t(s1)] + t1 * u1;
+                rays.assign({{s1, int(c)}, {s2, d}});
+                // Every other placed robot that sees the point confirms it. A chance meeting
+                // of two rays is confirmed by few: stop checking once misses outweigh hits.
+                size_t misses = 0;
                 for (int s : L.order) {
                     if (s == s1 || s == s2) continue;
-                    const double b = direction(L.p[size_t(s)], cand.at) - L.heading[size_t(s)];
-                    const double t = tolAt(L, (cand.at - L.p[size_t(s)]).norm());
+                    const double b = direction(L.p[size_t(s)], at) - L.heading[size_t(s)];
+                    const double t = tolAt(L, (at - L.p[size_t(s)]).norm());
                     if (const int img = findImage(lab, s, b, t); img >= 0)
-                        cand.raysIn.push_back({s, img});
+                        rays.push_back({s, img});
+                    else if (++misses > 2 * (rays.size() - 2) + kMissSlack)
+                        break;
                 }
-                if (cand.raysIn.size() < minRays) continue;
-                refinePoint(L, cand);
-                identifyRobot(L, cand, minSeen, out);
+                if (rays.size() < minRays) continue;
+                maxRays = std::max(maxRays, rays.size());
+                Candidate cand;
+                cand.at = at;
+                cand.raysIn = rays;
+                points.push_back(std::move(cand));
             }
+        }
+        // Only points about as well confirmed as the best are worth identifying.
+        for (auto& cand : points) {
+            if (2 * cand.raysIn.size() < maxRays) continue;
+            refinePoint(L, cand);
+            identifyRobot(L, cand, minSeen, out);
         }
         return out;
     }
@@ -339,29 +387,31 @@ class Grower {
         for (int l = 0; l < n_; ++l) {
             if (L.placed[size_t(l)] || s_.views[size_t(l)].size() < 2) continue;
             Candidate best;
-            for (size_t e = 0; e < s_.views[size_t(l)].size(); ++e) {
-                const int f = findImage({}, l, bearing(l, int(e)) + delta, tol[0] + tol[1]);
-                if (f < 0 || f == int(e)) continue;
+            forPairsNear(l, delta, tol[0] + tol[1], [&](int e, int f) {
                 // Heading from the two anchors, then every other ray.
-                const double h = std::atan2(
-                    std::sin(dir[0] - bearing(l, int(e))) + std::sin(dir[1] - bearing(l, f)),
-                    std::cos(dir[0] - bearing(l, int(e))) + std::cos(dir[1] - bearing(l, f)));
-                Candidate k = c;
+                const double h =
+                    std::atan2(std::sin(dir[0] - bearing(l, e)) + std::sin(dir[1] - bearing(l, f)),
+                               std::cos(dir[0] - bearing(l, e)) + std::cos(dir[1] - bearing(l, f)));
+                Candidate k;
                 k.robot = l;
+                k.at = c.at;
                 k.heading = h;
-                k.seen.clear();
+                k.raysIn = c.raysIn;
                 std::set<int> used;
+                size_t misses = 0;  // a wrong robot fails fast: stop once misses outweigh hits
                 for (size_t i = 0; i < c.raysIn.size(); ++i) {
                     const int img = findImage({}, l, dir[i] - h, tol[i]);
-                    if (img < 0 || !used.insert(img).second) continue;
-                    k.seen.push_back({c.raysIn[i].first, img});
+                    if (img >= 0 && used.insert(img).second)
+                        k.seen.push_back({c.raysIn[i].first, img});
+                    else if (++misses > 2 * k.seen.size() + kMissSlack)
+                        return;
                 }
-                if (k.seen.size() < minSeen) continue;
+                if (k.seen.size() < minSeen) return;
                 k.residual = residual(L, k);
                 if (best.robot < 0 || k.evidence() > best.evidence() ||
                     (k.evidence() == best.evidence() && k.residual < best.residual))
                     best = std::move(k);
-            }
+            });
             if (best.robot >= 0) out.push_back(std::move(best));
         }
     }
@@ -409,15 +459,24 @@ class Grower {
      *  - Later, every candidate with at least half the round's best evidence, best first. */
     bool growOnce(Layout& L) const {
         const size_t placed = L.order.size();
-        // Anchor pairs: those among the first few placed robots together, then the others
-        // one at a time until a pair yields candidates.
+        // Anchor pairs: those among the first few placed robots together, then pairs of the
+        // robots with most unlabeled images (they see what is left), one pair at a time.
         std::vector<std::vector<std::pair<int, int>>> groups(1);
-        for (size_t a = 0; a < placed; ++a)
-            for (size_t b = a + 1; b < placed; ++b) {
-                if (b >= kAnchors) groups.emplace_back();
-                groups.back().push_back({L.order[a], L.order[b]});
-            }
-        for (const auto& group : groups) {
+        for (size_t a = 0; a < std::min(placed, kAnchors); ++a)
+            for (size_t b = a + 1; b < std::min(placed, kAnchors); ++b)
+                groups[0].push_back({L.order[a], L.order[b]});
+        std::vector<std::pair<size_t, int>> open;  // (unlabeled images, robot)
+        for (int r : L.order) {
+            const auto& lab = L.labels[size_t(r)];
+            if (const auto u = size_t(std::count(lab.begin(), lab.end(), -1)); u > 0)
+                open.push_back({u, r});
+        }
+        std::stable_sort(open.begin(), open.end(), std::greater<>());
+        for (size_t a = 0; a < open.size(); ++a)
+            for (size_t b = a + 1; b < open.size() && groups.size() < kAnchorGroups; ++b)
+                groups.push_back({{open[a].second, open[b].second}});
+        for (size_t gi = 0; gi < groups.size() && gi < kAnchorGroups; ++gi) {
+            const auto& group = groups[gi];
             std::vector<Candidate> cs;
             for (const auto& [s1, s2] : group) {
                 auto more = candidates(L, s1, s2, 3, 3);
@@ -442,7 +501,10 @@ class Grower {
                 place(L, cs.front());
                 return true;
             }
-            const size_t bar = std::max<size_t>(kMinEvidence, 3 * cs.front().evidence() / 4);
+            // A robot must agree with at least a quarter of the placed robots (rays in plus
+            // robots seen >= half the layout): chance agreement grows with the layout, true
+            // agreement grows faster.
+            const size_t bar = std::max({kMinEvidence, placed / 2, 3 * cs.front().evidence() / 4});
             bool any = false;
             for (const auto& c : cs) {
                 const bool mutual =
@@ -463,8 +525,8 @@ class Grower {
         for (int r = 0; r < n_; ++r)
             left |= !L.placed[size_t(r)] && s_.views[size_t(r)].size() >= 2;
         if (!left) return true;
-        for (size_t a = 0; a < k; ++a)
-            for (size_t b = a + 1; b < k; ++b)
+        for (size_t a = 0; a < 2; ++a)  // the seed's rays: the best known
+            for (size_t b = a + 1; b < 3; ++b)
                 if (!candidates(L, L.order[a], L.order[b], k, k).empty()) return true;
         return false;
     }
@@ -637,10 +699,19 @@ class Grower {
     }
 
  private:
+    struct PairAngle {
+        double angle;  ///< signed, from image `from` to image `to`
+        int from, to;
+    };
+    std::vector<std::vector<PairAngle>> pairs_;   ///< per robot, sorted by angle
     static constexpr double kMinRayAngle = 0.02;  ///< sin of ~1.1 degrees
-    static constexpr size_t kLookahead = 8;
+    static constexpr size_t kLookahead = 6;
     static constexpr size_t kSmallLayout = 6;
-    static constexpr size_t kAnchors = 4;      ///< the first robots, whose pairs all give rays
+    static constexpr size_t kAnchors = 4;
+    static constexpr size_t kMissSlack = 4;
+    static constexpr size_t kAnchorGroups =
+        8;  ///< anchor pairs tried per round, at most  ///< misses allowed beyond twice the hits
+            ///< ///< the first robots, whose pairs all give rays
     static constexpr size_t kMinEvidence = 8;  ///< rays in plus robots seen
     const Snapshot& s_;
     const SearchOptions& o_;

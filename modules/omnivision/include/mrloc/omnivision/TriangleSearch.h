@@ -38,7 +38,7 @@ using Labels = std::vector<std::vector<int>>;
 struct SearchOptions {
     double sumTolerance = 0.5 * M_PI / 180;      ///< |sum - 180 deg| accepted (rad)
     double bearingTolerance = 0.3 * M_PI / 180;  ///< a predicted bearing matches (rad)
-    size_t maxSeeds = 20000;                     ///< seed triangles tried by identify()
+    size_t maxSeeds = 200;  ///< seed triangles identify() grows before it gives up
 };
 
 struct Identification {
