@@ -88,14 +88,15 @@ mrpt::img::CImage OmniRenderer::render(const std::vector<mrpt::poses::CPose2D>& 
         if (j == observer) continue;  // the camera sits inside its own band
         auto band = mrpt::opengl::CCylinder::Create(o.markerRadius, o.markerRadius, o.markerHeight);
         band->setColor_u8(230, 20, 20);
+        band->enableLight(false);  // flat colour: the detector thresholds it
         band->setLocation(poses[j].x(), poses[j].y(), o.cameraHeight - 0.5 * o.markerHeight);
         scene.insert(band);
     }
     mrpt::img::TCamera intrinsics;
     intrinsics.ncols = uint32_t(pano.viewWidth);
     intrinsics.nrows = uint32_t(pano.height);
-    intrinsics.setIntrinsicParamsFromValues(pano.focal(), pano.focal(), 0.5 * (pano.viewWidth - 1),
-                                            0.5 * (pano.height - 1));
+    intrinsics.setIntrinsicParamsFromValues(pano.focal(), pano.focal(), 0.5 * pano.viewWidth,
+                                            0.5 * pano.height);
     mrpt::opengl::CCamera camera;
     camera.set6DOFMode(true);
     camera.setProjectiveFromPinhole(intrinsics);

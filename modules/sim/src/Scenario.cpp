@@ -106,6 +106,22 @@ ScenarioConfig ScenarioConfig::load(const mrpt::config::CConfigFileBase& ini) {
     return c;
 }
 
+ScenarioConfig ScenarioConfig::load(const mrpt::config::CConfigFileBase& ini,
+                                    std::vector<RobotOptions> robots) {
+    ScenarioConfig c = loadCommon(ini);
+    if (!c.scenario.robots.empty())
+        throw Error(common::configOrigin(ini) +
+                    ": [scenario] robots: the robots are generated here; leave the key out");
+    for (const auto& r : robots) {
+        if (!c.world.contains({r.start.x(), r.start.y(), 0}))
+            throw Error(common::configOrigin(ini) + ": generated robot " + r.name +
+                        " starts outside the room");
+        c.scenario.robots.push_back(r.name);
+    }
+    c.robots = std::move(robots);
+    return c;
+}
+
 void ScenarioConfig::save(mrpt::config::CConfigFileBase& t) const {
     scenario.saveToConfigFile(t, "scenario");
     world.saveToConfigFile(t, "world");

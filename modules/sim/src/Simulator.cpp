@@ -1,8 +1,11 @@
 #include <mrloc/common/AtomicFile.h>
 #include <mrloc/common/Error.h>
 #include <mrloc/sim/BeaconRanging.h>
+#include <mrloc/sim/OmniCamera.h>
 #include <mrloc/sim/Simulator.h>
 #include <mrpt/math/wrap2pi.h>
+#include <mrpt/obs/CObservationImage.h>
+#include <mrpt/obs/CObservationRange.h>
 #include <mrpt/random/RandomGenerators.h>
 
 #include <algorithm>
@@ -56,6 +59,21 @@ SimulationResult Simulator::run(common::RawlogWriter& out, SimulationHooks hooks
     const auto& plan = config_.floorPlan;
     const long scanEvery = plan && plan->scanner.rate > 0 ? every(plan->scanner.rate) : 0;
     double channelFree = 0;
+    const auto& omni = config_.omni;
+    std::unique_ptr<OmniRenderer> renderer;
+    if (omni && omni->camera.render) renderer = std::make_unique<OmniRenderer>(omni->camera);
+    const auto stopped = [&](const std::string& robot, double t) {
+        if (!omni) return false;
+        for (const auto& st : omni->stops)
+            if (st.robot == robot && t > st.from + 1e-9 && t <= st.to + 1e-9) return true;
+        return false;
+    };
+    const auto snapshotAt = [&](double t) {
+        if (!omni) return false;
+        for (double ts : omni->snapshotTimes)
+            if (std::abs(t - ts) < 0.5 * sc.dt) return true;
+        return false;
+    };
 
     SimulationResult result;
     const auto emit = [&](const mrpt::obs::CObservation::Ptr& obs) {
@@ -108,7 +126,8 @@ SimulationResult Simulator::run(common::RawlogWriter& out, SimulationHooks hooks
             Robot& robot = robots[i];
             const auto& ro = robot.options();
             previousPose[i] = robot.pose();
-            if (k > 0) odometers[i].accumulate(robot.step(sc.dt), rng);
+            // A robot told to stand still (seed 000: the pair that stops) does not move.
+            if (k > 0 && !stopped(ro.name, t)) odometers[i].accumulate(robot.step(sc.dt), rng);
             if (k % state[i].odometryEvery == 0) {
                 auto odo = odometers[i].read(ro.name + ".odom", stamp);
                 if (state[i].previousOdometry) {
@@ -129,6 +148,43 @@ SimulationResult Simulator::run(common::RawlogWriter& out, SimulationHooks hooks
             if (k % gtEvery == 0)
                 result.groundTruth[ro.name].push_back(
                     {mrpt::Clock::toDouble(stamp), mrpt::poses::CPose3D(robot.pose())});
+        }
+        if (snapshotAt(t)) {  // every omni-directional camera fires at once
+            std::vector<mrpt::poses::CPose2D> poses;
+            for (const auto& r : robots) poses.push_back(r.pose());
+            for (size_t i = 0; i < robots.size(); ++i) {
+                const std::string& name = robots[i].options().name;
+                mrpt::obs::CObservation::Ptr obs;
+                if (renderer) {
+                    auto img = mrpt::obs::CObservationImage::Create();
+                    img->image = renderer->render(poses, i);
+                    img->cameraPose =
+                        mrpt::poses::CPose3D(0, 0, omni->camera.cameraHeight, 0, 0, 0);
+                    img->sensorLabel = name + ".omni";
+                    obs = img;
+                } else {
+                    obs = senseBearings(poses, i, omni->camera, rng);
+                    obs->sensorLabel = name + ".omni_bearings";
+                }
+                obs->timestamp = stamp;
+                emit(obs);
+            }
+            if (omni->lidar) {  // the conventional method's one measured distance
+                const auto& l = *omni->lidar;
+                const auto& a = robots[indexOf(l.from)].pose();
+                const auto& b = robots[indexOf(l.to)].pose();
+                auto range = mrpt::obs::CObservationRange::Create();
+                range->sensorLabel = l.from + ".lidar." + l.to;
+                range->timestamp = stamp;
+                range->minSensorDistance = 0;
+                range->maxSensorDistance = 1e3;
+                mrpt::obs::CObservationRange::TMeasurement m;
+                m.sensorID = 0;
+                m.sensedDistance = float(std::hypot(b.x() - a.x(), b.y() - a.y()) +
+                                         rng.drawGaussian1D(0, l.sigma));
+                range->sensedData.push_back(m);
+                emit(range);
+            }
         }
         fireDue(t);
         if (hooks.ranging && !ranging.inEpoch() && t >= channelFree - 1e-9) {

@@ -16,6 +16,7 @@
 #include <mrpt/random/RandomGenerators.h>
 
 #include <memory>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -29,6 +30,24 @@ struct OmniCameraOptions {
     double markerRadius = 0.15;               ///< m: the band's radius (and what blocks sight)
     double markerHeight = 0.2;                ///< m
     double cameraHeight = 0.5;                ///< m: camera and band centre above the floor
+};
+
+/** The omni-directional camera run of a scenario (seed 000), set by the app from the
+ *  method's section: when every camera fires, who stands still when, and (for the
+ *  conventional method) one LiDAR distance measured at each snapshot. */
+struct OmniSetup {
+    OmniCameraOptions camera;
+    std::vector<double> snapshotTimes;  ///< s from the start; all cameras fire together
+    struct Stop {
+        std::string robot;
+        double from = 0, to = 0;  ///< s: the robot stands still in [from, to]
+    };
+    std::vector<Stop> stops;
+    struct Lidar {
+        std::string from, to;  ///< `from` measures its distance to `to`: <from>.lidar.<to>
+        double sigma = 0.01;   ///< m
+    };
+    std::optional<Lidar> lidar;
 };
 
 /** What robot `observer` would see: the true bearings (robot frame) of the visible

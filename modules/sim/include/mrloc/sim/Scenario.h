@@ -4,6 +4,7 @@
 // floor-plan scenario, the polygon, its scanner and the robot's start, which the app reads
 // from the method's section and hands over (the simulator knows no method).
 #include <mrloc/common/BeaconMap.h>
+#include <mrloc/sim/OmniCamera.h>
 #include <mrloc/sim/Robot.h>
 #include <mrloc/sim/Scanner.h>
 #include <mrloc/sim/Sensors.h>
@@ -39,6 +40,7 @@ struct ScenarioConfig {
     std::vector<RobotOptions> robots;
     common::BeaconMap beacons;           ///< empty in a floor-plan scenario
     std::optional<FloorPlan> floorPlan;  ///< walls to scan; one robot
+    std::optional<OmniSetup> omni;       ///< omni-directional cameras on every robot
 
     /** Reads and validates; errors name the file, section and key. With a floor plan,
      *  [scenario] robots defaults to r1, [robot.<name>] is optional, the robot starts at
@@ -46,6 +48,10 @@ struct ScenarioConfig {
     static ScenarioConfig load(const mrpt::config::CConfigFileBase& ini);
     static ScenarioConfig load(const mrpt::config::CConfigFileBase& ini, FloorPlan plan,
                                const mrpt::poses::CPose2D& start);
+    /** A scenario whose robots the app made (a generated swarm): [scenario] robots must
+     *  then be empty; each robot must start inside the room. No beacon map is read. */
+    static ScenarioConfig load(const mrpt::config::CConfigFileBase& ini,
+                               std::vector<RobotOptions> robots);
     /** Writes the effective options (the beacon map is the method's to write). */
     void save(mrpt::config::CConfigFileBase& target) const;
 };

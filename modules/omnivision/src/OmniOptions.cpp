@@ -1,0 +1,128 @@
+#include <mrloc/common/IniSection.h>
+#include <mrloc/omnivision/OmniOptions.h>
+#include <mrpt/core/format.h>
+
+#include <algorithm>
+#include <cmath>
+#include <sstream>
+
+namespace mrloc::omnivision {
+
+namespace {
+
+std::vector<std::pair<std::string, std::string>> parsePairs(common::IniSection& s,
+                                                            const std::string& key,
+                                                            const std::string& def) {
+    std::vector<std::pair<std::string, std::string>> out;
+    std::stringstream list(s.text(key, def));
+    for (std::string item; std::getline(list, item, ',');) {
+        std::istringstream in(item);
+        std::string a, b, extra;
+        if (!(in >> a >> b) || (in >> extra) || a == b)
+            s.fail(key, "expected pairs of two different robots 'A B, C D', got '" + item + "'");
+        out.push_back({a, b});
+    }
+    return out;
+}
+
+}  // namespace
+
+void OmniOptions::loadFromConfigFile(const mrpt::config::CConfigFileBase& src,
+                                     const std::string& section) {
+    common::IniSection s(src, section);
+    method = s.choice("method", "proposed", {"proposed", "conventional"});
+    pairs = parsePairs(s, "pairs", "A B");
+    if (pairs.empty()) s.fail("pairs", "at least one pair of robots to stop");
+    tb = s.real("t_b", 10, 0, 1e6);
+    te = s.real("t_e", 12, 0, 1e6);
+    if (te <= tb) s.fail("t_e", mrpt::format("must be after t_b (%g)", tb));
+    roundPeriod = s.real("round_period", 10, 0, 1e6);
+    if (pairs.size() > 1 && roundPeriod <= te - tb)
+        s.fail("round_period", "must exceed t_e - t_b when several pairs are listed");
+    const auto measured = parsePairs(s, "measured_pair", "A B");
+    if (measured.size() != 1) s.fail("measured_pair", "exactly one pair");
+    measuredPair = measured[0];
+    snapshot = s.real("snapshot", 10, 0, 1e6);
+    lidarSigma = s.real("lidar_sigma", 0.01, 0, 10);
+    render = s.choice("camera", "render", {"render", "bearings"}) == "render";
+    panorama.views = int(s.integer("views", 4, 3, 12));
+    panorama.viewWidth = int(s.integer("view_width", 512, 32, 8192));
+    panorama.height = int(s.integer("view_height", 64, 8, 4096));
+    bearingSigma = s.real("bearing_sigma", 0.05, 0, 10);
+    maxRange = s.real("max_range", 0, 0, 1e6);
+    markerRadius = s.real("marker_radius", 0.15, 1e-3, 10);
+    markerHeight = s.real("marker_height", 0.2, 1e-3, 10);
+    cameraHeight = s.real("camera_height", 0.5, 0, 100);
+    sumTolerance = s.real("sum_tolerance", 0, 0, 30);
+    bearingTolerance = s.real("bearing_tolerance", 0, 0, 30);
+    odometerSigma = s.real("odometer_sigma", 0.02, 1e-6, 1);
+    refine = s.flag("refine", true);
+    swarm = int(s.integer("swarm", 0, 0, 1000));
+    if (swarm > 0 && swarm < 3) s.fail("swarm", "a swarm has at least 3 robots (0: none)");
+    swarmArea = s.real("swarm_area", 20, 1, 1e4);
+    swarmSpeed = s.real("swarm_speed", 0.3, 0, 10);
+    swarmSeparation = s.real("swarm_separation", 1.0, 0, 100);
+    swarmSeed = (unsigned long)s.integer("swarm_seed", 1, 0, 4294967295L);
+    accuracyTrials = int(s.integer("accuracy_trials", 0, 0, 100000));
+    s.finish();
+}
+
+void OmniOptions::saveToConfigFile(mrpt::config::CConfigFileBase& t,
+                                   const std::string& section) const {
+    std::string list;
+    for (const auto& [a, b] : pairs) list += (list.empty() ? "" : ", ") + a + " " + b;
+    t.write(section, "method", method);
+    t.write(section, "pairs", list);
+    t.write(section, "t_b", tb);
+    t.write(section, "t_e", te);
+    t.write(section, "round_period", roundPeriod);
+    t.write(section, "measured_pair", measuredPair.first + " " + measuredPair.second);
+    t.write(section, "snapshot", snapshot);
+    t.write(section, "lidar_sigma", lidarSigma);
+    t.write(section, "camera", std::string(render ? "render" : "bearings"));
+    t.write(section, "views", panorama.views);
+    t.write(section, "view_width", panorama.viewWidth);
+    t.write(section, "view_height", panorama.height);
+    t.write(section, "bearing_sigma", bearingSigma);
+    t.write(section, "max_range", maxRange);
+    t.write(section, "marker_radius", markerRadius);
+    t.write(section, "marker_height", markerHeight);
+    t.write(section, "camera_height", cameraHeight);
+    t.write(section, "sum_tolerance", sumTolerance);
+    t.write(section, "bearing_tolerance", bearingTolerance);
+    t.write(section, "odometer_sigma", odometerSigma);
+    t.write(section, "refine", refine);
+    t.write(section, "swarm", swarm);
+    t.write(section, "swarm_area", swarmArea);
+    t.write(section, "swarm_speed", swarmSpeed);
+    t.write(section, "swarm_separation", swarmSeparation);
+    t.write(section, "swarm_seed", std::to_string(swarmSeed));
+    t.write(section, "accuracy_trials", accuracyTrials);
+}
+
+double OmniOptions::bearingAccuracy() const {
+    // Render mode: a blob's centre errs by up to about half a pixel at the view centre (a
+    // pixel there is 1 / focal rad), uniformly: sigma ~ 0.3 px (doc/omnivision.md).
+    if (render) return 0.3 / panorama.focal();
+    return std::max(bearingSigma * M_PI / 180, 1e-6);
+}
+
+double OmniOptions::sumToleranceRad() const {
+    return sumTolerance > 0 ? sumTolerance * M_PI / 180 : 6 * bearingAccuracy();
+}
+
+double OmniOptions::bearingToleranceRad() const {
+    return bearingTolerance > 0 ? bearingTolerance * M_PI / 180 : 4 * bearingAccuracy();
+}
+
+std::vector<double> OmniOptions::snapshotTimes() const {
+    if (method == "conventional") return {snapshot};
+    std::vector<double> t;
+    for (size_t r = 0; r < pairs.size(); ++r) {
+        t.push_back(tb + double(r) * roundPeriod);
+        t.push_back(te + double(r) * roundPeriod);
+    }
+    return t;
+}
+
+}  // namespace mrloc::omnivision

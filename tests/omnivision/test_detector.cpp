@@ -1,0 +1,61 @@
+// The camera path from pixels: the simulator renders each robot's panorama off screen and
+// the detector turns the red bands back into bearings.
+#include <gtest/gtest.h>
+#include <mrloc/common/Error.h>
+#include <mrloc/omnivision/MarkerDetector.h>
+#include <mrloc/sim/OmniCamera.h>
+#include <mrpt/math/wrap2pi.h>
+
+using namespace mrloc;
+
+namespace {
+constexpr double kDeg = M_PI / 180;
+}
+
+TEST(Panorama, ColumnsMapToBearingsAcrossViews) {
+    common::Panorama p;  // 4 x 512 px, 90 deg views
+    EXPECT_NEAR(p.focal(), 256, 1e-9);
+    // The centre of view 0 looks ahead; column 0 is near +45 deg, the strip runs clockwise.
+    EXPECT_NEAR(p.bearingOfColumn(255.5), 0, 1e-12);
+    EXPECT_NEAR(p.bearingOfColumn(-0.5), 45 * kDeg, 1e-12);
+    EXPECT_NEAR(p.bearingOfColumn(511.5 + 256), -90 * kDeg, 1e-12);
+    EXPECT_LT(p.bearingOfColumn(100), p.bearingOfColumn(99));
+}
+
+TEST(MarkerDetector, RenderedBandsGiveTheirBearings) {
+    sim::OmniCameraOptions o;
+    sim::OmniRenderer renderer(o);
+    std::vector<mrpt::poses::CPose2D> poses = {{5, 5, 0.4},   {9, 6, 0},     {5, 9.5, 0},
+                                               {1.5, 4, 0},   {6, 1, 0},     {8.8, 2.2, 0},
+                                               {2.2, 8.6, 0}, {4.99, 0.3, 0}};
+    double worst = 0, biasSum = 0;
+    int n = 0;
+    for (size_t observer : {0u, 3u}) {
+        const auto strip = renderer.render(poses, observer);
+        const auto truth = sim::sightingsOf(poses, observer, o);
+        const auto found = omnivision::detectMarkers(strip, o.panorama);
+        ASSERT_EQ(found.size(), truth.bearings.size()) << "observer " << observer;
+        for (double b : truth.bearings) {
+            double best = 1e9;
+            double signedBest = 0;
+            for (double f : found)
+                if (std::abs(mrpt::math::wrapToPi(f - b)) < best)
+                    best = std::abs(mrpt::math::wrapToPi(f - b)),
+                    signedBest = mrpt::math::wrapToPi(f - b);
+            biasSum += signedBest;
+            ++n;
+            worst = std::max(worst, best);
+        }
+    }
+    // Stated tolerance: 0.65 of a pixel at the view centre (1 / focal rad; 0.15 deg for
+    // 512-pixel views): a binary blob's edges each err by up to a pixel. No bias: the
+    // principal point is at the view's centre (W / 2 in OpenGL's continuous pixels).
+    const double pixel = 1.0 / o.panorama.focal();
+    EXPECT_LT(worst, 0.65 * pixel);
+    EXPECT_LT(std::abs(biasSum / n), 0.15 * pixel);
+}
+
+TEST(MarkerDetector, RejectsAStripOfTheWrongSize) {
+    mrpt::img::CImage small(100, 20, mrpt::img::CH_RGB);
+    EXPECT_THROW(omnivision::detectMarkers(small, common::Panorama{}), Error);
+}
