@@ -2,7 +2,9 @@
 
 #include <mrloc/beacons/BeaconLocalizer.h>
 #include <mrloc/common/Error.h>
+#include <mrloc/common/IniSection.h>
 #include <mrloc/common/LocalizationRun.h>
+#include <mrloc/omnivision/OmniLocalizer.h>
 #include <mrloc/polymap/PolymapLocalizer.h>
 #include <mrloc/report/Report.h>
 #include <mrloc/report/ReportOptions.h>
@@ -10,8 +12,12 @@
 #include <mrpt/3rdparty/tclap/CmdLine.h>
 #include <mrpt/config/CConfigFile.h>
 #include <mrpt/config/CConfigFileMemory.h>
+#include <mrpt/core/format.h>
+#include <mrpt/random/RandomGenerators.h>
 
+#include <algorithm>
 #include <cctype>
+#include <cmath>
 #include <filesystem>
 #include <iostream>
 #include <set>
@@ -26,6 +32,7 @@ common::LocalizerRegistry makeRegistry() {
     common::LocalizerRegistry r;
     beacons::registerLocalizers(r);
     polymap::registerLocalizers(r);
+    omnivision::registerLocalizers(r);
     return r;
 }
 
@@ -36,14 +43,14 @@ std::unique_ptr<mrpt::config::CConfigFile> openIni(const std::string& path) {
     auto ini = std::make_unique<mrpt::config::CConfigFile>(path);
     std::vector<std::string> sections;
     ini->getAllSections(sections);
-    static const std::set<std::string> known = {"scenario", "world",   "sensors", "ultrasonic",
-                                                "beacons",  "polymap", "report"};
+    static const std::set<std::string> known = {"scenario", "world",   "sensors",    "ultrasonic",
+                                                "beacons",  "polymap", "omnivision", "report"};
     for (const auto& s : sections) {
         if (s.empty() || !std::islower(static_cast<unsigned char>(s[0]))) continue;
         if (known.count(s) || s.rfind("robot.", 0) == 0) continue;
         throw Error(path + ": [" + s +
                     "]: unknown section (mrloc's sections: scenario, world, "
-                    "sensors, ultrasonic, robot.<name>, beacons, polymap, report; see "
+                    "sensors, ultrasonic, robot.<name>, beacons, polymap, omnivision, report; see "
                     "doc/ini.md)");
     }
     return ini;
@@ -59,10 +66,89 @@ std::string outDirOr(Common& c, const std::string& name) {
     return c.out.isSet() ? c.out.getValue() : "out/" + name;
 }
 
-/** A floor-plan scenario takes its map, start and scanner from [polymap]. */
+/** A swarm of robots driving straight across the room at random headings, placed at
+ *  random at least `separation` apart ([omnivision] swarm = N). */
+std::vector<sim::RobotOptions> generateSwarm(const omnivision::OmniOptions& o,
+                                             const sim::WorldOptions& world) {
+    mrpt::random::CRandomGenerator rng(uint32_t(o.swarmSeed));
+    const double side = std::min({o.swarmArea, world.sizeX, world.sizeY});
+    const double x0 = 0.5 * (world.sizeX - side), y0 = 0.5 * (world.sizeY - side);
+    std::vector<sim::RobotOptions> robots;
+    for (int tries = 0; int(robots.size()) < o.swarm; ++tries) {
+        if (tries > 100000)
+            throw Error("[omnivision] swarm: cannot place " + std::to_string(o.swarm) + " robots " +
+                        std::to_string(o.swarmSeparation) + " m apart in swarm_area");
+        const double x = x0 + rng.drawUniform(0.05, 0.95) * side;
+        const double y = y0 + rng.drawUniform(0.05, 0.95) * side;
+        if (std::any_of(robots.begin(), robots.end(), [&](const auto& r) {
+                return std::hypot(r.start.x() - x, r.start.y() - y) < o.swarmSeparation;
+            }))
+            continue;
+        sim::RobotOptions r;
+        r.name = mrpt::format("R%02d", int(robots.size()) + 1);
+        const double heading = rng.drawUniform(-M_PI, M_PI);
+        r.start = mrpt::poses::CPose2D(x, y, heading);
+        r.speed = std::max(o.swarmSpeed, 1e-3);
+        if (o.swarmSpeed > 0)  // a far waypoint straight ahead: the robot drives straight
+            r.waypoints = {{x + 1e3 * std::cos(heading), y + 1e3 * std::sin(heading)}};
+        r.loop = false;
+        robots.push_back(r);
+    }
+    return robots;
+}
+
+/** The omni-directional camera setup [omnivision] implies: snapshots, stops, the LiDAR. */
+sim::ScenarioConfig loadOmniScenario(const mrpt::config::CConfigFile& ini) {
+    omnivision::OmniOptions o;
+    o.loadFromConfigFile(ini, "omnivision");
+    sim::WorldOptions world;
+    world.loadFromConfigFile(ini, "world");
+    auto cfg = o.swarm > 0 ? sim::ScenarioConfig::load(ini, generateSwarm(o, world))
+                           : sim::ScenarioConfig::load(ini, /*withBeacons=*/false);
+    const auto need = [&](const std::string& robot, const char* key) {
+        if (std::find(cfg.scenario.robots.begin(), cfg.scenario.robots.end(), robot) ==
+            cfg.scenario.robots.end())
+            throw Error(common::configOrigin(ini) + ": [omnivision] " + key + ": robot '" + robot +
+                        "' is not in the scenario");
+    };
+    sim::OmniSetup setup;
+    setup.camera.render = o.render;
+    setup.camera.panorama = o.panorama;
+    setup.camera.bearingSigma = o.bearingSigma * M_PI / 180;
+    setup.camera.maxRange = o.maxRange;
+    setup.camera.markerRadius = o.markerRadius;
+    setup.camera.markerHeight = o.markerHeight;
+    setup.camera.cameraHeight = o.cameraHeight;
+    setup.snapshotTimes = o.snapshotTimes();
+    for (double t : setup.snapshotTimes)
+        if (t > cfg.scenario.duration)
+            throw Error(common::configOrigin(ini) + ": [omnivision]: a snapshot at " +
+                        std::to_string(t) + " s is after [scenario] duration");
+    if (o.method == "proposed") {
+        for (size_t r = 0; r < o.pairs.size(); ++r) {
+            const auto& [a, b] = o.pairs[r];
+            need(a, "pairs");
+            need(b, "pairs");
+            const double shift = double(r) * o.roundPeriod;
+            setup.stops.push_back({a, o.tb + shift, o.te + shift});
+            setup.stops.push_back({b, o.tb + shift, o.te + shift});
+        }
+    } else {
+        need(o.measuredPair.first, "measured_pair");
+        need(o.measuredPair.second, "measured_pair");
+        setup.lidar =
+            sim::OmniSetup::Lidar{o.measuredPair.first, o.measuredPair.second, o.lidarSigma};
+    }
+    cfg.omni = setup;
+    return cfg;
+}
+
+/** A floor-plan scenario takes its map, start and scanner from [polymap]; an omni-camera
+ *  scenario its cameras, stops and swarm from [omnivision]. */
 sim::ScenarioConfig loadScenarioOf(const mrpt::config::CConfigFile& ini) {
     sim::ScenarioOptions scenario;
     scenario.loadFromConfigFile(ini, "scenario");
+    if (scenario.method == "omnivision") return loadOmniScenario(ini);
     if (scenario.method != "polymap") return sim::ScenarioConfig::load(ini);
     polymap::PolymapOptions o;
     o.loadFromConfigFile(ini, "polymap");

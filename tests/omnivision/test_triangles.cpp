@@ -176,3 +176,23 @@ TEST(TriangleSearch, PartialVisibilityLeavesRobotsUnresolved) {
     EXPECT_EQ(score(id.labels, sw.truth).wrong, 0u);
     EXPECT_EQ(id.triangles.size(), 4u);  // the four robots 0..3 are mutually visible
 }
+
+TEST(TriangleSearch, ARobotHiddenBehindAnotherStillResolves) {
+    // E stands on the segment A-C: A and C cannot see each other, and A's one image in that
+    // direction is E (the nearer marker hides C). 7 of the 10 triangles exist.
+    const std::vector<mrpt::poses::CPose2D> poses = {{3.788833, 2.894445, 0.3},
+                                                     {8.258044, 4.356843, 1},
+                                                     {9.693319, 8.936357, 2},
+                                                     {2.992309, 9.932515, -1},
+                                                     {8.853607, 8.084934, 0.5}};
+    for (double sigma : {0.0, 0.05}) {
+        const auto sw = testing_omni::viewsOf(poses, sigma, 14);
+        SearchOptions o;
+        o.sumTolerance = std::max(1e-6, 6 * sigma * kDeg);
+        o.bearingTolerance = std::max(1e-6, 4 * sigma * kDeg);
+        const auto id = identify(sw.snapshot, o);
+        EXPECT_EQ(id.triangles.size(), 7u) << sigma;
+        EXPECT_TRUE(id.unresolved.empty());
+        EXPECT_EQ(score(id.labels, sw.truth).wrong, 0u);
+    }
+}

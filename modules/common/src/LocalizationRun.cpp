@@ -39,14 +39,19 @@ nlohmann::json runLocalization(Localizer& localizer, const LocalizationRunOption
     metrics["rawlog_format"] = reader.format() == RawlogFormat::ActionsSensoryFrames
                                    ? "actions+sensory-frames"
                                    : "observations-only";
+    std::map<std::string, Trajectory> worldTruth;
+    for (const auto& [robot, traj] : estimates)
+        if (const std::string gtPath = groundTruthPath(o.rawlogPath, robot);
+            std::filesystem::exists(gtPath))
+            worldTruth[robot] = loadTum(gtPath);
+    const auto truth = localizer.truthInEstimateFrame(worldTruth);
     std::vector<double> allErrors;
     for (const auto& [robot, traj] : estimates) {
         saveTum(run_dir::estimates(o.outDir, robot), traj);
         nlohmann::json r;
         r["estimates"] = traj.size();
-        const std::string gtPath = groundTruthPath(o.rawlogPath, robot);
-        if (std::filesystem::exists(gtPath)) {
-            const auto gt = loadTum(gtPath);
+        if (const auto it = truth.find(robot); it != truth.end()) {
+            const auto& gt = it->second;
             saveTum(run_dir::groundTruth(o.outDir, robot), gt);
             std::vector<double> e;
             for (const auto& te : positionErrors(traj, gt)) e.push_back(te.error);

@@ -113,10 +113,9 @@ ProposedSolution proposedMethod(const Snapshot& before, const Identification& id
                                 const std::vector<double>& travelled) {
     const auto witnesses = commonWitnesses(idBefore, idAfter, a, b);
     if (witnesses.empty())
-        throw Error(mrpt::format(
-            "omnivision: the stopped robots %d and %d share no robot seen by both at t_b and "
-            "t_e: stop another pair (seed 000 section 3)",
-            a, b));
+        throw Error(
+            "omnivision: the stopped robots share no robot that both see, and that sees "
+            "them, at t_b and t_e: stop another pair (seed 000 section 3)");
     ProposedSolution out;
     out.moving = witnesses.front();
     for (int c : witnesses)

@@ -518,16 +518,26 @@ class Grower {
         return false;
     }
 
-    /** Whether some unplaced robot fits with every robot placed so far (or none is left). */
+    /** Whether some unplaced robot fits with every robot placed so far (one pair may be
+     *  hidden from each other) and with the newest one in particular; or none is left. */
     bool confirmed(const Layout& L) const {
         const size_t k = L.order.size();
+        const int newest = L.order.back();
         bool left = false;
         for (int r = 0; r < n_; ++r)
             left |= !L.placed[size_t(r)] && s_.views[size_t(r)].size() >= 2;
         if (!left) return true;
+        const auto involves = [&](const Candidate& c) {
+            for (const auto& [s, img] : c.raysIn)
+                if (s == newest) return true;
+            for (const auto& [s, img] : c.seen)
+                if (s == newest) return true;
+            return false;
+        };
         for (size_t a = 0; a < 2; ++a)  // the seed's rays: the best known
             for (size_t b = a + 1; b < 3; ++b)
-                if (!candidates(L, L.order[a], L.order[b], k, k).empty()) return true;
+                for (const auto& c : candidates(L, L.order[a], L.order[b], k - 1, k - 1))
+                    if (c.evidence() + 2 >= 2 * k && involves(c)) return true;
         return false;
     }
 
@@ -583,14 +593,26 @@ class Grower {
             std::sort(ms.begin(), ms.end(), [](const Match& a, const Match& b) {
                 return std::tie(a.err, a.image, a.robot) < std::tie(b.err, b.image, b.robot);
             });
-            // Two robots nearly in line from u (or one robot near two images) cannot be told
-            // apart within the tolerance: such images stay unlabeled rather than guessed.
+            // One image on the line to several robots is the nearest: its marker hides the
+            // others. Otherwise two robots nearly in line from u (or one robot near two
+            // images) cannot be told apart: such images stay unlabeled rather than guessed.
             std::map<int, int> perImage, perRobot;
             for (const auto& m : ms) ++perImage[m.image], ++perRobot[m.robot];
+            std::map<int, int> occluder;  // image -> the nearest robot on its line
+            for (const auto& m : ms) {
+                if (perImage[m.image] < 2 || perRobot[m.robot] != 1) continue;
+                auto& o = occluder[m.image];
+                const auto dist = [&](int w) { return (L.p[size_t(w)] - L.p[size_t(u)]).norm(); };
+                if (o == 0 || dist(m.robot) < dist(o - 1)) o = m.robot + 1;
+            }
             auto& lab = L.labels[size_t(u)];
             std::fill(lab.begin(), lab.end(), -1);
             for (const auto& m : ms)
-                if (perImage[m.image] == 1 && perRobot[m.robot] == 1)
+                if ((perImage[m.image] == 1 && perRobot[m.robot] == 1) ||
+                    (occluder.count(m.image) && occluder[m.image] == m.robot + 1 &&
+                     std::all_of(ms.begin(), ms.end(), [&](const Match& x) {
+                         return x.image != m.image || perRobot[x.robot] == 1;
+                     })))
                     lab[size_t(m.image)] = m.robot;
         }
     }
@@ -754,7 +776,8 @@ Identification identify(const Snapshot& s, const SearchOptions& o) {
             if (labels > bestLabels + bestLabels / 50) matched = 0;
             best = std::move(L);
             bestLabels = labels;
-        } else if (ok && 2 * L.order.size() > placeable && labels + labels / 50 >= bestLabels) {
+        } else if (ok && L.order.size() > 3 && 2 * L.order.size() > placeable &&
+                   labels + labels / 50 >= bestLabels) {
             ++matched;
         }
         // Done when everything that can be placed is, or when the best layout has been

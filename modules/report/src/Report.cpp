@@ -176,6 +176,97 @@ std::string polymapSection(const std::string& dir, const nlohmann::json& metrics
     return out;
 }
 
+/** Whitespace-separated fields of the data lines of a method's text file ('#': comment). */
+std::vector<std::vector<std::string>> readFields(const std::string& path) {
+    std::ifstream in(path);
+    if (!in) throw Error(path + ": cannot open");
+    std::vector<std::vector<std::string>> rows;
+    for (std::string line; std::getline(in, line);) {
+        if (line.empty() || line[0] == '#') continue;
+        std::istringstream ls(line);
+        std::vector<std::string> row;
+        for (std::string f; ls >> f;) row.push_back(f);
+        rows.push_back(row);
+    }
+    return rows;
+}
+
+double number(const std::string& path, const std::string& field) {
+    char* end = nullptr;
+    const double v = std::strtod(field.c_str(), &end);  // accepts "nan"
+    if (end == field.c_str() || *end) throw Error(path + ": '" + field + "' is not a number");
+    return v;
+}
+
+/** The omni-directional camera section (seed 000): true and recovered layouts, and the
+ *  accuracy sweep when the run made one. */
+std::string omnivisionSection(const std::string& dir, const nlohmann::json& metrics) {
+    const std::string layoutPath = dir + "/layout.txt";
+    if (!std::filesystem::exists(layoutPath)) return "";
+    std::vector<LayoutPoint> points;
+    for (const auto& f : readFields(layoutPath)) {
+        if (f.size() != 10) throw Error(layoutPath + ": expected a name and 9 numbers per line");
+        LayoutPoint p{f[0], 0, 0, 0, 0, 0, 0, 0, 0, 0};
+        double* v[] = {&p.paperX, &p.paperY, &p.refinedX, &p.refinedY, &p.cxx,
+                       &p.cxy,    &p.cyy,    &p.trueX,    &p.trueY};
+        for (size_t i = 0; i < 9; ++i) *v[i] = number(layoutPath, f[i + 1]);
+        points.push_back(p);
+    }
+    const auto& m = metrics.value("omnivision", nlohmann::json::object());
+    const std::string pair = m.value("pair", "A B");
+    plotLayout(points,
+               "layout: " + pair.substr(0, pair.find(' ')) + " at the origin, " +
+                   pair.substr(pair.find(' ') + 1) + " on the x axis",
+               dir + "/layout.png");
+    std::string out =
+        "<h2>Relative layout (seed 000)</h2>\n<p>Green: the truth; red: the paper's solution "
+        "(eq. (8) for L, then the sine rule); blue: the least-squares refinement over every "
+        "identified bearing and measured distance, with its 3-sigma ellipses.</p>\n"
+        "<img src='layout.png' alt='true and recovered layouts'>\n";
+    if (m.contains("restarts") && !m["restarts"].empty()) {
+        out += "<p>Restarts (the stopped pair shared no witness):</p><ul>\n";
+        for (const auto& r : m["restarts"]) out += "<li>" + html(r.get<std::string>()) + "</li>\n";
+        out += "</ul>\n";
+    }
+    out +=
+        "<table><tr><th>robot</th><th>paper x, y (m)</th><th>refined x, y (m)</th>"
+        "<th>sigma x, y (mm)</th><th>truth x, y (m)</th></tr>\n";
+    for (const auto& p : points)
+        out += mrpt::format(
+            "<tr><td>%s</td><td>%.3f, %.3f</td><td>%.3f, %.3f</td><td>%.1f, %.1f</td>"
+            "<td>%.3f, %.3f</td></tr>\n",
+            html(p.robot).c_str(), p.paperX, p.paperY, p.refinedX, p.refinedY,
+            1000 * std::sqrt(std::max(0.0, p.cxx)), 1000 * std::sqrt(std::max(0.0, p.cyy)), p.trueX,
+            p.trueY);
+    out += "</table>\n";
+    const std::string accPath = dir + "/accuracy.txt";
+    if (std::filesystem::exists(accPath)) {
+        std::vector<AccuracyRow> rows;
+        std::string table =
+            "<table><tr><th>varied</th><th>bearing sigma (deg)</th><th>distance sigma (%)</th>"
+            "<th>paper (%)</th><th>least squares (%)</th><th>trials</th><th>failed</th></tr>\n";
+        for (const auto& f : readFields(accPath)) {
+            if (f.size() != 7) throw Error(accPath + ": expected 7 fields per line");
+            AccuracyRow r{f[0], number(accPath, f[1]), number(accPath, f[2]), number(accPath, f[3]),
+                          number(accPath, f[4])};
+            rows.push_back(r);
+            table += mrpt::format(
+                "<tr><td>%s</td><td>%g</td><td>%g</td><td>%.3f</td><td>%.3f</td><td>%s</td>"
+                "<td>%s</td></tr>\n",
+                html(r.axis).c_str(), r.angleSigmaDeg, 100 * r.distanceSigma, 100 * r.paper,
+                100 * r.refined, f[5].c_str(), f[6].c_str());
+        }
+        const bool proposed = m.value("method", "proposed") == "proposed";
+        plotAccuracy(rows, proposed ? "odometer" : "LiDAR", dir + "/accuracy.png");
+        out +=
+            "<h3>Accuracy against noise (Monte Carlo on this run's true layout)</h3>\n"
+            "<p>Median relative error of all pairwise distances, mean over the trials.</p>\n"
+            "<img src='accuracy.png' alt='accuracy against noise'>\n" +
+            table + "</table>\n";
+    }
+    return out;
+}
+
 }  // namespace
 
 std::string makeReport(const std::string& dir) {
@@ -207,8 +298,11 @@ std::string makeReport(const std::string& dir) {
             if (!e.empty()) errors[robot] = std::move(e);
         }
     }
+    // The polygon view and the relative layout replace the world top view.
     const bool polygonMap = std::filesystem::exists(dir + "/map.poly");
-    if (!polygonMap) renderTopView(view, dir + "/topview.png");  // the polygon view replaces it
+    const bool relativeLayout = std::filesystem::exists(dir + "/layout.txt");
+    const bool topView = !polygonMap && !relativeLayout;
+    if (topView) renderTopView(view, dir + "/topview.png");
     const bool hasErrors = !errors.empty();
     if (hasErrors) {
         plotErrorOverTime(errors, dir + "/error_time.png");
@@ -230,7 +324,8 @@ std::string makeReport(const std::string& dir) {
     if (metrics.contains(method) && metrics[method].is_object())
         page += "<h2>Method figures</h2>\n" + table(metrics[method]);
     page += polymapSection(dir, metrics);
-    if (!polygonMap)
+    page += omnivisionSection(dir, metrics);
+    if (topView)
         page +=
             "<h2>Top view</h2>\n<p>Green: ground truth; red: estimates; blue: beacons; grey: "
             "obstacles.</p>\n<img src='topview.png' alt='top view'>\n";

@@ -79,7 +79,7 @@ ScenarioConfig ScenarioConfig::load(const mrpt::config::CConfigFileBase& ini, Fl
     return c;
 }
 
-ScenarioConfig ScenarioConfig::load(const mrpt::config::CConfigFileBase& ini) {
+ScenarioConfig ScenarioConfig::load(const mrpt::config::CConfigFileBase& ini, bool withBeacons) {
     ScenarioConfig c = loadCommon(ini);
     if (c.scenario.robots.empty())
         throw Error(common::configOrigin(ini) +
@@ -97,6 +97,7 @@ ScenarioConfig ScenarioConfig::load(const mrpt::config::CConfigFileBase& ini) {
             throw Error(common::configOrigin(ini) + ": [" + section + "] start: outside the room");
         c.robots.push_back(r);
     }
+    if (!withBeacons) return c;
     common::IniSection beacons(ini, "beacons");  // keys are checked by the method's options
     c.beacons = common::loadBeaconMap(ini, beacons);
     for (const auto& [id, p] : c.beacons)

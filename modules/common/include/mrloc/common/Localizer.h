@@ -34,6 +34,14 @@ class Localizer {
     virtual std::optional<mrpt::poses::CPose3D> latestEstimate(const std::string& robot) const;
     /** The method's own figures for metrics.json (fixes, rejected ranges, ...). */
     virtual nlohmann::json methodMetrics() const { return nlohmann::json::object(); }
+    /** A relative method estimates in a frame of its own (seed 000: robot A at the origin,
+     *  robot B on the x axis). Given every robot's ground truth in the world frame, this
+     *  returns it in the estimates' frame, which the errors are computed in. Default: the
+     *  world frame. Called once, after the rawlog, before groundTruthMetrics(). */
+    virtual std::map<std::string, Trajectory> truthInEstimateFrame(
+        const std::map<std::string, Trajectory>& groundTruth) const {
+        return groundTruth;
+    }
     /** Figures against a robot's ground truth beyond the position errors (e.g. whether the
      *  truth is among the hypotheses); merged into metrics.json's robots.<name>. */
     virtual nlohmann::json groundTruthMetrics(const std::string& /*robot*/,

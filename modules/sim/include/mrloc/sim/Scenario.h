@@ -42,10 +42,11 @@ struct ScenarioConfig {
     std::optional<FloorPlan> floorPlan;  ///< walls to scan; one robot
     std::optional<OmniSetup> omni;       ///< omni-directional cameras on every robot
 
-    /** Reads and validates; errors name the file, section and key. With a floor plan,
+    /** Reads and validates; errors name the file, section and key. withBeacons = false
+     *  skips the beacon map (a scenario without beacon ranging). With a floor plan,
      *  [scenario] robots defaults to r1, [robot.<name>] is optional, the robot starts at
      *  `start` (which must lie in the polygon) and no beacon map is read. */
-    static ScenarioConfig load(const mrpt::config::CConfigFileBase& ini);
+    static ScenarioConfig load(const mrpt::config::CConfigFileBase& ini, bool withBeacons = true);
     static ScenarioConfig load(const mrpt::config::CConfigFileBase& ini, FloorPlan plan,
                                const mrpt::poses::CPose2D& start);
     /** A scenario whose robots the app made (a generated swarm): [scenario] robots must

@@ -1,0 +1,70 @@
+#pragma once
+// The omni-directional camera method as a common::Localizer (INI: [scenario] method =
+// omnivision). It reads each robot's panoramas (<robot>.omni, detected here) or bearings
+// (<robot>.omni_bearings), its odometry and, for the conventional method, the LiDAR
+// distance (<A>.lidar.<B>); identifies the images at every snapshot; and solves the layout
+// at t_e (proposed) or at the snapshot (conventional) in the paper's frame: A at the
+// origin, B on the x axis. Estimates, and the truth they are compared with, are in that
+// frame.
+#include <mrloc/common/Localizer.h>
+#include <mrloc/omnivision/OmniOptions.h>
+#include <mrloc/omnivision/Refinement.h>
+#include <mrloc/omnivision/RelativeLocation.h>
+
+#include <map>
+#include <optional>
+
+namespace mrloc::omnivision {
+
+/** Everything one solve produced. */
+struct OmniResult {
+    std::vector<std::string> robots;    ///< index -> name
+    std::vector<std::string> restarts;  ///< why earlier stopped pairs failed
+    int a = -1, b = -1, moving = -1;
+    double time = 0;                  ///< of the layout (t_e, or the conventional snapshot)
+    double timeBefore = 0;            ///< t_b (proposed)
+    double travelled = 0;             ///< l_C
+    std::vector<Snapshot> snapshots;  ///< [t_b,] t_e
+    std::vector<Identification> ids;
+    Solution paper;  ///< at `time`
+    std::optional<RefinedLayout> refined;
+    std::vector<std::optional<Vec2>> final() const;  ///< refined if any, else paper
+};
+
+class OmniLocalizer : public common::Localizer {
+ public:
+    void configure(const mrpt::config::CConfigFileBase& ini) override;
+    void saveConfig(mrpt::config::CConfigFileBase& target) const override;
+    void process(const mrpt::obs::CObservation::Ptr& obs) override;
+    std::map<std::string, common::Trajectory> estimates() const override;
+    std::map<std::string, common::Trajectory> truthInEstimateFrame(
+        const std::map<std::string, common::Trajectory>& groundTruth) const override;
+    nlohmann::json methodMetrics() const override;
+    void writeOutputs(const std::string& outDir) const override;
+
+    /** Solves (once); throws mrloc::Error when no stopped pair works. */
+    const OmniResult& result() const;
+    const OmniOptions& options() const { return options_; }
+
+ private:
+    OmniOptions options_;
+    std::string origin_;
+    std::map<double, std::map<std::string, View>> views_;  ///< time -> robot -> view
+    std::map<std::string, std::vector<std::pair<double, double>>> odometer_;  ///< t, path
+    std::map<std::string, std::pair<double, mrpt::poses::CPose2D>> lastOdometry_;
+    struct LidarReading {
+        double time;
+        std::string from, to;
+        double distance;
+    };
+    std::vector<LidarReading> lidar_;
+    mutable std::optional<OmniResult> result_;
+    mutable std::map<std::string, common::Trajectory> truth_;  ///< in the estimates' frame
+
+    double travelledBetween(const std::string& robot, double t0, double t1) const;
+    Snapshot snapshotAt(double t, const std::vector<std::string>& robots) const;
+};
+
+void registerLocalizers(common::LocalizerRegistry& registry);
+
+}  // namespace mrloc::omnivision

@@ -1,0 +1,112 @@
+#include <mrloc/common/Error.h>
+#include <mrloc/omnivision/Accuracy.h>
+#include <mrloc/omnivision/Refinement.h>
+#include <mrloc/omnivision/RelativeLocation.h>
+#include <mrpt/random/RandomGenerators.h>
+
+#include <algorithm>
+#include <cmath>
+
+namespace mrloc::omnivision {
+
+namespace {
+
+Snapshot noisyViews(const std::vector<mrpt::poses::CPose2D>& poses,
+                    const std::vector<std::vector<int>>& seen, double sigma,
+                    mrpt::random::CRandomGenerator& rng) {
+    Snapshot s;
+    for (size_t o = 0; o < poses.size(); ++o) {
+        std::vector<double> b;
+        for (int r : seen[o])
+            b.push_back(std::atan2(poses[size_t(r)].y() - poses[o].y(),
+                                   poses[size_t(r)].x() - poses[o].x()) -
+                        poses[o].phi() + rng.drawGaussian1D(0, sigma));
+        s.views.push_back(makeView(b, "accuracy sweep"));
+    }
+    return s;
+}
+
+double median(std::vector<double> v) {
+    std::sort(v.begin(), v.end());
+    return v.empty() ? 0 : v[v.size() / 2];
+}
+
+}  // namespace
+
+std::vector<AccuracyPoint> accuracySweep(const AccuracyLayout& L, int trials, unsigned long seed) {
+    mrpt::random::CRandomGenerator rng(static_cast<uint32_t>(seed));
+    std::vector<AccuracyPoint> levels;
+    for (double a : {0.05, 0.1, 0.5}) levels.push_back({"angle", a, 0.01});
+    for (double d : {0.0, 0.01, 0.02, 0.05}) levels.push_back({"distance", 0.1, d});
+    const size_t n = L.after.size();
+    const auto trueDistance = [&](size_t i, size_t j) {
+        return std::hypot(L.after[i].x() - L.after[j].x(), L.after[i].y() - L.after[j].y());
+    };
+    for (auto& level : levels) {
+        const double sigma = level.angleSigmaDeg * M_PI / 180;
+        SearchOptions o;
+        o.sumTolerance = 6 * sigma;
+        o.bearingTolerance = 4 * sigma;
+        double paperSum = 0, refinedSum = 0;
+        for (int t = 0; t < trials; ++t) {
+            try {
+                const auto se = noisyViews(L.after, L.seenAfter, sigma, rng);
+                const auto ie = identify(se, o);
+                RefinementProblem p;
+                Solution paper;
+                p.bearingSigma = sigma;
+                p.a = L.a, p.b = L.b;
+                if (L.proposed) {
+                    const auto sb = noisyViews(L.before, L.seenBefore, sigma, rng);
+                    const auto ib = identify(sb, o);
+                    std::vector<double> travelled(n);
+                    for (size_t r = 0; r < n; ++r)
+                        travelled[r] = std::hypot(L.after[r].x() - L.before[r].x(),
+                                                  L.after[r].y() - L.before[r].y()) *
+                                       (1 + rng.drawGaussian1D(0, level.distanceSigma));
+                    const auto prop = proposedMethod(sb, ib, se, ie, L.a, L.b, travelled);
+                    paper = prop.after;
+                    p.snapshots = {sb, se};
+                    p.labels = {ib.labels, ie.labels};
+                    p.initial = {prop.before.position, prop.after.position};
+                    p.stationary = {L.a, L.b};
+                    for (size_t r = 0; r < n; ++r)
+                        if (travelled[r] > 0 && prop.before.position[r] && prop.after.position[r])
+                            p.distances.push_back(
+                                {0, int(r), 1, int(r), travelled[r],
+                                 std::max(1e-4, level.distanceSigma) * travelled[r]});
+                } else {
+                    const double d = trueDistance(size_t(L.a), size_t(L.b)) *
+                                     (1 + rng.drawGaussian1D(0, level.distanceSigma));
+                    paper = conventionalMethod(se, ie, L.a, L.b, d);
+                    p.snapshots = {se};
+                    p.labels = {ie.labels};
+                    p.initial = {paper.position};
+                    p.distances.push_back(
+                        {0, L.a, 0, L.b, d, std::max(1e-4, level.distanceSigma) * d});
+                }
+                const auto fit = refineLayout(p);
+                const auto& refined = fit.position.back();
+                std::vector<double> ep, er;
+                for (const auto& [e, d] : paper.distance) {
+                    const double truth = trueDistance(size_t(e.first), size_t(e.second));
+                    ep.push_back(std::abs(d - truth) / truth);
+                    const auto &pi = refined[size_t(e.first)], &pj = refined[size_t(e.second)];
+                    if (pi && pj) er.push_back(std::abs((*pi - *pj).norm() - truth) / truth);
+                }
+                paperSum += median(ep);
+                refinedSum += median(er);
+                ++level.trials;
+            } catch (const Error&) {
+                ++level.failures;  // identification or geometry failed at this noise
+            }
+        }
+        if (level.trials > 0) {
+            level.paper = paperSum / level.trials;
+            level.refined = refinedSum / level.trials;
+        }
+    }
+    return levels;
+}
+
+}  // namespace mrloc::omnivision

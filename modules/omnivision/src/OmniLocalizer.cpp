@@ -1,0 +1,360 @@
+#include <mrloc/common/AtomicFile.h>
+#include <mrloc/common/Error.h>
+#include <mrloc/common/IniSection.h>
+#include <mrloc/common/Metrics.h>
+#include <mrloc/common/Rawlog.h>
+#include <mrloc/omnivision/Accuracy.h>
+#include <mrloc/omnivision/MarkerDetector.h>
+#include <mrloc/omnivision/OmniLocalizer.h>
+#include <mrpt/core/format.h>
+#include <mrpt/obs/CObservationBearingRange.h>
+#include <mrpt/obs/CObservationImage.h>
+#include <mrpt/obs/CObservationOdometry.h>
+#include <mrpt/obs/CObservationRange.h>
+
+#include <algorithm>
+#include <cmath>
+#include <set>
+#include <sstream>
+
+namespace mrloc::omnivision {
+
+namespace {
+constexpr double kSameInstant = 1e-3;  ///< s: snapshots are looked up by time
+
+template <class T>
+std::shared_ptr<T> expect(const mrpt::obs::CObservation::Ptr& obs, const char* className) {
+    auto p = std::dynamic_pointer_cast<T>(obs);
+    if (!p)
+        throw Error("omnivision: observation '" + obs->sensorLabel + "' is a " +
+                    obs->GetRuntimeClass()->className + ", expected " + className);
+    return p;
+}
+}  // namespace
+
+std::vector<std::optional<Vec2>> OmniResult::final() const {
+    return refined ? refined->position.back() : paper.position;
+}
+
+void OmniLocalizer::configure(const mrpt::config::CConfigFileBase& ini) {
+    options_.loadFromConfigFile(ini, "omnivision");
+    origin_ = common::configOrigin(ini);
+    views_.clear();
+    odometer_.clear();
+    lastOdometry_.clear();
+    lidar_.clear();
+    result_.reset();
+}
+
+void OmniLocalizer::saveConfig(mrpt::config::CConfigFileBase& target) const {
+    options_.saveToConfigFile(target, "omnivision");
+}
+
+void OmniLocalizer::process(const mrpt::obs::CObservation::Ptr& obs) {
+    const std::string robot = common::robotOfLabel(obs->sensorLabel);
+    const std::string sensor = common::sensorOfLabel(obs->sensorLabel);
+    const double t = mrpt::Clock::toDouble(obs->timestamp);
+    if (sensor == "omni") {
+        const auto img = expect<mrpt::obs::CObservationImage>(obs, "CObservationImage");
+        views_[t][robot] = makeView(detectMarkers(img->image, options_.panorama), obs->sensorLabel);
+    } else if (sensor == "omni_bearings") {
+        const auto b = expect<mrpt::obs::CObservationBearingRange>(obs, "CObservationBearingRange");
+        views_[t][robot] = viewFromObservation(*b, obs->sensorLabel);
+    } else if (sensor == "odom") {
+        const auto o = expect<mrpt::obs::CObservationOdometry>(obs, "CObservationOdometry");
+        auto& path = odometer_[robot];
+        double length = path.empty() ? 0 : path.back().second;
+        if (const auto it = lastOdometry_.find(robot); it != lastOdometry_.end())
+            length += std::hypot(o->odometry.x() - it->second.second.x(),
+                                 o->odometry.y() - it->second.second.y());
+        path.push_back({t, length});
+        lastOdometry_[robot] = {t, o->odometry};
+    } else if (sensor.rfind("lidar.", 0) == 0) {
+        const auto r = expect<mrpt::obs::CObservationRange>(obs, "CObservationRange");
+        if (r->sensedData.size() != 1 || !std::isfinite(r->sensedData.front().sensedDistance))
+            throw Error("omnivision: '" + obs->sensorLabel + "' must hold one finite distance");
+        lidar_.push_back(
+            {t, robot, sensor.substr(6), double(r->sensedData.front().sensedDistance)});
+    }
+    result_.reset();
+}
+
+double OmniLocalizer::travelledBetween(const std::string& robot, double t0, double t1) const {
+    const auto it = odometer_.find(robot);
+    if (it == odometer_.end() || it->second.empty()) return 0;
+    const auto& path = it->second;
+    const auto at = [&](double t) {
+        if (t <= path.front().first) return path.front().second;
+        if (t >= path.back().first) return path.back().second;
+        const auto hi = std::lower_bound(path.begin(), path.end(), std::make_pair(t, -1e300));
+        const auto lo = hi - 1;
+        const double a = (t - lo->first) / (hi->first - lo->first);
+        return lo->second + a * (hi->second - lo->second);
+    };
+    return at(t1) - at(t0);  // eq. (8)'s l_C: the rotary encoders' distance
+}
+
+Snapshot OmniLocalizer::snapshotAt(double t, const std::vector<std::string>& robots) const {
+    auto it = views_.lower_bound(t - kSameInstant);
+    if (it == views_.end() || it->first > t + kSameInstant)
+        throw Error(mrpt::format("omnivision: no camera snapshot at t = %.3f in the rawlog", t));
+    Snapshot s;
+    s.time = it->first;
+    for (const auto& r : robots) {
+        const auto v = it->second.find(r);
+        s.views.push_back(v == it->second.end() ? View{} : v->second);
+    }
+    return s;
+}
+
+const OmniResult& OmniLocalizer::result() const {
+    if (result_) return *result_;
+    if (views_.empty())
+        throw Error(
+            "omnivision: the rawlog has no <robot>.omni or <robot>.omni_bearings "
+            "observation");
+    OmniResult r;
+    std::set<std::string> names;
+    for (const auto& [t, byRobot] : views_)
+        for (const auto& [name, v] : byRobot) names.insert(name);
+    r.robots.assign(names.begin(), names.end());
+    const auto index = [&](const std::string& name, const char* key) {
+        const auto it = std::find(r.robots.begin(), r.robots.end(), name);
+        if (it == r.robots.end())
+            throw Error(origin_ + ": [omnivision] " + key + ": robot '" + name +
+                        "' has no camera in the rawlog");
+        return int(it - r.robots.begin());
+    };
+    const double t0 = views_.begin()->first;  // the rawlog's clock: snapshot times are offsets
+    const double start = t0 - options_.snapshotTimes().front();
+    SearchOptions so;
+    so.sumTolerance = options_.sumToleranceRad();
+    so.bearingTolerance = options_.bearingToleranceRad();
+    RefinementProblem p;
+    p.bearingSigma = options_.bearingAccuracy();
+    if (options_.method == "proposed") {
+        bool solved = false;
+        for (size_t round = 0; round < options_.pairs.size() && !solved; ++round) {
+            const auto& [na, nb] = options_.pairs[round];
+            const double tb = start + options_.tb + double(round) * options_.roundPeriod;
+            const double te = start + options_.te + double(round) * options_.roundPeriod;
+            const int a = index(na, "pairs"), b = index(nb, "pairs");
+            const Snapshot sb = snapshotAt(tb, r.robots), se = snapshotAt(te, r.robots);
+            const Identification ib = identify(sb, so), ie = identify(se, so);
+            std::vector<double> travelled;
+            for (const auto& name : r.robots) travelled.push_back(travelledBetween(name, tb, te));
+            try {
+                const auto prop = proposedMethod(sb, ib, se, ie, a, b, travelled);
+                r.a = a, r.b = b, r.moving = prop.moving, r.travelled = prop.travelled;
+                r.time = se.time, r.timeBefore = sb.time;
+                r.snapshots = {sb, se};
+                r.ids = {ib, ie};
+                r.paper = prop.after;
+                p.snapshots = {sb, se};
+                p.labels = {ib.labels, ie.labels};
+                p.initial = {prop.before.position, prop.after.position};
+                p.stationary = {a, b};
+                for (size_t k = 0; k < r.robots.size(); ++k)
+                    if (travelled[k] > 0 && prop.before.position[k] && prop.after.position[k])
+                        p.distances.push_back({0, int(k), 1, int(k), travelled[k],
+                                               options_.odometerSigma * travelled[k] + 1e-3});
+                solved = true;
+            } catch (const Error& e) {
+                r.restarts.push_back(na + " " + nb + ": " + e.what() +
+                                     mrpt::format(" [%zu and %zu triangles]", ib.triangles.size(),
+                                                  ie.triangles.size()));  // the paper's restart
+            }
+        }
+        if (!solved) {
+            std::string why;
+            for (const auto& s : r.restarts) why += "\n  " + s;
+            throw Error("omnivision: no stopped pair gave the baseline L:" + why);
+        }
+    } else {
+        const auto& [na, nb] = options_.measuredPair;
+        const int a = index(na, "measured_pair"), b = index(nb, "measured_pair");
+        const Snapshot s = snapshotAt(start + options_.snapshot, r.robots);
+        const auto reading = std::find_if(lidar_.begin(), lidar_.end(), [&](const auto& l) {
+            return l.from == na && l.to == nb && std::abs(l.time - s.time) < kSameInstant;
+        });
+        if (reading == lidar_.end())
+            throw Error("omnivision: conventional method: no distance " + na + ".lidar." + nb +
+                        " measured at the snapshot");
+        const Identification id = identify(s, so);
+        r.a = a, r.b = b, r.time = s.time;
+        r.snapshots = {s};
+        r.ids = {id};
+        r.paper = conventionalMethod(s, id, a, b, reading->distance);
+        p.snapshots = {s};
+        p.labels = {id.labels};
+        p.initial = {r.paper.position};
+        p.distances.push_back({0, a, 0, b, reading->distance, std::max(options_.lidarSigma, 1e-4)});
+    }
+    if (options_.refine) {
+        p.a = r.a, p.b = r.b;
+        r.refined = refineLayout(p);
+    }
+    result_ = std::move(r);
+    return *result_;
+}
+
+std::map<std::string, common::Trajectory> OmniLocalizer::estimates() const {
+    const auto& r = result();
+    std::map<std::string, common::Trajectory> out;
+    const auto final = r.final();
+    for (size_t k = 0; k < r.robots.size(); ++k) {
+        auto& traj = out[r.robots[k]];
+        if (final[k])
+            traj.push_back(
+                {r.time, mrpt::poses::CPose3D(final[k]->x(), final[k]->y(), 0, 0, 0, 0)});
+    }
+    return out;
+}
+
+std::map<std::string, common::Trajectory> OmniLocalizer::truthInEstimateFrame(
+    const std::map<std::string, common::Trajectory>& gt) const {
+    const auto& r = result();
+    truth_.clear();
+    const auto ga = gt.find(r.robots[size_t(r.a)]), gb = gt.find(r.robots[size_t(r.b)]);
+    if (ga == gt.end() || gb == gt.end()) return {};  // no truth for A or B: no errors
+    const auto pa = common::interpolate(ga->second, r.time);
+    const auto pb = common::interpolate(gb->second, r.time);
+    if (!pa || !pb) return {};
+    // The paper's frame: A at the origin, B on the +x axis.
+    const mrpt::poses::CPose3D frame(pa->x(), pa->y(), 0,
+                                     std::atan2(pb->y() - pa->y(), pb->x() - pa->x()), 0, 0);
+    const mrpt::poses::CPose3D toFrame = -frame;
+    for (const auto& [robot, traj] : gt) {
+        auto& out = truth_[robot];
+        for (const auto& s : traj) out.push_back({s.t, toFrame + s.pose});
+    }
+    return truth_;
+}
+
+nlohmann::json OmniLocalizer::methodMetrics() const {
+    const auto& r = result();
+    nlohmann::json j;
+    j["method"] = options_.method;
+    j["camera"] = options_.render ? "render" : "bearings";
+    j["robots"] = r.robots.size();
+    j["pair"] = r.robots[size_t(r.a)] + " " + r.robots[size_t(r.b)];
+    j["restarts"] = r.restarts;
+    j["baseline_L_m"] = r.paper.baseline;
+    if (r.moving >= 0) {
+        j["moving_robot_C"] = r.robots[size_t(r.moving)];
+        j["travelled_l_C_m"] = r.travelled;
+    }
+    j["sum_tolerance_deg"] = options_.sumToleranceRad() * 180 / M_PI;
+    j["bearing_tolerance_deg"] = options_.bearingToleranceRad() * 180 / M_PI;
+    const char* names[] = {"t_b", "t_e"};
+    for (size_t s = 0; s < r.ids.size(); ++s) {
+        nlohmann::json sj;
+        sj["triangles"] = r.ids[s].triangles.size();
+        sj["seeds_tried"] = r.ids[s].candidates;
+        std::vector<std::string> unresolved;
+        for (int k : r.ids[s].unresolved) unresolved.push_back(r.robots[size_t(k)]);
+        sj["unresolved"] = unresolved;
+        j["snapshots"][r.ids.size() == 2 ? names[s] : "snapshot"] = sj;
+    }
+    if (r.refined) {
+        j["refined_rms_bearing_residual_deg"] = r.refined->rmsBearingResidual * 180 / M_PI;
+        j["refined_bearings"] = r.refined->bearings;
+        j["refined_iterations"] = r.refined->iterations;
+    }
+    // Against the truth, in the paper's frame: pairwise distances and the layout.
+    std::vector<std::optional<Vec2>> truth(r.robots.size());
+    for (size_t k = 0; k < r.robots.size(); ++k)
+        if (const auto it = truth_.find(r.robots[k]); it != truth_.end())
+            if (const auto p = common::interpolate(it->second, r.time))
+                truth[k] = Vec2(p->x(), p->y());
+    if (truth[size_t(r.a)] && truth[size_t(r.b)]) {
+        j["true_L_m"] = (*truth[size_t(r.b)] - *truth[size_t(r.a)]).norm();
+        std::vector<double> paperErr, refinedErr;
+        const auto final = r.final();
+        for (const auto& [e, d] : r.paper.distance) {
+            const auto &ti = truth[size_t(e.first)], &tj = truth[size_t(e.second)];
+            if (!ti || !tj) continue;
+            const double dt = (*ti - *tj).norm();
+            paperErr.push_back(std::abs(d - dt) / dt);
+            if (r.refined && final[size_t(e.first)] && final[size_t(e.second)])
+                refinedErr.push_back(
+                    std::abs((*final[size_t(e.first)] - *final[size_t(e.second)]).norm() - dt) /
+                    dt);
+        }
+        const auto stats = [](std::vector<double> v) {
+            nlohmann::json s;
+            std::sort(v.begin(), v.end());
+            s["pairs"] = v.size();
+            s["median"] = v.empty() ? 0.0 : v[v.size() / 2];
+            s["max"] = v.empty() ? 0.0 : v.back();
+            return s;
+        };
+        j["relative_distance_error_paper"] = stats(paperErr);
+        if (r.refined) j["relative_distance_error_refined"] = stats(refinedErr);
+    }
+    return j;
+}
+
+void OmniLocalizer::writeOutputs(const std::string& outDir) const {
+    const auto& r = result();
+    const auto final = r.final();
+    std::ostringstream out;
+    out.precision(10);
+    out << "# layout at t = " << r.time << " in the paper's frame (" << r.robots[size_t(r.a)]
+        << " at the origin, " << r.robots[size_t(r.b)] << " on the x axis)\n"
+        << "# robot x_paper y_paper x_refined y_refined cov_xx cov_xy cov_yy x_true y_true\n";
+    for (size_t k = 0; k < r.robots.size(); ++k) {
+        const auto nan = std::numeric_limits<double>::quiet_NaN();
+        const auto& p = r.paper.position[k];
+        out << r.robots[k] << " " << (p ? p->x() : nan) << " " << (p ? p->y() : nan);
+        if (r.refined && final[k]) {
+            const auto& c = r.refined->covariance.back()[k];
+            out << " " << final[k]->x() << " " << final[k]->y() << " " << c(0, 0) << " " << c(0, 1)
+                << " " << c(1, 1);
+        } else {
+            out << " nan nan nan nan nan";
+        }
+        std::optional<mrpt::poses::CPose3D> t;
+        if (const auto it = truth_.find(r.robots[k]); it != truth_.end())
+            t = common::interpolate(it->second, r.time);
+        out << " " << (t ? t->x() : nan) << " " << (t ? t->y() : nan) << "\n";
+    }
+    common::writeFileAtomically(outDir + "/layout.txt", out.str());
+    if (options_.accuracyTrials <= 0 || truth_.empty()) return;
+    // Monte Carlo on the true layout, with this run's sightings.
+    AccuracyLayout L;
+    L.proposed = options_.method == "proposed";
+    L.a = r.a, L.b = r.b;
+    const auto poseAt = [&](size_t k, double t) {
+        const auto it = truth_.find(r.robots[k]);
+        const auto p = it == truth_.end() ? std::nullopt : common::interpolate(it->second, t);
+        if (!p) throw Error("omnivision accuracy sweep: no truth for " + r.robots[k]);
+        return mrpt::poses::CPose2D(p->x(), p->y(), p->yaw());
+    };
+    const auto seen = [&](size_t s) {
+        std::vector<std::vector<int>> out(r.robots.size());
+        for (size_t o = 0; o < r.robots.size(); ++o)
+            for (int who : r.ids[s].labels[o])
+                if (who >= 0) out[o].push_back(who);
+        return out;
+    };
+    for (size_t k = 0; k < r.robots.size(); ++k) {
+        L.after.push_back(poseAt(k, r.time));
+        L.before.push_back(poseAt(k, L.proposed ? r.timeBefore : r.time));
+    }
+    L.seenAfter = seen(r.ids.size() - 1);
+    L.seenBefore = seen(0);
+    std::ostringstream acc;
+    acc << "# Monte Carlo: axis angle_sigma_deg distance_sigma_rel median_rel_error_paper "
+           "median_rel_error_refined trials failures\n";
+    for (const auto& p : accuracySweep(L, options_.accuracyTrials, 1))
+        acc << p.axis << " " << p.angleSigmaDeg << " " << p.distanceSigma << " " << p.paper << " "
+            << p.refined << " " << p.trials << " " << p.failures << "\n";
+    common::writeFileAtomically(outDir + "/accuracy.txt", acc.str());
+}
+
+void registerLocalizers(common::LocalizerRegistry& registry) {
+    registry.add("omnivision", [] { return std::make_unique<OmniLocalizer>(); });
+}
+
+}  // namespace mrloc::omnivision
