@@ -387,26 +387,33 @@ class Grower {
         for (int l = 0; l < n_; ++l) {
             if (L.placed[size_t(l)] || s_.views[size_t(l)].size() < 2) continue;
             Candidate best;
+            std::vector<std::pair<int, int>> seen;
             forPairsNear(l, delta, tol[0] + tol[1], [&](int e, int f) {
-                // Heading from the two anchors, then every other ray.
-                const double h =
-                    std::atan2(std::sin(dir[0] - bearing(l, e)) + std::sin(dir[1] - bearing(l, f)),
-                               std::cos(dir[0] - bearing(l, e)) + std::cos(dir[1] - bearing(l, f)));
+                // Heading from the two anchors (the mean of what each implies, without trig:
+                // the hot loop), then every other ray.
+                const double h0 = dir[0] - bearing(l, e);
+                const double h = h0 + 0.5 * wrapToPi(dir[1] - bearing(l, f) - h0);
+                seen.clear();
+                size_t misses = 0;  // a wrong robot fails fast: stop once misses outweigh hits
+                for (size_t i = 0; i < c.raysIn.size(); ++i) {
+                    const int img = findImage({}, l, dir[i] - h, tol[i]);
+                    const bool fresh =
+                        img >= 0 && std::none_of(seen.begin(), seen.end(),
+                                                 [&](const auto& x) { return x.second == img; });
+                    if (fresh)
+                        seen.push_back({c.raysIn[i].first, img});
+                    else if (++misses > 2 * seen.size() + kMissSlack)
+                        return;
+                }
+                if (seen.size() < minSeen) return;
+                const size_t evidence = c.raysIn.size() + seen.size();
+                if (best.robot >= 0 && evidence < best.evidence()) return;
                 Candidate k;
                 k.robot = l;
                 k.at = c.at;
                 k.heading = h;
                 k.raysIn = c.raysIn;
-                std::set<int> used;
-                size_t misses = 0;  // a wrong robot fails fast: stop once misses outweigh hits
-                for (size_t i = 0; i < c.raysIn.size(); ++i) {
-                    const int img = findImage({}, l, dir[i] - h, tol[i]);
-                    if (img >= 0 && used.insert(img).second)
-                        k.seen.push_back({c.raysIn[i].first, img});
-                    else if (++misses > 2 * k.seen.size() + kMissSlack)
-                        return;
-                }
-                if (k.seen.size() < minSeen) return;
+                k.seen = seen;
                 k.residual = residual(L, k);
                 if (best.robot < 0 || k.evidence() > best.evidence() ||
                     (k.evidence() == best.evidence() && k.residual < best.residual))
@@ -465,6 +472,7 @@ class Grower {
         for (size_t a = 0; a < std::min(placed, kAnchors); ++a)
             for (size_t b = a + 1; b < std::min(placed, kAnchors); ++b)
                 groups[0].push_back({L.order[a], L.order[b]});
+        if (placed == 3) groups[0].resize(1);      // a true seed finds its fourth from one pair
         std::vector<std::pair<size_t, int>> open;  // (unlabeled images, robot)
         for (int r : L.order) {
             const auto& lab = L.labels[size_t(r)];
@@ -727,7 +735,7 @@ class Grower {
     };
     std::vector<std::vector<PairAngle>> pairs_;   ///< per robot, sorted by angle
     static constexpr double kMinRayAngle = 0.02;  ///< sin of ~1.1 degrees
-    static constexpr size_t kLookahead = 6;
+    static constexpr size_t kLookahead = 3;
     static constexpr size_t kSmallLayout = 6;
     static constexpr size_t kAnchors = 4;
     static constexpr size_t kMissSlack = 4;
