@@ -1,0 +1,113 @@
+// The simulator's omni-camera run (snapshots, stops, the LiDAR) and the localizer's input
+// checks.
+#include <gtest/gtest.h>
+#include <mrloc/common/Error.h>
+#include <mrloc/common/Rawlog.h>
+#include <mrloc/omnivision/OmniLocalizer.h>
+#include <mrloc/sim/Simulator.h>
+#include <mrpt/config/CConfigFileMemory.h>
+#include <mrpt/obs/CObservationBearingRange.h>
+#include <mrpt/obs/CObservationRange.h>
+
+#include <filesystem>
+
+using namespace mrloc;
+
+namespace {
+
+const char* kIni = R"(
+[scenario]
+name = omni_sim
+method = omnivision
+robots = A B C
+duration = 3
+dt = 0.01
+[world]
+size = 10 10 3
+[robot.A]
+start = 1 1 0
+waypoints = 9 1
+[robot.B]
+start = 1 5 0
+waypoints = 9 5
+[robot.C]
+start = 5 9 -90
+waypoints = 5 1
+)";
+
+}  // namespace
+
+TEST(OmniSimulation, SnapshotsStopsAndLidarGoToTheRawlog) {
+    mrpt::config::CConfigFileMemory ini(kIni);
+    auto cfg = sim::ScenarioConfig::load(ini, /*withBeacons=*/false);
+    sim::OmniSetup setup;
+    setup.camera.render = false;
+    setup.snapshotTimes = {1, 2};
+    setup.stops = {{"A", 1, 2}};
+    setup.lidar = sim::OmniSetup::Lidar{"A", "B", 0.0};
+    cfg.omni = setup;
+    const std::string dir = testing::TempDir() + "/omni_sim";
+    const auto path = sim::simulateToFiles(cfg, dir, true);
+    common::RawlogReader reader(path);
+    int bearings = 0, lidar = 0;
+    std::vector<mrpt::obs::CObservation::Ptr> all;
+    for (mrpt::obs::CObservation::Ptr obs; reader.next(obs);) all.push_back(obs);
+    for (const auto& obs : all) {
+        if (common::sensorOfLabel(obs->sensorLabel) == "omni_bearings") {
+            const auto b = std::dynamic_pointer_cast<mrpt::obs::CObservationBearingRange>(obs);
+            ASSERT_TRUE(b);
+            EXPECT_EQ(b->sensedData.size(), 2u);  // the two others
+            for (const auto& m : b->sensedData) EXPECT_EQ(m.landmarkID, -1);
+            ++bearings;
+        }
+        if (obs->sensorLabel == "A.lidar.B") {
+            const auto r = std::dynamic_pointer_cast<mrpt::obs::CObservationRange>(obs);
+            ASSERT_TRUE(r);
+            const double t = mrpt::Clock::toDouble(obs->timestamp);
+            const auto a =
+                common::interpolate(common::loadTum(common::groundTruthPath(path, "A")), t);
+            const auto b =
+                common::interpolate(common::loadTum(common::groundTruthPath(path, "B")), t);
+            EXPECT_NEAR(r->sensedData.front().sensedDistance,
+                        std::hypot(a->x() - b->x(), a->y() - b->y()),
+                        1e-5);  // sigma 0: the true distance (float)
+            ++lidar;
+        }
+    }
+    EXPECT_EQ(bearings, 6);  // 3 robots x 2 snapshots
+    EXPECT_EQ(lidar, 2);
+    // A stood still during [1, 2] s: same position at both snapshots.
+    const auto gt = common::loadTum(common::groundTruthPath(path, "A"));
+    const auto p1 = common::interpolate(gt, 1.7e9 + 1), p2 = common::interpolate(gt, 1.7e9 + 2);
+    ASSERT_TRUE(p1 && p2);
+    EXPECT_NEAR(p1->x(), p2->x(), 1e-9);
+    const auto c1 =
+        common::interpolate(common::loadTum(common::groundTruthPath(path, "C")), 1.7e9 + 1);
+    const auto c2 =
+        common::interpolate(common::loadTum(common::groundTruthPath(path, "C")), 1.7e9 + 2);
+    EXPECT_GT(std::abs(c1->y() - c2->y()), 0.2);  // C drove on
+}
+
+TEST(OmniLocalizerInput, WrongClassUnderAnOmniLabelIsAnError) {
+    mrpt::config::CConfigFileMemory ini("[omnivision]\ncamera = bearings\n");
+    omnivision::OmniLocalizer loc;
+    loc.configure(ini);
+    auto wrong = mrpt::obs::CObservationBearingRange::Create();
+    wrong->sensorLabel = "A.omni";
+    try {
+        loc.process(wrong);
+        FAIL() << "expected an error";
+    } catch (const Error& e) {
+        EXPECT_NE(std::string(e.what()).find("'A.omni' is a mrpt::obs::CObservationBearingRange, "
+                                             "expected CObservationImage"),
+                  std::string::npos)
+            << e.what();
+    }
+    auto nan = mrpt::obs::CObservationBearingRange::Create();
+    nan->sensorLabel = "A.omni_bearings";
+    mrpt::obs::CObservationBearingRange::TMeasurement m;
+    m.yaw = std::numeric_limits<float>::quiet_NaN();
+    nan->sensedData.push_back(m);
+    EXPECT_THROW(loc.process(nan), Error);
+    EXPECT_THROW(loc.estimates(), Error);  // no snapshot at all
+}
