@@ -40,6 +40,11 @@ inline std::string slurp(const std::string& p) {
     return s.str();
 }
 
+/** config/<name>.ini in the source tree. */
+inline std::string config(const std::string& name) {
+    return std::string(MRLOC_SOURCE_DIR) + "/config/" + name + ".ini";
+}
+
 /** A copy of the INI `base` with the first `from` replaced by `to`, as <TempDir>/<name>.ini. */
 inline std::string writeIniFrom(const std::string& base, const std::string& name,
                                 const std::string& from, const std::string& to) {

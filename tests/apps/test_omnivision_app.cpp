@@ -10,14 +10,6 @@ namespace fs = std::filesystem;
 using namespace mrloc;
 using namespace mrloc::testing_cli;
 
-namespace {
-
-std::string config(const std::string& name) {
-    return std::string(MRLOC_SOURCE_DIR) + "/config/" + name + ".ini";
-}
-
-}  // namespace
-
 TEST(MrlocOmnivision, FiveRobotsFromRenderedPanoramas) {
     const std::string out = tmp("omni5");
     const auto r = mrlocCmd("run " + config("omnivision_5robots") + " -q --out " + out);

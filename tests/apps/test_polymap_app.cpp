@@ -9,14 +9,6 @@ namespace fs = std::filesystem;
 using namespace mrloc;
 using namespace mrloc::testing_cli;
 
-namespace {
-
-std::string config(const std::string& name) {
-    return std::string(MRLOC_SOURCE_DIR) + "/config/" + name + ".ini";
-}
-
-}  // namespace
-
 TEST(MrlocPolymap, StepsMapRunFindsTwelveHypothesesWithTheTruthAmongThem) {
     const std::string out = tmp("polymap_steps");
     const auto r = mrlocCmd("run " + config("polymap_steps") + " -q --out " + out);
