@@ -65,10 +65,10 @@ void OmniLocalizer::process(const mrpt::obs::CObservation::Ptr& obs) {
         auto& path = odometer_[robot];
         double length = path.empty() ? 0 : path.back().second;
         if (const auto it = lastOdometry_.find(robot); it != lastOdometry_.end())
-            length += std::hypot(o->odometry.x() - it->second.second.x(),
-                                 o->odometry.y() - it->second.second.y());
+            length +=
+                std::hypot(o->odometry.x() - it->second.x(), o->odometry.y() - it->second.y());
         path.push_back({t, length});
-        lastOdometry_[robot] = {t, o->odometry};
+        lastOdometry_[robot] = o->odometry;
     } else if (sensor.rfind("lidar.", 0) == 0) {
         const auto r = expect<mrpt::obs::CObservationRange>(obs, "CObservationRange");
         if (r->sensedData.size() != 1 || !std::isfinite(r->sensedData.front().sensedDistance))

@@ -51,7 +51,7 @@ class OmniLocalizer : public common::Localizer {
     std::string origin_;
     std::map<double, std::map<std::string, View>> views_;  ///< time -> robot -> view
     std::map<std::string, std::vector<std::pair<double, double>>> odometer_;  ///< t, path
-    std::map<std::string, std::pair<double, mrpt::poses::CPose2D>> lastOdometry_;
+    std::map<std::string, mrpt::poses::CPose2D> lastOdometry_;                ///< per robot
     struct LidarReading {
         double time;
         std::string from, to;
