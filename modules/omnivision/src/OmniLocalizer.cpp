@@ -40,6 +40,7 @@ void OmniLocalizer::configure(const mrpt::config::CConfigFileBase& ini) {
     options_.loadFromConfigFile(ini, "omnivision");
     origin_ = common::configOrigin(ini);
     views_.clear();
+    started_ = false;
     odometer_.clear();
     lastOdometry_.clear();
     lidar_.clear();
@@ -54,6 +55,7 @@ void OmniLocalizer::process(const mrpt::obs::CObservation::Ptr& obs) {
     const std::string robot = common::robotOfLabel(obs->sensorLabel);
     const std::string sensor = common::sensorOfLabel(obs->sensorLabel);
     const double t = mrpt::Clock::toDouble(obs->timestamp);
+    if (!started_ || t < firstTime_) firstTime_ = t, started_ = true;
     if (sensor == "omni") {
         const auto img = expect<mrpt::obs::CObservationImage>(obs, "CObservationImage");
         views_[t][robot] = makeView(detectMarkers(img->image, options_.panorama), obs->sensorLabel);
@@ -125,8 +127,7 @@ const OmniResult& OmniLocalizer::result() const {
                         "' has no camera in the rawlog");
         return int(it - r.robots.begin());
     };
-    const double t0 = views_.begin()->first;  // the rawlog's clock: snapshot times are offsets
-    const double start = t0 - options_.snapshotTimes().front();
+    const double start = firstTime_;  // snapshot times count from the rawlog's start
     SearchOptions so;
     so.sumTolerance = options_.sumToleranceRad();
     so.bearingTolerance = options_.bearingToleranceRad();
