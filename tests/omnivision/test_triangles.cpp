@@ -167,7 +167,7 @@ TEST(TriangleSearch, PartialVisibilityLeavesRobotsUnresolved) {
     std::vector<mrpt::poses::CPose2D> poses = {
         {0, 0, 0.3}, {6, 0, -1}, {3, 5, 2}, {2, 2, 0.1}, {40, 40, 0}};
     auto sw = testing_omni::viewsOf(poses, 0.0, 3, /*maxRange=*/20);
-    // Give robot 3 a sighting of the far robot 4 only it has (a lone image).
+    // Robot 4 stands beyond every camera's 20 m range: nobody sees it.
     SearchOptions o;
     o.sumTolerance = 0.05 * kDeg;
     o.bearingTolerance = 0.05 * kDeg;

@@ -1,4 +1,5 @@
 #include <mrloc/common/Error.h>
+#include <mrloc/common/Metrics.h>
 #include <mrloc/omnivision/Accuracy.h>
 #include <mrloc/omnivision/Refinement.h>
 #include <mrloc/omnivision/RelativeLocation.h>
@@ -24,11 +25,6 @@ Snapshot noisyViews(const std::vector<mrpt::poses::CPose2D>& poses,
         s.views.push_back(makeView(b, "accuracy sweep"));
     }
     return s;
-}
-
-double median(std::vector<double> v) {
-    std::sort(v.begin(), v.end());
-    return v.empty() ? 0 : v[v.size() / 2];
 }
 
 }  // namespace
@@ -94,8 +90,8 @@ std::vector<AccuracyPoint> accuracySweep(const AccuracyLayout& L, int trials, un
                     const auto &pi = refined[size_t(e.first)], &pj = refined[size_t(e.second)];
                     if (pi && pj) er.push_back(std::abs((*pi - *pj).norm() - truth) / truth);
                 }
-                paperSum += median(ep);
-                refinedSum += median(er);
+                paperSum += common::percentile(ep, 50);
+                refinedSum += common::percentile(er, 50);
                 ++level.trials;
             } catch (const Error&) {
                 ++level.failures;  // identification or geometry failed at this noise

@@ -35,8 +35,8 @@ std::vector<double> detectMarkers(const mrpt::img::CImage& strip, const common::
             const double b = px[0], g = px[1], r = px[2];
             mask.at<uint8_t>(y, x) = r >= o.minRed && r >= o.redRatio * g && r >= o.redRatio * b;
         }
-    cv::Mat labels, stats, centroids;
-    const int n = cv::connectedComponentsWithStats(mask, labels, stats, centroids, 8, CV_32S);
+    cv::Mat labels;
+    const int n = cv::connectedComponents(mask, labels, 8, CV_32S);
     std::vector<int> parent(static_cast<size_t>(n));
     std::iota(parent.begin(), parent.end(), 0);
     const int last = bgr.cols - 1;

@@ -40,9 +40,9 @@ void OmniLocalizer::configure(const mrpt::config::CConfigFileBase& ini) {
     options_.loadFromConfigFile(ini, "omnivision");
     origin_ = common::configOrigin(ini);
     views_.clear();
-    started_ = false;
+    firstTime_.reset();
     odometer_.clear();
-    lastOdometry_.clear();
+    previousOdometry_.clear();
     lidar_.clear();
     result_.reset();
 }
@@ -55,7 +55,7 @@ void OmniLocalizer::process(const mrpt::obs::CObservation::Ptr& obs) {
     const std::string robot = common::robotOfLabel(obs->sensorLabel);
     const std::string sensor = common::sensorOfLabel(obs->sensorLabel);
     const double t = mrpt::Clock::toDouble(obs->timestamp);
-    if (!started_ || t < firstTime_) firstTime_ = t, started_ = true;
+    if (!firstTime_ || t < *firstTime_) firstTime_ = t;
     if (sensor == "omni") {
         const auto img = expect<mrpt::obs::CObservationImage>(obs, "CObservationImage");
         views_[t][robot] = makeView(detectMarkers(img->image, options_.panorama), obs->sensorLabel);
@@ -66,11 +66,11 @@ void OmniLocalizer::process(const mrpt::obs::CObservation::Ptr& obs) {
         const auto o = expect<mrpt::obs::CObservationOdometry>(obs, "CObservationOdometry");
         auto& path = odometer_[robot];
         double length = path.empty() ? 0 : path.back().second;
-        if (const auto it = lastOdometry_.find(robot); it != lastOdometry_.end())
+        if (const auto it = previousOdometry_.find(robot); it != previousOdometry_.end())
             length +=
                 std::hypot(o->odometry.x() - it->second.x(), o->odometry.y() - it->second.y());
         path.push_back({t, length});
-        lastOdometry_[robot] = o->odometry;
+        previousOdometry_[robot] = o->odometry;
     } else if (sensor.rfind("lidar.", 0) == 0) {
         const auto r = expect<mrpt::obs::CObservationRange>(obs, "CObservationRange");
         if (r->sensedData.size() != 1 || !std::isfinite(r->sensedData.front().sensedDistance))
@@ -127,7 +127,7 @@ const OmniResult& OmniLocalizer::result() const {
                         "' has no camera in the rawlog");
         return int(it - r.robots.begin());
     };
-    const double start = firstTime_;  // snapshot times count from the rawlog's start
+    const double start = *firstTime_;  // snapshot times count from the rawlog's start
     SearchOptions so;
     so.sumTolerance = options_.sumToleranceRad();
     so.bearingTolerance = options_.bearingToleranceRad();
@@ -282,13 +282,9 @@ nlohmann::json OmniLocalizer::methodMetrics() const {
                     std::abs((*final[size_t(e.first)] - *final[size_t(e.second)]).norm() - dt) /
                     dt);
         }
-        const auto stats = [](std::vector<double> v) {
-            nlohmann::json s;
-            std::sort(v.begin(), v.end());
-            s["pairs"] = v.size();
-            s["median"] = v.empty() ? 0.0 : v[v.size() / 2];
-            s["max"] = v.empty() ? 0.0 : v.back();
-            return s;
+        const auto stats = [](const std::vector<double>& v) {
+            const auto st = common::computeStats(v);
+            return nlohmann::json{{"pairs", v.size()}, {"median", st.median}, {"max", st.max}};
         };
         j["relative_distance_error_paper"] = stats(paperErr);
         if (r.refined) j["relative_distance_error_refined"] = stats(refinedErr);

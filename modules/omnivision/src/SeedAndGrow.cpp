@@ -7,6 +7,7 @@
 #include <algorithm>
 #include <cmath>
 #include <map>
+#include <optional>
 #include <set>
 #include <tuple>
 
@@ -28,6 +29,25 @@ Vec2 unit(double angle) { return {std::cos(angle), std::sin(angle)}; }
 double direction(const Vec2& from, const Vec2& to) {
     return std::atan2(to.y() - from.y(), to.x() - from.x());
 }
+
+/** The least-squares meeting point of lines, each through a point at a direction. */
+class LineMeeting {
+ public:
+    void add(const Vec2& through, double angle) {
+        const Vec2 normal(-std::sin(angle), std::cos(angle));
+        A_ += normal * normal.transpose();
+        b_ += normal * normal.dot(through);
+    }
+    /** None when the lines are (nearly) parallel. */
+    std::optional<Vec2> solve() const {
+        if (std::abs(A_.determinant()) <= 1e-12) return std::nullopt;
+        return A_.ldlt().solve(b_);
+    }
+
+ private:
+    Eigen::Matrix2d A_ = Eigen::Matrix2d::Zero();
+    Eigen::Vector2d b_ = Eigen::Vector2d::Zero();
+};
 
 /** A triangle whose identities are fixed, counter-clockwise r[0] -> r[1] -> r[2]. At
  *  r[v], image[v][0] shows the next robot and image[v][1] the previous one, so that the
@@ -212,15 +232,10 @@ class Grower {
 
     /** Least-squares meeting point of the rays into a candidate. */
     void refinePoint(const Layout& L, Candidate& c) const {
-        Eigen::Matrix2d A = Eigen::Matrix2d::Zero();
-        Eigen::Vector2d b = Eigen::Vector2d::Zero();
-        for (const auto& [s, img] : c.raysIn) {
-            const Vec2 u = unit(L.heading[size_t(s)] + bearing(s, img));
-            const Vec2 nrm(-u.y(), u.x());
-            A += nrm * nrm.transpose();
-            b += nrm * nrm.dot(L.p[size_t(s)]);
-        }
-        if (std::abs(A.determinant()) > 1e-12) c.at = A.ldlt().solve(b);
+        LineMeeting m;
+        for (const auto& [s, img] : c.raysIn)
+            m.add(L.p[size_t(s)], L.heading[size_t(s)] + bearing(s, img));
+        if (const auto at = m.solve()) c.at = *at;
     }
 
     /** Which unplaced robot sees the placed robots of c.raysIn from c.at, at the bearings
@@ -404,25 +419,19 @@ class Grower {
         for (int it = 0; it < sweeps; ++it)
             for (size_t k = 2; k < L.order.size(); ++k) {  // the first two fix the frame
                 const int r = L.order[k];
-                Eigen::Matrix2d A = Eigen::Matrix2d::Zero();
-                Eigen::Vector2d rhs = Eigen::Vector2d::Zero();
-                const auto addLine = [&](const Vec2& through, double angle) {
-                    const Vec2 nrm(-std::sin(angle), std::cos(angle));
-                    A += nrm * nrm.transpose();
-                    rhs += nrm * nrm.dot(through);
-                };
+                LineMeeting m;
                 for (int s : L.order) {
                     if (s == r) continue;
                     const auto& lab = L.labels[size_t(s)];
                     for (size_t img = 0; img < lab.size(); ++img)
                         if (lab[img] == r)
-                            addLine(L.p[size_t(s)], L.heading[size_t(s)] + bearing(s, int(img)));
+                            m.add(L.p[size_t(s)], L.heading[size_t(s)] + bearing(s, int(img)));
                 }
                 const auto& own = L.labels[size_t(r)];
                 for (size_t img = 0; img < own.size(); ++img)
                     if (own[img] >= 0 && L.placed[size_t(own[img])])
-                        addLine(L.p[size_t(own[img])], L.heading[size_t(r)] + bearing(r, int(img)));
-                if (std::abs(A.determinant()) > 1e-12) L.p[size_t(r)] = A.ldlt().solve(rhs);
+                        m.add(L.p[size_t(own[img])], L.heading[size_t(r)] + bearing(r, int(img)));
+                if (const auto at = m.solve()) L.p[size_t(r)] = *at;
                 L.heading[size_t(r)] = fitHeading(L, r);
             }
         for (int r : L.order) L.heading[size_t(r)] = fitHeading(L, r);
@@ -540,36 +549,33 @@ class Grower {
     /** Every triangle: counter-clockwise angle pairs at three robots summing to 180. */
     template <class Try>
     bool generalSeeds(Try&& attempt) const {
-        struct Pair {
-            double angle;
-            int p, q;  ///< from image p to image q, counter-clockwise
-        };
-        std::vector<std::vector<Pair>> pairs(static_cast<size_t>(n_));
-        for (int r = 0; r < n_; ++r) {
-            const auto& v = s_.views[size_t(r)];
-            for (int p = 0; p < int(v.size()); ++p)
-                for (int q = 0; q < int(v.size()); ++q)
-                    if (const double a = signedAngle(v, p, q); p != q && a > 0 && a < M_PI)
-                        pairs[size_t(r)].push_back({a, p, q});
-            std::sort(pairs[size_t(r)].begin(), pairs[size_t(r)].end(),
-                      [](const Pair& a, const Pair& b) { return a.angle < b.angle; });
+        // The counter-clockwise pairs (angle in (0, pi)): a slice of each robot's table.
+        using It = std::vector<PairAngle>::const_iterator;
+        std::vector<std::pair<It, It>> ccw;
+        for (const auto& ps : pairs_) {
+            const auto byAngle = [](const PairAngle& x, double v) { return x.angle < v; };
+            const It from =
+                std::upper_bound(ps.begin(), ps.end(), 0.0,
+                                 [](double v, const PairAngle& x) { return v < x.angle; });
+            ccw.push_back({from, std::lower_bound(from, ps.end(), M_PI, byAngle)});
         }
         const double tol = o_.sumTolerance;
         for (int i = 0; i < n_; ++i)
             for (int j = i + 1; j < n_; ++j)
                 for (int k = i + 1; k < n_; ++k) {
                     if (k == j) continue;
-                    const auto& pk = pairs[size_t(k)];
-                    for (const auto& a : pairs[size_t(i)])
-                        for (const auto& b : pairs[size_t(j)]) {
-                            const double g = M_PI - a.angle - b.angle;
+                    const auto [kFrom, kTo] = ccw[size_t(k)];
+                    for (auto a = ccw[size_t(i)].first; a != ccw[size_t(i)].second; ++a)
+                        for (auto b = ccw[size_t(j)].first; b != ccw[size_t(j)].second; ++b) {
+                            const double g = M_PI - a->angle - b->angle;
                             if (g <= -tol) break;
-                            auto it = std::lower_bound(
-                                pk.begin(), pk.end(), g - tol,
-                                [](const Pair& x, double v) { return x.angle < v; });
-                            for (; it != pk.end() && it->angle <= g + tol; ++it) {
-                                const Seed seed{{i, j, k},
-                                                {{{a.p, a.q}, {b.p, b.q}, {it->p, it->q}}}};
+                            auto c = std::lower_bound(
+                                kFrom, kTo, g - tol,
+                                [](const PairAngle& x, double v) { return x.angle < v; });
+                            for (; c != kTo && c->angle <= g + tol; ++c) {
+                                const Seed seed{
+                                    {i, j, k},
+                                    {{{a->from, a->to}, {b->from, b->to}, {c->from, c->to}}}};
                                 if (attempt(seed)) return true;
                             }
                         }

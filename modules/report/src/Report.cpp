@@ -117,20 +117,42 @@ std::string beaconSystemSection(const nlohmann::json& metrics, const ReportOptio
     return t;
 }
 
-/** Rows of numbers from a text file written by a method ('#' lines are comments). */
-std::vector<std::vector<double>> readRows(const std::string& path) {
+/** The data lines of a text file written by a method ('#' lines are comments): each
+ *  line's number ("file:line", for errors) and whitespace-separated fields. */
+struct DataLine {
+    std::string where;
+    std::vector<std::string> fields;
+};
+std::vector<DataLine> readDataLines(const std::string& path) {
     std::ifstream in(path);
     if (!in) throw Error(path + ": cannot open");
-    std::vector<std::vector<double>> rows;
+    std::vector<DataLine> lines;
     std::string line;
     for (int lineNo = 1; std::getline(in, line); ++lineNo) {
         if (line.empty() || line[0] == '#') continue;
         std::istringstream ls(line);
+        DataLine d{path + ":" + std::to_string(lineNo), {}};
+        for (std::string f; ls >> f;) d.fields.push_back(f);
+        lines.push_back(std::move(d));
+    }
+    return lines;
+}
+
+double number(const std::string& where, const std::string& field) {
+    char* end = nullptr;
+    const double v = std::strtod(field.c_str(), &end);  // accepts "nan"
+    if (end == field.c_str() || *end) throw Error(where + ": '" + field + "' is not a number");
+    return v;
+}
+
+/** Rows of at least two numbers. */
+std::vector<std::vector<double>> readRows(const std::string& path) {
+    std::vector<std::vector<double>> rows;
+    for (const auto& d : readDataLines(path)) {
+        if (d.fields.size() < 2) throw Error(d.where + ": expected numbers");
         std::vector<double> row;
-        for (double x; ls >> x;) row.push_back(x);
-        if (!ls.eof() || row.size() < 2)
-            throw Error(path + ":" + std::to_string(lineNo) + ": expected numbers");
-        rows.push_back(row);
+        for (const auto& f : d.fields) row.push_back(number(d.where, f));
+        rows.push_back(std::move(row));
     }
     return rows;
 }
@@ -176,40 +198,19 @@ std::string polymapSection(const std::string& dir, const nlohmann::json& metrics
     return out;
 }
 
-/** Whitespace-separated fields of the data lines of a method's text file ('#': comment). */
-std::vector<std::vector<std::string>> readFields(const std::string& path) {
-    std::ifstream in(path);
-    if (!in) throw Error(path + ": cannot open");
-    std::vector<std::vector<std::string>> rows;
-    for (std::string line; std::getline(in, line);) {
-        if (line.empty() || line[0] == '#') continue;
-        std::istringstream ls(line);
-        std::vector<std::string> row;
-        for (std::string f; ls >> f;) row.push_back(f);
-        rows.push_back(row);
-    }
-    return rows;
-}
-
-double number(const std::string& path, const std::string& field) {
-    char* end = nullptr;
-    const double v = std::strtod(field.c_str(), &end);  // accepts "nan"
-    if (end == field.c_str() || *end) throw Error(path + ": '" + field + "' is not a number");
-    return v;
-}
-
 /** The omni-directional camera section (seed 000): true and recovered layouts, and the
  *  accuracy sweep when the run made one. */
 std::string omnivisionSection(const std::string& dir, const nlohmann::json& metrics) {
     const std::string layoutPath = dir + "/layout.txt";
     if (!std::filesystem::exists(layoutPath)) return "";
     std::vector<LayoutPoint> points;
-    for (const auto& f : readFields(layoutPath)) {
-        if (f.size() != 10) throw Error(layoutPath + ": expected a name and 9 numbers per line");
+    for (const auto& d : readDataLines(layoutPath)) {
+        const auto& f = d.fields;
+        if (f.size() != 10) throw Error(d.where + ": expected a name and 9 numbers");
         LayoutPoint p{f[0], 0, 0, 0, 0, 0, 0, 0, 0, 0};
         double* v[] = {&p.paperX, &p.paperY, &p.refinedX, &p.refinedY, &p.cxx,
                        &p.cxy,    &p.cyy,    &p.trueX,    &p.trueY};
-        for (size_t i = 0; i < 9; ++i) *v[i] = number(layoutPath, f[i + 1]);
+        for (size_t i = 0; i < 9; ++i) *v[i] = number(d.where, f[i + 1]);
         points.push_back(p);
     }
     const auto& m = metrics.value("omnivision", nlohmann::json::object());
@@ -245,10 +246,11 @@ std::string omnivisionSection(const std::string& dir, const nlohmann::json& metr
         std::string table =
             "<table><tr><th>varied</th><th>bearing sigma (deg)</th><th>distance sigma (%)</th>"
             "<th>paper (%)</th><th>least squares (%)</th><th>trials</th><th>failed</th></tr>\n";
-        for (const auto& f : readFields(accPath)) {
-            if (f.size() != 7) throw Error(accPath + ": expected 7 fields per line");
-            AccuracyRow r{f[0], number(accPath, f[1]), number(accPath, f[2]), number(accPath, f[3]),
-                          number(accPath, f[4])};
+        for (const auto& d : readDataLines(accPath)) {
+            const auto& f = d.fields;
+            if (f.size() != 7) throw Error(d.where + ": expected 7 fields");
+            AccuracyRow r{f[0], number(d.where, f[1]), number(d.where, f[2]), number(d.where, f[3]),
+                          number(d.where, f[4])};
             rows.push_back(r);
             table += mrpt::format(
                 "<tr><td>%s</td><td>%g</td><td>%g</td><td>%.3f</td><td>%.3f</td><td>%s</td>"

@@ -50,10 +50,9 @@ class OmniLocalizer : public common::Localizer {
     OmniOptions options_;
     std::string origin_;
     std::map<double, std::map<std::string, View>> views_;  ///< time -> robot -> view
-    double firstTime_ = 0;  ///< the rawlog's first observation: t_b, t_e are offsets from it
-    bool started_ = false;
+    std::optional<double> firstTime_;  ///< the rawlog's first observation: t_b, t_e count from it
     std::map<std::string, std::vector<std::pair<double, double>>> odometer_;  ///< t, path
-    std::map<std::string, mrpt::poses::CPose2D> lastOdometry_;                ///< per robot
+    std::map<std::string, mrpt::poses::CPose2D> previousOdometry_;            ///< per robot
     struct LidarReading {
         double time;
         std::string from, to;
