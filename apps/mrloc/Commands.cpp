@@ -1,208 +1,202 @@
 #include "Commands.h"
 
-#include <mrloc/beacons/BeaconLocalizer.h>
+#include <mrloc/common/AtomicFile.h>
 #include <mrloc/common/Error.h>
 #include <mrloc/common/IniSection.h>
 #include <mrloc/common/LocalizationRun.h>
-#include <mrloc/omnivision/OmniLocalizer.h>
-#include <mrloc/polymap/PolymapLocalizer.h>
-#include <mrloc/report/Report.h>
+#include <mrloc/common/Metrics.h>
+#include <mrloc/common/RunDirectory.h>
+#include <mrloc/common/Version.h>
 #include <mrloc/report/ReportOptions.h>
 #include <mrloc/sim/Simulator.h>
-#include <mrpt/3rdparty/tclap/CmdLine.h>
 #include <mrpt/config/CConfigFile.h>
 #include <mrpt/config/CConfigFileMemory.h>
-#include <mrpt/core/format.h>
-#include <mrpt/random/RandomGenerators.h>
 
 #include <algorithm>
 #include <cctype>
-#include <cmath>
+#include <cstring>
 #include <filesystem>
+#include <fstream>
 #include <iostream>
 #include <set>
+#include <sstream>
 
 namespace mrloc::app {
 
+namespace fs = std::filesystem;
+
 namespace {
 
-constexpr const char* kVersion = "0.1.0";
-
-common::LocalizerRegistry makeRegistry() {
-    common::LocalizerRegistry r;
-    beacons::registerLocalizers(r);
-    polymap::registerLocalizers(r);
-    omnivision::registerLocalizers(r);
-    return r;
-}
-
-/** Opens an INI and rejects lower-case sections that mrloc does not know (a misspelt
- *  section would otherwise be ignored). Sections of MRPT's apps start with upper case. */
-std::unique_ptr<mrpt::config::CConfigFile> openIni(const std::string& path) {
-    if (!std::filesystem::is_regular_file(path)) throw Error("config " + path + ": no such file");
+/** Opens an INI and rejects lower-case sections that no registered method nor the
+ *  framework owns (a misspelt section would otherwise be ignored). Sections of MRPT's apps
+ *  start with upper case and are left alone. */
+std::unique_ptr<mrpt::config::CConfigFile> openIni(const std::string& path,
+                                                   const method::Registry& registry) {
+    if (!fs::is_regular_file(path)) throw Error("config " + path + ": no such file");
     auto ini = std::make_unique<mrpt::config::CConfigFile>(path);
     std::vector<std::string> sections;
     ini->getAllSections(sections);
-    static const std::set<std::string> known = {"scenario", "world",   "sensors",    "ultrasonic",
-                                                "beacons",  "polymap", "omnivision", "report"};
+    const auto known = registry.sections();
     for (const auto& s : sections) {
         if (s.empty() || !std::islower(static_cast<unsigned char>(s[0]))) continue;
-        if (known.count(s) || s.rfind("robot.", 0) == 0) continue;
-        throw Error(path + ": [" + s +
-                    "]: unknown section (mrloc's sections: scenario, world, "
-                    "sensors, ultrasonic, robot.<name>, beacons, polymap, omnivision, report; see "
-                    "doc/ini.md)");
+        if (std::find(known.begin(), known.end(), s) != known.end() || s.rfind("robot.", 0) == 0)
+            continue;
+        std::string list;
+        for (const auto& k : known) list += (list.empty() ? "" : ", ") + k;
+        throw Error(path + ": [" + s + "]: unknown section (mrloc's sections: " + list +
+                    "; see doc/ini.md)");
     }
     return ini;
 }
 
-struct Common {
+/** --out and --quiet, shared by the commands that write a run directory. */
+struct OutputArgs {
     TCLAP::ValueArg<std::string> out{
         "o", "out", "output directory (default: out/<scenario name>)", false, "", "DIR"};
     TCLAP::SwitchArg quiet{"q", "quiet", "no progress bar, only errors"};
+    std::string dirOr(const std::string& name) {
+        return out.isSet() ? out.getValue() : "out/" + name;
+    }
 };
 
-std::string outDirOr(Common& c, const std::string& name) {
-    return c.out.isSet() ? c.out.getValue() : "out/" + name;
+std::string commandLine(int argc, char** argv) {
+    std::string s = "mrloc";
+    for (int i = 0; i < argc; ++i) s += std::string(" ") + argv[i];
+    return s;
 }
 
-/** A swarm of robots driving straight across the room at random headings, placed at
- *  random at least `separation` apart ([omnivision] swarm = N). */
-std::vector<sim::RobotOptions> generateSwarm(const omnivision::OmniOptions& o,
-                                             const sim::WorldOptions& world) {
-    mrpt::random::CRandomGenerator rng(uint32_t(o.swarmSeed));
-    const double side = std::min({o.swarmArea, world.sizeX, world.sizeY});
-    const double x0 = 0.5 * (world.sizeX - side), y0 = 0.5 * (world.sizeY - side);
-    std::vector<sim::RobotOptions> robots;
-    for (int tries = 0; int(robots.size()) < o.swarm; ++tries) {
-        if (tries > 100000)
-            throw Error("[omnivision] swarm: cannot place " + std::to_string(o.swarm) + " robots " +
-                        std::to_string(o.swarmSeparation) + " m apart in swarm_area");
-        const double x = x0 + rng.drawUniform(0.05, 0.95) * side;
-        const double y = y0 + rng.drawUniform(0.05, 0.95) * side;
-        if (std::any_of(robots.begin(), robots.end(), [&](const auto& r) {
-                return std::hypot(r.start.x() - x, r.start.y() - y) < o.swarmSeparation;
-            }))
-            continue;
-        sim::RobotOptions r;
-        r.name = mrpt::format("R%02d", int(robots.size()) + 1);
-        const double heading = rng.drawUniform(-M_PI, M_PI);
-        r.start = mrpt::poses::CPose2D(x, y, heading);
-        r.speed = std::max(o.swarmSpeed, 1e-3);
-        if (o.swarmSpeed > 0)  // a far waypoint straight ahead: the robot drives straight
-            r.waypoints = {{x + 1e3 * std::cos(heading), y + 1e3 * std::sin(heading)}};
-        r.loop = false;
-        robots.push_back(r);
+/** Everything one INI asks for, read and validated before anything is written. */
+struct Setup {
+    std::string iniPath;
+    std::unique_ptr<mrpt::config::CConfigFile> ini;
+    sim::ScenarioOptions scenario;  ///< [scenario], with --seed applied
+    const method::Method* method = nullptr;
+    std::unique_ptr<common::Localizer> localizer;  ///< configured
+    /** Built when the INI describes a simulation (it has [scenario]). */
+    std::optional<method::Scenario> simulation;
+    report::ReportOptions reportOptions;
+};
+
+Setup loadSetup(const method::Registry& registry, const std::string& iniPath,
+                std::optional<long> seed, bool needSimulation) {
+    Setup s;
+    s.iniPath = iniPath;
+    s.ini = openIni(iniPath, registry);
+    s.scenario.loadFromConfigFile(*s.ini, "scenario");
+    if (seed) {
+        if (*seed < 0) throw Error("--seed must be non-negative");
+        s.scenario.seed = (unsigned long)*seed;
     }
-    return robots;
+    s.method = &registry.get(s.scenario.method);
+    if (needSimulation || s.ini->sectionExists("scenario")) {
+        s.simulation = s.method->scenario(*s.ini);
+        s.simulation->config.scenario.seed = s.scenario.seed;
+    }
+    s.localizer = s.method->localizer();
+    s.localizer->configure(*s.ini);
+    s.reportOptions.loadFromConfigFile(*s.ini, "report");
+    return s;
 }
 
-/** The omni-directional camera setup [omnivision] implies: snapshots, stops, the LiDAR. */
-sim::ScenarioConfig loadOmniScenario(const mrpt::config::CConfigFile& ini) {
-    omnivision::OmniOptions o;
-    o.loadFromConfigFile(ini, "omnivision");
-    sim::WorldOptions world;
-    world.loadFromConfigFile(ini, "world");
-    auto cfg = o.swarm > 0 ? sim::ScenarioConfig::load(ini, generateSwarm(o, world))
-                           : sim::ScenarioConfig::load(ini, /*withBeacons=*/false);
-    const auto need = [&](const std::string& robot, const char* key) {
-        if (std::find(cfg.scenario.robots.begin(), cfg.scenario.robots.end(), robot) ==
-            cfg.scenario.robots.end())
-            throw Error(common::configOrigin(ini) + ": [omnivision] " + key + ": robot '" + robot +
-                        "' is not in the scenario");
-    };
-    sim::OmniSetup setup;
-    setup.camera.render = o.render;
-    setup.camera.panorama = o.panorama;
-    setup.camera.bearingSigma = o.bearingSigma * M_PI / 180;
-    setup.camera.maxRange = o.maxRange;
-    setup.camera.markerRadius = o.markerRadius;
-    setup.camera.markerHeight = o.markerHeight;
-    setup.camera.cameraHeight = o.cameraHeight;
-    setup.snapshotTimes = o.snapshotTimes();
-    for (double t : setup.snapshotTimes)
-        if (t > cfg.scenario.duration)
-            throw Error(common::configOrigin(ini) + ": [omnivision]: a snapshot at " +
-                        std::to_string(t) + " s is after [scenario] duration");
-    if (o.method == "proposed") {
-        for (size_t r = 0; r < o.pairs.size(); ++r) {
-            const auto& [a, b] = o.pairs[r];
-            need(a, "pairs");
-            need(b, "pairs");
-            const double shift = double(r) * o.roundPeriod;
-            setup.stops.push_back({a, o.tb + shift, o.te + shift});
-            setup.stops.push_back({b, o.tb + shift, o.te + shift});
-        }
+/** effective.ini: every section of the INI as given (MRPT's own sections too), then every
+ *  section mrloc reads rewritten with its defaults filled in. `simulate`, `localize` and
+ *  `run` write the same file for the same INI and seed. */
+std::string effectiveIni(const Setup& s) {
+    mrpt::config::CConfigFileMemory eff;
+    std::vector<std::string> sections;
+    s.ini->getAllSections(sections);
+    for (const auto& section : sections) {
+        std::vector<std::string> keys;
+        s.ini->getAllKeys(section, keys);
+        for (const auto& k : keys) eff.write(section, k, s.ini->read_string(section, k, ""));
+    }
+    if (s.simulation) {
+        s.simulation->config.save(eff);
+        if (s.simulation->saveOptions) s.simulation->saveOptions(eff);
     } else {
-        need(o.measuredPair.first, "measured_pair");
-        need(o.measuredPair.second, "measured_pair");
-        setup.lidar =
-            sim::OmniSetup::Lidar{o.measuredPair.first, o.measuredPair.second, o.lidarSigma};
+        s.scenario.saveToConfigFile(eff, "scenario");
     }
-    cfg.omni = setup;
-    return cfg;
+    s.localizer->saveConfig(eff);
+    s.reportOptions.saveToConfigFile(eff, "report");
+    return eff.getContent();
 }
 
-/** A floor-plan scenario takes its map, start and scanner from [polymap]; an omni-camera
- *  scenario its cameras, stops and swarm from [omnivision]. */
-sim::ScenarioConfig loadScenarioOf(const mrpt::config::CConfigFile& ini) {
-    sim::ScenarioOptions scenario;
-    scenario.loadFromConfigFile(ini, "scenario");
-    if (scenario.method == "omnivision") return loadOmniScenario(ini);
-    if (scenario.method != "polymap") return sim::ScenarioConfig::load(ini);
-    polymap::PolymapOptions o;
-    o.loadFromConfigFile(ini, "polymap");
-    auto map = o.buildMap();
-    const auto start = o.startIn(map);
-    sim::FloorPlan plan{std::move(map.polygon),
-                        {o.scanRays, o.scanRangeSigma, o.scanMaxRange, o.scanRate}};
-    return sim::ScenarioConfig::load(ini, std::move(plan),
-                                     {start.x, start.y, mrpt::DEG2RAD(o.heading)});
+/** config.ini (a copy of the INI), effective.ini and provenance.json, with this step's
+ *  command line added to the steps already recorded there. */
+void writeProvenance(const Setup& s, const std::string& dir, const std::string& step,
+                     const std::string& command) {
+    common::makeDirectories(dir);
+    std::ifstream in(s.iniPath, std::ios::binary);
+    std::stringstream text;
+    text << in.rdbuf();
+    common::writeFileAtomically(common::run_dir::configCopy(dir), text.str());
+    common::writeFileAtomically(common::run_dir::effectiveIni(dir), effectiveIni(s));
+    nlohmann::json p = nlohmann::json::object();
+    const std::string path = common::run_dir::provenance(dir);
+    if (fs::exists(path)) p = common::loadJson(path);
+    p["ini"] = s.iniPath;
+    p["seed"] = s.scenario.seed;
+    p["version"] = kVersion;
+    p["steps"][step] = command;
+    common::saveJson(path, p);
 }
 
-sim::ScenarioConfig loadScenario(const mrpt::config::CConfigFile& ini,
-                                 TCLAP::ValueArg<long>& seed) {
-    auto cfg = loadScenarioOf(ini);
-    report::ReportOptions().loadFromConfigFile(ini, "report");  // checked before any output
-    if (seed.isSet()) {
-        if (seed.getValue() < 0) throw Error("--seed must be non-negative");
-        cfg.scenario.seed = (unsigned long)seed.getValue();
+/** Removes, on failure, every file a command created in its output directory (and the
+ *  directory if it created it), so that a failed run leaves nothing under final names. */
+class OutputGuard {
+ public:
+    explicit OutputGuard(std::string dir) : dir_(std::move(dir)), existed_(fs::exists(dir_)) {
+        if (existed_)
+            for (const auto& e : fs::directory_iterator(dir_)) before_.insert(e.path());
     }
-    return cfg;
-}
-
-/** Validates the method's section before anything is written. */
-std::unique_ptr<common::Localizer> makeLocalizer(const std::string& method,
-                                                 const mrpt::config::CConfigFileBase& ini) {
-    auto loc = makeRegistry().create(method);
-    loc->configure(ini);
-    return loc;
-}
-
-/** The method's on-board part in a closed-loop simulation (none for a method without). */
-std::unique_ptr<beacons::OnboardBeacons> makeOnboard(const std::string& method,
-                                                     const mrpt::config::CConfigFileBase& ini) {
-    if (method != "beacons") return nullptr;
-    return std::make_unique<beacons::OnboardBeacons>(ini);
-}
-
-sim::SimulationHooks hooksOf(const std::unique_ptr<beacons::OnboardBeacons>& o) {
-    if (!o) return {};
-    return {&o->localizer, &o->rfBeacon};
-}
-
-void doLocalize(const std::string& method, const mrpt::config::CConfigFileBase& ini,
-                const mrpt::config::CConfigFileBase& effective, const std::string& rawlog,
-                const std::string& outDir, bool quiet) {
-    auto loc = makeLocalizer(method, ini);
-    const auto m = common::runLocalization(*loc, {method, rawlog, outDir, quiet}, effective);
-    if (!quiet) {
-        std::cerr << "localized " << m["observations"] << " observations with '" << method << "'";
-        if (m.value("ground_truth", false))
-            std::cerr << ": RMSE " << m["rmse_m"].get<double>() << " m, max "
-                      << m["max_m"].get<double>() << " m over " << m["n"] << " estimates";
-        std::cerr << "\n";
+    ~OutputGuard() {
+        if (done_ || !fs::exists(dir_)) return;
+        std::error_code ec;
+        for (const auto& e : fs::directory_iterator(dir_, ec))
+            if (!before_.count(e.path())) fs::remove_all(e.path(), ec);
+        if (!existed_) fs::remove(dir_, ec);
     }
+    void keep() { done_ = true; }
+
+ private:
+    std::string dir_;
+    bool existed_;
+    std::set<fs::path> before_;
+    bool done_ = false;
+};
+
+std::string doSimulate(Setup& s, const std::string& dir, bool quiet) {
+    const auto files =
+        sim::simulateToFiles(s.simulation->config, dir, quiet, s.simulation->payload.get());
+    return files.rawlog;
+}
+
+void doLocalize(Setup& s, const std::string& rawlog, const std::string& dir, bool quiet) {
+    const std::string& name = s.method->name;
+    const auto result = common::runLocalization(*s.localizer, {name, rawlog, dir, quiet});
+    if (s.method->experiment) s.method->experiment({*s.ini, *s.localizer, result.truth, dir});
+    if (quiet) return;
+    const auto& m = result.metrics;
+    std::cerr << "localized " << m["observations"] << " observations with '" << name << "'";
+    if (m.value("ground_truth", false))
+        std::cerr << ": RMSE " << m["rmse_m"].get<double>() << " m, max "
+                  << m["max_m"].get<double>() << " m over " << m["n"] << " estimates";
+    std::cerr << "\n";
+}
+
+std::string doReport(const method::Registry& registry, const std::string& dir) {
+    const std::string metricsPath = common::run_dir::metrics(dir);
+    if (!fs::exists(metricsPath))
+        throw Error(dir + ": not a run directory (no metrics.json; run `mrloc localize` first)");
+    const auto metrics = common::loadJson(metricsPath);
+    const std::string name = metrics.value("method", "");
+    if (!registry.has(name))
+        throw Error(metricsPath + ": method '" + name + "' is not one this mrloc knows");
+    return report::makeReport(dir, registry.get(name).report);
+}
+
+std::optional<long> seedOf(TCLAP::ValueArg<long>& seed) {
+    return seed.isSet() ? std::optional<long>(seed.getValue()) : std::nullopt;
 }
 
 }  // namespace
@@ -216,29 +210,30 @@ std::optional<int> parseArgs(TCLAP::CmdLine& cmd, int argc, char** argv) {
     return 2;
 }
 
-int simulate(int argc, char** argv) {
+int simulate(const method::Registry& registry, int argc, char** argv) {
     TCLAP::CmdLine cmd(
         "mrloc simulate: simulate the INI's scenario into a rawlog "
-        "(<out>/<name>.rawlog) and ground truth (<out>/<name>.<robot>.gt.txt)",
+        "(<out>/<name>.rawlog), ground truth (<out>/<name>.<robot>.gt.txt) and "
+        "effective.ini",
         ' ', kVersion);
     TCLAP::UnlabeledValueArg<std::string> iniArg("ini", "scenario INI file", true, "", "INI", cmd);
     TCLAP::ValueArg<long> seed("s", "seed", "random seed (overrides [scenario] seed)", false, 0,
                                "N", cmd);
-    Common c;
-    cmd.add(c.out);
-    cmd.add(c.quiet);
+    OutputArgs o;
+    cmd.add(o.out);
+    cmd.add(o.quiet);
     if (const auto code = parseArgs(cmd, argc, argv)) return *code;
-    const auto ini = openIni(iniArg.getValue());
-    const auto cfg = loadScenario(*ini, seed);
-    makeLocalizer(cfg.scenario.method, *ini);  // a bad method section fails before simulating
-    const auto onboard = makeOnboard(cfg.scenario.method, *ini);
-    const std::string path = sim::simulateToFiles(cfg, outDirOr(c, cfg.scenario.name),
-                                                  c.quiet.getValue(), hooksOf(onboard));
-    std::cout << path << "\n";
+    Setup s = loadSetup(registry, iniArg.getValue(), seedOf(seed), true);
+    const std::string dir = o.dirOr(s.scenario.name);
+    OutputGuard guard(dir);
+    const std::string rawlog = doSimulate(s, dir, o.quiet.getValue());
+    writeProvenance(s, dir, "simulate", commandLine(argc, argv));
+    guard.keep();
+    std::cout << rawlog << "\n";
     return 0;
 }
 
-int localize(int argc, char** argv) {
+int localize(const method::Registry& registry, int argc, char** argv) {
     TCLAP::CmdLine cmd(
         "mrloc localize: run the INI's method ([scenario] method, default "
         "'beacons') on any MRPT rawlog, in either rawlog format. Ground truth "
@@ -246,31 +241,32 @@ int localize(int argc, char** argv) {
         ' ', kVersion);
     TCLAP::UnlabeledValueArg<std::string> iniArg("ini", "INI file", true, "", "INI", cmd);
     TCLAP::UnlabeledValueArg<std::string> rawlog("rawlog", "rawlog file", true, "", "RAWLOG", cmd);
-    Common c;
-    cmd.add(c.out);
-    cmd.add(c.quiet);
+    OutputArgs o;
+    cmd.add(o.out);
+    cmd.add(o.quiet);
     if (const auto code = parseArgs(cmd, argc, argv)) return *code;
-    const auto ini = openIni(iniArg.getValue());
-    sim::ScenarioOptions scenario;
-    scenario.loadFromConfigFile(*ini, "scenario");
-    const std::string dir = outDirOr(c, scenario.name);
-    doLocalize(scenario.method, *ini, *ini, rawlog.getValue(), dir, c.quiet.getValue());
+    Setup s = loadSetup(registry, iniArg.getValue(), std::nullopt, false);
+    const std::string dir = o.dirOr(s.scenario.name);
+    OutputGuard guard(dir);
+    doLocalize(s, rawlog.getValue(), dir, o.quiet.getValue());
+    writeProvenance(s, dir, "localize", commandLine(argc, argv));
+    guard.keep();
     std::cout << dir << "\n";
     return 0;
 }
 
-int report(int argc, char** argv) {
+int report(const method::Registry& registry, int argc, char** argv) {
     TCLAP::CmdLine cmd(
-        "mrloc report: render report.html, topview.png, error_time.png and "
-        "error_cdf.png in a directory written by `mrloc localize`",
+        "mrloc report: render report.html and its pictures in a directory written by "
+        "`mrloc localize`",
         ' ', kVersion);
     TCLAP::UnlabeledValueArg<std::string> dir("run-dir", "run directory", true, "", "DIR", cmd);
     if (const auto code = parseArgs(cmd, argc, argv)) return *code;
-    std::cout << report::makeReport(dir.getValue()) << "\n";
+    std::cout << doReport(registry, dir.getValue()) << "\n";
     return 0;
 }
 
-int run(int argc, char** argv) {
+int run(const method::Registry& registry, int argc, char** argv) {
     TCLAP::CmdLine cmd(
         "mrloc run: simulate, localize and report in a row; everything goes to "
         "<out> (default out/<scenario name>)",
@@ -278,25 +274,60 @@ int run(int argc, char** argv) {
     TCLAP::UnlabeledValueArg<std::string> iniArg("ini", "scenario INI file", true, "", "INI", cmd);
     TCLAP::ValueArg<long> seed("s", "seed", "random seed (overrides [scenario] seed)", false, 0,
                                "N", cmd);
-    Common c;
-    cmd.add(c.out);
-    cmd.add(c.quiet);
+    OutputArgs o;
+    cmd.add(o.out);
+    cmd.add(o.quiet);
     if (const auto code = parseArgs(cmd, argc, argv)) return *code;
-    const auto ini = openIni(iniArg.getValue());
-    const auto cfg = loadScenario(*ini, seed);
-    makeLocalizer(cfg.scenario.method, *ini);
-    const std::string dir = outDirOr(c, cfg.scenario.name);
-    const auto onboard = makeOnboard(cfg.scenario.method, *ini);
-    const std::string rawlog = sim::simulateToFiles(cfg, dir, c.quiet.getValue(), hooksOf(onboard));
-    mrpt::config::CConfigFileMemory effective;
-    cfg.save(effective);
-    report::ReportOptions paper;
-    paper.loadFromConfigFile(*ini, "report");
-    paper.saveToConfigFile(effective, "report");
-    doLocalize(cfg.scenario.method, *ini, effective, rawlog, dir, c.quiet.getValue());
-    const std::string page = report::makeReport(dir);
+    Setup s = loadSetup(registry, iniArg.getValue(), seedOf(seed), true);
+    const std::string dir = o.dirOr(s.scenario.name);
+    OutputGuard guard(dir);
+    const std::string rawlog = doSimulate(s, dir, o.quiet.getValue());
+    doLocalize(s, rawlog, dir, o.quiet.getValue());
+    const std::string command = commandLine(argc, argv);
+    writeProvenance(s, dir, "run", command);
+    const std::string page = doReport(registry, dir);
+    guard.keep();
     std::cout << "report: " << page << "\n";
     return 0;
+}
+
+namespace {
+constexpr const char* kUsage =
+    "usage: mrloc <command> [options]   (mrloc <command> --help for details)\n"
+    "\n"
+    "commands:\n"
+    "  simulate <ini>           simulate the INI's scenario into a rawlog + ground truth\n"
+    "  localize <ini> <rawlog>  run the INI's method on any MRPT rawlog\n"
+    "  report <run-dir>         render report.html and pictures of a localize run\n"
+    "  run <ini>                simulate, localize and report in a row\n"
+    "  info <rawlog>            per robot and sensor label: class, count, rate, time span\n";
+}  // namespace
+
+int main(const method::Registry& registry, int argc, char** argv) {
+    if (argc < 2 || !std::strcmp(argv[1], "--help") || !std::strcmp(argv[1], "-h")) {
+        std::cout << kUsage;
+        return argc < 2 ? 2 : 0;
+    }
+    const std::string command = argv[1];
+    try {
+        if (command == "simulate") return simulate(registry, argc - 1, argv + 1);
+        if (command == "localize") return localize(registry, argc - 1, argv + 1);
+        if (command == "report") return report(registry, argc - 1, argv + 1);
+        if (command == "run") return run(registry, argc - 1, argv + 1);
+        if (command == "info") return info(argc - 1, argv + 1);
+        std::cerr << "mrloc: unknown command '" << command << "'\n" << kUsage;
+        return 2;
+    } catch (const TCLAP::ArgException& e) {
+        std::cerr << "mrloc " << command << ": " << e.error() << " (" << e.argId() << ")\n"
+                  << "see: mrloc " << command << " --help\n";
+        return 2;
+    } catch (const mrloc::Error& e) {
+        std::cerr << "mrloc " << command << ": error: " << e.what() << "\n";
+        return 1;
+    } catch (const std::exception& e) {
+        std::cerr << "mrloc " << command << ": unexpected error: " << e.what() << "\n";
+        return 1;
+    }
 }
 
 }  // namespace mrloc::app

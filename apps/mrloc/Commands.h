@@ -1,6 +1,8 @@
 #pragma once
 // Subcommands of the mrloc executable. Each parses its own arguments (TCLAP, shipped with
-// MRPT) and returns the process exit code; mrloc::Error propagates to main().
+// MRPT) and returns the process exit code; mrloc::Error propagates to the caller. They
+// know no method by name: everything method-specific comes from the registry.
+#include <mrloc/method/Registry.h>
 #include <mrpt/3rdparty/tclap/CmdLine.h>
 
 #include <optional>
@@ -11,10 +13,14 @@ namespace mrloc::app {
  *  usage error it has printed (exit 2); nullopt means: go on. */
 std::optional<int> parseArgs(TCLAP::CmdLine& cmd, int argc, char** argv);
 
-int simulate(int argc, char** argv);
-int localize(int argc, char** argv);
-int report(int argc, char** argv);
-int run(int argc, char** argv);
+int simulate(const method::Registry& registry, int argc, char** argv);
+int localize(const method::Registry& registry, int argc, char** argv);
+int report(const method::Registry& registry, int argc, char** argv);
+int run(const method::Registry& registry, int argc, char** argv);
 int info(int argc, char** argv);
+
+/** Dispatches `mrloc <command> ...` (argv[0] is the program); prints errors, returns the
+ *  exit code: 0 done, 1 error, 2 usage. */
+int main(const method::Registry& registry, int argc, char** argv);
 
 }  // namespace mrloc::app

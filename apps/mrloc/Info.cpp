@@ -1,5 +1,6 @@
 // `mrloc info <rawlog>`: what a rawlog holds, per robot and sensor label, before a run.
 #include <mrloc/common/Rawlog.h>
+#include <mrloc/common/Version.h>
 #include <mrpt/3rdparty/tclap/CmdLine.h>
 #include <mrpt/core/format.h>
 #include <mrpt/system/datetime.h>
@@ -15,7 +16,7 @@ int info(int argc, char** argv) {
     TCLAP::CmdLine cmd(
         "mrloc info: per robot and sensor label of a rawlog, the observation "
         "class, count, rate and time span",
-        ' ', "0.1.0");
+        ' ', kVersion);
     TCLAP::UnlabeledValueArg<std::string> path("rawlog", "rawlog file", true, "", "RAWLOG", cmd);
     if (const auto code = parseArgs(cmd, argc, argv)) return *code;
 

@@ -51,7 +51,7 @@ ClosedLoopRun runClosedLoop(const mrpt::config::CConfigFileBase& ini, const std:
     return run;
 }
 
-double receptionRate(const sim::ShotLog& log, const std::string& robot, int beacon) {
+double receptionRate(const beacons::ShotLog& log, const std::string& robot, int beacon) {
     size_t shots = 0, heard = 0;
     for (const auto& s : log)
         if (s.robot == robot && s.beacon == beacon) ++shots, heard += s.detected;
@@ -63,7 +63,7 @@ double receptionRate(const sim::ShotLog& log, const std::string& robot, int beac
 TEST(ShotScheduler, PriorityServesInProportionToSpeedRoundRobinTakesTurns) {
     for (const auto policy : {beacons::Scheduling::Priority, beacons::Scheduling::RoundRobin}) {
         beacons::ShotScheduler scheduler(policy, 0.05);
-        std::vector<common::RobotReport> robots(2);
+        std::vector<beacons::RobotReport> robots(2);
         robots[0].robot = "slow", robots[0].speed = 0.1;
         robots[1].robot = "fast", robots[1].speed = 0.8;
         std::map<std::string, int> slots;

@@ -10,7 +10,7 @@ using mrpt::poses::CPose2D;
 
 namespace {
 
-const common::BeaconMap kMap = {
+const beacons::BeaconMap kMap = {
     {1, {0, 0, 2.5}}, {2, {3, 0, 2.5}}, {3, {3, 3, 2.5}}, {4, {0, 3, 2.5}}};
 
 struct Drive {

@@ -1,6 +1,6 @@
 // Validated INI access: every kind of INI error names file, section and key.
 #include <gtest/gtest.h>
-#include <mrloc/common/BeaconMap.h>
+#include <mrloc/beacons/BeaconMap.h>
 #include <mrloc/common/Error.h>
 #include <mrloc/common/IniSection.h>
 #include <mrpt/config/CConfigFileMemory.h>
@@ -84,7 +84,7 @@ TEST(IniSection, OutOfRangeIsAnError) {
 TEST(BeaconMap, OurKeysAndMrptLandmarksMapKeys) {
     mrpt::config::CConfigFileMemory ours("[beacons]\nbeacon_3 = 1 2 2.5\nbeacon_10 = 0 0 2.5\n");
     IniSection s(ours, "beacons");
-    const auto m = common::loadBeaconMap(ours, s);
+    const auto m = beacons::loadBeaconMap(ours, s);
     ASSERT_EQ(m.size(), 2u);
     EXPECT_DOUBLE_EQ(m.at(3).y, 2.0);
     EXPECT_NO_THROW(s.finish());
@@ -95,7 +95,7 @@ TEST(BeaconMap, OurKeysAndMrptLandmarksMapKeys) {
         "beacon_001_ID = 5\nbeacon_001_x = 1.0\nbeacon_001_y = 2.0\nbeacon_001_z = 2.5\n"
         "beacon_002_ID = 6\nbeacon_002_x = 3.0\nbeacon_002_y = 0.5\nbeacon_002_z = 2.4\n");
     IniSection empty(theirs, "beacons");
-    const auto m2 = common::loadBeaconMap(theirs, empty);
+    const auto m2 = beacons::loadBeaconMap(theirs, empty);
     ASSERT_EQ(m2.size(), 2u);
     EXPECT_DOUBLE_EQ(m2.at(6).x, 3.0);
     EXPECT_DOUBLE_EQ(m2.at(5).z, 2.5);
@@ -106,7 +106,7 @@ TEST(BeaconMap, OurKeysAndMrptLandmarksMapKeys) {
         "1\n");
     IniSection e3(broken, "beacons");
     try {
-        common::loadBeaconMap(broken, e3);
+        beacons::loadBeaconMap(broken, e3);
         FAIL();
     } catch (const Error& e) {
         EXPECT_NE(std::string(e.what()).find("beacon_001_y: missing"), std::string::npos)
@@ -114,8 +114,8 @@ TEST(BeaconMap, OurKeysAndMrptLandmarksMapKeys) {
     }
     mrpt::config::CConfigFileMemory none("[beacons]\n");
     IniSection e4(none, "beacons");
-    EXPECT_THROW(common::loadBeaconMap(none, e4), Error);
+    EXPECT_THROW(beacons::loadBeaconMap(none, e4), Error);
     mrpt::config::CConfigFileMemory badId("[beacons]\nbeacon_x = 1 2 3\n");
     IniSection e5(badId, "beacons");
-    EXPECT_THROW(common::loadBeaconMap(badId, e5), Error);
+    EXPECT_THROW(beacons::loadBeaconMap(badId, e5), Error);
 }

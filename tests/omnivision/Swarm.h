@@ -2,7 +2,7 @@
 // Synthetic swarms for the omnivision tests and benchmarks: random robots in a square,
 // the views their cameras give (sim's bearings mode geometry) and the true labels.
 #include <mrloc/omnivision/TriangleSearch.h>
-#include <mrloc/sim/OmniCamera.h>
+#include <mrloc/omnivision/OmniCamera.h>
 #include <mrpt/random/RandomGenerators.h>
 
 #include <algorithm>
@@ -19,13 +19,13 @@ struct Swarm {
 inline Swarm viewsOf(std::vector<mrpt::poses::CPose2D> poses, double sigmaDeg, unsigned seed,
                      double maxRange = 0) {
     mrpt::random::CRandomGenerator rng(seed);
-    sim::OmniCameraOptions o;
+    omnivision::OmniCameraOptions o;
     o.maxRange = maxRange;
     o.markerRadius = 0.05;
     Swarm s;
     s.poses = std::move(poses);
     for (size_t i = 0; i < s.poses.size(); ++i) {
-        const auto seen = sim::sightingsOf(s.poses, i, o);
+        const auto seen = omnivision::sightingsOf(s.poses, i, o);
         std::vector<std::pair<double, int>> bt;
         for (size_t k = 0; k < seen.bearings.size(); ++k)
             bt.push_back(

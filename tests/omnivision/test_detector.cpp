@@ -3,7 +3,7 @@
 #include <gtest/gtest.h>
 #include <mrloc/common/Error.h>
 #include <mrloc/omnivision/MarkerDetector.h>
-#include <mrloc/sim/OmniCamera.h>
+#include <mrloc/omnivision/OmniCamera.h>
 #include <mrpt/math/wrap2pi.h>
 
 using namespace mrloc;
@@ -13,7 +13,7 @@ constexpr double kDeg = M_PI / 180;
 }
 
 TEST(Panorama, ColumnsMapToBearingsAcrossViews) {
-    common::Panorama p;  // 4 x 512 px, 90 deg views
+    omnivision::Panorama p;  // 4 x 512 px, 90 deg views
     EXPECT_NEAR(p.focal(), 256, 1e-9);
     // The centre of view 0 looks ahead; column 0 is near +45 deg, the strip runs clockwise.
     EXPECT_NEAR(p.bearingOfColumn(255.5), 0, 1e-12);
@@ -23,8 +23,8 @@ TEST(Panorama, ColumnsMapToBearingsAcrossViews) {
 }
 
 TEST(MarkerDetector, RenderedBandsGiveTheirBearings) {
-    sim::OmniCameraOptions o;
-    sim::OmniRenderer renderer(o);
+    omnivision::OmniCameraOptions o;
+    omnivision::OmniRenderer renderer(o);
     std::vector<mrpt::poses::CPose2D> poses = {{5, 5, 0.4},   {9, 6, 0},     {5, 9.5, 0},
                                                {1.5, 4, 0},   {6, 1, 0},     {8.8, 2.2, 0},
                                                {2.2, 8.6, 0}, {4.99, 0.3, 0}};
@@ -32,7 +32,7 @@ TEST(MarkerDetector, RenderedBandsGiveTheirBearings) {
     int n = 0;
     for (size_t observer : {0u, 3u}) {
         const auto strip = renderer.render(poses, observer);
-        const auto truth = sim::sightingsOf(poses, observer, o);
+        const auto truth = omnivision::sightingsOf(poses, observer, o);
         const auto found = omnivision::detectMarkers(strip, o.panorama);
         ASSERT_EQ(found.size(), truth.bearings.size()) << "observer " << observer;
         for (double b : truth.bearings) {
@@ -57,5 +57,5 @@ TEST(MarkerDetector, RenderedBandsGiveTheirBearings) {
 
 TEST(MarkerDetector, RejectsAStripOfTheWrongSize) {
     mrpt::img::CImage small(100, 20, mrpt::img::CH_RGB);
-    EXPECT_THROW(omnivision::detectMarkers(small, common::Panorama{}), Error);
+    EXPECT_THROW(omnivision::detectMarkers(small, omnivision::Panorama{}), Error);
 }

@@ -40,11 +40,11 @@ waypoints = 5 1
 TEST(OmniSimulation, SnapshotsStopsAndLidarGoToTheRawlog) {
     mrpt::config::CConfigFileMemory ini(kIni);
     auto cfg = sim::ScenarioConfig::load(ini, /*withBeacons=*/false);
-    sim::OmniSetup setup;
+    omnivision::OmniSetup setup;
     setup.camera.render = false;
     setup.snapshotTimes = {1, 2};
     setup.stops = {{"A", 1, 2}};
-    setup.lidar = sim::OmniSetup::Lidar{"A", "B", 0.0};
+    setup.lidar = omnivision::OmniSetup::Lidar{"A", "B", 0.0};
     cfg.omni = setup;
     const std::string dir = testing::TempDir() + "/omni_sim";
     const auto path = sim::simulateToFiles(cfg, dir, true);

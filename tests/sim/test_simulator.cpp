@@ -52,13 +52,13 @@ sim::ScenarioConfig config(const std::string& extra = "") {
 }
 
 /** Every beacon fires at every robot in turn, aimed at the robot's true receiver. */
-class AllBeaconsAtTruth : public common::RangingController {
+class AllBeaconsAtTruth : public beacons::RangingController {
  public:
-    AllBeaconsAtTruth(const common::BeaconMap& map, double shotInterval = 0.0001)
+    AllBeaconsAtTruth(const beacons::BeaconMap& map, double shotInterval = 0.0001)
         : map_(map), shotInterval_(shotInterval) {}
-    std::optional<common::RangingEpoch> nextEpoch(
-        double, const std::vector<common::RobotReport>& requests) override {
-        common::RangingEpoch e;
+    std::optional<beacons::RangingEpoch> nextEpoch(
+        double, const std::vector<beacons::RobotReport>& requests) override {
+        beacons::RangingEpoch e;
         e.robot = requests[next_++ % requests.size()].robot;
         e.section = "all";
         e.shotInterval = shotInterval_;
@@ -71,7 +71,7 @@ class AllBeaconsAtTruth : public common::RangingController {
     std::function<mrpt::math::TPoint3D(const std::string&)> truth;
 
  private:
-    const common::BeaconMap& map_;
+    const beacons::BeaconMap& map_;
     double shotInterval_;
     size_t next_ = 0;
 };
@@ -155,7 +155,7 @@ TEST(Simulator, SameSeedGivesByteIdenticalRawlogAndOtherSeedDoesNot) {
         sim::simulateToFiles(cfg, testing::TempDir() + "/det_b", true, {nullptr, &cb});
     EXPECT_EQ(slurp(a), slurp(b));
     EXPECT_EQ(slurp(common::groundTruthPath(a, "r1")), slurp(common::groundTruthPath(b, "r1")));
-    EXPECT_EQ(slurp(sim::shotLogPath(a)), slurp(sim::shotLogPath(b)));
+    EXPECT_EQ(slurp(beacons::shotLogPath(a)), slurp(beacons::shotLogPath(b)));
     cfg.scenario.seed = 8;
     const std::string c =
         sim::simulateToFiles(cfg, testing::TempDir() + "/det_c", true, {nullptr, &cc});

@@ -3,6 +3,7 @@
 #include <mrloc/common/IniSection.h>
 #include <mrloc/common/Rawlog.h>
 #include <mrpt/obs/CObservationOdometry.h>
+#include <mrpt/core/format.h>
 #include <mrpt/system/datetime.h>
 
 #include <cmath>
@@ -36,8 +37,15 @@ void BeaconOptions::loadFromConfigFile(const mrpt::config::CConfigFileBase& src,
     tracker.randomWalkSigma = s.real("random_walk_sigma", 0.5, 0, 100);
     tracker.bootstrapBaseline = s.real("bootstrap_baseline", 0.3, 0.01, 100);
     tracker.resetAfter = int(s.integer("reset_after", 5, 1, 100000));
-    map = common::loadBeaconMap(src, s);
+    map = loadBeaconMap(src, s);
     system.load(s, map);
+    paperReception.clear();
+    for (const auto& [id, key] : s.numberedKeys("paper_reception_")) {
+        const auto rates = s.reals(key, {});
+        for (double r : rates)
+            if (r < 0 || r > 100) s.fail(key, "rates are percentages, 0 to 100");
+        paperReception[id] = rates;
+    }
     s.finish();
 }
 
@@ -62,7 +70,12 @@ void BeaconOptions::saveToConfigFile(mrpt::config::CConfigFileBase& t,
     t.write(section, "bootstrap_baseline", tracker.bootstrapBaseline);
     t.write(section, "reset_after", tracker.resetAfter);
     system.save(t, section);
-    common::saveBeaconKeys(map, t, section);
+    saveBeaconKeys(map, t, section);
+    for (const auto& [id, rates] : paperReception) {
+        std::string v;
+        for (double r : rates) v += (v.empty() ? "" : " ") + mrpt::format("%g", r);
+        t.write(section, "paper_reception_" + std::to_string(id), v);
+    }
 }
 
 void BeaconLocalizer::configure(const mrpt::config::CConfigFileBase& ini) {
@@ -85,13 +98,9 @@ void BeaconLocalizer::process(const mrpt::obs::CObservation::Ptr& obs) {
     const double t = mrpt::Clock::toDouble(obs->timestamp);
     if (auto odo = std::dynamic_pointer_cast<mrpt::obs::CObservationOdometry>(obs)) {
         trackerOf(robot).onOdometry(odo->odometry);
-        if (const auto prev = previousOdometry_.find(robot); prev != previousOdometry_.end()) {
-            const auto& [t0, p0] = prev->second;
-            const mrpt::poses::CPose2D step = odo->odometry - p0;  // in the robot's frame
-            spacing_[robot].sinceLast += std::hypot(step.x(), step.y());
-            if (t > t0) forwardSpeed_[robot] = step.x() / (t - t0);
-        }
-        previousOdometry_[robot] = {t, odo->odometry};
+        auto& path = odometry_[robot];
+        path.add(t, odo->odometry);
+        spacing_[robot].sinceLast += path.lastStep();
         return;
     }
     auto ranges = std::dynamic_pointer_cast<mrpt::obs::CObservationBeaconRanges>(obs);
@@ -108,14 +117,15 @@ mrpt::obs::CObservationBeaconRanges BeaconLocalizer::compensateMotion(
     const std::string& robot, const mrpt::obs::CObservationBeaconRanges& obs) {
     mrpt::obs::CObservationBeaconRanges out = obs;
     const BeaconTracker& tracker = trackerOf(robot);
-    const auto speed = forwardSpeed_.find(robot);
-    if (!tracker.initialized() || speed == forwardSpeed_.end()) return out;
+    const auto path = odometry_.find(robot);
+    if (!tracker.initialized() || path == odometry_.end() || !path->second.forwardSpeed())
+        return out;
+    const double speed = *path->second.forwardSpeed();
     // The beacons fire one after another and the epoch is stamped at its last shot: a
     // range fired `age` earlier was read `age * v` back along the path. To first order it
     // grows by (u . v) age over that time, u the unit vector from beacon to receiver.
     const auto& mean = tracker.pdf().mean;
-    const double vx = speed->second * std::cos(mean.phi()),
-                 vy = speed->second * std::sin(mean.phi());
+    const double vx = speed * std::cos(mean.phi()), vy = speed * std::sin(mean.phi());
     for (auto& m : out.sensedData) {
         const auto b = options_.map.find(m.beaconID);
         if (b == options_.map.end()) continue;
@@ -158,12 +168,9 @@ void BeaconLocalizer::fixOnly(const std::string& robot, double t,
     // The fix locates the receiver; the robot's reference is sensor z below it.
     const double sensorZ = obs.sensedData.front().sensorLocationOnRobot.z();
     const double z = options_.threeD ? f->position.z() - sensorZ : 0.0;
-    const auto odometry = previousOdometry_.find(robot);
-    addEstimate(
-        robot, t,
-        mrpt::poses::CPose3D(
-            f->position.x(), f->position.y(), z,
-            odometry == previousOdometry_.end() ? 0.0 : odometry->second.second.phi(), 0, 0));
+    const auto odometry = odometry_.find(robot);
+    const double heading = odometry == odometry_.end() ? 0.0 : odometry->second.last()->phi();
+    addEstimate(robot, t, mrpt::poses::CPose3D(f->position.x(), f->position.y(), z, heading, 0, 0));
 }
 
 nlohmann::json BeaconLocalizer::methodMetrics() const {
@@ -204,9 +211,5 @@ BeaconLocalizer configured(const mrpt::config::CConfigFileBase& ini) {
 
 OnboardBeacons::OnboardBeacons(const mrpt::config::CConfigFileBase& ini)
     : localizer(configured(ini)), rfBeacon(localizer.options().system) {}
-
-void registerLocalizers(common::LocalizerRegistry& registry) {
-    registry.add("beacons", [] { return std::make_unique<BeaconLocalizer>(); });
-}
 
 }  // namespace mrloc::beacons

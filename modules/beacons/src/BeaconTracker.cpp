@@ -21,7 +21,7 @@ double chi2Quantile1(double p) {
     return lo * lo;
 }
 
-BeaconTracker::BeaconTracker(common::BeaconMap map, TrackerOptions options)
+BeaconTracker::BeaconTracker(BeaconMap map, TrackerOptions options)
     : map_(std::move(map)), o_(std::move(options)), gate_(chi2Quantile1(o_.gateProbability)) {}
 
 void BeaconTracker::onOdometry(const CPose2D& odo) {

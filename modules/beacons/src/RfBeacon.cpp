@@ -2,7 +2,7 @@
 
 namespace mrloc::beacons {
 
-void RfBeaconOptions::load(common::IniSection& s, const common::BeaconMap& map) {
+void RfBeaconOptions::load(common::IniSection& s, const BeaconMap& map) {
     activeAiming = s.choice("aiming", "active", {"active", "fixed"}) == "active";
     scheduling = s.choice("scheduling", "priority", {"priority", "round_robin"}) == "priority"
                      ? Scheduling::Priority
@@ -34,7 +34,7 @@ double RfBeaconOptions::shotAge(int id) const {
 RfBeacon::RfBeacon(RfBeaconOptions options)
     : o_(std::move(options)), scheduler_(o_.scheduling, o_.minSpeed) {}
 
-std::optional<size_t> RfBeacon::servingSection(double t, const common::RobotReport& r) {
+std::optional<size_t> RfBeacon::servingSection(double t, const RobotReport& r) {
     const mrpt::math::TPoint2D p(r.receiver.x, r.receiver.y);
     const size_t here = o_.sections.at(p);
     auto& ready = tableReadyAt_[r.robot];
@@ -50,9 +50,9 @@ std::optional<size_t> RfBeacon::servingSection(double t, const common::RobotRepo
     return here;
 }
 
-std::optional<common::RangingEpoch> RfBeacon::nextEpoch(
-    double t, const std::vector<common::RobotReport>& requests) {
-    std::vector<common::RobotReport> candidates;
+std::optional<RangingEpoch> RfBeacon::nextEpoch(
+    double t, const std::vector<RobotReport>& requests) {
+    std::vector<RobotReport> candidates;
     std::vector<size_t> sectionOf;
     for (const auto& r : requests) {
         if (const auto s = servingSection(t, r)) {
@@ -67,7 +67,7 @@ std::optional<common::RangingEpoch> RfBeacon::nextEpoch(
     scheduler_.served(candidates[i].robot, t);
     ++stats_.epochs;
     const Section& sec = o_.sections[sectionOf[i]];
-    common::RangingEpoch e;
+    RangingEpoch e;
     e.robot = candidates[i].robot;
     e.section = sec.name;
     e.beacons = sec.beacons;

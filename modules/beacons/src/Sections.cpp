@@ -27,7 +27,7 @@ size_t SectionMap::at(const mrpt::math::TPoint2D& p) const {
     return best;
 }
 
-SectionMap readSections(common::IniSection& s, const common::BeaconMap& map) {
+SectionMap readSections(common::IniSection& s, const BeaconMap& map) {
     const std::string prefix = "section_";
     s.allowPrefix(prefix);
     std::set<std::string> names;

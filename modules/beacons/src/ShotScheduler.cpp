@@ -8,7 +8,7 @@ namespace mrloc::beacons {
 ShotScheduler::ShotScheduler(Scheduling policy, double minSpeed)
     : policy_(policy), minSpeed_(minSpeed) {}
 
-size_t ShotScheduler::pick(double t, const std::vector<common::RobotReport>& candidates) {
+size_t ShotScheduler::pick(double t, const std::vector<RobotReport>& candidates) {
     for (const auto& c : candidates)
         if (std::find(turnOrder_.begin(), turnOrder_.end(), c.robot) == turnOrder_.end())
             turnOrder_.push_back(c.robot);

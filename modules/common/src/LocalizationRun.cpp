@@ -5,15 +5,13 @@
 #include <mrloc/common/Progress.h>
 #include <mrloc/common/Rawlog.h>
 #include <mrloc/common/RunDirectory.h>
-#include <mrpt/config/CConfigFileMemory.h>
 
 #include <chrono>
 #include <filesystem>
 
 namespace mrloc::common {
 
-nlohmann::json runLocalization(Localizer& localizer, const LocalizationRunOptions& o,
-                               const mrpt::config::CConfigFileBase& effective) {
+LocalizationResult runLocalization(Localizer& localizer, const LocalizationRunOptions& o) {
     RawlogReader reader(o.rawlogPath);
     const auto start = std::chrono::steady_clock::now();
     Progress progress("localizing", 0, o.quiet);
@@ -32,25 +30,26 @@ nlohmann::json runLocalization(Localizer& localizer, const LocalizationRunOption
                     " observations read; does the rawlog carry what the method needs?)");
 
     makeDirectories(o.outDir);
-    nlohmann::json metrics;
+    LocalizationResult result;
+    auto& metrics = result.metrics;
     metrics["method"] = o.methodName;
     metrics["rawlog"] = o.rawlogPath;
     metrics["observations"] = n;
     metrics["rawlog_format"] = reader.format() == RawlogFormat::ActionsSensoryFrames
                                    ? "actions+sensory-frames"
                                    : "observations-only";
-    std::map<std::string, Trajectory> worldTruth;
+    Trajectories worldTruth;
     for (const auto& [robot, traj] : estimates)
         if (const std::string gtPath = groundTruthPath(o.rawlogPath, robot);
             std::filesystem::exists(gtPath))
             worldTruth[robot] = loadTum(gtPath);
-    const auto truth = localizer.truthInEstimateFrame(worldTruth);
+    result.truth = localizer.truthInEstimateFrame(worldTruth);
     std::vector<double> allErrors;
     for (const auto& [robot, traj] : estimates) {
         saveTum(run_dir::estimates(o.outDir, robot), traj);
         nlohmann::json r;
         r["estimates"] = traj.size();
-        if (const auto it = truth.find(robot); it != truth.end()) {
+        if (const auto it = result.truth.find(robot); it != result.truth.end()) {
             const auto& gt = it->second;
             saveTum(run_dir::groundTruth(o.outDir, robot), gt);
             std::vector<double> e;
@@ -64,21 +63,13 @@ nlohmann::json runLocalization(Localizer& localizer, const LocalizationRunOption
     metrics["ground_truth"] = !allErrors.empty();
     metrics.update(statsToJson(computeStats(allErrors)));
     metrics["wall_s"] = wall;
-    metrics[o.methodName] = localizer.methodMetrics();
+    auto method = localizer.methodMetrics();
+    method.update(localizer.truthMetrics(result.truth));
+    metrics[o.methodName] = method;
 
-    mrpt::config::CConfigFileMemory eff;
-    std::vector<std::string> sections;
-    effective.getAllSections(sections);
-    for (const auto& s : sections) {
-        std::vector<std::string> keys;
-        effective.getAllKeys(s, keys);
-        for (const auto& k : keys) eff.write(s, k, effective.read_string(s, k, ""));
-    }
-    localizer.saveConfig(eff);
-    localizer.writeOutputs(o.outDir);
-    writeFileAtomically(run_dir::effectiveIni(o.outDir), eff.getContent());
+    localizer.writeOutputs(o.outDir, result.truth);
     saveJson(run_dir::metrics(o.outDir), metrics);
-    return metrics;
+    return result;
 }
 
 }  // namespace mrloc::common

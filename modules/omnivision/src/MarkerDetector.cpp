@@ -19,7 +19,7 @@ int root(std::vector<int>& parent, int x) {
 
 }  // namespace
 
-std::vector<double> detectMarkers(const mrpt::img::CImage& strip, const common::Panorama& p,
+std::vector<double> detectMarkers(const mrpt::img::CImage& strip, const omnivision::Panorama& p,
                                   const DetectorOptions& o) {
     if (!strip.isColor() || int(strip.getWidth()) != p.width() ||
         int(strip.getHeight()) != p.height)

@@ -3,7 +3,7 @@
 #include <mrloc/common/IniSection.h>
 #include <mrloc/common/Metrics.h>
 #include <mrloc/common/Rawlog.h>
-#include <mrloc/omnivision/Accuracy.h>
+#include <mrloc/omnivision/OmniFiles.h>
 #include <mrloc/omnivision/MarkerDetector.h>
 #include <mrloc/omnivision/OmniLocalizer.h>
 #include <mrpt/core/format.h>
@@ -15,7 +15,7 @@
 #include <algorithm>
 #include <cmath>
 #include <set>
-#include <sstream>
+#include <limits>
 
 namespace mrloc::omnivision {
 
@@ -42,7 +42,7 @@ void OmniLocalizer::configure(const mrpt::config::CConfigFileBase& ini) {
     views_.clear();
     firstTime_.reset();
     odometer_.clear();
-    previousOdometry_.clear();
+    odometryPaths_.clear();
     lidar_.clear();
     result_.reset();
 }
@@ -64,13 +64,9 @@ void OmniLocalizer::process(const mrpt::obs::CObservation::Ptr& obs) {
         views_[t][robot] = viewFromObservation(*b, obs->sensorLabel);
     } else if (sensor == "odom") {
         const auto o = expect<mrpt::obs::CObservationOdometry>(obs, "CObservationOdometry");
-        auto& path = odometer_[robot];
-        double length = path.empty() ? 0 : path.back().second;
-        if (const auto it = previousOdometry_.find(robot); it != previousOdometry_.end())
-            length +=
-                std::hypot(o->odometry.x() - it->second.x(), o->odometry.y() - it->second.y());
-        path.push_back({t, length});
-        previousOdometry_[robot] = o->odometry;
+        auto& path = odometryPaths_[robot];
+        path.add(t, o->odometry);
+        odometer_[robot].push_back({t, path.length()});
     } else if (sensor.rfind("lidar.", 0) == 0) {
         const auto r = expect<mrpt::obs::CObservationRange>(obs, "CObservationRange");
         if (r->sensedData.size() != 1 || !std::isfinite(r->sensedData.front().sensedDistance))
@@ -212,10 +208,8 @@ std::map<std::string, common::Trajectory> OmniLocalizer::estimates() const {
     return out;
 }
 
-std::map<std::string, common::Trajectory> OmniLocalizer::truthInEstimateFrame(
-    const std::map<std::string, common::Trajectory>& gt) const {
+common::Trajectories OmniLocalizer::truthInEstimateFrame(const common::Trajectories& gt) const {
     const auto& r = result();
-    truth_.clear();
     const auto ga = gt.find(r.robots[size_t(r.a)]), gb = gt.find(r.robots[size_t(r.b)]);
     if (ga == gt.end() || gb == gt.end()) return {};  // no truth for A or B: no errors
     const auto pa = common::interpolate(ga->second, r.time);
@@ -225,11 +219,22 @@ std::map<std::string, common::Trajectory> OmniLocalizer::truthInEstimateFrame(
     const mrpt::poses::CPose3D frame(pa->x(), pa->y(), 0,
                                      std::atan2(pb->y() - pa->y(), pb->x() - pa->x()), 0, 0);
     const mrpt::poses::CPose3D toFrame = -frame;
+    common::Trajectories truth;
     for (const auto& [robot, traj] : gt) {
-        auto& out = truth_[robot];
+        auto& out = truth[robot];
         for (const auto& s : traj) out.push_back({s.t, toFrame + s.pose});
     }
-    return truth_;
+    return truth;
+}
+
+std::vector<std::optional<Vec2>> OmniLocalizer::truthAtLayout(
+    const common::Trajectories& truth) const {
+    const auto& r = result();
+    std::vector<std::optional<Vec2>> out(r.robots.size());
+    for (size_t k = 0; k < r.robots.size(); ++k)
+        if (const auto it = truth.find(r.robots[k]); it != truth.end())
+            if (const auto p = common::interpolate(it->second, r.time)) out[k] = Vec2(p->x(), p->y());
+    return out;
 }
 
 nlohmann::json OmniLocalizer::methodMetrics() const {
@@ -262,12 +267,14 @@ nlohmann::json OmniLocalizer::methodMetrics() const {
         j["refined_bearings"] = r.refined->bearings;
         j["refined_iterations"] = r.refined->iterations;
     }
+    return j;
+}
+
+nlohmann::json OmniLocalizer::truthMetrics(const common::Trajectories& truthInFrame) const {
     // Against the truth, in the paper's frame: pairwise distances and the layout.
-    std::vector<std::optional<Vec2>> truth(r.robots.size());
-    for (size_t k = 0; k < r.robots.size(); ++k)
-        if (const auto it = truth_.find(r.robots[k]); it != truth_.end())
-            if (const auto p = common::interpolate(it->second, r.time))
-                truth[k] = Vec2(p->x(), p->y());
+    const auto& r = result();
+    const auto truth = truthAtLayout(truthInFrame);
+    nlohmann::json j = nlohmann::json::object();
     if (truth[size_t(r.a)] && truth[size_t(r.b)]) {
         j["true_L_m"] = (*truth[size_t(r.b)] - *truth[size_t(r.a)]).norm();
         std::vector<double> paperErr, refinedErr;
@@ -292,39 +299,39 @@ nlohmann::json OmniLocalizer::methodMetrics() const {
     return j;
 }
 
-void OmniLocalizer::writeOutputs(const std::string& outDir) const {
+void OmniLocalizer::writeOutputs(const std::string& outDir,
+                                 const common::Trajectories& truthInFrame) const {
     const auto& r = result();
     const auto final = r.final();
-    std::ostringstream out;
-    out.precision(10);
-    out << "# layout at t = " << r.time << " in the paper's frame (" << r.robots[size_t(r.a)]
-        << " at the origin, " << r.robots[size_t(r.b)] << " on the x axis)\n"
-        << "# robot x_paper y_paper x_refined y_refined cov_xx cov_xy cov_yy x_true y_true\n";
+    const auto truth = truthAtLayout(truthInFrame);
+    const double nan = std::numeric_limits<double>::quiet_NaN();
+    LayoutFile layout;
+    layout.time = r.time;
+    layout.a = r.robots[size_t(r.a)];
+    layout.b = r.robots[size_t(r.b)];
     for (size_t k = 0; k < r.robots.size(); ++k) {
-        const auto nan = std::numeric_limits<double>::quiet_NaN();
         const auto& p = r.paper.position[k];
-        out << r.robots[k] << " " << (p ? p->x() : nan) << " " << (p ? p->y() : nan);
+        LayoutPoint lp{r.robots[k], p ? p->x() : nan, p ? p->y() : nan, nan, nan, nan, nan, nan,
+                       truth[k] ? truth[k]->x() : nan, truth[k] ? truth[k]->y() : nan};
         if (r.refined && final[k]) {
             const auto& c = r.refined->covariance.back()[k];
-            out << " " << final[k]->x() << " " << final[k]->y() << " " << c(0, 0) << " " << c(0, 1)
-                << " " << c(1, 1);
-        } else {
-            out << " nan nan nan nan nan";
+            lp.refinedX = final[k]->x(), lp.refinedY = final[k]->y();
+            lp.cxx = c(0, 0), lp.cxy = c(0, 1), lp.cyy = c(1, 1);
         }
-        std::optional<mrpt::poses::CPose3D> t;
-        if (const auto it = truth_.find(r.robots[k]); it != truth_.end())
-            t = common::interpolate(it->second, r.time);
-        out << " " << (t ? t->x() : nan) << " " << (t ? t->y() : nan) << "\n";
+        layout.points.push_back(lp);
     }
-    common::writeFileAtomically(outDir + "/layout.txt", out.str());
-    if (options_.accuracyTrials <= 0 || truth_.empty()) return;
-    // Monte Carlo on the true layout, with this run's sightings.
+    layout.write(outDir);
+}
+
+AccuracyLayout OmniLocalizer::accuracyLayout(const common::Trajectories& truthInFrame) const {
+    const auto& r = result();
     AccuracyLayout L;
     L.proposed = options_.method == "proposed";
     L.a = r.a, L.b = r.b;
     const auto poseAt = [&](size_t k, double t) {
-        const auto it = truth_.find(r.robots[k]);
-        const auto p = it == truth_.end() ? std::nullopt : common::interpolate(it->second, t);
+        const auto it = truthInFrame.find(r.robots[k]);
+        const auto p =
+            it == truthInFrame.end() ? std::nullopt : common::interpolate(it->second, t);
         if (!p) throw Error("omnivision accuracy sweep: no truth for " + r.robots[k]);
         return mrpt::poses::CPose2D(p->x(), p->y(), p->yaw());
     };
@@ -341,17 +348,7 @@ void OmniLocalizer::writeOutputs(const std::string& outDir) const {
     }
     L.seenAfter = seen(r.ids.size() - 1);
     L.seenBefore = seen(0);
-    std::ostringstream acc;
-    acc << "# Monte Carlo: axis angle_sigma_deg distance_sigma_rel median_rel_error_paper "
-           "median_rel_error_refined trials failures\n";
-    for (const auto& p : accuracySweep(L, options_.accuracyTrials, 1))
-        acc << p.axis << " " << p.angleSigmaDeg << " " << p.distanceSigma << " " << p.paper << " "
-            << p.refined << " " << p.trials << " " << p.failures << "\n";
-    common::writeFileAtomically(outDir + "/accuracy.txt", acc.str());
-}
-
-void registerLocalizers(common::LocalizerRegistry& registry) {
-    registry.add("omnivision", [] { return std::make_unique<OmniLocalizer>(); });
+    return L;
 }
 
 }  // namespace mrloc::omnivision

@@ -1,12 +1,12 @@
 #include <mrloc/common/AtomicFile.h>
 #include <mrloc/common/Error.h>
 #include <mrloc/common/Rawlog.h>
+#include <mrloc/polymap/PolymapFiles.h>
 #include <mrloc/polymap/PolymapLocalizer.h>
 #include <mrpt/core/format.h>
 #include <mrpt/obs/CObservation2DRangeScan.h>
 
 #include <cmath>
-#include <sstream>
 
 namespace mrloc::polymap {
 
@@ -89,25 +89,11 @@ nlohmann::json PolymapLocalizer::groundTruthMetrics(const std::string& robot,
     return j;
 }
 
-void PolymapLocalizer::writeOutputs(const std::string& outDir) const {
-    map_->polygon.save(outDir + "/map.poly", map_->description);
-    for (const auto& [robot, r] : results_) {
-        std::ostringstream v, h;
-        v.precision(10);
-        h.precision(10);
-        v << "# sensed visibility polygon of " << robot << ", robot frame: x y\n";
-        for (const auto& p : r.sensed.vertices) v << p.x << " " << p.y << "\n";
-        common::writeFileAtomically(outDir + "/visibility." + robot + ".txt", v.str());
-        h << "# hypotheses of " << robot << ": x y translation_x translation_y mismatch_m\n";
-        for (const auto& x : r.hypotheses)
-            h << x.point.x << " " << x.point.y << " " << x.translation.x << " " << x.translation.y
-              << " " << x.mismatch << "\n";
-        common::writeFileAtomically(outDir + "/hypotheses." + robot + ".txt", h.str());
-    }
-}
-
-void registerLocalizers(common::LocalizerRegistry& registry) {
-    registry.add("polymap", [] { return std::make_unique<PolymapLocalizer>(); });
+void PolymapLocalizer::writeOutputs(const std::string& outDir,
+                                    const common::Trajectories& /*truth*/) const {
+    map_->polygon.save(mapFilePath(outDir), map_->description);
+    for (const auto& [robot, r] : results_)
+        HypothesesFile{r.time, r.sensed.vertices, r.hypotheses}.write(outDir, robot);
 }
 
 }  // namespace mrloc::polymap

@@ -6,6 +6,7 @@
 #include <mrpt/opengl/CGridPlaneXY.h>
 #include <mrpt/opengl/CSetOfLines.h>
 #include <mrpt/opengl/CSphere.h>
+#include <mrpt/core/format.h>
 
 #include <algorithm>
 #include <cmath>
@@ -28,6 +29,40 @@ CSetOfLines::Ptr pathLines(const common::Trajectory& traj, mrpt::img::TColor col
     return lines;
 }
 
+/** A scale bar (a round length near a fifth of the width) bottom left and the legend top
+ *  right, on white boxes so that they stay readable over the drawing. */
+void drawScaleAndLegend(mrpt::img::CImage& img, double metresPerPixel, const Legend& legend) {
+    const int W = int(img.getWidth()), H = int(img.getHeight());
+    img.selectTextFont("9x15");
+    const double target = 0.2 * W * metresPerPixel;
+    double bar = std::pow(10.0, std::floor(std::log10(target)));
+    for (double f : {5.0, 2.0})
+        if (bar * f <= target) {
+            bar *= f;
+            break;
+        }
+    const int px = int(std::lround(bar / metresPerPixel));
+    const mrpt::img::TColor black(0, 0, 0), white(255, 255, 255);
+    img.filledRectangle(8, H - 46, 24 + px, H - 8, white);
+    img.line(16, H - 16, 16 + px, H - 16, black, 3);
+    img.line(16, H - 22, 16, H - 10, black, 2);
+    img.line(16 + px, H - 22, 16 + px, H - 10, black, 2);
+    img.textOut(16, H - 40, mrpt::format("%g m", bar), black);
+    if (legend.empty()) return;
+    size_t longest = 0;
+    for (const auto& [name, c] : legend) longest = std::max(longest, name.size());
+    const int boxW = 40 + 9 * int(longest), rowH = 18;
+    const int x0 = W - boxW - 8, y0 = 8;
+    img.filledRectangle(x0, y0, W - 8, y0 + 8 + rowH * int(legend.size()), white);
+    img.rectangle(x0, y0, W - 8, y0 + 8 + rowH * int(legend.size()), black);
+    int y = y0 + 6;
+    for (const auto& [name, colour] : legend) {
+        img.filledRectangle(x0 + 6, y + 4, x0 + 26, y + 10, colour);
+        img.textOut(x0 + 32, y, name, black);
+        y += rowH;
+    }
+}
+
 struct Extent {
     double x0 = 1e300, y0 = 1e300, x1 = -1e300, y1 = -1e300;
     void add(double x, double y) {
@@ -36,6 +71,14 @@ struct Extent {
 };
 
 }  // namespace
+
+mrpt::img::TColor robotColour(size_t i) {
+    // gnuplot's default line colours, so that a robot has one colour in every picture.
+    static const mrpt::img::TColor palette[] = {{148, 0, 211}, {0, 158, 115}, {86, 180, 233},
+                                                {230, 159, 0},  {240, 228, 66}, {0, 114, 178},
+                                                {229, 30, 16},  {0, 0, 0}};
+    return palette[i % (sizeof palette / sizeof palette[0])];
+}
 
 void renderTopView(const TopViewContent& c, const std::string& pngPath, unsigned width,
                    unsigned height) {
@@ -66,7 +109,7 @@ void renderTopView(const TopViewContent& c, const std::string& pngPath, unsigned
         for (const auto& p : t) ext.add(p.pose.x(), p.pose.y());
     for (const auto& [robot, t] : c.estimates)
         for (const auto& p : t) ext.add(p.pose.x(), p.pose.y());
-    for (const auto& [id, b] : c.beacons) ext.add(b.x, b.y);
+    for (const auto& b : c.landmarks) ext.add(b.x, b.y);
     if (ext.x0 > ext.x1) throw Error("top view: nothing to draw");
 
     const double grid = std::max(
@@ -77,21 +120,44 @@ void renderTopView(const TopViewContent& c, const std::string& pngPath, unsigned
         std::floor(ext.y0 / grid) * grid, std::ceil(ext.y1 / grid) * grid, 0.005, grid);
     gridPlane->setColor_u8(200, 200, 200);
     scene.insert(gridPlane);
-    // Beacons sit on the ceiling; drawn at floor level as discs so paths stay visible.
-    for (const auto& [id, b] : c.beacons) {
+    Legend legend;
+    // Landmarks (beacons on the ceiling, say) drawn at floor level so paths stay visible.
+    const mrpt::img::TColor landmarkColour{30, 90, 220};
+    for (const auto& b : c.landmarks) {
         auto s = CSphere::Create(0.06f);
         s->setLocation(b.x, b.y, 0.05);
-        s->setColor_u8(30, 90, 220);
+        s->setColor_u8(landmarkColour);
         scene.insert(s);
     }
-    for (const auto& [robot, t] : c.groundTruth) scene.insert(pathLines(t, {20, 150, 50}, 0.02f));
-    for (const auto& [robot, t] : c.estimates) scene.insert(pathLines(t, {220, 40, 30}, 0.03f));
-
-    saveTopDown(scene, ext.x0, ext.y0, ext.x1, ext.y1, pngPath, width, height);
+    if (!c.landmarks.empty()) legend.emplace_back(c.landmarksName, landmarkColour);
+    // Each robot its colour: the truth pale, the estimates full; a lone estimate (a method
+    // with one per robot) as a marker.
+    size_t i = 0;
+    for (const auto& [robot, est] : c.estimates) {
+        const auto colour = robotColour(i++);
+        const mrpt::img::TColor pale(uint8_t((colour.R + 2 * 255) / 3),
+                                     uint8_t((colour.G + 2 * 255) / 3),
+                                     uint8_t((colour.B + 2 * 255) / 3));
+        if (const auto gt = c.groundTruth.find(robot); gt != c.groundTruth.end()) {
+            scene.insert(pathLines(gt->second, pale, 0.02f));
+            legend.emplace_back(robot + " truth", pale);
+        }
+        scene.insert(pathLines(est, colour, 0.03f));
+        if (est.size() == 1) {
+            auto s = CSphere::Create(0.05f);
+            s->setLocation(est[0].pose.x(), est[0].pose.y(), 0.04);
+            s->setColor_u8(colour);
+            scene.insert(s);
+        }
+        legend.emplace_back(robot + " estimate", colour);
+    }
+    if (c.world && !c.world->obstacles.empty()) legend.emplace_back("obstacles", mrpt::img::TColor(90, 90, 90));
+    saveTopDown(scene, ext.x0, ext.y0, ext.x1, ext.y1, pngPath, width, height, legend);
 }
 
 void saveTopDown(mrpt::opengl::COpenGLScene& scene, double x0, double y0, double x1, double y1,
-                 const std::string& pngPath, unsigned width, unsigned height) {
+                 const std::string& pngPath, unsigned width, unsigned height,
+                 const Legend& legend) {
     CFBORender render(width, height);
     auto& cam = render.getCamera(scene);
     cam.setOrthogonal(true);
@@ -100,9 +166,11 @@ void saveTopDown(mrpt::opengl::COpenGLScene& scene, double x0, double y0, double
     cam.setPointingAt((x0 + x1) / 2, (y0 + y1) / 2, 0);
     // CFBORender's orthographic view is zoomDistance/2 high (measured); fit with a margin.
     const double aspect = double(width) / double(height);
-    cam.setZoomDistance(float(2.2 * std::max(y1 - y0, (x1 - x0) / aspect) + 0.2));
+    const double zoom = 2.2 * std::max(y1 - y0, (x1 - x0) / aspect) + 0.2;
+    cam.setZoomDistance(float(zoom));
     mrpt::img::CImage img;
     render.render_RGB(scene, img);
+    drawScaleAndLegend(img, 0.5 * zoom / double(height), legend);
     common::PendingFile out(pngPath, ".tmp.png");  // CImage picks the format by extension
     if (!img.saveToFile(out.tempPath())) throw Error("cannot write " + pngPath);
     out.commit();

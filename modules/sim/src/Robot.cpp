@@ -5,6 +5,7 @@
 #include <mrpt/math/wrap2pi.h>
 #include <mrpt/poses/CPose3D.h>
 
+#include <algorithm>
 #include <cmath>
 #include <sstream>
 
@@ -38,6 +39,8 @@ void RobotOptions::loadFromConfigFile(const mrpt::config::CConfigFileBase& src,
     odometrySigmaXY = s.real("odometry_sigma_xy", 0.02, 0, 1);
     odometrySigmaPhi = s.real("odometry_sigma_phi", 0.01, 0, 1);
     odometrySigmaPhiPerMetre = s.real("odometry_sigma_phi_per_m", 0.005, 0, 1);
+    actuationSigmaV = s.real("actuation_sigma_v", 0, 0, 1);
+    actuationSigmaW = s.real("actuation_sigma_w", 0, 0, 10);
     s.finish();
 }
 
@@ -60,6 +63,8 @@ void RobotOptions::saveToConfigFile(mrpt::config::CConfigFileBase& t,
     t.write(section, "odometry_sigma_xy", odometrySigmaXY);
     t.write(section, "odometry_sigma_phi", odometrySigmaPhi);
     t.write(section, "odometry_sigma_phi_per_m", odometrySigmaPhiPerMetre);
+    t.write(section, "actuation_sigma_v", actuationSigmaV);
+    t.write(section, "actuation_sigma_w", actuationSigmaW);
 }
 
 mrpt::math::TPoint3D receiverAt(const mrpt::poses::CPose2D& pose,
@@ -73,9 +78,16 @@ void Robot::setWaypoints(std::vector<mrpt::math::TPoint2D> waypoints, bool loop)
     options_.waypoints = std::move(waypoints);
     options_.loop = loop;
     next_ = 0;
+    velocity_.reset();
 }
 
-mrpt::poses::CPose2D Robot::step(double dt) {
+void Robot::drive(double v, double w) {
+    velocity_ = std::make_pair(std::clamp(v, -options_.speed, options_.speed),
+                               std::clamp(w, -options_.maxTurnRate, options_.maxTurnRate));
+}
+
+std::pair<double, double> Robot::command(double dt) {
+    if (velocity_) return {velocity_->first * dt, velocity_->second * dt};
     auto& wps = options_.waypoints;
     const double reach = std::max(0.02, options_.speed * dt);
     while (next_ < wps.size() &&
@@ -83,14 +95,20 @@ mrpt::poses::CPose2D Robot::step(double dt) {
         ++next_;
         if (next_ == wps.size() && options_.loop) next_ = 0;
     }
-    if (next_ >= wps.size()) return {};  // route done: stand still
+    if (next_ >= wps.size()) return {0, 0};  // route done: stand still
     const auto& target = wps[next_];
     const double bearing = std::atan2(target.y - pose_.y(), target.x - pose_.x());
     const double err = mrpt::math::wrapToPi(bearing - pose_.phi());
     const double maxTurn = options_.maxTurnRate * dt;
-    const double w = std::clamp(err, -maxTurn, maxTurn);
     // Slow down while facing away from the waypoint, so that turns stay tight.
-    const double v = options_.speed * std::max(0.0, std::cos(err)) * dt;
+    return {options_.speed * std::max(0.0, std::cos(err)) * dt, std::clamp(err, -maxTurn, maxTurn)};
+}
+
+mrpt::poses::CPose2D Robot::step(double dt, mrpt::random::CRandomGenerator& rng) {
+    auto [v, w] = command(dt);  // this step's distance (m) and turn (rad)
+    if (v == 0 && w == 0) return {};
+    if (options_.actuationSigmaV > 0) v *= 1 + rng.drawGaussian1D(0, options_.actuationSigmaV);
+    if (options_.actuationSigmaW > 0) w += rng.drawGaussian1D(0, options_.actuationSigmaW) * dt;
     // Exact unicycle arc for constant (v, w) over dt.
     const mrpt::poses::CPose2D delta =
         std::abs(w) < 1e-12

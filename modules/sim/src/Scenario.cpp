@@ -45,42 +45,15 @@ void ScenarioOptions::saveToConfigFile(mrpt::config::CConfigFileBase& t,
     t.write(section, "robots", list);
 }
 
-namespace {
-
-ScenarioConfig loadCommon(const mrpt::config::CConfigFileBase& ini) {
+ScenarioConfig ScenarioConfig::loadWithoutRobots(const mrpt::config::CConfigFileBase& ini) {
     ScenarioConfig c;
     c.scenario.loadFromConfigFile(ini, "scenario");
     c.world.loadFromConfigFile(ini, "world");
-    c.sensors.loadFromConfigFile(ini, "sensors");
-    c.ultrasonic.loadFromConfigFile(ini, "ultrasonic");
     return c;
 }
 
-}  // namespace
-
-ScenarioConfig ScenarioConfig::load(const mrpt::config::CConfigFileBase& ini, FloorPlan plan,
-                                    const mrpt::poses::CPose2D& start) {
-    ScenarioConfig c = loadCommon(ini);
-    if (c.scenario.robots.empty()) c.scenario.robots = {"r1"};
-    if (c.scenario.robots.size() != 1)
-        throw Error(common::configOrigin(ini) +
-                    ": [scenario] robots: a floor-plan scenario has one robot");
-    RobotOptions r;
-    r.name = c.scenario.robots[0];
-    r.startInSection = false;  // the method's section has it
-    if (ini.sectionExists("robot." + r.name)) r.loadFromConfigFile(ini, "robot." + r.name);
-    r.start = start;
-    if (!plan.polygon.contains({start.x(), start.y()}))
-        throw Error(common::configOrigin(ini) + mrpt::format(": the start (%g %g) is outside the "
-                                                             "floor plan",
-                                                             start.x(), start.y()));
-    c.robots.push_back(r);
-    c.floorPlan = std::move(plan);
-    return c;
-}
-
-ScenarioConfig ScenarioConfig::load(const mrpt::config::CConfigFileBase& ini, bool withBeacons) {
-    ScenarioConfig c = loadCommon(ini);
+ScenarioConfig ScenarioConfig::load(const mrpt::config::CConfigFileBase& ini) {
+    ScenarioConfig c = loadWithoutRobots(ini);
     if (c.scenario.robots.empty())
         throw Error(common::configOrigin(ini) +
                     ": [scenario] robots: required key is missing "
@@ -97,37 +70,30 @@ ScenarioConfig ScenarioConfig::load(const mrpt::config::CConfigFileBase& ini, bo
             throw Error(common::configOrigin(ini) + ": [" + section + "] start: outside the room");
         c.robots.push_back(r);
     }
-    if (!withBeacons) return c;
-    common::IniSection beacons(ini, "beacons");  // keys are checked by the method's options
-    c.beacons = common::loadBeaconMap(ini, beacons);
-    for (const auto& [id, p] : c.beacons)
-        if (!c.world.contains(p, 1e-9))
-            throw Error(common::configOrigin(ini) + ": [beacons] beacon_" + std::to_string(id) +
-                        ": position " + p.asString() + " is outside the room [world] size");
     return c;
 }
 
-ScenarioConfig ScenarioConfig::load(const mrpt::config::CConfigFileBase& ini,
-                                    std::vector<RobotOptions> robots) {
-    ScenarioConfig c = loadCommon(ini);
-    if (!c.scenario.robots.empty())
+void ScenarioConfig::addGeneratedRobots(const mrpt::config::CConfigFileBase& ini,
+                                        std::vector<RobotOptions> generated) {
+    if (!scenario.robots.empty())
         throw Error(common::configOrigin(ini) +
                     ": [scenario] robots: the robots are generated here; leave the key out");
-    for (const auto& r : robots) {
-        if (!c.world.contains({r.start.x(), r.start.y(), 0}))
+    for (const auto& r : generated) {
+        if (!world.contains({r.start.x(), r.start.y(), 0}))
             throw Error(common::configOrigin(ini) + ": generated robot " + r.name +
                         " starts outside the room");
-        c.scenario.robots.push_back(r.name);
+        scenario.robots.push_back(r.name);
     }
-    c.robots = std::move(robots);
-    return c;
+    robots = std::move(generated);
+    robotsGenerated = true;
 }
 
 void ScenarioConfig::save(mrpt::config::CConfigFileBase& t) const {
-    scenario.saveToConfigFile(t, "scenario");
+    ScenarioOptions listed = scenario;
+    if (robotsGenerated) listed.robots.clear();  // the method's section regenerates them
+    listed.saveToConfigFile(t, "scenario");
     world.saveToConfigFile(t, "world");
-    sensors.saveToConfigFile(t, "sensors");
-    ultrasonic.saveToConfigFile(t, "ultrasonic");
+    if (robotsGenerated) return;
     for (const auto& r : robots) r.saveToConfigFile(t, "robot." + r.name);
 }
 

@@ -1,31 +1,8 @@
-#include <mrloc/common/IniSection.h>
 #include <mrloc/sim/Sensors.h>
 
 #include <cmath>
 
 namespace mrloc::sim {
-
-void SensorOptions::loadFromConfigFile(const mrpt::config::CConfigFileBase& src,
-                                       const std::string& section) {
-    common::IniSection s(src, section);
-    rangeSigma = s.real("range_sigma", 0.01, 0, 10);
-    rangeMax = s.real("range_max", 10, 0.01, 1000);
-    dropout = s.real("range_dropout", 0.02, 0, 1);
-    outlierProbability = s.real("range_outlier_probability", 0.01, 0, 1);
-    outlierMax = s.real("range_outlier_max", 1.0, 0.1, 100);
-    nlosReflect = s.choice("nlos", "reflect", {"reflect", "drop"}) == "reflect";
-    s.finish();
-}
-
-void SensorOptions::saveToConfigFile(mrpt::config::CConfigFileBase& t,
-                                     const std::string& section) const {
-    t.write(section, "range_sigma", rangeSigma);
-    t.write(section, "range_max", rangeMax);
-    t.write(section, "range_dropout", dropout);
-    t.write(section, "range_outlier_probability", outlierProbability);
-    t.write(section, "range_outlier_max", outlierMax);
-    t.write(section, "nlos", nlosReflect ? "reflect" : "drop");
-}
 
 OdometrySensor::OdometrySensor(const RobotOptions& robot) : robot_(robot), odometry_(robot.start) {}
 

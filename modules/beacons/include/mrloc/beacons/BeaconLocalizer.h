@@ -4,11 +4,13 @@
 // in either rawlog format; robots are told apart by the sensor label prefix ("r1.beacons").
 #include <mrloc/beacons/BeaconTracker.h>
 #include <mrloc/beacons/RfBeacon.h>
-#include <mrloc/common/BeaconMap.h>
+#include <mrloc/beacons/BeaconMap.h>
 #include <mrloc/common/Localizer.h>
+#include <mrloc/common/OdometryPath.h>
 #include <mrpt/config/CLoadableOptions.h>
 
 #include <map>
+#include <vector>
 
 namespace mrloc::beacons {
 
@@ -17,9 +19,11 @@ struct BeaconOptions : public mrpt::config::CLoadableOptions {
     enum class Mode { Tracker, Fixes };
     Mode mode = Mode::Tracker;
     bool threeD = false;  ///< 3-D fixes; default 2-D with the receiver height known
-    common::BeaconMap map;
+    BeaconMap map;
     TrackerOptions tracker;
     RfBeaconOptions system;  ///< aiming, scheduling and sections (the RF beacon's side)
+    /** paper_reception_<id> = % per robot: seed 001 Tables 3/4, for the report. */
+    std::map<int, std::vector<double>> paperReception;
 
     void loadFromConfigFile(const mrpt::config::CConfigFileBase& source,
                             const std::string& section) override;
@@ -58,20 +62,17 @@ class BeaconLocalizer : public common::Localizer {
         size_t gaps = 0;
     };
 
-    std::map<std::string, std::pair<double, mrpt::poses::CPose2D>> previousOdometry_;  // t, pose
-    std::map<std::string, double> forwardSpeed_;  // m/s, from the last two odometry readings
+    std::map<std::string, common::OdometryPath> odometry_;  ///< per robot
     std::map<std::string, Spacing> spacing_;
 };
 
 /** What runs on board in a closed-loop simulation of the beacon system: the robots'
- *  estimator and the RF beacon that aims and schedules from what they report. Hand both to
- *  sim::SimulationHooks. */
+ *  estimator and the RF beacon that aims and schedules from what they report (used by the
+ *  method's payload, BeaconPayload.h). */
 struct OnboardBeacons {
     explicit OnboardBeacons(const mrpt::config::CConfigFileBase& ini);
     BeaconLocalizer localizer;
     RfBeacon rfBeacon;
 };
-
-void registerLocalizers(common::LocalizerRegistry& registry);
 
 }  // namespace mrloc::beacons

@@ -10,7 +10,7 @@
 // ranges). Start-up: position from a fix; heading from two fixes a baseline apart compared
 // with the odometry between them.
 #include <mrloc/beacons/Multilateration.h>
-#include <mrloc/common/BeaconMap.h>
+#include <mrloc/beacons/BeaconMap.h>
 #include <mrpt/obs/CObservationBeaconRanges.h>
 #include <mrpt/poses/CPosePDFGaussian.h>
 
@@ -45,7 +45,7 @@ struct TrackerStats {
 
 class BeaconTracker {
  public:
-    BeaconTracker(common::BeaconMap map, TrackerOptions options);
+    BeaconTracker(BeaconMap map, TrackerOptions options);
 
     void onOdometry(const mrpt::poses::CPose2D& odometry);
     /** Returns the robot pose after this epoch, or nullopt while not yet localized. */
@@ -70,7 +70,7 @@ class BeaconTracker {
     bool updateWithRange(const Range& r, double gate);
     std::optional<mrpt::poses::CPose2D> bootstrap(const std::vector<Range>& ranges);
 
-    common::BeaconMap map_;
+    BeaconMap map_;
     TrackerOptions o_;
     double gate_;  // chi-square(1) threshold for o_.gateProbability
     mrpt::poses::CPosePDFGaussian pdf_;

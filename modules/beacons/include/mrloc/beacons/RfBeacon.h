@@ -14,7 +14,7 @@
 #include <mrloc/beacons/Sections.h>
 #include <mrloc/beacons/ShotScheduler.h>
 #include <mrloc/common/IniSection.h>
-#include <mrloc/common/RangingController.h>
+#include <mrloc/beacons/RangingEpoch.h>
 
 #include <map>
 #include <set>
@@ -34,7 +34,7 @@ struct RfBeaconOptions {
      *  times shot_interval); 0 for a beacon in no section. */
     double shotAge(int id) const;
 
-    void load(common::IniSection& s, const common::BeaconMap& map);
+    void load(common::IniSection& s, const BeaconMap& map);
     void save(mrpt::config::CConfigFileBase& target, const std::string& section) const;
 };
 
@@ -44,16 +44,16 @@ struct RfBeaconStats {
     size_t waits = 0;          ///< requests turned down: section table not there yet
 };
 
-class RfBeacon : public common::RangingController {
+class RfBeacon : public beacons::RangingController {
  public:
     explicit RfBeacon(RfBeaconOptions options);
-    std::optional<common::RangingEpoch> nextEpoch(
-        double t, const std::vector<common::RobotReport>& requests) override;
+    std::optional<RangingEpoch> nextEpoch(
+        double t, const std::vector<RobotReport>& requests) override;
     const RfBeaconStats& stats() const { return stats_; }
 
  private:
     /** Updates the robot's section tables; returns its section if its table is there. */
-    std::optional<size_t> servingSection(double t, const common::RobotReport& r);
+    std::optional<size_t> servingSection(double t, const RobotReport& r);
 
     RfBeaconOptions o_;
     ShotScheduler scheduler_;

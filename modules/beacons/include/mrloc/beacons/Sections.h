@@ -6,7 +6,7 @@
 //   section_<name>_aim     = x y z                     (where fixed heads point; default:
 //                                                       the rectangle's centre on the floor)
 // Without section keys there is one section, "all", holding every beacon of the map.
-#include <mrloc/common/BeaconMap.h>
+#include <mrloc/beacons/BeaconMap.h>
 #include <mrloc/common/IniSection.h>
 #include <mrpt/math/TPoint2D.h>
 
@@ -40,7 +40,7 @@ class SectionMap {
 };
 
 /** Reads the section keys of [beacons]; errors name the key. */
-SectionMap readSections(common::IniSection& s, const common::BeaconMap& map);
+SectionMap readSections(common::IniSection& s, const BeaconMap& map);
 void saveSections(const SectionMap& sections, mrpt::config::CConfigFileBase& target,
                   const std::string& section);
 

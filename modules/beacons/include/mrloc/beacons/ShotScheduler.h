@@ -7,7 +7,7 @@
 //     score = (t - last slot) * max(speed, min_speed),
 // which makes slot rates proportional to speed (min_speed keeps standing robots served).
 // Round robin: the robots take turns, whatever their speed (the existing systems).
-#include <mrloc/common/RangingController.h>
+#include <mrloc/beacons/RangingEpoch.h>
 
 #include <map>
 #include <string>
@@ -21,7 +21,7 @@ class ShotScheduler {
  public:
     ShotScheduler(Scheduling policy, double minSpeed);
     /** Index in `candidates` of the robot to serve at time t (candidates not empty). */
-    size_t pick(double t, const std::vector<common::RobotReport>& candidates);
+    size_t pick(double t, const std::vector<RobotReport>& candidates);
     /** Records that `robot` got the slot at time t. */
     void served(const std::string& robot, double t);
 

@@ -1,8 +1,8 @@
 #pragma once
 // Plays a rawlog through a Localizer and writes the run directory (see RunDirectory.h):
-// estimates, ground truth copies, errors against it, metrics.json and effective.ini.
+// estimates, ground truth in the estimates' frame, errors against it, metrics.json and the
+// method's own files. effective.ini and provenance.json are the app's to write.
 #include <mrloc/common/Localizer.h>
-#include <mrpt/config/CConfigFileBase.h>
 
 #include <nlohmann/json.hpp>
 #include <string>
@@ -16,9 +16,13 @@ struct LocalizationRunOptions {
     bool quiet = false;
 };
 
-/** `effective` holds the options of everything else in the run (scenario, world...); the
- *  localizer's own are added. Returns the metrics written. */
-nlohmann::json runLocalization(Localizer& localizer, const LocalizationRunOptions& options,
-                               const mrpt::config::CConfigFileBase& effective);
+struct LocalizationResult {
+    nlohmann::json metrics;  ///< as written to metrics.json
+    Trajectories truth;      ///< ground truth in the estimates' frame (empty without one)
+};
+
+/** Throws mrloc::Error, before writing anything, when the rawlog is unreadable or the
+ *  method produced no estimate for any robot. */
+LocalizationResult runLocalization(Localizer& localizer, const LocalizationRunOptions& options);
 
 }  // namespace mrloc::common

@@ -1,20 +1,20 @@
 #pragma once
-// What every localization method offers the apps, and the registry through which the INI's
-// [scenario] method = <name> picks one. Methods are registered explicitly by the app
-// (no static initialisers, no global state).
+// What every localization method's estimator offers the apps. A method registers a factory
+// for it in its registerMethod() (mrloc/method/Registry.h); [scenario] method = <name>
+// picks it. Ground truth is handed to the calls that use it, never kept between calls.
 #include <mrloc/common/Trajectory.h>
 #include <mrpt/config/CConfigFileBase.h>
 #include <mrpt/obs/CObservation.h>
 
-#include <functional>
 #include <map>
-#include <memory>
 #include <nlohmann/json.hpp>
 #include <optional>
 #include <string>
-#include <vector>
 
 namespace mrloc::common {
+
+/** Per robot name. */
+using Trajectories = std::map<std::string, Trajectory>;
 
 class Localizer {
  public:
@@ -28,7 +28,7 @@ class Localizer {
      *  ignored. */
     virtual void process(const mrpt::obs::CObservation::Ptr& obs) = 0;
     /** Estimated trajectories, per robot name. */
-    virtual std::map<std::string, Trajectory> estimates() const = 0;
+    virtual Trajectories estimates() const = 0;
     /** The robot's newest estimate, if any: what it reports on board in a closed-loop
      *  simulation. The default searches estimates(); methods override it to be O(1). */
     virtual std::optional<mrpt::poses::CPose3D> latestEstimate(const std::string& robot) const;
@@ -37,32 +37,25 @@ class Localizer {
     /** A relative method estimates in a frame of its own (seed 000: robot A at the origin,
      *  robot B on the x axis). Given every robot's ground truth in the world frame, this
      *  returns it in the estimates' frame, which the errors are computed in. Default: the
-     *  world frame. Called once, after the rawlog, before groundTruthMetrics(). */
-    virtual std::map<std::string, Trajectory> truthInEstimateFrame(
-        const std::map<std::string, Trajectory>& groundTruth) const {
-        return groundTruth;
+     *  world frame. */
+    virtual Trajectories truthInEstimateFrame(const Trajectories& worldTruth) const {
+        return worldTruth;
     }
-    /** Figures against a robot's ground truth beyond the position errors (e.g. whether the
-     *  truth is among the hypotheses); merged into metrics.json's robots.<name>. */
-    virtual nlohmann::json groundTruthMetrics(const std::string& /*robot*/,
-                                              const Trajectory& /*groundTruth*/) const {
+    /** The method's figures against the truth (in the estimates' frame), merged into
+     *  metrics.json's method section: e.g. relative distance errors of a layout. */
+    virtual nlohmann::json truthMetrics(const Trajectories& /*truth*/) const {
         return nlohmann::json::object();
     }
-    /** Writes the method's own files into the run directory (atomically), for the report. */
-    virtual void writeOutputs(const std::string& /*outDir*/) const {}
-};
-
-class LocalizerRegistry {
- public:
-    using Factory = std::function<std::unique_ptr<Localizer>()>;
-
-    void add(const std::string& name, Factory factory);
-    /** Throws mrloc::Error listing the known names if `name` is not registered. */
-    std::unique_ptr<Localizer> create(const std::string& name) const;
-    std::vector<std::string> names() const;
-
- private:
-    std::map<std::string, Factory> factories_;
+    /** Figures against one robot's truth (in the estimates' frame) beyond the position
+     *  errors (e.g. whether the truth is among the hypotheses); merged into
+     *  metrics.json's robots.<name>. */
+    virtual nlohmann::json groundTruthMetrics(const std::string& /*robot*/,
+                                              const Trajectory& /*truth*/) const {
+        return nlohmann::json::object();
+    }
+    /** Writes the method's own files into the run directory (atomically), for its report
+     *  section; `truth` is in the estimates' frame (empty without ground truth). */
+    virtual void writeOutputs(const std::string& /*outDir*/, const Trajectories& /*truth*/) const {}
 };
 
 }  // namespace mrloc::common

@@ -25,7 +25,8 @@ struct TimedError {
 /** Horizontal position error of every estimate whose time lies inside the ground truth. */
 std::vector<TimedError> positionErrors(const Trajectory& estimate, const Trajectory& truth);
 
-/** The common keys of metrics.json: n, rmse_m, mean_m, median_m, p95_m, max_m. */
+/** The common keys of metrics.json: n, rmse_m, mean_m, median_m, p95_m, max_m (null when
+ *  n = 0). */
 nlohmann::json statsToJson(const ErrorStats& s);
 
 /** Pretty JSON text written atomically. */

@@ -1,15 +1,21 @@
 #pragma once
-// The layout of out/<run>/, written by `mrloc localize` and read by `mrloc report`:
+// The layout of out/<run>/, written by `mrloc simulate` / `localize` and read by `report`:
+//   <name>.rawlog, <name>.<robot>.gt.txt   the simulated rawlog and its ground truth
+//   config.ini               a copy of the INI the run was started with
 //   effective.ini            the configuration actually used (defaults filled in)
-//   metrics.json             method, n, rmse_m, mean_m, max_m, wall_s, per robot, method figures
+//   provenance.json          INI, seed, mrloc version and command line of each step
+//   metrics.json             method, errors (n, rmse_m, ...), per robot, method figures
 //   estimates.<robot>.txt    TUM format
-//   groundtruth.<robot>.txt  copy of the rawlog's ground truth, when it has one
+//   groundtruth.<robot>.txt  the rawlog's ground truth in the estimates' frame
 //   report.html, *.png       written by `mrloc report`
+// plus the files each method writes for its report section (defined in the method).
 #include <string>
 
 namespace mrloc::common::run_dir {
 
+inline std::string configCopy(const std::string& d) { return d + "/config.ini"; }
 inline std::string effectiveIni(const std::string& d) { return d + "/effective.ini"; }
+inline std::string provenance(const std::string& d) { return d + "/provenance.json"; }
 inline std::string metrics(const std::string& d) { return d + "/metrics.json"; }
 inline std::string estimates(const std::string& d, const std::string& robot) {
     return d + "/estimates." + robot + ".txt";

@@ -3,7 +3,7 @@
 // the detector thresholds it (OpenCV), joins the pixels into blobs (connected components,
 // across the strip's wrap-around seam and the seams between views) and turns each blob
 // into a bearing, the circular mean of its pixels' azimuths. Identity is unknown.
-#include <mrloc/common/Panorama.h>
+#include <mrloc/omnivision/Panorama.h>
 #include <mrpt/img/CImage.h>
 
 #include <vector>
@@ -18,7 +18,7 @@ struct DetectorOptions {
 
 /** Bearings (robot frame, rad) of the markers in a strip of the given geometry. Throws
  *  mrloc::Error if the image is not a colour strip of that size. */
-std::vector<double> detectMarkers(const mrpt::img::CImage& strip, const common::Panorama& p,
+std::vector<double> detectMarkers(const mrpt::img::CImage& strip, const omnivision::Panorama& p,
                                   const DetectorOptions& o = {});
 
 }  // namespace mrloc::omnivision

@@ -7,6 +7,8 @@
 // origin, B on the x axis. Estimates, and the truth they are compared with, are in that
 // frame.
 #include <mrloc/common/Localizer.h>
+#include <mrloc/common/OdometryPath.h>
+#include <mrloc/omnivision/Accuracy.h>
 #include <mrloc/omnivision/OmniOptions.h>
 #include <mrloc/omnivision/Refinement.h>
 #include <mrloc/omnivision/RelativeLocation.h>
@@ -37,10 +39,14 @@ class OmniLocalizer : public common::Localizer {
     void saveConfig(mrpt::config::CConfigFileBase& target) const override;
     void process(const mrpt::obs::CObservation::Ptr& obs) override;
     std::map<std::string, common::Trajectory> estimates() const override;
-    std::map<std::string, common::Trajectory> truthInEstimateFrame(
-        const std::map<std::string, common::Trajectory>& groundTruth) const override;
+    common::Trajectories truthInEstimateFrame(const common::Trajectories& worldTruth) const override;
     nlohmann::json methodMetrics() const override;
-    void writeOutputs(const std::string& outDir) const override;
+    nlohmann::json truthMetrics(const common::Trajectories& truth) const override;
+    /** layout.txt (OmniFiles.h). */
+    void writeOutputs(const std::string& outDir, const common::Trajectories& truth) const override;
+    /** The true layout at t_b and t_e (truth in the paper's frame) with this run's
+     *  sightings: the input of the accuracy sweep. Throws if a robot has no truth. */
+    AccuracyLayout accuracyLayout(const common::Trajectories& truth) const;
 
     /** Solves (once); throws mrloc::Error when no stopped pair works. */
     const OmniResult& result() const;
@@ -52,20 +58,19 @@ class OmniLocalizer : public common::Localizer {
     std::map<double, std::map<std::string, View>> views_;  ///< time -> robot -> view
     std::optional<double> firstTime_;  ///< the rawlog's first observation: t_b, t_e count from it
     std::map<std::string, std::vector<std::pair<double, double>>> odometer_;  ///< t, path
-    std::map<std::string, mrpt::poses::CPose2D> previousOdometry_;            ///< per robot
+    std::map<std::string, common::OdometryPath> odometryPaths_;
     struct LidarReading {
         double time;
         std::string from, to;
         double distance;
     };
     std::vector<LidarReading> lidar_;
-    mutable std::optional<OmniResult> result_;
-    mutable std::map<std::string, common::Trajectory> truth_;  ///< in the estimates' frame
+    mutable std::optional<OmniResult> result_;  ///< solved once, on first use
 
     double travelledBetween(const std::string& robot, double t0, double t1) const;
     Snapshot snapshotAt(double t, const std::vector<std::string>& robots) const;
+    /** Each robot's true position at the layout's time, in the paper's frame. */
+    std::vector<std::optional<Vec2>> truthAtLayout(const common::Trajectories& truth) const;
 };
-
-void registerLocalizers(common::LocalizerRegistry& registry);
 
 }  // namespace mrloc::omnivision

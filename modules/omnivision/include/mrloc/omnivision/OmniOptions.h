@@ -1,9 +1,9 @@
 #pragma once
 // Section [omnivision] (seed 000): the method, the stopped pairs or the measured pair, the
 // cameras, the tolerances and, optionally, a generated swarm and an accuracy sweep. The
-// app hands the simulator the camera setup it implies (sim::OmniSetup); the localizer
+// app hands the simulator the camera setup it implies (omnivision::OmniSetup); the localizer
 // reads the same section. Every key and its default: doc/ini.md.
-#include <mrloc/common/Panorama.h>
+#include <mrloc/omnivision/Panorama.h>
 #include <mrpt/config/CLoadableOptions.h>
 
 #include <string>
@@ -25,7 +25,7 @@ struct OmniOptions : public mrpt::config::CLoadableOptions {
     double lidarSigma = 0.01;  ///< m
     // Cameras.
     bool render = true;          ///< camera = render | bearings
-    common::Panorama panorama;   ///< views, view_width, view_height
+    omnivision::Panorama panorama;   ///< views, view_width, view_height
     double bearingSigma = 0.05;  ///< deg (bearings mode)
     double maxRange = 0;         ///< m (0: unlimited)
     double markerRadius = 0.15, markerHeight = 0.2, cameraHeight = 0.5;  ///< m

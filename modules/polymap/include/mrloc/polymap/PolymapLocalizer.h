@@ -29,7 +29,8 @@ class PolymapLocalizer : public common::Localizer {
     nlohmann::json methodMetrics() const override;
     nlohmann::json groundTruthMetrics(const std::string& robot,
                                       const common::Trajectory& gt) const override;
-    void writeOutputs(const std::string& outDir) const override;
+    void writeOutputs(const std::string& outDir,
+                      const common::Trajectories& truth) const override;
 
     const common::Polygon& map() const { return map_->polygon; }
     const std::map<std::string, RobotHypotheses>& results() const { return results_; }
@@ -39,7 +40,5 @@ class PolymapLocalizer : public common::Localizer {
     std::unique_ptr<GeneratedMap> map_;
     std::map<std::string, RobotHypotheses> results_;
 };
-
-void registerLocalizers(common::LocalizerRegistry& registry);
 
 }  // namespace mrloc::polymap

@@ -1,5 +1,6 @@
 #pragma once
-// Plots drawn by gnuplot (pngcairo): error over time and the error CDF, one curve per robot.
+// Plots drawn by gnuplot (pngcairo): error over time and the error CDF, one curve per robot,
+// and the runner every method's plots use.
 #include <mrloc/common/Metrics.h>
 
 #include <map>
@@ -11,26 +12,17 @@ namespace mrloc::report {
 using RobotErrors = std::map<std::string, std::vector<common::TimedError>>;
 
 void plotErrorOverTime(const RobotErrors& errors, const std::string& pngPath);
+/** True when no robot has more than one error: a line over time would be empty. */
+bool oneErrorPerRobot(const RobotErrors& errors);
+/** One marker per estimate, robots along the x axis (a method with one estimate each). */
+void plotErrorPerRobot(const RobotErrors& errors, const std::string& pngPath);
 void plotErrorCdf(const RobotErrors& errors, const std::string& pngPath);
 
-/** One robot of a relative layout (seed 000): the paper's position, the refined one with
- *  its covariance, and the truth, all in the layout's frame. NaN where unknown. */
-struct LayoutPoint {
-    std::string robot;
-    double paperX, paperY, refinedX, refinedY, cxx, cxy, cyy, trueX, trueY;
-};
-/** True and recovered layouts, with 3-sigma ellipses of the refined positions. */
-void plotLayout(const std::vector<LayoutPoint>& points, const std::string& title,
-                const std::string& pngPath);
-
-/** Rows of an accuracy sweep: axis ("angle" or "distance"), angle sigma (deg), distance
- *  sigma (relative), median relative distance error of the paper's and the refined
- *  solution. Two panels: against the angle noise and against the distance noise. */
-struct AccuracyRow {
-    std::string axis;
-    double angleSigmaDeg, distanceSigma, paper, refined;
-};
-void plotAccuracy(const std::vector<AccuracyRow>& rows, const std::string& distanceName,
-                  const std::string& pngPath);
+/** Runs a gnuplot script (pngcairo, grid, key top left) whose data blocks are inline;
+ *  writes pngPath atomically. Every plot of mrloc, the methods' included, goes through it. */
+void runGnuplot(const std::string& body, const std::string& pngPath,
+                const std::string& size = "900,500");
+/** An inline gnuplot data block `$name` of x y rows. */
+std::string dataBlock(const std::string& name, const std::vector<std::pair<double, double>>& xy);
 
 }  // namespace mrloc::report

@@ -1,11 +1,47 @@
 #pragma once
-// `mrloc report <run-dir>`: reads what `mrloc localize` wrote and renders topview.png,
-// error_time.png, error_cdf.png and report.html (the metrics table and the pictures).
+// `mrloc report <run-dir>`: the page framework. It reads what `mrloc localize` wrote and
+// renders report.html: provenance on top (INI, seed, mrloc version, command line), the
+// metrics in tables with heads in words and units, the top view (unless the method draws
+// its own picture), the error plots, and the method's registered section.
+#include <mrloc/common/Localizer.h>
+#include <mrloc/report/TopView.h>
+#include <mrpt/config/CConfigFileMemory.h>
+
+#include <functional>
+#include <memory>
+#include <nlohmann/json.hpp>
+#include <optional>
 #include <string>
 
 namespace mrloc::report {
 
+/** What the framework read from a run directory; a method's section reads its own files. */
+struct RunView {
+    std::string dir;
+    nlohmann::json metrics;
+    std::shared_ptr<mrpt::config::CConfigFileMemory> effective;  ///< effective.ini (empty if absent)
+    common::Trajectories estimates;             ///< per robot
+    common::Trajectories truth;                 ///< groundtruth.<robot>.txt, estimates' frame
+};
+
+/** A method's part of the report. */
+struct Section {
+    /** HTML of the section; it may render pictures into the run directory. */
+    std::function<std::string(const RunView&)> html;
+    /** Adds the method's static points (beacons...) to the world top view. Unset: the method
+     *  draws its own picture in html() and the page has no top view. */
+    std::function<void(const RunView&, TopViewContent&)> topView;
+};
+
 /** Returns the path of report.html. Throws mrloc::Error if runDir is not a run directory. */
-std::string makeReport(const std::string& runDir);
+std::string makeReport(const std::string& runDir, const Section& section);
+
+/** HTML-escaped text. */
+std::string html(const std::string& text);
+/** A metrics key in words with its unit: "max_distance_between_fixes_m" -> "max distance
+ *  between fixes (m)", "p95_m" -> "95th percentile (m)". */
+std::string keyInWords(const std::string& key);
+/** A two-column table of the object's scalar members, keys in words; null reads "none". */
+std::string metricsTable(const nlohmann::json& object);
 
 }  // namespace mrloc::report

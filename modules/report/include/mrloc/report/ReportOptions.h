@@ -1,20 +1,16 @@
 #pragma once
-// Section [report]: the paper's figures a run is compared with, shown beside ours.
-//   paper_caption          = seed 001 Table 3 (fixed angle)
-//   paper_reception_<id>   = r1 r2 ...   successful receiving rate (%) of beacon <id>, one
-//                                        value per robot of [scenario] robots, in order
-//   paper_note             = free text (the paper's claims on errors, say)
+// Section [report] (the framework's): what the run is compared with, shown on the page.
+//   paper_caption = seed 001 Table 3 (fixed angle)    which of the paper's figures
+//   paper_note    = free text (the paper's claims on errors, say)
+// A method's own paper figures (seed 001's reception rates, say) are keys of its section.
 #include <mrpt/config/CLoadableOptions.h>
 
-#include <map>
 #include <string>
-#include <vector>
 
 namespace mrloc::report {
 
 struct ReportOptions : public mrpt::config::CLoadableOptions {
     std::string paperCaption;
-    std::map<int, std::vector<double>> paperReception;  ///< beacon id -> % per robot
     std::string paperNote;
 
     void loadFromConfigFile(const mrpt::config::CConfigFileBase& source,

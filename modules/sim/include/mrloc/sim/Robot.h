@@ -1,12 +1,15 @@
 #pragma once
-// A simulated robot: unicycle kinematics driven towards a list of waypoints at constant
-// speed with a bounded turn rate, and its sensors' options (section [robot.<name>]).
+// A simulated robot: a unicycle that a method steers each step (waypoints, stop, go, turn,
+// drive), with optional actuation noise, and its options (section [robot.<name>]).
 #include <mrpt/config/CLoadableOptions.h>
 #include <mrpt/math/TPoint2D.h>
 #include <mrpt/math/TPoint3D.h>
 #include <mrpt/poses/CPose2D.h>
+#include <mrpt/random/RandomGenerators.h>
 
+#include <optional>
 #include <string>
+#include <utility>
 #include <vector>
 
 namespace mrloc::sim {
@@ -25,6 +28,8 @@ struct RobotOptions : public mrpt::config::CLoadableOptions {
     double odometrySigmaXY = 0.02;                ///< per metre travelled
     double odometrySigmaPhi = 0.01;               ///< per radian turned
     double odometrySigmaPhiPerMetre = 0.005;      ///< rad per metre travelled
+    double actuationSigmaV = 0;  ///< relative noise on the commanded speed (0: none drawn)
+    double actuationSigmaW = 0;  ///< rad/s noise on the commanded turn rate (0: none drawn)
     /** start is a required key (false: the scenario sets it, and the key is an error). */
     bool startInSection = true;
 
@@ -38,8 +43,9 @@ struct RobotOptions : public mrpt::config::CLoadableOptions {
 mrpt::math::TPoint3D receiverAt(const mrpt::poses::CPose2D& pose,
                                 const mrpt::math::TPoint3D& onRobot);
 
-/** Unicycle with a waypoint follower: turn towards the waypoint (at most maxTurnRate),
- *  drive at `speed` scaled down while the heading error is large. */
+/** Unicycle. By default a waypoint follower: turn towards the waypoint (at most
+ *  maxTurnRate), drive at `speed` scaled down while the heading error is large. A method's
+ *  on-board part may instead stop it, let it go again, or command a speed and turn rate. */
 class Robot {
  public:
     explicit Robot(RobotOptions options);
@@ -47,15 +53,32 @@ class Robot {
     const mrpt::poses::CPose2D& pose() const { return pose_; }
     /** The beacon receiver's position in the world at the current pose. */
     mrpt::math::TPoint3D receiverInWorld() const { return receiverAt(pose_, options_.receiver); }
-    /** Advances by dt; returns the motion in the robot frame (for odometry). */
-    mrpt::poses::CPose2D step(double dt);
-    /** Replaces the route (closed-loop control by a method). */
+    /** Advances by dt; returns the motion in the robot frame (for odometry). Draws from
+     *  rng only when the options ask for actuation noise. */
+    mrpt::poses::CPose2D step(double dt, mrpt::random::CRandomGenerator& rng);
+
+    /** Replaces the route and follows it (ends a drive() command). */
     void setWaypoints(std::vector<mrpt::math::TPoint2D> waypoints, bool loop);
+    /** Stands still until go(); the simulator then neither moves it nor reads its wheels. */
+    void stop() { halted_ = true; }
+    void go() { halted_ = false; }
+    bool halted() const { return halted_; }
+    /** Drives at v (m/s) turning at w (rad/s) until the next command; v is capped at the
+     *  robot's speed and w at its max_turn_rate. */
+    void drive(double v, double w);
+    /** Turns on the spot at w (rad/s). */
+    void turn(double w) { drive(0, w); }
 
  private:
+    /** This step's commanded distance (m) and turn (rad): from the waypoints or the last
+     *  drive(). */
+    std::pair<double, double> command(double dt);
+
     RobotOptions options_;
     mrpt::poses::CPose2D pose_;
     size_t next_ = 0;
+    bool halted_ = false;
+    std::optional<std::pair<double, double>> velocity_;  ///< drive() command, if any
 };
 
 }  // namespace mrloc::sim

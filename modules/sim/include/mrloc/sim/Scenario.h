@@ -1,17 +1,13 @@
 #pragma once
-// Everything a simulation run needs, read and validated from one INI:
-// [scenario], [world], [sensors], [ultrasonic], [robot.<name>] and the beacon map; or, for a
-// floor-plan scenario, the polygon, its scanner and the robot's start, which the app reads
-// from the method's section and hands over (the simulator knows no method).
-#include <mrloc/common/BeaconMap.h>
-#include <mrloc/sim/OmniCamera.h>
+// The generic part of a simulation, read and validated from one INI: [scenario], [world]
+// and the robots. The robots come from [scenario] robots with a [robot.<name>] section
+// each, or from the method's scenario builder (a generated swarm, a robot placed in a
+// floor plan): the simulator knows no method.
 #include <mrloc/sim/Robot.h>
-#include <mrloc/sim/Scanner.h>
-#include <mrloc/sim/Sensors.h>
-#include <mrloc/sim/Ultrasonic.h>
 #include <mrloc/sim/World.h>
 
-#include <optional>
+#include <string>
+#include <vector>
 
 namespace mrloc::sim {
 
@@ -35,25 +31,21 @@ struct ScenarioOptions : public mrpt::config::CLoadableOptions {
 struct ScenarioConfig {
     ScenarioOptions scenario;
     WorldOptions world;
-    SensorOptions sensors;
-    UltrasonicOptions ultrasonic;
     std::vector<RobotOptions> robots;
-    common::BeaconMap beacons;           ///< empty in a floor-plan scenario
-    std::optional<FloorPlan> floorPlan;  ///< walls to scan; one robot
-    std::optional<OmniSetup> omni;       ///< omni-directional cameras on every robot
+    /** The method made the robots from its own section (a swarm): effective.ini then
+     *  keeps that section's recipe and lists no robot. */
+    bool robotsGenerated = false;
 
-    /** Reads and validates; errors name the file, section and key. withBeacons = false
-     *  skips the beacon map (a scenario without beacon ranging). With a floor plan,
-     *  [scenario] robots defaults to r1, [robot.<name>] is optional, the robot starts at
-     *  `start` (which must lie in the polygon) and no beacon map is read. */
-    static ScenarioConfig load(const mrpt::config::CConfigFileBase& ini, bool withBeacons = true);
-    static ScenarioConfig load(const mrpt::config::CConfigFileBase& ini, FloorPlan plan,
-                               const mrpt::poses::CPose2D& start);
-    /** A scenario whose robots the app made (a generated swarm): [scenario] robots must
-     *  then be empty; each robot must start inside the room. No beacon map is read. */
-    static ScenarioConfig load(const mrpt::config::CConfigFileBase& ini,
-                               std::vector<RobotOptions> robots);
-    /** Writes the effective options (the beacon map is the method's to write). */
+    /** [scenario] and [world], no robots yet; errors name the file, section and key. */
+    static ScenarioConfig loadWithoutRobots(const mrpt::config::CConfigFileBase& ini);
+    /** Also the robots of [scenario] robots, each from its [robot.<name>] section, which
+     *  must exist; each must start inside the room. */
+    static ScenarioConfig load(const mrpt::config::CConfigFileBase& ini);
+    /** Adds robots the method made; throws if [scenario] robots names any, or if one
+     *  starts outside the room. */
+    void addGeneratedRobots(const mrpt::config::CConfigFileBase& ini,
+                            std::vector<RobotOptions> generated);
+    /** Writes [scenario], [world] and every listed robot's section. */
     void save(mrpt::config::CConfigFileBase& target) const;
 };
 

@@ -1,37 +1,20 @@
 #pragma once
-// Runs a scenario: steps every robot, samples its sensors at their rates and writes each
-// observation, in time order, to a rawlog; records the true poses as ground truth.
-//
-// Beacon ranging is closed-loop: when the ultrasonic channel is free, the robots that want
-// a fix report their position (from their onboard estimator) and speed (from odometry) to
-// a RangingController, which picks the next epoch; BeaconRanging fires it. Everything the
-// robots sense is also fed to the onboard estimator, so a later `mrloc localize` on the
-// rawlog reproduces the estimates the beacons were aimed with.
-//
-// In a floor-plan scenario each robot also scans the polygon (<robot>.scan) at the start and
-// then at the scanner's rate.
-#include <mrloc/common/Localizer.h>
+// Runs a scenario: steps every robot, reads its odometry and writes each observation, in
+// time order, to a rawlog; records the true poses as ground truth. Everything a method
+// adds (its sensors, its on-board estimator, how it steers the robots) comes in through
+// its Payload, called in a fixed order at every step (Payload.h).
 #include <mrloc/common/Progress.h>
-#include <mrloc/common/RangingController.h>
 #include <mrloc/common/Rawlog.h>
 #include <mrloc/common/Trajectory.h>
+#include <mrloc/sim/Payload.h>
 #include <mrloc/sim/Scenario.h>
-#include <mrloc/sim/ShotLog.h>
 
 #include <map>
 
 namespace mrloc::sim {
 
-/** The method's side of a closed-loop simulation; both may be null (no beacon ranging,
- *  robots report their configured start as their position). */
-struct SimulationHooks {
-    common::Localizer* onboard = nullptr;          ///< the robots' own estimator
-    common::RangingController* ranging = nullptr;  ///< the RF beacon's decisions
-};
-
 struct SimulationResult {
     std::map<std::string, common::Trajectory> groundTruth;  ///< per robot
-    ShotLog shots;
     size_t observations = 0;
 };
 
@@ -42,7 +25,7 @@ class Simulator {
     const World& world() const { return world_; }
 
     /** Simulates the whole duration. Deterministic for a given configuration and seed. */
-    SimulationResult run(common::RawlogWriter& out, SimulationHooks hooks = {},
+    SimulationResult run(common::RawlogWriter& out, Payload* payload = nullptr,
                          common::Progress* progress = nullptr);
 
  private:
@@ -50,9 +33,15 @@ class Simulator {
     World world_;
 };
 
-/** Writes `<dir>/<name>.rawlog`, `<dir>/<name>.<robot>.gt.txt` and `<dir>/<name>.shots.txt`;
- *  returns the rawlog path. */
-std::string simulateToFiles(const ScenarioConfig& config, const std::string& dir, bool quiet,
-                            SimulationHooks hooks = {});
+/** The files a simulation wrote: the rawlog first, then ground truth and side files. */
+struct SimulatedFiles {
+    std::string rawlog;
+    std::vector<std::string> all;
+};
+
+/** Writes `<dir>/<name>.rawlog`, `<dir>/<name>.<robot>.gt.txt` and the payload's side
+ *  files. Nothing appears under a final name unless the whole simulation succeeded. */
+SimulatedFiles simulateToFiles(const ScenarioConfig& config, const std::string& dir, bool quiet,
+                               Payload* payload = nullptr);
 
 }  // namespace mrloc::sim

@@ -1,10 +1,10 @@
-#include <mrloc/common/PanTilt.h>
+#include <mrloc/beacons/PanTilt.h>
 #include <mrpt/math/wrap2pi.h>
 
 #include <algorithm>
 #include <cmath>
 
-namespace mrloc::common {
+namespace mrloc::beacons {
 
 using mrpt::math::TPoint3D;
 
@@ -71,4 +71,4 @@ double PanTiltHead::slewTime(const PanTiltAngles& from, const PanTiltAngles& to)
     return d / limits_.slewRate;
 }
 
-}  // namespace mrloc::common
+}  // namespace mrloc::beacons

@@ -6,7 +6,7 @@
 #include <string>
 #include <vector>
 
-namespace mrloc::sim {
+namespace mrloc::beacons {
 
 struct ShotRecord {
     double start = 0;  ///< s since the start of the run: the burst leaves the transmitter
@@ -30,4 +30,4 @@ void saveShotLog(const std::string& path, const ShotLog& log);
 /** Throws mrloc::Error naming the file and line on a malformed line. */
 ShotLog loadShotLog(const std::string& path);
 
-}  // namespace mrloc::sim
+}  // namespace mrloc::beacons

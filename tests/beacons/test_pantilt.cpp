@@ -1,6 +1,6 @@
 // Pan-tilt kinematics of seed 001 eq. (1)-(3) against hand-computed angles.
 #include <gtest/gtest.h>
-#include <mrloc/common/PanTilt.h>
+#include <mrloc/beacons/PanTilt.h>
 #include <mrpt/core/bits_math.h>
 
 #include <cmath>

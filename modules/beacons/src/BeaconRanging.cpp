@@ -1,10 +1,11 @@
 #include <mrloc/common/Error.h>
-#include <mrloc/sim/BeaconRanging.h>
+#include <mrloc/common/IniSection.h>
+#include <mrloc/beacons/BeaconRanging.h>
 
 #include <algorithm>
 #include <cmath>
 
-namespace mrloc::sim {
+namespace mrloc::beacons {
 
 using mrpt::math::TPoint3D;
 
@@ -13,14 +14,37 @@ namespace {
 constexpr double kReflectionLossDb = 3.0;
 }  // namespace
 
-BeaconRanging::BeaconRanging(const World& world, const common::BeaconMap& beacons,
+void SensorOptions::loadFromConfigFile(const mrpt::config::CConfigFileBase& src,
+                                       const std::string& section) {
+    common::IniSection s(src, section);
+    rangeSigma = s.real("range_sigma", 0.01, 0, 10);
+    rangeMax = s.real("range_max", 10, 0.01, 1000);
+    dropout = s.real("range_dropout", 0.02, 0, 1);
+    outlierProbability = s.real("range_outlier_probability", 0.01, 0, 1);
+    outlierMax = s.real("range_outlier_max", 1.0, 0.1, 100);
+    nlosReflect = s.choice("nlos", "reflect", {"reflect", "drop"}) == "reflect";
+    s.finish();
+}
+
+void SensorOptions::saveToConfigFile(mrpt::config::CConfigFileBase& t,
+                                     const std::string& section) const {
+    t.write(section, "range_sigma", rangeSigma);
+    t.write(section, "range_max", rangeMax);
+    t.write(section, "range_dropout", dropout);
+    t.write(section, "range_outlier_probability", outlierProbability);
+    t.write(section, "range_outlier_max", outlierMax);
+    t.write(section, "nlos", nlosReflect ? "reflect" : "drop");
+}
+
+
+BeaconRanging::BeaconRanging(const sim::World& world, const BeaconMap& beacons,
                              SensorOptions sensors, UltrasonicOptions ultrasonic)
     : world_(world), beacons_(beacons), sensors_(sensors), link_(ultrasonic) {
     for (const auto& [id, p] : beacons_)
-        heads_.emplace(id, Head{common::PanTiltHead(p, ultrasonic.head), {}});
+        heads_.emplace(id, Head{PanTiltHead(p, ultrasonic.head), {}});
 }
 
-double BeaconRanging::begin(double t, const common::RangingEpoch& epoch) {
+double BeaconRanging::begin(double t, const RangingEpoch& epoch) {
     if (inEpoch_) throw Error("ranging: an epoch began before the previous one ended");
     if (epoch.beacons.empty() || epoch.beacons.size() != epoch.aimPoints.size() ||
         !(epoch.shotInterval > 0))
@@ -113,4 +137,4 @@ mrpt::obs::CObservationBeaconRanges::Ptr BeaconRanging::fireDue(
     return std::move(obs_);
 }
 
-}  // namespace mrloc::sim
+}  // namespace mrloc::beacons

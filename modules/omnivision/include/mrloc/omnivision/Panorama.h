@@ -6,7 +6,7 @@
 // which renders the views, and the detector, which turns columns back into bearings.
 #include <cmath>
 
-namespace mrloc::common {
+namespace mrloc::omnivision {
 
 struct Panorama {
     int views = 4;
@@ -27,4 +27,4 @@ struct Panorama {
     }
 };
 
-}  // namespace mrloc::common
+}  // namespace mrloc::omnivision

@@ -2,7 +2,7 @@
 // and its INI checks.
 #include <gtest/gtest.h>
 #include <mrloc/common/Error.h>
-#include <mrloc/sim/BeaconRanging.h>
+#include <mrloc/beacons/BeaconRanging.h>
 #include <mrloc/sim/Scenario.h>
 #include <mrpt/config/CConfigFileMemory.h>
 #include <mrpt/random/RandomGenerators.h>
@@ -12,7 +12,7 @@
 using namespace mrloc;
 
 TEST(UltrasonicLink, LevelFallsWithDistanceAndOffAxisAngleAsModelled) {
-    const sim::UltrasonicLink link{sim::UltrasonicOptions{}};
+    const beacons::UltrasonicLink link{beacons::UltrasonicOptions{}};
     EXPECT_NEAR(link.marginDb(1.0, 0), 23.0, 1e-12);
     EXPECT_NEAR(link.marginDb(2.0, 0), 23.0 - 20 * std::log10(2.0) - 1.3, 1e-12);
     // Half the 50 degree beam off the axis: 6 dB down.
@@ -20,7 +20,7 @@ TEST(UltrasonicLink, LevelFallsWithDistanceAndOffAxisAngleAsModelled) {
 }
 
 TEST(UltrasonicLink, TriggerDelayAndDetectionThresholdInClosedForm) {
-    const sim::UltrasonicLink link{sim::UltrasonicOptions{}};
+    const beacons::UltrasonicLink link{beacons::UltrasonicOptions{}};
     // A 450 us burst with a 150 us rise time peaks at 1 - e^-3 of its amplitude.
     EXPECT_NEAR(link.detectionThresholdDb(), -20 * std::log10(1 - std::exp(-3.0)), 1e-12);
     EXPECT_NEAR(link.detectionThresholdDb(), 0.4436, 1e-4);
@@ -33,7 +33,7 @@ TEST(UltrasonicLink, TriggerDelayAndDetectionThresholdInClosedForm) {
 }
 
 TEST(UltrasonicLink, BeamPointedAtTheReceiverAlwaysBeatsOnePointedAway) {
-    const sim::UltrasonicLink link{sim::UltrasonicOptions{}};
+    const beacons::UltrasonicLink link{beacons::UltrasonicOptions{}};
     mrpt::random::CRandomGenerator rng(5);
     for (int k = 0; k < 2000; ++k) {
         const mrpt::math::TPoint3D beacon(rng.drawUniform(0.0, 6.0), rng.drawUniform(0.0, 6.0),
@@ -42,7 +42,7 @@ TEST(UltrasonicLink, BeamPointedAtTheReceiverAlwaysBeatsOnePointedAway) {
                                       rng.drawUniform(0.0, 1.0));
         const mrpt::math::TPoint3D elsewhere(rng.drawUniform(0.0, 6.0), rng.drawUniform(0.0, 6.0),
                                              0.0);
-        const common::PanTiltHead head(beacon);
+        const beacons::PanTiltHead head(beacon);
         const auto at = head.aimAt(rx), away = head.aimAt(elsewhere);
         const double d = std::sqrt((rx - beacon).sqrNorm());
         const double onAxis = head.offAxisAngle(at, rx), offAxis = head.offAxisAngle(away, rx);
@@ -84,8 +84,8 @@ TEST(UltrasonicOptions, ZeroBeamAngleIsAnErrorNamingTheKey) {
 TEST(BeaconRanging, HeadsSlewBeforeTheFirstShotAndShotsFollowTheInterval) {
     const auto cfg = load("slew_rate = 90\n");  // deg/s
     const sim::World world(cfg.world);
-    sim::BeaconRanging ranging(world, cfg.beacons, cfg.sensors, cfg.ultrasonic);
-    common::RangingEpoch e;
+    beacons::BeaconRanging ranging(world, cfg.beacons, cfg.sensors, cfg.ultrasonic);
+    beacons::RangingEpoch e;
     e.robot = "r1";
     e.section = "s";
     e.beacons = {1};
@@ -95,7 +95,7 @@ TEST(BeaconRanging, HeadsSlewBeforeTheFirstShotAndShotsFollowTheInterval) {
     EXPECT_NEAR(free, 1.0 + 0.5 + 0.02, 1e-12);  // 45 degrees at 90 deg/s, then one shot
     EXPECT_NEAR(ranging.angles(1).tilt, M_PI / 4, 1e-12);
     mrpt::random::CRandomGenerator rng(1);
-    sim::ShotLog log;
+    beacons::ShotLog log;
     const auto at = [](double) { return mrpt::math::TPoint3D(2.5, 0, 0); };
     EXPECT_FALSE(ranging.fireDue(1.49, at, {0, 0, 0}, rng, log));
     EXPECT_TRUE(log.empty());

@@ -2,13 +2,14 @@
 // Omni-directional cameras on every robot (seed 000): each robot carries the same marker,
 // a coloured band around the camera, so that a camera sees the others but cannot tell
 // them apart.
-//  - render mode: the panorama (common::Panorama) rendered off screen with CFBORender,
-//    `views` pinhole views stitched into one strip, as a CObservationImage <robot>.omni;
+//  - render mode: the panorama (omnivision::Panorama) rendered off screen with
+//    sim::PinholeCamera in the world's scene, `views` pinhole views stitched into one strip, as a CObservationImage <robot>.omni;
 //  - bearings mode: the bearings of the visible markers with Gaussian noise, as a
 //    CObservationBearingRange <robot>.omni_bearings (range and identity unknown), for
 //    fast Monte Carlo.
 // A marker is visible within max_range when no other marker blocks the line of sight.
-#include <mrloc/common/Panorama.h>
+#include <mrloc/omnivision/Panorama.h>
+#include <mrloc/sim/World.h>
 #include <mrpt/img/CImage.h>
 #include <mrpt/obs/CObservationBearingRange.h>
 #include <mrpt/obs/CObservationImage.h>
@@ -20,11 +21,11 @@
 #include <string>
 #include <vector>
 
-namespace mrloc::sim {
+namespace mrloc::omnivision {
 
 struct OmniCameraOptions {
     bool render = true;                       ///< false: bearings mode
-    common::Panorama panorama;                ///< render mode
+    Panorama panorama;                        ///< render mode
     double bearingSigma = 0.05 * M_PI / 180;  ///< bearings mode noise (rad)
     double maxRange = 0;                      ///< m; 0: unlimited
     double markerRadius = 0.15;               ///< m: the band's radius (and what blocks sight)
@@ -32,8 +33,7 @@ struct OmniCameraOptions {
     double cameraHeight = 0.5;                ///< m: camera and band centre above the floor
 };
 
-/** The omni-directional camera run of a scenario (seed 000), set by the app from the
- *  method's section: when every camera fires, who stands still when, and (for the
+/** The omni-directional camera run of a scenario (seed 000), from [omnivision]: when every camera fires, who stands still when, and (for the
  *  conventional method) one LiDAR distance measured at each snapshot. */
 struct OmniSetup {
     OmniCameraOptions camera;
@@ -65,10 +65,10 @@ mrpt::obs::CObservationBearingRange::Ptr senseBearings(
     const std::vector<mrpt::poses::CPose2D>& poses, size_t observer, const OmniCameraOptions& o,
     mrpt::random::CRandomGenerator& rng);
 
-/** Render mode: one CFBORender context reused for every robot and instant. */
+/** Render mode: one rendering context reused for every robot and instant. */
 class OmniRenderer {
  public:
-    explicit OmniRenderer(const OmniCameraOptions& o);
+    OmniRenderer(const OmniCameraOptions& o, const sim::WorldOptions& world);
     ~OmniRenderer();
     mrpt::img::CImage render(const std::vector<mrpt::poses::CPose2D>& poses, size_t observer);
 
@@ -77,4 +77,4 @@ class OmniRenderer {
     std::unique_ptr<Impl> impl_;
 };
 
-}  // namespace mrloc::sim
+}  // namespace mrloc::omnivision

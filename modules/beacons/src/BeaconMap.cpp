@@ -1,11 +1,13 @@
-#include <mrloc/common/BeaconMap.h>
+#include <mrloc/beacons/BeaconMap.h>
 #include <mrloc/common/Error.h>
 #include <mrpt/core/format.h>
 #include <mrpt/system/string_utils.h>
 
 #include <cstdlib>
 
-namespace mrloc::common {
+namespace mrloc::beacons {
+
+using common::configOrigin;
 
 BeaconMap readBeaconKeys(IniSection& section) {
     BeaconMap map;
@@ -50,4 +52,4 @@ void saveBeaconKeys(const BeaconMap& map, mrpt::config::CConfigFileBase& target,
                      mrpt::format("%.4f %.4f %.4f", p.x, p.y, p.z));
 }
 
-}  // namespace mrloc::common
+}  // namespace mrloc::beacons

@@ -16,7 +16,9 @@
 #include <map>
 #include <string>
 
-namespace mrloc::common {
+namespace mrloc::beacons {
+
+using common::IniSection;
 
 using BeaconMap = std::map<int, mrpt::math::TPoint3D>;  ///< beacon ID -> position
 
@@ -34,4 +36,4 @@ BeaconMap loadBeaconMap(const mrpt::config::CConfigFileBase& cfg, IniSection& be
 void saveBeaconKeys(const BeaconMap& map, mrpt::config::CConfigFileBase& target,
                     const std::string& section);
 
-}  // namespace mrloc::common
+}  // namespace mrloc::beacons

@@ -18,12 +18,12 @@
 //
 // if that is within firing_time, else the shot is missed. The receiver is calibrated on
 // the beam's axis at calibration_distance: that delay is subtracted from every reading.
-#include <mrloc/common/PanTilt.h>
+#include <mrloc/beacons/PanTilt.h>
 #include <mrpt/config/CLoadableOptions.h>
 
 #include <optional>
 
-namespace mrloc::sim {
+namespace mrloc::beacons {
 
 struct UltrasonicOptions : public mrpt::config::CLoadableOptions {
     double speedOfSound = 343;           ///< m/s
@@ -34,7 +34,7 @@ struct UltrasonicOptions : public mrpt::config::CLoadableOptions {
     double riseTime = 150e-6;            ///< envelope time constant at the receiver (s)
     double firingTime = 450e-6;          ///< burst length, seed 001 section 5.2 (s)
     double calibrationDistance = 1.0;    ///< on-axis distance of the receiver's calibration (m)
-    common::PanTiltLimits head;          ///< pan_min, pan_max, tilt_max, slew_rate
+    beacons::PanTiltLimits head;          ///< pan_min, pan_max, tilt_max, slew_rate
 
     void loadFromConfigFile(const mrpt::config::CConfigFileBase& source,
                             const std::string& section) override;
@@ -63,4 +63,4 @@ class UltrasonicLink {
     double calibrationDelay_;
 };
 
-}  // namespace mrloc::sim
+}  // namespace mrloc::beacons

@@ -1,11 +1,11 @@
 #include <mrloc/common/Error.h>
 #include <mrloc/common/IniSection.h>
-#include <mrloc/sim/Ultrasonic.h>
+#include <mrloc/beacons/Ultrasonic.h>
 #include <mrpt/core/bits_math.h>
 
 #include <cmath>
 
-namespace mrloc::sim {
+namespace mrloc::beacons {
 
 void UltrasonicOptions::loadFromConfigFile(const mrpt::config::CConfigFileBase& src,
                                            const std::string& section) {
@@ -72,4 +72,4 @@ std::optional<double> UltrasonicLink::rangeBias(double margin) const {
     return o_.speedOfSound * (*d - calibrationDelay_);
 }
 
-}  // namespace mrloc::sim
+}  // namespace mrloc::beacons

@@ -1,12 +1,12 @@
 #include <mrloc/common/Error.h>
-#include <mrloc/report/PolygonView.h>
+#include <mrloc/polymap/PolygonView.h>
 #include <mrloc/report/TopView.h>
 #include <mrpt/opengl/CDisk.h>
 #include <mrpt/opengl/CSetOfLines.h>
 
 #include <algorithm>
 
-namespace mrloc::report {
+namespace mrloc::polymap {
 
 using namespace mrpt::opengl;
 using common::TPoint2D;
@@ -50,8 +50,11 @@ void renderPolygonView(const PolygonViewContent& c, const std::string& pngPath, 
     for (const auto& h : c.hypotheses) scene.insert(marker(h, 1.6 * dot, {220, 40, 30}, 0.04f));
     if (c.truth) scene.insert(marker(*c.truth, dot, {20, 150, 50}, 0.05f));
     const double m = 0.02 * size;
-    saveTopDown(scene, P.min().x - m, P.min().y - m, P.max().x + m, P.max().y + m, pngPath, width,
-                height);
+    report::Legend legend = {{"map P", {30, 30, 30}}, {"V at each hypothesis", {240, 140, 20}}};
+    if (c.truth) legend.push_back({"V at the true start", {20, 150, 50}});
+    legend.push_back({"hypotheses", {220, 40, 30}});
+    report::saveTopDown(scene, P.min().x - m, P.min().y - m, P.max().x + m, P.max().y + m,
+                        pngPath, width, height, legend);
 }
 
-}  // namespace mrloc::report
+}  // namespace mrloc::polymap

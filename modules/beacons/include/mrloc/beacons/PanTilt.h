@@ -8,7 +8,7 @@
 #include <mrpt/math/TPoint3D.h>
 #include <mrpt/poses/CPose3D.h>
 
-namespace mrloc::common {
+namespace mrloc::beacons {
 
 struct PanTiltAngles {
     double pan = 0;   ///< theta1, rad
@@ -49,4 +49,4 @@ class PanTiltHead {
     PanTiltLimits limits_;
 };
 
-}  // namespace mrloc::common
+}  // namespace mrloc::beacons

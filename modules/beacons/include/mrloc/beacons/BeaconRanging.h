@@ -3,12 +3,12 @@
 // tells them, transmitters that fire one after another on the shared ultrasonic channel,
 // and the link (Ultrasonic.h) plus the TOF noise and failure model ([sensors]) between a
 // transmitter and a receiver. One RangingEpoch in, one CObservationBeaconRanges out.
-#include <mrloc/common/BeaconMap.h>
-#include <mrloc/common/PanTilt.h>
-#include <mrloc/common/RangingController.h>
-#include <mrloc/sim/Sensors.h>
-#include <mrloc/sim/ShotLog.h>
-#include <mrloc/sim/Ultrasonic.h>
+#include <mrloc/beacons/BeaconMap.h>
+#include <mrloc/beacons/PanTilt.h>
+#include <mrloc/beacons/RangingEpoch.h>
+#include <mrpt/config/CLoadableOptions.h>
+#include <mrloc/beacons/ShotLog.h>
+#include <mrloc/beacons/Ultrasonic.h>
 #include <mrloc/sim/World.h>
 #include <mrpt/obs/CObservationBeaconRanges.h>
 #include <mrpt/random/RandomGenerators.h>
@@ -16,19 +16,35 @@
 #include <functional>
 #include <map>
 
-namespace mrloc::sim {
+namespace mrloc::beacons {
+
+/** Section [sensors]: TOF noise and failures on top of the ultrasonic link. */
+struct SensorOptions : public mrpt::config::CLoadableOptions {
+    double rangeSigma = 0.01;          ///< Gaussian TOF range noise (m)
+    double rangeMax = 10;              ///< no reading beyond (m)
+    double dropout = 0.02;             ///< probability a line-of-sight range is missed
+    double outlierProbability = 0.01;  ///< probability a range reads long (late trigger)
+    double outlierMax = 1.0;           ///< such a range is long by U(0.1, outlierMax) m
+    bool nlosReflect = true;           ///< blocked path: a long reflected range (else none)
+
+    void loadFromConfigFile(const mrpt::config::CConfigFileBase& source,
+                            const std::string& section) override;
+    void saveToConfigFile(mrpt::config::CConfigFileBase& target,
+                          const std::string& section) const override;
+};
+
 
 class BeaconRanging {
  public:
-    BeaconRanging(const World& world, const common::BeaconMap& beacons, SensorOptions sensors,
+    BeaconRanging(const sim::World& world, const BeaconMap& beacons, SensorOptions sensors,
                   UltrasonicOptions ultrasonic);
 
     /** Starts an epoch at time t: each head slews to its aim point (eq. 3 inverse
      *  kinematics), then the beacons fire in order, one per shot interval. Returns the time
      *  the channel is free again. Throws mrloc::Error for a beacon that is not in the map. */
-    double begin(double t, const common::RangingEpoch& epoch);
+    double begin(double t, const RangingEpoch& epoch);
     bool inEpoch() const { return inEpoch_; }
-    const common::RangingEpoch& epoch() const { return epoch_; }
+    const RangingEpoch& epoch() const { return epoch_; }
 
     /** Fires the current epoch's shots that are due by time t at the receiver, which is at
      *  `receiverAt(time)` in the world (`onRobot` in the robot's frame), and logs them.
@@ -39,30 +55,30 @@ class BeaconRanging {
         const mrpt::math::TPoint3D& onRobot, mrpt::random::CRandomGenerator& rng, ShotLog& log);
     double lastShotTime() const { return lastShot_; }
 
-    const common::PanTiltHead& head(int beacon) const { return heads_.at(beacon).head; }
-    common::PanTiltAngles angles(int beacon) const { return heads_.at(beacon).angles; }
+    const PanTiltHead& head(int beacon) const { return heads_.at(beacon).head; }
+    beacons::PanTiltAngles angles(int beacon) const { return heads_.at(beacon).angles; }
     const UltrasonicLink& link() const { return link_; }
 
  private:
     struct Head {
-        common::PanTiltHead head;
-        common::PanTiltAngles angles;  ///< current joint angles; 0, 0 = straight down
+        PanTiltHead head;
+        beacons::PanTiltAngles angles;  ///< current joint angles; 0, 0 = straight down
     };
     ShotRecord shoot(int beacon, const mrpt::math::TPoint3D& rx,
                      mrpt::random::CRandomGenerator& rng) const;
 
-    const World& world_;
-    const common::BeaconMap& beacons_;
+    const sim::World& world_;
+    const BeaconMap& beacons_;
     SensorOptions sensors_;
     UltrasonicLink link_;
     std::map<int, Head> heads_;
 
     bool inEpoch_ = false;
-    common::RangingEpoch epoch_;
+    RangingEpoch epoch_;
     double firstShot_ = 0;
     size_t fired_ = 0;
     double lastShot_ = 0;
     mrpt::obs::CObservationBeaconRanges::Ptr obs_;
 };
 
-}  // namespace mrloc::sim
+}  // namespace mrloc::beacons

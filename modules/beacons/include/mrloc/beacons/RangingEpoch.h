@@ -12,7 +12,7 @@
 #include <string>
 #include <vector>
 
-namespace mrloc::common {
+namespace mrloc::beacons {
 
 /** What a robot tells the RF beacon over the radio before each slot. */
 struct RobotReport {
@@ -38,4 +38,4 @@ class RangingController {
                                                   const std::vector<RobotReport>& requests) = 0;
 };
 
-}  // namespace mrloc::common
+}  // namespace mrloc::beacons

@@ -1,12 +1,12 @@
 #include <mrloc/common/AtomicFile.h>
 #include <mrloc/common/Error.h>
-#include <mrloc/sim/ShotLog.h>
+#include <mrloc/beacons/ShotLog.h>
 #include <mrpt/core/format.h>
 
 #include <fstream>
 #include <sstream>
 
-namespace mrloc::sim {
+namespace mrloc::beacons {
 
 std::string shotLogPath(const std::string& rawlogPath) {
     const std::string ext = ".rawlog";
@@ -49,4 +49,4 @@ ShotLog loadShotLog(const std::string& path) {
     return log;
 }
 
-}  // namespace mrloc::sim
+}  // namespace mrloc::beacons

@@ -7,7 +7,7 @@
 #include <string>
 #include <vector>
 
-namespace mrloc::report {
+namespace mrloc::polymap {
 
 struct PolygonViewContent {
     std::optional<common::Polygon> map;
@@ -19,4 +19,4 @@ struct PolygonViewContent {
 void renderPolygonView(const PolygonViewContent& content, const std::string& pngPath,
                        unsigned width = 1200, unsigned height = 600);
 
-}  // namespace mrloc::report
+}  // namespace mrloc::polymap

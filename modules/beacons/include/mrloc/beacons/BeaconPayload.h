@@ -1,0 +1,50 @@
+#pragma once
+// The beacon system in the simulator (seed 001), as the method's payload: the pan-tilt
+// heads, the ultrasonic link and the TOF noise (BeaconRanging), the robots' on-board
+// estimator and the RF beacon that schedules and aims from what they report. Beacon
+// ranging is closed-loop: when the ultrasonic channel is free, the robots that want a fix
+// report their position (from the on-board estimate) and speed (from odometry) to the RF
+// beacon, which picks the next epoch; the heads slew and fire. Every shot goes to the shot
+// log (`<stem>.shots.txt`), written beside the rawlog at the end.
+#include <mrloc/beacons/BeaconLocalizer.h>
+#include <mrloc/beacons/BeaconRanging.h>
+#include <mrloc/sim/Payload.h>
+
+#include <limits>
+#include <memory>
+
+namespace mrloc::beacons {
+
+class BeaconPayload : public sim::Payload {
+ public:
+    /** The on-board part is configured from the INI's [beacons]; `world` must outlive the
+     *  payload. */
+    BeaconPayload(const mrpt::config::CConfigFileBase& ini, const BeaconMap& beacons,
+                  SensorOptions sensors, UltrasonicOptions ultrasonic);
+    void sense(sim::Step& step) override;
+    void onObservation(const mrpt::obs::CObservation::Ptr& obs) override;
+    std::vector<std::string> finish(const std::string& rawlogPath) override;
+
+    const ShotLog& shots() const { return shots_; }
+    const OnboardBeacons& onboard() const { return onboard_; }
+
+ private:
+    struct RobotState {
+        double lastEpoch = -std::numeric_limits<double>::infinity();
+        long epochs = 0;
+    };
+    void fireDue(sim::Step& step);
+    RobotReport report(const sim::Step& step, size_t robot) const;
+
+    OnboardBeacons onboard_;
+    BeaconMap beacons_;
+    SensorOptions sensors_;
+    UltrasonicOptions ultrasonic_;
+    std::unique_ptr<BeaconRanging> ranging_;  ///< made at the first step, with the world
+    std::vector<RobotState> state_;
+    size_t epochRobot_ = 0;  ///< the robot the current epoch serves
+    double channelFree_ = 0;
+    ShotLog shots_;
+};
+
+}  // namespace mrloc::beacons

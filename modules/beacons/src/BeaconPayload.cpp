@@ -1,0 +1,83 @@
+#include <mrloc/beacons/BeaconPayload.h>
+#include <mrpt/math/wrap2pi.h>
+
+#include <algorithm>
+
+namespace mrloc::beacons {
+
+BeaconPayload::BeaconPayload(const mrpt::config::CConfigFileBase& ini, const BeaconMap& beacons,
+                             SensorOptions sensors, UltrasonicOptions ultrasonic)
+    : onboard_(ini), beacons_(beacons), sensors_(sensors), ultrasonic_(ultrasonic) {}
+
+void BeaconPayload::onObservation(const mrpt::obs::CObservation::Ptr& obs) {
+    onboard_.localizer.process(obs);
+}
+
+void BeaconPayload::fireDue(sim::Step& step) {
+    if (!ranging_->inEpoch()) return;
+    const size_t i = epochRobot_;
+    const sim::Robot& robot = step.fleet.robot(i);
+    const double t = step.t;
+    // A shot falls between two steps: the receiver is where the robot was at that time.
+    const auto receiverAtTime = [&](double when) {
+        const double a = std::clamp(1.0 - (t - when) / step.dt, 0.0, 1.0);
+        const auto& p0 = step.fleet.previousPose(i);
+        const auto& p1 = robot.pose();
+        const mrpt::poses::CPose2D p(p0.x() + a * (p1.x() - p0.x()), p0.y() + a * (p1.y() - p0.y()),
+                                     p0.phi() + a * mrpt::math::wrapToPi(p1.phi() - p0.phi()));
+        return sim::receiverAt(p, robot.options().receiver);
+    };
+    auto obs = ranging_->fireDue(t, receiverAtTime, robot.options().receiver, step.rng, shots_);
+    if (!obs) return;
+    obs->sensorLabel = robot.options().name + ".beacons";
+    obs->timestamp = mrpt::Clock::fromDouble(step.startTime + ranging_->lastShotTime());
+    step.emit(obs);
+}
+
+// What a robot tells the RF beacon: the receiver where its own estimate puts it (its
+// configured start before the first estimate: robots start at a surveyed spot).
+RobotReport BeaconPayload::report(const sim::Step& step, size_t i) const {
+    const auto& ro = step.fleet.robot(i).options();
+    RobotReport r;
+    r.robot = ro.name;
+    r.speed = step.fleet.odometrySpeed(i);
+    const auto est = onboard_.localizer.latestEstimate(ro.name);
+    const mrpt::poses::CPose2D believed =
+        est ? mrpt::poses::CPose2D(est->x(), est->y(), est->yaw()) : ro.start;
+    r.receiver = sim::receiverAt(believed, ro.receiver);
+    return r;
+}
+
+void BeaconPayload::sense(sim::Step& step) {
+    if (!ranging_) {
+        ranging_ = std::make_unique<BeaconRanging>(step.world, beacons_, sensors_, ultrasonic_);
+        state_.assign(step.fleet.size(), {});
+    }
+    fireDue(step);
+    const double t = step.t;
+    if (ranging_->inEpoch() || t < channelFree_ - 1e-9) return;
+    std::vector<RobotReport> requests;
+    for (size_t i = 0; i < step.fleet.size(); ++i) {
+        const auto& ro = step.fleet.robot(i).options();
+        const long cap = ro.rangingEpochs;
+        if (t - state_[i].lastEpoch >= 1.0 / ro.beaconRate - 1e-9 &&
+            (cap == 0 || state_[i].epochs < cap))
+            requests.push_back(report(step, i));
+    }
+    if (requests.empty()) return;
+    const auto epoch = onboard_.rfBeacon.nextEpoch(t, requests);
+    if (!epoch) return;
+    const size_t i = epochRobot_ = step.fleet.indexOf(epoch->robot);
+    state_[i].lastEpoch = t;
+    ++state_[i].epochs;
+    channelFree_ = ranging_->begin(t, *epoch);
+    fireDue(step);  // heads already aimed: the first shot leaves now
+}
+
+std::vector<std::string> BeaconPayload::finish(const std::string& rawlogPath) {
+    const std::string path = shotLogPath(rawlogPath);
+    saveShotLog(path, shots_);
+    return {path};
+}
+
+}  // namespace mrloc::beacons

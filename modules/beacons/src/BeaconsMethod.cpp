@@ -1,0 +1,122 @@
+#include <mrloc/beacons/BeaconPayload.h>
+#include <mrloc/beacons/BeaconsMethod.h>
+#include <mrloc/common/Error.h>
+#include <mrloc/report/ReportOptions.h>
+#include <mrpt/core/format.h>
+
+#include <algorithm>
+#include <filesystem>
+#include <map>
+
+namespace mrloc::beacons {
+
+namespace {
+
+method::Scenario loadScenario(const mrpt::config::CConfigFileBase& ini) {
+    method::Scenario s;
+    s.config = sim::ScenarioConfig::load(ini);
+    SensorOptions sensors;
+    sensors.loadFromConfigFile(ini, "sensors");
+    UltrasonicOptions ultrasonic;
+    ultrasonic.loadFromConfigFile(ini, "ultrasonic");
+    common::IniSection section(ini, "beacons");  // keys are checked by the localizer's options
+    const BeaconMap map = loadBeaconMap(ini, section);
+    for (const auto& [id, p] : map)
+        if (!s.config.world.contains(p, 1e-9))
+            throw Error(common::configOrigin(ini) + ": [beacons] beacon_" + std::to_string(id) +
+                        ": position " + p.asString() + " is outside the room [world] size");
+    s.payload = std::make_unique<BeaconPayload>(ini, map, sensors, ultrasonic);
+    s.saveOptions = [sensors, ultrasonic](mrpt::config::CConfigFileBase& t) {
+        sensors.saveToConfigFile(t, "sensors");
+        ultrasonic.saveToConfigFile(t, "ultrasonic");
+    };
+    return s;
+}
+
+/** Seed 001 Tables 3/4 and Figs. 10/11 for this run: per robot (test point) the reception
+ *  rate of each beacon from the simulator's shot log, and the mean and max error, beside
+ *  the paper's figures ([beacons] paper_reception_<id>). */
+std::string receptionSection(const report::RunView& run) {
+    const auto& metrics = run.metrics;
+    const std::string shotsPath = shotLogPath(metrics.value("rawlog", ""));
+    if (!std::filesystem::exists(shotsPath))
+        return "<p>No shot log beside the rawlog (not simulated here): no reception table.</p>\n";
+    const auto shots = loadShotLog(shotsPath);
+    if (shots.empty()) return "<p>The shot log is empty: no beacon fired.</p>\n";
+    BeaconOptions options;
+    options.loadFromConfigFile(*run.effective, "beacons");
+    report::ReportOptions paper;
+    paper.loadFromConfigFile(*run.effective, "report");
+    std::vector<std::string> robots;
+    std::map<int, std::map<std::string, std::pair<int, int>>> heard;  // beacon, robot: n, ok
+    for (const auto& s : shots) {
+        if (std::find(robots.begin(), robots.end(), s.robot) == robots.end())
+            robots.push_back(s.robot);
+        auto& c = heard[s.beacon][s.robot];
+        ++c.first;
+        c.second += s.detected;
+    }
+    std::string t = "<h2>Beacon system: reception and errors per robot</h2>\n";
+    if (!options.paperReception.empty())
+        t += "<p>Ours, with the paper's in brackets" +
+             (paper.paperCaption.empty() ? std::string() : ": " + report::html(paper.paperCaption)) +
+             ".</p>\n";
+    t += "<table><tr><th>successful receiving rate (%)</th>";
+    for (const auto& r : robots) t += "<th>" + report::html(r) + "</th>";
+    t += "</tr>\n";
+    for (const auto& [beacon, perRobot] : heard) {
+        t += "<tr><th>beacon " + std::to_string(beacon) + "</th>";
+        const auto p = options.paperReception.find(beacon);
+        for (size_t i = 0; i < robots.size(); ++i) {
+            const auto c = perRobot.find(robots[i]);
+            t += "<td>";
+            if (c != perRobot.end())
+                t += mrpt::format("%.0f", 100.0 * c->second.second / c->second.first);
+            if (p != options.paperReception.end() && i < p->second.size())
+                t += mrpt::format(" (%g)", p->second[i]);
+            t += "</td>";
+        }
+        t += "</tr>\n";
+    }
+    const auto row = [&](const char* name, const char* key, double scale, const char* fmt) {
+        std::string r = std::string("<tr><th>") + name + "</th>";
+        for (const auto& robot : robots) {
+            const auto& m = metrics["robots"];
+            r += "<td>";
+            if (m.contains(robot) && m[robot].contains(key) && m[robot][key].is_number())
+                r += mrpt::format(fmt, scale * m[robot][key].get<double>());
+            else
+                r += "none";
+            r += "</td>";
+        }
+        return r + "</tr>\n";
+    };
+    t += row("mean error (mm)", "mean_m", 1000, "%.1f");
+    t += row("max error (mm)", "max_m", 1000, "%.1f");
+    t += row("fixes", "estimates", 1, "%.0f");
+    t += "</table>\n";
+    t += "<p>Shots fired: " + std::to_string(shots.size()) + " (log: <code>" +
+         report::html(shotsPath) + "</code>).</p>\n";
+    return t;
+}
+
+void beaconsInTopView(const report::RunView& run, report::TopViewContent& view) {
+    common::IniSection section(*run.effective, "beacons");
+    for (const auto& [id, p] : readBeaconKeys(section)) view.landmarks.push_back(p);
+    view.landmarksName = "beacons";
+}
+
+}  // namespace
+
+void registerMethod(method::Registry& registry) {
+    method::Method m;
+    m.name = "beacons";
+    m.sections = {"beacons", "sensors", "ultrasonic"};
+    m.localizer = [] { return std::make_unique<BeaconLocalizer>(); };
+    m.scenario = loadScenario;
+    m.report.html = receptionSection;
+    m.report.topView = beaconsInTopView;
+    registry.add(std::move(m));
+}
+
+}  // namespace mrloc::beacons

@@ -1,0 +1,237 @@
+#include <mrloc/common/Error.h>
+#include <mrloc/common/IniSection.h>
+#include <mrloc/omnivision/OmniFiles.h>
+#include <mrloc/omnivision/OmniLocalizer.h>
+#include <mrloc/omnivision/OmniMethod.h>
+#include <mrpt/core/format.h>
+#include <mrpt/obs/CObservationImage.h>
+#include <mrpt/obs/CObservationRange.h>
+
+#include <algorithm>
+#include <cmath>
+#include <filesystem>
+
+namespace mrloc::omnivision {
+
+OmniPayload::OmniPayload(OmniSetup setup, sim::WorldOptions world)
+    : setup_(std::move(setup)), world_(std::move(world)) {}
+OmniPayload::~OmniPayload() = default;
+
+void OmniPayload::command(sim::Step& step) {
+    // Seed 000: the pair that stops stands still in (from, to].
+    for (size_t i = 0; i < step.fleet.size(); ++i) {
+        auto& robot = step.fleet.robot(i);
+        const bool stopped = std::any_of(setup_.stops.begin(), setup_.stops.end(), [&](const auto& s) {
+            return s.robot == robot.options().name && step.t > s.from + 1e-9 && step.t <= s.to + 1e-9;
+        });
+        if (stopped)
+            robot.stop();
+        else
+            robot.go();
+    }
+}
+
+void OmniPayload::sense(sim::Step& step) {
+    const bool snapshot =
+        std::any_of(setup_.snapshotTimes.begin(), setup_.snapshotTimes.end(),
+                    [&](double ts) { return std::abs(step.t - ts) < 0.5 * step.dt; });
+    if (!snapshot) return;
+    if (setup_.camera.render && !renderer_)
+        renderer_ = std::make_unique<OmniRenderer>(setup_.camera, world_);
+    const auto poses = step.fleet.poses();
+    for (size_t i = 0; i < step.fleet.size(); ++i) {  // every camera fires at once
+        const std::string& name = step.fleet.robot(i).options().name;
+        mrpt::obs::CObservation::Ptr obs;
+        if (renderer_) {
+            auto img = mrpt::obs::CObservationImage::Create();
+            img->image = renderer_->render(poses, i);
+            img->cameraPose = mrpt::poses::CPose3D(0, 0, setup_.camera.cameraHeight, 0, 0, 0);
+            img->sensorLabel = name + ".omni";
+            obs = img;
+        } else {
+            obs = senseBearings(poses, i, setup_.camera, step.rng);
+            obs->sensorLabel = name + ".omni_bearings";
+        }
+        obs->timestamp = step.stamp;
+        step.emit(obs);
+    }
+    if (!setup_.lidar) return;
+    const auto& l = *setup_.lidar;  // the conventional method's one measured distance
+    const auto& a = poses[step.fleet.indexOf(l.from)];
+    const auto& b = poses[step.fleet.indexOf(l.to)];
+    auto range = mrpt::obs::CObservationRange::Create();
+    range->sensorLabel = l.from + ".lidar." + l.to;
+    range->timestamp = step.stamp;
+    range->minSensorDistance = 0;
+    range->maxSensorDistance = 1e3;
+    mrpt::obs::CObservationRange::TMeasurement m;
+    m.sensorID = 0;
+    m.sensedDistance =
+        float(std::hypot(b.x() - a.x(), b.y() - a.y()) + step.rng.drawGaussian1D(0, l.sigma));
+    range->sensedData.push_back(m);
+    step.emit(range);
+}
+
+std::vector<sim::RobotOptions> generateSwarm(const OmniOptions& o, const sim::WorldOptions& world) {
+    mrpt::random::CRandomGenerator rng(uint32_t(o.swarmSeed));
+    const double side = std::min({o.swarmArea, world.sizeX, world.sizeY});
+    const double x0 = 0.5 * (world.sizeX - side), y0 = 0.5 * (world.sizeY - side);
+    std::vector<sim::RobotOptions> robots;
+    for (int tries = 0; int(robots.size()) < o.swarm; ++tries) {
+        if (tries > 100000)
+            throw Error("[omnivision] swarm: cannot place " + std::to_string(o.swarm) + " robots " +
+                        std::to_string(o.swarmSeparation) + " m apart in swarm_area");
+        const double x = x0 + rng.drawUniform(0.05, 0.95) * side;
+        const double y = y0 + rng.drawUniform(0.05, 0.95) * side;
+        if (std::any_of(robots.begin(), robots.end(), [&](const auto& r) {
+                return std::hypot(r.start.x() - x, r.start.y() - y) < o.swarmSeparation;
+            }))
+            continue;
+        sim::RobotOptions r;
+        r.name = mrpt::format("R%02d", int(robots.size()) + 1);
+        const double heading = rng.drawUniform(-M_PI, M_PI);
+        r.start = mrpt::poses::CPose2D(x, y, heading);
+        r.speed = std::max(o.swarmSpeed, 1e-3);
+        if (o.swarmSpeed > 0)  // a far waypoint straight ahead: the robot drives straight
+            r.waypoints = {{x + 1e3 * std::cos(heading), y + 1e3 * std::sin(heading)}};
+        r.loop = false;
+        robots.push_back(r);
+    }
+    return robots;
+}
+
+OmniSetup omniSetupOf(const OmniOptions& o, const std::vector<std::string>& robots,
+                      double duration, const std::string& origin) {
+    const auto need = [&](const std::string& robot, const char* key) {
+        if (std::find(robots.begin(), robots.end(), robot) == robots.end())
+            throw Error(origin + ": [omnivision] " + key + ": robot '" + robot +
+                        "' is not in the scenario");
+    };
+    OmniSetup setup;
+    setup.camera.render = o.render;
+    setup.camera.panorama = o.panorama;
+    setup.camera.bearingSigma = o.bearingSigma * M_PI / 180;
+    setup.camera.maxRange = o.maxRange;
+    setup.camera.markerRadius = o.markerRadius;
+    setup.camera.markerHeight = o.markerHeight;
+    setup.camera.cameraHeight = o.cameraHeight;
+    setup.snapshotTimes = o.snapshotTimes();
+    for (double t : setup.snapshotTimes)
+        if (t > duration)
+            throw Error(origin + ": [omnivision]: a snapshot at " + std::to_string(t) +
+                        " s is after [scenario] duration");
+    if (o.method == "proposed") {
+        for (size_t r = 0; r < o.pairs.size(); ++r) {
+            const auto& [a, b] = o.pairs[r];
+            need(a, "pairs");
+            need(b, "pairs");
+            const double shift = double(r) * o.roundPeriod;
+            setup.stops.push_back({a, o.tb + shift, o.te + shift});
+            setup.stops.push_back({b, o.tb + shift, o.te + shift});
+        }
+    } else {
+        need(o.measuredPair.first, "measured_pair");
+        need(o.measuredPair.second, "measured_pair");
+        setup.lidar = OmniSetup::Lidar{o.measuredPair.first, o.measuredPair.second, o.lidarSigma};
+    }
+    return setup;
+}
+
+namespace {
+
+method::Scenario loadScenario(const mrpt::config::CConfigFileBase& ini) {
+    OmniOptions o;
+    o.loadFromConfigFile(ini, "omnivision");
+    method::Scenario s;
+    if (o.swarm > 0) {
+        s.config = sim::ScenarioConfig::loadWithoutRobots(ini);
+        s.config.addGeneratedRobots(ini, generateSwarm(o, s.config.world));
+    } else {
+        s.config = sim::ScenarioConfig::load(ini);
+    }
+    s.payload = std::make_unique<OmniPayload>(
+        omniSetupOf(o, s.config.scenario.robots, s.config.scenario.duration,
+                    common::configOrigin(ini)),
+        s.config.world);
+    return s;
+}
+
+/** The accuracy sweep ([omnivision] accuracy_trials > 0): Monte Carlo on the run's true
+ *  layout with its sightings, written to accuracy.txt. */
+std::vector<std::string> accuracySweepStep(const method::ExperimentInput& in) {
+    OmniOptions o;
+    o.loadFromConfigFile(in.ini, "omnivision");
+    if (o.accuracyTrials <= 0) return {};
+    if (in.truth.empty())
+        throw Error("[omnivision] accuracy_trials: the sweep needs the run's ground truth");
+    const auto& loc = dynamic_cast<const OmniLocalizer&>(in.localizer);
+    const auto layout = loc.accuracyLayout(in.truth);
+    AccuracyFile file;
+    file.distanceName = layout.proposed ? "odometer" : "LiDAR";
+    file.points = accuracySweep(layout, o.accuracyTrials, 1);
+    file.write(in.outDir);
+    return {AccuracyFile::path(in.outDir)};
+}
+
+std::string omnivisionSection(const report::RunView& run) {
+    const auto layout = LayoutFile::read(run.dir);
+    plotLayout(layout, run.dir + "/layout.png");
+    const auto& m = run.metrics.value("omnivision", nlohmann::json::object());
+    std::string out =
+        "<h2>Relative layout (seed 000)</h2>\n<p>The truth, the paper's solution (eq. (8) for "
+        "L, then the sine rule) and the least-squares refinement over every identified "
+        "bearing and measured distance, with its 3-sigma ellipses; the legend is in the "
+        "picture.</p>\n<img src='layout.png' alt='true and recovered layouts'>\n";
+    if (m.contains("restarts") && !m["restarts"].empty()) {
+        out += "<p>Restarts (the stopped pair shared no witness):</p><ul>\n";
+        for (const auto& r : m["restarts"])
+            out += "<li>" + report::html(r.get<std::string>()) + "</li>\n";
+        out += "</ul>\n";
+    }
+    const auto xy = [](double x, double y) {
+        return std::isfinite(x) ? mrpt::format("%.3f, %.3f", x, y) : std::string("none");
+    };
+    out +=
+        "<table><tr><th>robot</th><th>paper x, y (m)</th><th>refined x, y (m)</th>"
+        "<th>sigma x, y (mm)</th><th>truth x, y (m)</th></tr>\n";
+    for (const auto& p : layout.points)
+        out += "<tr><td>" + report::html(p.robot) + "</td><td>" + xy(p.paperX, p.paperY) +
+               "</td><td>" + xy(p.refinedX, p.refinedY) + "</td><td>" +
+               (std::isfinite(p.cxx) ? mrpt::format("%.1f, %.1f", 1000 * std::sqrt(std::max(0.0, p.cxx)),
+                                                    1000 * std::sqrt(std::max(0.0, p.cyy)))
+                                     : std::string("none")) +
+               "</td><td>" + xy(p.trueX, p.trueY) + "</td></tr>\n";
+    out += "</table>\n";
+    if (!std::filesystem::exists(AccuracyFile::path(run.dir))) return out;
+    const auto sweep = AccuracyFile::read(run.dir);
+    plotAccuracy(sweep, run.dir + "/accuracy.png");
+    out +=
+        "<h3>Accuracy against noise (Monte Carlo on this run's true layout)</h3>\n"
+        "<p>Median relative error of all pairwise distances, mean over the trials. Seed 000 "
+        "gives no figure to compare with.</p>\n<img src='accuracy.png' alt='accuracy against "
+        "noise'>\n<table><tr><th>varied</th><th>bearing sigma (deg)</th><th>distance sigma "
+        "(%)</th><th>paper's solution (%)</th><th>least squares (%)</th><th>trials</th>"
+        "<th>failed</th></tr>\n";
+    for (const auto& r : sweep.points)
+        out += mrpt::format(
+            "<tr><td>%s</td><td>%g</td><td>%g</td><td>%.3f</td><td>%.3f</td><td>%d</td>"
+            "<td>%d</td></tr>\n",
+            r.axis.c_str(), r.angleSigmaDeg, 100 * r.distanceSigma, 100 * r.paper,
+            100 * r.refined, r.trials, r.failures);
+    return out + "</table>\n";
+}
+
+}  // namespace
+
+void registerMethod(method::Registry& registry) {
+    method::Method m;
+    m.name = "omnivision";
+    m.sections = {"omnivision"};
+    m.localizer = [] { return std::make_unique<OmniLocalizer>(); };
+    m.scenario = loadScenario;
+    m.experiment = accuracySweepStep;
+    m.report.html = omnivisionSection;  // its own picture: no world top view
+    registry.add(std::move(m));
+}
+
+}  // namespace mrloc::omnivision

@@ -1,0 +1,44 @@
+#pragma once
+// An off-screen pinhole camera (MRPT's CFBORender: EGL, no display needed) for any camera
+// pose and intrinsics, and the scene it looks at: the world's floor, walls and obstacles,
+// to which a method adds each robot's markers. Seed 000's omni panorama (four views) and
+// seed 003's front and rear cameras are all such views.
+#include <mrloc/sim/World.h>
+#include <mrpt/img/CImage.h>
+#include <mrpt/img/TCamera.h>
+#include <mrpt/opengl/COpenGLScene.h>
+#include <mrpt/poses/CPose3D.h>
+
+#include <memory>
+
+namespace mrloc::sim {
+
+/** The world as a camera sees it: a grey floor, the room's four walls (light; `walls`
+ *  false leaves the room open) and the obstacles (darker boxes). Markers are inserted by
+ *  the caller. */
+mrpt::opengl::COpenGLScene::Ptr makeWorldScene(const WorldOptions& world, bool walls = true);
+
+/** A camera pose in the world from where it is and where it looks: position, heading
+ *  (yaw, rad) and pitch (rad, positive down), in MRPT's camera convention (+Z forward,
+ *  +X right, +Y down). */
+mrpt::poses::CPose3D cameraPoseLooking(const mrpt::math::TPoint3D& position, double yaw,
+                                       double pitch = 0);
+
+class PinholeCamera {
+ public:
+    /** One rendering context of intrinsics.ncols x intrinsics.nrows pixels, reused for
+     *  every picture. */
+    explicit PinholeCamera(const mrpt::img::TCamera& intrinsics);
+    ~PinholeCamera();
+    const mrpt::img::TCamera& intrinsics() const;
+
+    /** Renders the scene from a camera at `cameraPose` (cameraPoseLooking()). */
+    mrpt::img::CImage render(const mrpt::opengl::COpenGLScene& scene,
+                             const mrpt::poses::CPose3D& cameraPose);
+
+ private:
+    struct Impl;
+    std::unique_ptr<Impl> impl_;
+};
+
+}  // namespace mrloc::sim
