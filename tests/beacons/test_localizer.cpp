@@ -1,6 +1,7 @@
 // The beacon localizer on simulated rawlogs: fixes mode, tracker mode, robustness.
 #include <gtest/gtest.h>
 #include <mrloc/beacons/BeaconLocalizer.h>
+#include <mrloc/beacons/BeaconsMethod.h>
 #include <mrloc/common/Metrics.h>
 #include <mrloc/common/Rawlog.h>
 #include <mrloc/sim/Simulator.h>
@@ -51,10 +52,10 @@ struct Outcome {
  *  which no single fix can detect; the filter recovers, and that is what is measured). */
 Outcome runOn(const std::string& iniText, const std::string& tag, double settle = 0) {
     mrpt::config::CConfigFileMemory ini(iniText);
-    const auto cfg = sim::ScenarioConfig::load(ini);
-    beacons::OnboardBeacons onboard(ini);  // aims the heads at the robot, schedules epochs
-    const std::string rawlog = sim::simulateToFiles(cfg, testing::TempDir() + "/loc_" + tag, true,
-                                                    {&onboard.localizer, &onboard.rfBeacon});
+    auto scenario = beacons::loadScenario(ini);  // its payload aims the heads, schedules epochs
+    const std::string rawlog = sim::simulateToFiles(scenario.config, testing::TempDir() + "/loc_" + tag,
+                                                    true, scenario.payload.get())
+                                   .rawlog;
     beacons::BeaconLocalizer loc;
     loc.configure(ini);
     common::RawlogReader reader(rawlog);

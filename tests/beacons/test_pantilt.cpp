@@ -5,7 +5,7 @@
 
 #include <cmath>
 
-using namespace mrloc::common;
+using namespace mrloc::beacons;
 using mrpt::DEG2RAD;
 using mrpt::math::TPoint3D;
 

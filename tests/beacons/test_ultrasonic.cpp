@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 #include <mrloc/common/Error.h>
 #include <mrloc/beacons/BeaconRanging.h>
+#include <mrloc/beacons/BeaconsMethod.h>
 #include <mrloc/sim/Scenario.h>
 #include <mrpt/config/CConfigFileMemory.h>
 #include <mrpt/random/RandomGenerators.h>
@@ -59,12 +60,25 @@ TEST(UltrasonicLink, BeamPointedAtTheReceiverAlwaysBeatsOnePointedAway) {
 }
 
 namespace {
-sim::ScenarioConfig load(const std::string& ultrasonic) {
+struct Loaded {
+    sim::ScenarioConfig config;
+    beacons::BeaconMap beacons;
+    beacons::SensorOptions sensors;
+    beacons::UltrasonicOptions ultrasonic;
+};
+
+Loaded load(const std::string& ultrasonic) {
     mrpt::config::CConfigFileMemory ini(
         "[scenario]\nrobots = r1\n[world]\nsize = 3 3 2.5\n[robot.r1]\nstart = 1 1 0\n"
         "[beacons]\nbeacon_1 = 0 0 2.5\n[ultrasonic]\n" +
         ultrasonic);
-    return sim::ScenarioConfig::load(ini);
+    Loaded l;
+    l.config = beacons::loadScenario(ini).config;
+    l.sensors.loadFromConfigFile(ini, "sensors");
+    l.ultrasonic.loadFromConfigFile(ini, "ultrasonic");
+    mrloc::common::IniSection section(ini, "beacons");
+    l.beacons = beacons::loadBeaconMap(ini, section);
+    return l;
 }
 }  // namespace
 
@@ -83,7 +97,7 @@ TEST(UltrasonicOptions, ZeroBeamAngleIsAnErrorNamingTheKey) {
 
 TEST(BeaconRanging, HeadsSlewBeforeTheFirstShotAndShotsFollowTheInterval) {
     const auto cfg = load("slew_rate = 90\n");  // deg/s
-    const sim::World world(cfg.world);
+    const sim::World world(cfg.config.world);
     beacons::BeaconRanging ranging(world, cfg.beacons, cfg.sensors, cfg.ultrasonic);
     beacons::RangingEpoch e;
     e.robot = "r1";

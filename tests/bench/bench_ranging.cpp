@@ -2,7 +2,8 @@
 // robots, two sections, active heads, priority scheduling, the on-board tracker running),
 // rawlog writing included. Issue 3's benchmark.
 #include <benchmark/benchmark.h>
-#include <mrloc/beacons/BeaconLocalizer.h>
+#include <mrloc/beacons/BeaconPayload.h>
+#include <mrloc/beacons/BeaconsMethod.h>
 #include <mrloc/sim/Simulator.h>
 #include <mrpt/config/CConfigFileMemory.h>
 
@@ -24,16 +25,16 @@ std::string iniText() {
 static void BM_MultiRobotShots(benchmark::State& state) {
     mrpt::config::CConfigFileMemory ini(iniText());
     ini.write("scenario", "duration", "20");
-    const auto cfg = sim::ScenarioConfig::load(ini);
+    const auto cfg = beacons::loadScenario(ini).config;
     const std::string path =
         (std::filesystem::temp_directory_path() / "mrloc_bench_ranging.rawlog").string();
     size_t shots = 0;
     for (auto _ : state) {
-        beacons::OnboardBeacons onboard(ini);
+        auto scenario = beacons::loadScenario(ini);  // a fresh on-board part each run
         common::RawlogWriter out(path);
         sim::Simulator simulator(cfg);
-        const auto r = simulator.run(out, {&onboard.localizer, &onboard.rfBeacon});
-        shots += r.shots.size();
+        const auto r = simulator.run(out, scenario.payload.get());
+        shots += dynamic_cast<const beacons::BeaconPayload&>(*scenario.payload).shots().size();
         benchmark::DoNotOptimize(r.observations);
     }
     state.counters["shots_per_s"] = benchmark::Counter(double(shots), benchmark::Counter::kIsRate);

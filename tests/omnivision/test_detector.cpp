@@ -24,7 +24,7 @@ TEST(Panorama, ColumnsMapToBearingsAcrossViews) {
 
 TEST(MarkerDetector, RenderedBandsGiveTheirBearings) {
     omnivision::OmniCameraOptions o;
-    omnivision::OmniRenderer renderer(o);
+    omnivision::OmniRenderer renderer(o, sim::WorldOptions{});
     std::vector<mrpt::poses::CPose2D> poses = {{5, 5, 0.4},   {9, 6, 0},     {5, 9.5, 0},
                                                {1.5, 4, 0},   {6, 1, 0},     {8.8, 2.2, 0},
                                                {2.2, 8.6, 0}, {4.99, 0.3, 0}};

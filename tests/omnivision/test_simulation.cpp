@@ -1,6 +1,7 @@
 // The simulator's omni-camera run (snapshots, stops, the LiDAR) and the localizer's input
 // checks.
 #include <gtest/gtest.h>
+#include <mrloc/omnivision/OmniMethod.h>
 #include <mrloc/common/Error.h>
 #include <mrloc/common/Rawlog.h>
 #include <mrloc/omnivision/OmniLocalizer.h>
@@ -39,15 +40,15 @@ waypoints = 5 1
 
 TEST(OmniSimulation, SnapshotsStopsAndLidarGoToTheRawlog) {
     mrpt::config::CConfigFileMemory ini(kIni);
-    auto cfg = sim::ScenarioConfig::load(ini, /*withBeacons=*/false);
+    const auto cfg = sim::ScenarioConfig::load(ini);
     omnivision::OmniSetup setup;
     setup.camera.render = false;
     setup.snapshotTimes = {1, 2};
     setup.stops = {{"A", 1, 2}};
     setup.lidar = omnivision::OmniSetup::Lidar{"A", "B", 0.0};
-    cfg.omni = setup;
+    omnivision::OmniPayload payload(setup, cfg.world);
     const std::string dir = testing::TempDir() + "/omni_sim";
-    const auto path = sim::simulateToFiles(cfg, dir, true);
+    const auto path = sim::simulateToFiles(cfg, dir, true, &payload).rawlog;
     common::RawlogReader reader(path);
     int bearings = 0, lidar = 0;
     std::vector<mrpt::obs::CObservation::Ptr> all;

@@ -5,24 +5,21 @@
 #include <mrloc/report/TopView.h>
 #include <mrpt/img/CImage.h>
 
+#include <cstdlib>
 #include <filesystem>
 
 using namespace mrloc;
 
 namespace {
 
-/** Counts pixels within a small window whose colour is dominated by one channel. */
-int countColoured(const mrpt::img::CImage& img, int cx, int cy, int channel) {
+/** Counts pixels within a small window whose colour is within 40 of `c` in each channel. */
+int countColoured(const mrpt::img::CImage& img, int cx, int cy, mrpt::img::TColor c) {
     int n = 0;
     for (int y = cy - 6; y <= cy + 6; ++y)
         for (int x = cx - 6; x <= cx + 6; ++x) {
             const uint8_t* p = img(x, y);  // BGR order in CImage
-            const int b = p[0], g = p[1], r = p[2];
-            const int c[3] = {r, g, b};
-            int others = 0;
-            for (int k = 0; k < 3; ++k)
-                if (k != channel) others = std::max(others, c[k]);
-            if (c[channel] > others + 20) ++n;
+            if (std::abs(p[2] - c.R) < 40 && std::abs(p[1] - c.G) < 40 && std::abs(p[0] - c.B) < 40)
+                ++n;
         }
     return n;
 }
@@ -34,13 +31,14 @@ TEST(TopView, DrawsPathsAndBeaconsWhereTheyAre) {
     sim::WorldOptions w;
     w.sizeX = 4, w.sizeY = 4, w.height = 2.5;
     c.world = w;
-    c.beacons = {{1, {0.5, 3.5, 2.5}}};
-    // A horizontal estimated path along y = 1 and a vertical true path along x = 3.
+    c.landmarks = {{0.5, 3.5, 2.5}};
+    // A horizontal estimated path along y = 1.1 and a vertical true path along x = 3.1 (off
+    // the 0.5 m grid lines, which a 1-pixel path would share pixels with).
     for (int i = 0; i <= 10; ++i) {
         c.estimates["r"].push_back(
-            {double(i), mrpt::poses::CPose3D(0.5 + 0.3 * i, 1.0, 0, 0, 0, 0)});
+            {double(i), mrpt::poses::CPose3D(0.5 + 0.3 * i, 1.1, 0, 0, 0, 0)});
         c.groundTruth["r"].push_back(
-            {double(i), mrpt::poses::CPose3D(3.0, 0.5 + 0.3 * i, 0, 0, 0, 0)});
+            {double(i), mrpt::poses::CPose3D(3.1, 0.5 + 0.3 * i, 0, 0, 0, 0)});
     }
     const std::string png = testing::TempDir() + "/mrloc_topview.png";
     report::renderTopView(c, png, 400, 400);
@@ -51,10 +49,31 @@ TEST(TopView, DrawsPathsAndBeaconsWhereTheyAre) {
     // 400 px span 2.2 * 4 + 0.2 = 9 m / 2 = 4.5 m, so 1 m = 88.9 px, image y grows downwards.
     const auto px = [](double x) { return int(200 + (x - 2.0) * 400 / 4.5); };
     const auto py = [](double y) { return int(200 - (y - 2.0) * 400 / 4.5); };
-    EXPECT_GT(countColoured(img, px(1.5), py(1.0), 0), 3);  // red estimate
-    EXPECT_GT(countColoured(img, px(3.0), py(2.0), 1), 3);  // green ground truth
-    EXPECT_GT(countColoured(img, px(0.5), py(3.5), 2), 3);  // blue beacon
-    EXPECT_EQ(countColoured(img, px(1.5), py(3.0), 0), 0);  // nothing red elsewhere
+    const auto robot = report::robotColour(0);
+    const mrpt::img::TColor pale((robot.R + 2 * 255) / 3, (robot.G + 2 * 255) / 3,
+                                 (robot.B + 2 * 255) / 3);
+    // The estimate in the robot's colour (violet: blue and red well above green), the truth
+    // in its pale version (green channel raised towards white), nothing violet elsewhere.
+    const auto violet = [&](int x, int y, int gLo, int gHi) {
+        int n = 0;
+        for (int v = y - 6; v <= y + 6; ++v)
+            for (int u = x - 6; u <= x + 6; ++u) {
+                const uint8_t* p = img(u, v);
+                n += p[0] > p[1] + 30 && p[2] > p[1] + 15 && p[1] >= gLo && p[1] <= gHi;
+            }
+        return n;
+    };
+    EXPECT_GT(violet(px(1.5), py(1.1), 0, 150), 3);    // the estimate, full colour
+    EXPECT_EQ(violet(px(1.5), py(1.1), 160, 255), 0);  // not pale
+    EXPECT_GT(violet(px(3.1), py(2.0), 150, 200), 3);  // the truth, pale
+    EXPECT_EQ(violet(px(3.1), py(2.0), 0, 140), 0);
+    (void)pale;
+    EXPECT_GT(countColoured(img, px(0.5), py(3.5), {30, 90, 220}), 3);  // the beacon
+    EXPECT_EQ(violet(px(1.5), py(3.0), 0, 255), 0);  // no path elsewhere
+    // The legend (top right) names the robot and the landmarks; the scale bar (bottom
+    // left) is black on white.
+    EXPECT_GT(countColoured(img, 400 - 30, 20, {255, 255, 255}), 20);
+    EXPECT_GT(countColoured(img, 30, 400 - 16, {0, 0, 0}), 3);
 }
 
 TEST(Plots, GnuplotWritesPngs) {

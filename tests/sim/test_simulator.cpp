@@ -1,10 +1,9 @@
-// Simulator: kinematics, line of sight in the OctoMap, range model, determinism.
+// Simulator: kinematics, steering, line of sight in the OctoMap.
 #include <gtest/gtest.h>
 #include <mrloc/common/Error.h>
 #include <mrloc/common/Rawlog.h>
 #include <mrloc/sim/Simulator.h>
 #include <mrpt/config/CConfigFileMemory.h>
-#include <mrpt/obs/CObservationBeaconRanges.h>
 
 #include <cmath>
 #include <filesystem>
@@ -51,31 +50,6 @@ sim::ScenarioConfig config(const std::string& extra = "") {
     return sim::ScenarioConfig::load(ini);
 }
 
-/** Every beacon fires at every robot in turn, aimed at the robot's true receiver. */
-class AllBeaconsAtTruth : public beacons::RangingController {
- public:
-    AllBeaconsAtTruth(const beacons::BeaconMap& map, double shotInterval = 0.0001)
-        : map_(map), shotInterval_(shotInterval) {}
-    std::optional<beacons::RangingEpoch> nextEpoch(
-        double, const std::vector<beacons::RobotReport>& requests) override {
-        beacons::RangingEpoch e;
-        e.robot = requests[next_++ % requests.size()].robot;
-        e.section = "all";
-        e.shotInterval = shotInterval_;
-        for (const auto& [id, p] : map_) {
-            e.beacons.push_back(id);
-            e.aimPoints.push_back(truth ? truth(e.robot) : mrpt::math::TPoint3D(0, 0, 0));
-        }
-        return e;
-    }
-    std::function<mrpt::math::TPoint3D(const std::string&)> truth;
-
- private:
-    const beacons::BeaconMap& map_;
-    double shotInterval_;
-    size_t next_ = 0;
-};
-
 std::string slurp(const std::string& p) {
     std::ifstream in(p, std::ios::binary);
     std::stringstream s;
@@ -101,9 +75,10 @@ TEST(World, LineOfSightIsBlockedByObstacleOnly) {
 TEST(Robot, UnicycleReachesWaypointAtConfiguredSpeed) {
     auto cfg = config();
     sim::Robot robot(cfg.robots[0]);
+    mrpt::random::CRandomGenerator rng(1);
     double travelled = 0;
     for (int k = 0; k < 400; ++k) {
-        const auto d = robot.step(0.01);
+        const auto d = robot.step(0.01, rng);
         travelled += std::hypot(d.x(), d.y());
     }
     // 4 s at 0.5 m/s straight north from (0.5, 0.5): heading already 90 degrees.
@@ -112,62 +87,47 @@ TEST(Robot, UnicycleReachesWaypointAtConfiguredSpeed) {
     EXPECT_NEAR(travelled, 2.0, 1e-6);
 }
 
-TEST(Simulator, NoiseFreeRangesAreTheGeometricDistancesAndNlosIsDropped) {
-    const auto cfg = config();
-    const std::string dir = testing::TempDir() + "/simtest";
-    AllBeaconsAtTruth controller(cfg.beacons);
-    const std::string path = sim::simulateToFiles(cfg, dir, true, {nullptr, &controller});
-    const auto gt = common::loadTum(common::groundTruthPath(path, "r1"));
-    const sim::World world(cfg.world);
-    common::RawlogReader reader(path);
-    size_t epochs = 0, ranges = 0;
-    for (mrpt::obs::CObservation::Ptr obs; reader.next(obs);) {
-        auto r = std::dynamic_pointer_cast<mrpt::obs::CObservationBeaconRanges>(obs);
-        if (!r) continue;
-        ++epochs;
-        const auto pose = common::interpolate(gt, mrpt::Clock::toDouble(r->timestamp));
-        ASSERT_TRUE(pose);
-        const mrpt::math::TPoint3D rx(pose->x(), pose->y(), 0.5);
-        for (const auto& [id, b] : cfg.beacons) {
-            const auto it = std::find_if(r->sensedData.begin(), r->sensedData.end(),
-                                         [&](const auto& m) { return m.beaconID == id; });
-            const bool visible = world.lineOfSight(b, rx);
-            ASSERT_EQ(it != r->sensedData.end(), visible) << "beacon " << id;
-            if (!visible) continue;
-            ++ranges;
-            // Stamped at the last shot; the shots are 0.1 ms apart at 0.5 m/s.
-            EXPECT_NEAR(it->sensedDistance, std::sqrt((b - rx).sqrNorm()), 2e-4);
-        }
-    }
-    // 10 s at 5 Hz, both ends included, less the heads' first slew (up to 0.5 s).
-    EXPECT_NEAR(double(epochs), 50.0, 2.0);
-    EXPECT_GT(ranges, 90u);
+
+TEST(Robot, StopGoDriveAndTurnAsCommanded) {
+    auto cfg = config();
+    sim::Robot robot(cfg.robots[0]);
+    mrpt::random::CRandomGenerator rng(1);
+    robot.drive(0.2, 0);  // 0.2 m/s straight on, heading 90 degrees
+    for (int k = 0; k < 100; ++k) robot.step(0.01, rng);
+    EXPECT_NEAR(robot.pose().y(), 0.5 + 0.2, 1e-9);
+    robot.turn(0.5);  // on the spot: 0.5 rad in 1 s
+    for (int k = 0; k < 100; ++k) robot.step(0.01, rng);
+    EXPECT_NEAR(robot.pose().y(), 0.7, 1e-9);
+    EXPECT_NEAR(robot.pose().phi(), M_PI / 2 + 0.5, 1e-9);
+    robot.drive(10, 100);  // capped at speed 0.5 m/s and max_turn_rate 1.5 rad/s
+    const auto d = robot.step(0.1, rng);
+    EXPECT_NEAR(d.phi(), 0.15, 1e-12);
+    EXPECT_NEAR(std::hypot(d.x(), d.y()), 2 * 0.5 / 1.5 * std::sin(0.075), 1e-12);  // chord
+    robot.stop();
+    EXPECT_TRUE(robot.halted());
+    robot.go();
+    robot.setWaypoints({{0.7, 3.0}}, false);  // back to following waypoints
+    for (int k = 0; k < 2000; ++k) robot.step(0.01, rng);
+    EXPECT_NEAR(robot.pose().x(), 0.7, 0.03);
+    EXPECT_NEAR(robot.pose().y(), 3.0, 0.03);
 }
 
-TEST(Simulator, SameSeedGivesByteIdenticalRawlogAndOtherSeedDoesNot) {
-    auto cfg = config("");
-    cfg.sensors.rangeSigma = 0.02;
-    cfg.sensors.dropout = 0.1;
-    AllBeaconsAtTruth ca(cfg.beacons), cb(cfg.beacons), cc(cfg.beacons);
-    const std::string a =
-        sim::simulateToFiles(cfg, testing::TempDir() + "/det_a", true, {nullptr, &ca});
-    const std::string b =
-        sim::simulateToFiles(cfg, testing::TempDir() + "/det_b", true, {nullptr, &cb});
-    EXPECT_EQ(slurp(a), slurp(b));
-    EXPECT_EQ(slurp(common::groundTruthPath(a, "r1")), slurp(common::groundTruthPath(b, "r1")));
-    EXPECT_EQ(slurp(beacons::shotLogPath(a)), slurp(beacons::shotLogPath(b)));
-    cfg.scenario.seed = 8;
-    const std::string c =
-        sim::simulateToFiles(cfg, testing::TempDir() + "/det_c", true, {nullptr, &cc});
-    EXPECT_NE(slurp(a), slurp(c));
-}
-
-TEST(Scenario, BeaconOutsideTheRoomIsAnError) {
-    try {
-        config("beacon_9 = 5 1 2\n");
-        FAIL() << "expected an error";
-    } catch (const Error& e) {
-        EXPECT_NE(std::string(e.what()).find("beacon_9"), std::string::npos) << e.what();
-        EXPECT_NE(std::string(e.what()).find("outside the room"), std::string::npos);
+TEST(Robot, ActuationNoiseIsDrawnOnlyWhenAskedFor) {
+    auto cfg = config();
+    sim::Robot exact(cfg.robots[0]);
+    mrpt::random::CRandomGenerator a(3), b(3);
+    exact.step(0.01, a);
+    EXPECT_EQ(a.drawUniform32bit(), b.drawUniform32bit());  // no draw without noise
+    cfg.robots[0].actuationSigmaV = 0.1;
+    sim::Robot noisy(cfg.robots[0]);
+    double sum = 0, sum2 = 0;
+    const int n = 2000;
+    for (int k = 0; k < n; ++k) {
+        sim::Robot r(cfg.robots[0]);
+        const double v = std::hypot(r.step(0.01, a).x(), 0.0) / (0.5 * 0.01);  // relative speed
+        sum += v, sum2 += v * v;
     }
+    const double mean = sum / n, sd = std::sqrt(sum2 / n - mean * mean);
+    EXPECT_NEAR(mean, 1.0, 0.01);  // 4.5 standard errors of 0.1 / sqrt(2000)
+    EXPECT_NEAR(sd, 0.1, 0.01);
 }

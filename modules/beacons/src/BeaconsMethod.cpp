@@ -10,8 +10,6 @@
 
 namespace mrloc::beacons {
 
-namespace {
-
 method::Scenario loadScenario(const mrpt::config::CConfigFileBase& ini) {
     method::Scenario s;
     s.config = sim::ScenarioConfig::load(ini);
@@ -32,6 +30,8 @@ method::Scenario loadScenario(const mrpt::config::CConfigFileBase& ini) {
     };
     return s;
 }
+
+namespace {
 
 /** Seed 001 Tables 3/4 and Figs. 10/11 for this run: per robot (test point) the reception
  *  rate of each beacon from the simulator's shot log, and the mean and max error, beside

@@ -19,7 +19,7 @@ namespace {
 
 CSetOfLines::Ptr pathLines(const common::Trajectory& traj, mrpt::img::TColor color, float z) {
     auto lines = CSetOfLines::Create();
-    lines->setLineWidth(2.5f);
+    lines->setLineWidth(4.0f);
     lines->setColor_u8(color);
     for (size_t i = 1; i < traj.size(); ++i) {
         const auto& a = traj[i - 1].pose;

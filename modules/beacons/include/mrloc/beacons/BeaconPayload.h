@@ -21,6 +21,10 @@ class BeaconPayload : public sim::Payload {
      *  payload. */
     BeaconPayload(const mrpt::config::CConfigFileBase& ini, const BeaconMap& beacons,
                   SensorOptions sensors, UltrasonicOptions ultrasonic);
+    /** Another controller instead of the RF beacon (tests: every beacon at the truth). */
+    void replaceController(std::unique_ptr<RangingController> controller) {
+        controller_ = std::move(controller);
+    }
     void sense(sim::Step& step) override;
     void onObservation(const mrpt::obs::CObservation::Ptr& obs) override;
     std::vector<std::string> finish(const std::string& rawlogPath) override;
@@ -37,6 +41,7 @@ class BeaconPayload : public sim::Payload {
     RobotReport report(const sim::Step& step, size_t robot) const;
 
     OnboardBeacons onboard_;
+    std::unique_ptr<RangingController> controller_;  ///< null: the RF beacon
     BeaconMap beacons_;
     SensorOptions sensors_;
     UltrasonicOptions ultrasonic_;

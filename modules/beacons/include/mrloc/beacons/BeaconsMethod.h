@@ -6,6 +6,10 @@
 
 namespace mrloc::beacons {
 
+/** The scenario of [scenario], [world], [robot.<name>], [sensors], [ultrasonic] and the
+ *  beacon map; its payload is a BeaconPayload. */
+method::Scenario loadScenario(const mrpt::config::CConfigFileBase& ini);
+
 void registerMethod(method::Registry& registry);
 
 }  // namespace mrloc::beacons

@@ -1,0 +1,160 @@
+// The beacons' payload in the simulator: noise-free ranges are the geometric distances,
+// blocked paths are dropped, and the same seed gives the same rawlog and shot log.
+#include <gtest/gtest.h>
+#include <mrloc/beacons/BeaconPayload.h>
+#include <mrloc/beacons/BeaconsMethod.h>
+#include <mrloc/common/Error.h>
+#include <mrloc/common/Rawlog.h>
+#include <mrloc/sim/Simulator.h>
+#include <mrpt/config/CConfigFileMemory.h>
+#include <mrpt/obs/CObservationBeaconRanges.h>
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <fstream>
+#include <functional>
+#include <sstream>
+
+using namespace mrloc;
+
+namespace {
+
+const char* kIni = R"(
+[scenario]
+name = simtest
+seed = 7
+duration = 10
+robots = r1
+[world]
+size = 4 4 2.5
+obstacle_wall = 1.9 0 0 2.1 4 2.5
+[sensors]
+range_sigma = 0
+range_dropout = 0
+range_outlier_probability = 0
+nlos = drop
+[ultrasonic]
+beam_angle = 360        // an ideal link: no trigger delay, no misses
+source_margin_db = 200
+fading_sigma_db = 0
+[robot.r1]
+start = 0.5 0.5 90
+waypoints = 0.5 3.5
+loop = false
+speed = 0.5
+receiver = 0 0 0.5
+[beacons]
+beacon_1 = 0.2 0.2 2.5
+beacon_2 = 1.5 3.8 2.5
+beacon_3 = 3.8 2.0 2.5
+)";
+
+/** Every beacon fires at every robot in turn, aimed at the robot's true receiver. */
+class AllBeaconsAtTruth : public beacons::RangingController {
+ public:
+    AllBeaconsAtTruth(beacons::BeaconMap map, double shotInterval = 0.0001)
+            : map_(std::move(map)), shotInterval_(shotInterval) {}
+    std::optional<beacons::RangingEpoch> nextEpoch(
+        double, const std::vector<beacons::RobotReport>& requests) override {
+        beacons::RangingEpoch e;
+        e.robot = requests[next_++ % requests.size()].robot;
+        e.section = "all";
+        e.shotInterval = shotInterval_;
+        for (const auto& [id, p] : map_) {
+            e.beacons.push_back(id);
+            e.aimPoints.push_back(truth ? truth(e.robot) : mrpt::math::TPoint3D(0, 0, 0));
+        }
+        return e;
+    }
+    std::function<mrpt::math::TPoint3D(const std::string&)> truth;
+
+ private:
+    const beacons::BeaconMap map_;
+    double shotInterval_;
+    size_t next_ = 0;
+};
+
+/** The scenario with every beacon aimed at the true receiver of each robot in turn. */
+method::Scenario scenario(const std::vector<std::array<std::string, 3>>& changes = {},
+                          double shotInterval = 0.0001) {
+    mrpt::config::CConfigFileMemory ini(kIni);
+    for (const auto& [section, key, value] : changes) ini.write(section, key, value);
+    auto s = beacons::loadScenario(ini);
+    common::IniSection section(ini, "beacons");
+    auto controller = std::make_unique<AllBeaconsAtTruth>(beacons::loadBeaconMap(ini, section),
+                                                          shotInterval);
+    dynamic_cast<beacons::BeaconPayload&>(*s.payload).replaceController(std::move(controller));
+    return s;
+}
+
+std::string slurp(const std::string& p) {
+    std::ifstream in(p, std::ios::binary);
+    std::stringstream s;
+    s << in.rdbuf();
+    return s.str();
+}
+
+}  // namespace
+
+TEST(Simulator, NoiseFreeRangesAreTheGeometricDistancesAndNlosIsDropped) {
+    auto s = scenario();
+    const auto& cfg = s.config;
+    const std::string dir = testing::TempDir() + "/simtest";
+    const std::string path = sim::simulateToFiles(cfg, dir, true, s.payload.get()).rawlog;
+    mrpt::config::CConfigFileMemory ini(kIni);
+    common::IniSection section(ini, "beacons");
+    const auto beaconMap = beacons::loadBeaconMap(ini, section);
+    const auto gt = common::loadTum(common::groundTruthPath(path, "r1"));
+    const sim::World world(cfg.world);
+    common::RawlogReader reader(path);
+    size_t epochs = 0, ranges = 0;
+    for (mrpt::obs::CObservation::Ptr obs; reader.next(obs);) {
+        auto r = std::dynamic_pointer_cast<mrpt::obs::CObservationBeaconRanges>(obs);
+        if (!r) continue;
+        ++epochs;
+        const auto pose = common::interpolate(gt, mrpt::Clock::toDouble(r->timestamp));
+        ASSERT_TRUE(pose);
+        const mrpt::math::TPoint3D rx(pose->x(), pose->y(), 0.5);
+        for (const auto& [id, b] : beaconMap) {
+            const auto it = std::find_if(r->sensedData.begin(), r->sensedData.end(),
+                                         [&](const auto& m) { return m.beaconID == id; });
+            const bool visible = world.lineOfSight(b, rx);
+            ASSERT_EQ(it != r->sensedData.end(), visible) << "beacon " << id;
+            if (!visible) continue;
+            ++ranges;
+            // Stamped at the last shot; the shots are 0.1 ms apart at 0.5 m/s.
+            EXPECT_NEAR(it->sensedDistance, std::sqrt((b - rx).sqrNorm()), 2e-4);
+        }
+    }
+    // 10 s at 5 Hz, both ends included, less the heads' first slew (up to 0.5 s).
+    EXPECT_NEAR(double(epochs), 50.0, 2.0);
+    EXPECT_GT(ranges, 90u);
+}
+
+TEST(Simulator, SameSeedGivesByteIdenticalRawlogAndOtherSeedDoesNot) {
+    const std::vector<std::array<std::string, 3>> noisy = {{"sensors", "range_sigma", "0.02"},
+                                                          {"sensors", "range_dropout", "0.1"}};
+    auto sa = scenario(noisy), sb = scenario(noisy), sc = scenario(noisy);
+    const std::string a =
+        sim::simulateToFiles(sa.config, testing::TempDir() + "/det_a", true, sa.payload.get()).rawlog;
+    const std::string b =
+        sim::simulateToFiles(sb.config, testing::TempDir() + "/det_b", true, sb.payload.get()).rawlog;
+    EXPECT_EQ(slurp(a), slurp(b));
+    EXPECT_EQ(slurp(common::groundTruthPath(a, "r1")), slurp(common::groundTruthPath(b, "r1")));
+    EXPECT_EQ(slurp(beacons::shotLogPath(a)), slurp(beacons::shotLogPath(b)));
+    sc.config.scenario.seed = 8;
+    const std::string c =
+        sim::simulateToFiles(sc.config, testing::TempDir() + "/det_c", true, sc.payload.get()).rawlog;
+    EXPECT_NE(slurp(a), slurp(c));
+}
+
+TEST(Scenario, BeaconOutsideTheRoomIsAnError) {
+    try {
+        scenario({{"beacons", "beacon_9", "5 1 2"}});
+        FAIL() << "expected an error";
+    } catch (const Error& e) {
+        EXPECT_NE(std::string(e.what()).find("beacon_9"), std::string::npos) << e.what();
+        EXPECT_NE(std::string(e.what()).find("outside the room"), std::string::npos);
+    }
+}
