@@ -40,7 +40,7 @@ std::vector<DataLine> readDataLines(const std::string& path) {
 
 std::string formatNumber(double v) {
     char buf[32];
-    std::snprintf(buf, sizeof buf, "%.10g", v);
+    std::snprintf(buf, sizeof buf, "%.17g", v);
     return buf;
 }
 

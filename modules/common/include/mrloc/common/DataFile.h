@@ -21,7 +21,8 @@ struct DataLine {
 /** Reads every data line; throws mrloc::Error if the file cannot be opened. */
 std::vector<DataLine> readDataLines(const std::string& path);
 
-/** "%.10g" of each value, for files that must round-trip to within 1e-10 relative. */
+/** A value with 17 significant digits: it reads back as the same double (time stamps of
+ *  1.7e9 s keep their fraction). */
 std::string formatNumber(double value);
 
 }  // namespace mrloc::common
