@@ -49,9 +49,6 @@ TEST(TopView, DrawsPathsAndBeaconsWhereTheyAre) {
     // 400 px span 2.2 * 4 + 0.2 = 9 m / 2 = 4.5 m, so 1 m = 88.9 px, image y grows downwards.
     const auto px = [](double x) { return int(200 + (x - 2.0) * 400 / 4.5); };
     const auto py = [](double y) { return int(200 - (y - 2.0) * 400 / 4.5); };
-    const auto robot = report::robotColour(0);
-    const mrpt::img::TColor pale((robot.R + 2 * 255) / 3, (robot.G + 2 * 255) / 3,
-                                 (robot.B + 2 * 255) / 3);
     // The estimate in the robot's colour (violet: blue and red well above green), the truth
     // in its pale version (green channel raised towards white), nothing violet elsewhere.
     const auto violet = [&](int x, int y, int gLo, int gHi) {
@@ -67,8 +64,7 @@ TEST(TopView, DrawsPathsAndBeaconsWhereTheyAre) {
     EXPECT_EQ(violet(px(1.5), py(1.1), 160, 255), 0);  // not pale
     EXPECT_GT(violet(px(3.1), py(2.0), 150, 200), 3);  // the truth, pale
     EXPECT_EQ(violet(px(3.1), py(2.0), 0, 140), 0);
-    (void)pale;
-    EXPECT_GT(countColoured(img, px(0.5), py(3.5), {30, 90, 220}), 3);  // the beacon
+    EXPECT_GT(countColoured(img, px(0.5), py(3.5), {30, 90, 220}), 3);  // the landmark
     EXPECT_EQ(violet(px(1.5), py(3.0), 0, 255), 0);  // no path elsewhere
     // The legend (top right) names the robot and the landmarks; the scale bar (bottom
     // left) is black on white.

@@ -6,10 +6,6 @@
 #include <mrpt/config/CConfigFileMemory.h>
 
 #include <cmath>
-#include <filesystem>
-#include <fstream>
-#include <functional>
-#include <sstream>
 
 using namespace mrloc;
 
@@ -24,37 +20,16 @@ robots = r1
 [world]
 size = 4 4 2.5
 obstacle_wall = 1.9 0 0 2.1 4 2.5
-[sensors]
-range_sigma = 0
-range_dropout = 0
-range_outlier_probability = 0
-nlos = drop
-[ultrasonic]
-beam_angle = 360        // an ideal link: no trigger delay, no misses
-source_margin_db = 200
-fading_sigma_db = 0
 [robot.r1]
 start = 0.5 0.5 90
 waypoints = 0.5 3.5
 loop = false
 speed = 0.5
-receiver = 0 0 0.5
-[beacons]
-beacon_1 = 0.2 0.2 2.5
-beacon_2 = 1.5 3.8 2.5
-beacon_3 = 3.8 2.0 2.5
 )";
 
-sim::ScenarioConfig config(const std::string& extra = "") {
-    mrpt::config::CConfigFileMemory ini(std::string(kIni) + extra);
+sim::ScenarioConfig config() {
+    mrpt::config::CConfigFileMemory ini(kIni);
     return sim::ScenarioConfig::load(ini);
-}
-
-std::string slurp(const std::string& p) {
-    std::ifstream in(p, std::ios::binary);
-    std::stringstream s;
-    s << in.rdbuf();
-    return s.str();
 }
 
 }  // namespace

@@ -12,10 +12,11 @@
 namespace mrloc::polymap {
 
 void PolymapPayload::sense(sim::Step& step) {
-    const long every = plan_.scanner.rate > 0
-                           ? std::max<long>(1, std::lround(1.0 / (plan_.scanner.rate * step.dt)))
-                           : 0;
-    if (step.index != 0 && (every == 0 || step.index % every != 0)) return;
+    if (scanEvery_ < 0)
+        scanEvery_ = plan_.scanner.rate > 0
+                         ? std::max<long>(1, std::lround(1.0 / (plan_.scanner.rate * step.dt)))
+                         : 0;
+    if (step.index != 0 && (scanEvery_ == 0 || step.index % scanEvery_ != 0)) return;
     for (size_t i = 0; i < step.fleet.size(); ++i) {
         const auto& robot = step.fleet.robot(i);
         auto scan = sim::scanFloorPlan(plan_.polygon, robot.pose(), plan_.scanner, step.rng);

@@ -17,6 +17,7 @@ class PolymapPayload : public sim::Payload {
 
  private:
     sim::FloorPlan plan_;
+    long scanEvery_ = -1;  ///< steps between scans (0: only at the start); set at step 0
 };
 
 void registerMethod(method::Registry& registry);
