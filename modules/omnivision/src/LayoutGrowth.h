@@ -1,0 +1,176 @@
+#pragma once
+// Seed and grow (TriangleSearch.h), the pieces its files share:
+//  - ImageTable: each camera's images and the signed angles between every ordered pair of
+//    them, sorted, so that "which pairs subtend about delta" is a binary search;
+//  - seeds (SeedSearch.cpp): triangles from the swarm's hull first, then any three angle
+//    pairs summing to 180 degrees;
+//  - LayoutGrower: places a seed triangle and grows the layout where rays of placed robots
+//    meet (LayoutGrowth.cpp), then polishes positions and relabels images (LayoutPolish.cpp);
+//  - identify() (SeedAndGrow.cpp) tries seeds until a layout labels nearly every image.
+#include <mrloc/omnivision/TriangleSearch.h>
+
+#include <Eigen/Cholesky>
+#include <Eigen/Core>
+#include <Eigen/LU>
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <functional>
+#include <optional>
+#include <utility>
+#include <vector>
+
+namespace mrloc::omnivision::seedgrow {
+
+/** Wraps to (-pi, pi] for angles a few turns away at most: the hot loops call it often
+ *  and mrpt::math::wrapToPi's fmod dominated their profile. */
+inline double wrapToPi(double a) {
+    while (a > M_PI) a -= 2 * M_PI;
+    while (a <= -M_PI) a += 2 * M_PI;
+    return a;
+}
+using Vec2 = Eigen::Vector2d;
+
+inline double cross(const Vec2& a, const Vec2& b) { return a.x() * b.y() - a.y() * b.x(); }
+inline Vec2 unit(double angle) { return {std::cos(angle), std::sin(angle)}; }
+inline double direction(const Vec2& from, const Vec2& to) {
+    return std::atan2(to.y() - from.y(), to.x() - from.x());
+}
+
+/** The least-squares meeting point of lines, each through a point at a direction. */
+class LineMeeting {
+ public:
+    void add(const Vec2& through, double angle) {
+        const Vec2 normal(-std::sin(angle), std::cos(angle));
+        A_ += normal * normal.transpose();
+        b_ += normal * normal.dot(through);
+    }
+    /** None when the lines are (nearly) parallel. */
+    std::optional<Vec2> solve() const {
+        if (std::abs(A_.determinant()) <= 1e-12) return std::nullopt;
+        return A_.ldlt().solve(b_);
+    }
+
+ private:
+    Eigen::Matrix2d A_ = Eigen::Matrix2d::Zero();
+    Eigen::Vector2d b_ = Eigen::Vector2d::Zero();
+};
+
+/** A triangle whose identities are fixed, counter-clockwise r[0] -> r[1] -> r[2]. At
+ *  r[v], image[v][0] shows the next robot and image[v][1] the previous one, so that the
+ *  signed angle from the first to the second is the interior angle. */
+struct Seed {
+    std::array<int, 3> r{};
+    std::array<std::array<int, 2>, 3> image{};
+};
+
+/** A robot placed (up to scale) in the growing layout. */
+struct Layout {
+    std::vector<char> placed;
+    std::vector<Vec2> p;
+    std::vector<double> heading;
+    Labels labels;
+    std::vector<int> order;  ///< placement order
+    double scale = 1;        ///< the seed triangle's mean side
+};
+
+/** A robot that might stand where the rays of placed robots meet. */
+struct Candidate {
+    int robot = -1;
+    Vec2 at;
+    double heading = 0;
+    std::vector<std::pair<int, int>> raysIn;  ///< placed robot, its image of `robot`
+    std::vector<std::pair<int, int>> seen;    ///< placed robot, `robot`'s image of it
+    double residual = 0;                      ///< sum of squared bearing errors
+    size_t evidence() const { return raysIn.size() + seen.size(); }
+};
+
+/** Each camera's images and the signed angles between them. */
+class ImageTable {
+ public:
+    explicit ImageTable(const Snapshot& s);
+
+    const Snapshot& snapshot() const { return snapshot_; }
+    int robots() const { return int(snapshot_.robots()); }
+    const View& view(int r) const { return snapshot_.views[size_t(r)]; }
+    double bearing(int r, int image) const { return view(r).bearings[size_t(image)]; }
+
+    struct PairAngle {
+        double angle;  ///< signed, from image `from` to image `to`
+        int from, to;
+    };
+    /** Per robot, every ordered pair of its images, sorted by angle. */
+    const std::vector<std::vector<PairAngle>>& pairTables() const { return pairs_; }
+
+    /** Calls f(e, g) for every ordered pair of robot r's images whose signed angle is
+     *  within tol of delta. */
+    template <class F>
+    void forPairsNear(int r, double delta, double tol, F&& f) const {
+        const auto& ps = pairs_[size_t(r)];
+        const auto scan = [&](double lo, double hi) {
+            auto it = std::lower_bound(ps.begin(), ps.end(), lo,
+                                       [](const PairAngle& p, double v) { return p.angle < v; });
+            for (; it != ps.end() && it->angle <= hi; ++it) f(it->from, it->to);
+        };
+        scan(delta - tol, delta + tol);
+        if (delta - tol < -M_PI) scan(delta - tol + 2 * M_PI, M_PI);
+        if (delta + tol > M_PI) scan(-M_PI, delta + tol - 2 * M_PI);
+    }
+
+    /** The unlabeled image of robot r nearest the bearing b (robot frame), within tol; labels
+     *  may be empty (any image). */
+    int findImage(const Labels& labels, int r, double b, double tol) const;
+
+ private:
+    const Snapshot& snapshot_;
+    std::vector<std::vector<PairAngle>> pairs_;
+};
+
+/** Tries a seed; true stops the search. */
+using SeedAttempt = std::function<bool(const Seed&)>;
+/** Seeds from the hull, best conditioned first; true if an attempt stopped the search. */
+bool tryHullSeeds(const ImageTable& table, const SearchOptions& o, const SeedAttempt& attempt);
+/** Every triangle of counter-clockwise angle pairs summing to 180 degrees. */
+bool tryGeneralSeeds(const ImageTable& table, const SearchOptions& o, const SeedAttempt& attempt);
+
+/** Grows layouts from seeds over one ImageTable. */
+class LayoutGrower {
+ public:
+    LayoutGrower(const ImageTable& table, const SearchOptions& o)
+        : table_(table), o_(o), n_(table.robots()) {}
+    /** The layout grown from the seed, polished and relabeled; ok is false for a
+     *  degenerate seed. */
+    Layout growFrom(const Seed& seed, bool& ok) const;
+
+ private:
+    double tolAt(const Layout& layout, double dist) const;
+    bool placeSeed(const Seed& seed, Layout& layout) const;
+    double fitHeading(const Layout& layout, int r) const;
+    std::vector<Candidate> candidates(const Layout& layout, int s1, int s2, size_t minRays,
+                                      size_t minSeen) const;
+    void refinePoint(const Layout& layout, Candidate& c) const;
+    void identifyRobot(const Layout& layout, const Candidate& c, size_t minSeen,
+                       std::vector<Candidate>& out) const;
+    double residual(const Layout& layout, const Candidate& c) const;
+    static void place(Layout& layout, const Candidate& c);
+    static bool conflicts(const Layout& layout, const Candidate& c);
+    static void sortByEvidence(std::vector<Candidate>& found);
+    bool growOnce(Layout& layout) const;
+    bool confirmed(const Layout& layout) const;
+    void polish(Layout& layout, int sweeps) const;
+    void relabel(Layout& layout) const;
+
+    static constexpr double kMinRayAngle = 0.02;  ///< sin of ~1.1 degrees
+    static constexpr size_t kLookahead = 3;       ///< fourth robots tried from the seed
+    static constexpr size_t kSmallLayout = 6;     ///< below: every placed robot must agree
+    static constexpr size_t kAnchors = 4;         ///< the first robots, whose pairs all give rays
+    static constexpr size_t kMissSlack = 4;       ///< misses allowed beyond twice the hits
+    static constexpr size_t kAnchorGroups = 8;    ///< anchor pairs tried per round, at most
+    static constexpr size_t kMinEvidence = 8;     ///< rays in plus robots seen
+
+    const ImageTable& table_;
+    const SearchOptions& o_;
+    int n_;
+};
+
+}  // namespace mrloc::omnivision::seedgrow

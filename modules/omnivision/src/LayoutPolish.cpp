@@ -1,0 +1,85 @@
+// Seed and grow: re-fitting the layout and re-assigning images from it.
+#include <map>
+#include <set>
+#include <tuple>
+
+#include "LayoutGrowth.h"
+
+namespace mrloc::omnivision::seedgrow {
+
+/** Re-fits every placed robot's position (least squares over the labeled rays into and
+ *  out of it) and heading, so that errors do not pile up as the layout grows. */
+void LayoutGrower::polish(Layout& layout, int sweeps) const {
+    for (int it = 0; it < sweeps; ++it)
+        for (size_t k = 2; k < layout.order.size(); ++k) {  // the first two fix the frame
+            const int r = layout.order[k];
+            LineMeeting m;
+            for (int s : layout.order) {
+                if (s == r) continue;
+                const auto& lab = layout.labels[size_t(s)];
+                for (size_t img = 0; img < lab.size(); ++img)
+                    if (lab[img] == r)
+                        m.add(layout.p[size_t(s)],
+                              layout.heading[size_t(s)] + table_.bearing(s, int(img)));
+            }
+            const auto& own = layout.labels[size_t(r)];
+            for (size_t img = 0; img < own.size(); ++img)
+                if (own[img] >= 0 && layout.placed[size_t(own[img])])
+                    m.add(layout.p[size_t(own[img])],
+                          layout.heading[size_t(r)] + table_.bearing(r, int(img)));
+            if (const auto at = m.solve()) layout.p[size_t(r)] = *at;
+            layout.heading[size_t(r)] = fitHeading(layout, r);
+        }
+    for (int r : layout.order) layout.heading[size_t(r)] = fitHeading(layout, r);
+}
+
+/** Re-assigns every placed camera's labels from the polished layout: each image goes to
+ *  the placed robot whose predicted bearing it matches best, one image per robot. This
+ *  undoes a swap made early, when two robots were nearly in line from a camera. */
+void LayoutGrower::relabel(Layout& layout) const {
+    for (int u : layout.order) {
+        struct Match {
+            double err;
+            int image, robot;
+        };
+        std::vector<Match> ms;
+        const auto& v = table_.view(u).bearings;
+        for (int w : layout.order) {
+            if (w == u) continue;
+            const double b =
+                direction(layout.p[size_t(u)], layout.p[size_t(w)]) - layout.heading[size_t(u)];
+            const double t = tolAt(layout, (layout.p[size_t(w)] - layout.p[size_t(u)]).norm());
+            for (size_t i = 0; i < v.size(); ++i)
+                if (const double e = std::abs(wrapToPi(v[i] - b)); e <= t)
+                    ms.push_back({e / t, int(i), w});
+        }
+        std::sort(ms.begin(), ms.end(), [](const Match& a, const Match& b) {
+            return std::tie(a.err, a.image, a.robot) < std::tie(b.err, b.image, b.robot);
+        });
+        // One image on the line to several robots is the nearest: its marker hides the
+        // others. Otherwise two robots nearly in line from u (or one robot near two
+        // images) cannot be told apart: such images stay unlabeled rather than guessed.
+        std::map<int, int> perImage, perRobot;
+        for (const auto& m : ms) ++perImage[m.image], ++perRobot[m.robot];
+        std::map<int, int> occluder;  // image -> the nearest robot on its line
+        for (const auto& m : ms) {
+            if (perImage[m.image] < 2 || perRobot[m.robot] != 1) continue;
+            auto& o = occluder[m.image];
+            const auto dist = [&](int w) {
+                return (layout.p[size_t(w)] - layout.p[size_t(u)]).norm();
+            };
+            if (o == 0 || dist(m.robot) < dist(o - 1)) o = m.robot + 1;
+        }
+        auto& lab = layout.labels[size_t(u)];
+        std::fill(lab.begin(), lab.end(), -1);
+        for (const auto& m : ms)
+            if ((perImage[m.image] == 1 && perRobot[m.robot] == 1) ||
+                (occluder.count(m.image) && occluder[m.image] == m.robot + 1 &&
+                 std::all_of(ms.begin(), ms.end(), [&](const Match& x) {
+                     return x.image != m.image || perRobot[x.robot] == 1;
+                 })))
+                lab[size_t(m.image)] = m.robot;
+    }
+}
+
+}  // namespace mrloc::omnivision::seedgrow

@@ -1,0 +1,122 @@
+// Seed and grow: the image table and the seed triangles it offers.
+#include <map>
+#include <set>
+#include <tuple>
+
+#include "LayoutGrowth.h"
+
+namespace mrloc::omnivision::seedgrow {
+
+ImageTable::ImageTable(const Snapshot& s) : snapshot_(s), pairs_(s.robots()) {
+    for (int r = 0; r < robots(); ++r) {
+        const auto& v = view(r);
+        for (int e = 0; e < int(v.size()); ++e)
+            for (int f = 0; f < int(v.size()); ++f)
+                if (e != f) pairs_[size_t(r)].push_back({signedAngle(v, e, f), e, f});
+        std::sort(pairs_[size_t(r)].begin(), pairs_[size_t(r)].end(),
+                  [](const PairAngle& a, const PairAngle& b) { return a.angle < b.angle; });
+    }
+}
+
+/** The unlabeled image of robot r nearest the bearing b (robot frame), within tol. */
+int ImageTable::findImage(const Labels& labels, int r, double b, double tol) const {
+    const auto& v = snapshot_.views[size_t(r)].bearings;
+    const size_t n = v.size();
+    if (n == 0) return -1;
+    b = wrapToPi(b);
+    const size_t start = size_t(std::lower_bound(v.begin(), v.end(), b) - v.begin()) % n;
+    int best = -1;
+    double bestD = tol;
+    const auto consider = [&](size_t i) {
+        const double d = std::abs(wrapToPi(v[i] - b));
+        if (d > tol) return false;
+        if ((labels.empty() || labels[size_t(r)][i] < 0) && d <= bestD) best = int(i), bestD = d;
+        return true;
+    };
+    for (size_t k = 0; k < n && consider((start + k) % n); ++k) {
+    }
+    for (size_t k = 1; k <= n && consider((start + n - k) % n); ++k) {
+    }
+    return best;
+}
+
+bool tryHullSeeds(const ImageTable& table, const SearchOptions& o, const SeedAttempt& attempt) {
+    std::vector<int> hull, first(size_t(table.robots()), -1), last(size_t(table.robots()), -1);
+    for (int r = 0; r < table.robots(); ++r) {
+        const auto& v = table.view(r).bearings;
+        if (v.size() < 2) continue;
+        for (size_t i = 0; i < v.size(); ++i) {
+            const size_t next = (i + 1) % v.size();
+            double gap = v[next] - v[i];
+            if (next == 0) gap += 2 * M_PI;
+            if (gap > M_PI) {
+                first[size_t(r)] = int(next);
+                last[size_t(r)] = int(i);
+                hull.push_back(r);
+            }
+        }
+    }
+    std::vector<std::pair<double, Seed>> seeds;  // best conditioned first
+    for (int i : hull)
+        for (int j : hull)
+            for (int k : hull) {
+                if (i == j || j == k || i == k) continue;
+                const double thetaJ = signedAngle(table.view(j), first[size_t(j)], last[size_t(j)]);
+                for (size_t x = 0; x < table.view(i).size(); ++x) {
+                    if (int(x) == first[size_t(i)]) continue;
+                    const double thetaI = signedAngle(table.view(i), first[size_t(i)], int(x));
+                    const double thetaK = M_PI - thetaI - thetaJ;
+                    if (thetaK <= 0) continue;
+                    const int y = table.findImage({}, k, table.bearing(k, last[size_t(k)]) - thetaK,
+                                                  o.sumTolerance);
+                    if (y < 0 || y == last[size_t(k)]) continue;
+                    const Seed seed{{i, j, k},
+                                    {{{first[size_t(i)], int(x)},
+                                      {first[size_t(j)], last[size_t(j)]},
+                                      {y, last[size_t(k)]}}}};
+                    seeds.push_back({std::min({thetaI, thetaJ, thetaK}), seed});
+                }
+            }
+    std::stable_sort(seeds.begin(), seeds.end(),
+                     [](const auto& a, const auto& b) { return a.first > b.first; });
+    for (const auto& [conditioning, seed] : seeds)
+        if (attempt(seed)) return true;
+    return false;
+}
+
+bool tryGeneralSeeds(const ImageTable& table, const SearchOptions& o, const SeedAttempt& attempt) {
+    // The counter-clockwise pairs (angle in (0, pi)): a slice of each robot's table.
+    using It = std::vector<ImageTable::PairAngle>::const_iterator;
+    std::vector<std::pair<It, It>> ccw;
+    for (const auto& ps : table.pairTables()) {
+        const auto byAngle = [](const ImageTable::PairAngle& x, double v) { return x.angle < v; };
+        const It from =
+            std::upper_bound(ps.begin(), ps.end(), 0.0,
+                             [](double v, const ImageTable::PairAngle& x) { return v < x.angle; });
+        ccw.push_back({from, std::lower_bound(from, ps.end(), M_PI, byAngle)});
+    }
+    const double tol = o.sumTolerance;
+    for (int i = 0; i < table.robots(); ++i)
+        for (int j = i + 1; j < table.robots(); ++j)
+            for (int k = i + 1; k < table.robots(); ++k) {
+                if (k == j) continue;
+                const auto [kFrom, kTo] = ccw[size_t(k)];
+                for (auto a = ccw[size_t(i)].first; a != ccw[size_t(i)].second; ++a)
+                    for (auto b = ccw[size_t(j)].first; b != ccw[size_t(j)].second; ++b) {
+                        const double g = M_PI - a->angle - b->angle;
+                        if (g <= -tol) break;
+                        auto c = std::lower_bound(
+                            kFrom, kTo, g - tol,
+                            [](const ImageTable::PairAngle& x, double v) { return x.angle < v; });
+                        for (; c != kTo && c->angle <= g + tol; ++c) {
+                            const Seed seed{
+                                {i, j, k},
+                                {{{a->from, a->to}, {b->from, b->to}, {c->from, c->to}}}};
+                            if (attempt(seed)) return true;
+                        }
+                    }
+            }
+    return false;
+}
+
+}  // namespace mrloc::omnivision::seedgrow
