@@ -1,7 +1,10 @@
 // End-to-end tests of the mrloc executable: run, determinism, other rawlog formats, info,
 // and bad input (clear message, non-zero exit, no output written).
 #include <gtest/gtest.h>
+#include <mrloc/beacons/ShotLog.h>
 #include <mrloc/common/Metrics.h>
+#include <mrpt/core/format.h>
+#include <mrpt/img/CImage.h>
 #include <mrloc/common/Rawlog.h>
 #include <mrpt/io/CFileGZOutputStream.h>
 #include <mrpt/obs/CActionCollection.h>
@@ -14,6 +17,7 @@
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
+#include <map>
 #include <sstream>
 
 #include "MrlocCli.h"
@@ -45,9 +49,26 @@ TEST(MrlocRun, QuickstartEndToEndWithinBound) {
     EXPECT_LT(m["rmse_m"].get<double>(), 0.04) << m.dump(2);
     EXPECT_LT(m["max_m"].get<double>(), 0.08) << m.dump(2);
     EXPECT_GT(m["beacons"]["ranges_gated"].get<int>(), 0);  // the late echoes were caught
-    for (const char* f : {"report.html", "topview.png", "error_time.png", "error_cdf.png",
-                          "effective.ini", "estimates.r1.txt", "groundtruth.r1.txt"})
-        EXPECT_TRUE(fs::exists(out + "/" + f)) << f;
+    // What each file holds: the estimates metrics.json counts, the truth, the pictures at
+    // their sizes, the page with its provenance, effective.ini with every section used.
+    EXPECT_EQ(common::loadTum(out + "/estimates.r1.txt").size(),
+              m["robots"]["r1"]["estimates"].get<size_t>());
+    EXPECT_EQ(common::loadTum(out + "/groundtruth.r1.txt").size(), 1201u);  // 60 s at 20 Hz
+    for (const auto& [f, width] : std::map<std::string, size_t>{
+             {"topview.png", 900}, {"error_time.png", 900}, {"error_cdf.png", 900}}) {
+        mrpt::img::CImage img;
+        EXPECT_TRUE(img.loadFromFile(out + "/" + f)) << f;
+        EXPECT_EQ(img.getWidth(), width) << f;
+    }
+    const std::string page = slurp(out + "/report.html");
+    for (const char* s : {"RMSE (m)", "mrloc version", "quickstart.ini", "<img src='topview.png'",
+                          "run command"})
+        EXPECT_NE(page.find(s), std::string::npos) << s;
+    const std::string eff = slurp(out + "/effective.ini");
+    for (const char* s : {"[scenario]", "[world]", "[sensors]", "[ultrasonic]", "[robot.r1]",
+                          "[beacons]", "actuation_sigma_v"})
+        EXPECT_NE(eff.find(s), std::string::npos) << s;
+    EXPECT_EQ(slurp(out + "/config.ini"), slurp(quickstart()));
     for (const auto& e : fs::directory_iterator(out))
         EXPECT_EQ(e.path().filename().string().find(".tmp"), std::string::npos) << e.path();
     EXPECT_NE(r.output.find("report: " + out + "/report.html"), std::string::npos) << r.output;
@@ -213,8 +234,16 @@ TEST(MrlocRun, BeaconsFixedReportShowsReceptionBesideSeed001Table3) {
     const std::string page = slurp(out + "/report.html");
     EXPECT_NE(page.find("successful receiving rate"), std::string::npos);
     EXPECT_NE(page.find("seed 001 Table 3"), std::string::npos);
-    EXPECT_NE(page.find(" (40)</td>"), std::string::npos);  // the paper's beacon 2 at point 4
-    EXPECT_TRUE(fs::exists(out + "/beacons_fixed.shots.txt"));
+    // Beacon 2 at point 4 (p4): our rate, computed here from the shot log, beside the
+    // paper's 40 %.
+    const auto shots = beacons::loadShotLog(out + "/beacons_fixed.shots.txt");
+    int fired = 0, heard = 0;
+    for (const auto& s : shots)
+        if (s.robot == "p4" && s.beacon == 2) ++fired, heard += s.detected;
+    ASSERT_EQ(fired, 10);  // ranging_epochs = 10
+    EXPECT_NE(page.find(mrpt::format("<td>%.0f (40)</td>", 100.0 * heard / fired)),
+              std::string::npos)
+        << heard;
 }
 
 TEST(MrlocErrors, MisspeltReportKeyStopsBeforeAnyOutput) {
@@ -228,4 +257,17 @@ TEST(MrlocErrors, MisspeltReportKeyStopsBeforeAnyOutput) {
     EXPECT_EQ(r.code, 1);
     EXPECT_NE(r.output.find("paper_recepton_2"), std::string::npos) << r.output;
     EXPECT_FALSE(fs::exists(dir + "/out"));
+}
+
+TEST(MrlocErrors, ARunWithNoEstimateStopsAndWritesNothing) {
+    // The polymap method on a beacon rawlog: no scan, so no robot to estimate.
+    const std::string out = tmp("noestimate");
+    const auto r = mrlocCmd("localize " + config("polymap_steps") + " " +
+                            std::string(MRLOC_SOURCE_DIR) + "/rawlogs/quickstart.rawlog -q --out " +
+                            out);
+    EXPECT_EQ(r.code, 1);
+    EXPECT_NE(r.output.find("the method 'polymap' produced no estimate (1499 observations read"),
+              std::string::npos)
+        << r.output;
+    EXPECT_FALSE(fs::exists(out));
 }

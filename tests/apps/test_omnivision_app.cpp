@@ -3,6 +3,9 @@
 // input.
 #include <gtest/gtest.h>
 #include <mrloc/common/Metrics.h>
+#include <mrloc/common/Trajectory.h>
+#include <mrloc/omnivision/OmniFiles.h>
+#include <mrpt/img/CImage.h>
 
 #include "MrlocCli.h"
 
@@ -24,13 +27,40 @@ TEST(MrlocOmnivision, FiveRobotsFromRenderedPanoramas) {
         EXPECT_TRUE(o["snapshots"][s]["unresolved"].empty());
     }
     // L from eq. (8): C moved 0.8 m against a 4.7 m baseline, so L is sensitive to the
-    // detected bearings (0.65 px).
-    EXPECT_NEAR(o["baseline_L_m"].get<double>() / o["true_L_m"].get<double>(), 1, 0.03);
-    EXPECT_LT(o["relative_distance_error_paper"]["median"].get<double>(), 0.03);
-    EXPECT_LT(o["relative_distance_error_refined"]["median"].get<double>(), 0.01);
-    EXPECT_LT(m["rmse_m"].get<double>(), 0.05);  // layout error in the paper's frame
-    for (const char* f : {"layout.png", "accuracy.png", "layout.txt", "accuracy.txt"})
-        EXPECT_TRUE(fs::exists(out + "/" + f)) << f;
+    // detected bearings (0.65 px). Measured: L 1.1 % short, paper median 0.96 %, refined
+    // 0.062 %, layout RMSE 6.3 mm; each bound is about 1.5 times that (the run is
+    // deterministic; the margin is for the renderer's driver).
+    EXPECT_NEAR(o["baseline_L_m"].get<double>() / o["true_L_m"].get<double>(), 1, 0.017);
+    EXPECT_LT(o["relative_distance_error_paper"]["median"].get<double>(), 0.015);
+    EXPECT_LT(o["relative_distance_error_refined"]["median"].get<double>(), 0.001);
+    EXPECT_LT(m["rmse_m"].get<double>(), 0.01);  // layout error in the paper's frame
+    // The files hold the five robots and the sweep's two axes.
+    const auto layout = omnivision::LayoutFile::read(out);
+    ASSERT_EQ(layout.points.size(), 5u);
+    EXPECT_EQ(layout.a, "A");
+    EXPECT_EQ(layout.b, "B");
+    // groundtruth.<robot>.txt is in the paper's frame (truthInEstimateFrame): at the
+    // layout's time A is at the origin and B on the +x axis, true_L_m away.
+    const auto truthAt = [&](const std::string& robot) {
+        const auto p = common::interpolate(common::loadTum(out + "/groundtruth." + robot + ".txt"),
+                                           layout.time);
+        EXPECT_TRUE(p) << robot;
+        return p.value_or(mrpt::poses::CPose3D());
+    };
+    const auto a = truthAt("A"), b = truthAt("B");
+    EXPECT_NEAR(a.x(), 0, 1e-6);
+    EXPECT_NEAR(a.y(), 0, 1e-6);
+    EXPECT_NEAR(b.y(), 0, 1e-6);
+    EXPECT_NEAR(b.x(), o["true_L_m"].get<double>(), 1e-6);
+    const auto sweep = omnivision::AccuracyFile::read(out);
+    EXPECT_EQ(sweep.distanceName, "odometer");
+    EXPECT_EQ(sweep.points.size(), 7u);
+    for (const auto& p : sweep.points) EXPECT_EQ(p.trials + p.failures, 100);  // per level
+    for (const char* f : {"layout.png", "accuracy.png"}) {
+        mrpt::img::CImage img;
+        EXPECT_TRUE(img.loadFromFile(out + "/" + f)) << f;
+        EXPECT_GT(img.getWidth(), 800u) << f;
+    }
     const std::string page = slurp(out + "/report.html");
     EXPECT_NE(page.find("Relative layout"), std::string::npos);
     EXPECT_NE(page.find("Accuracy against noise"), std::string::npos);
@@ -46,7 +76,8 @@ TEST(MrlocOmnivision, SwarmOfThirty) {
     EXPECT_TRUE(o["restarts"].empty()) << o.dump(2);
     EXPECT_EQ(o["pair"], "R01 R02");
     EXPECT_TRUE(o["snapshots"]["t_e"]["unresolved"].empty());
-    EXPECT_GT(o["snapshots"]["t_e"]["triangles"].get<int>(), 2400);  // of 4060
+    // Measured 3068 of 4060 (the rest left unlabeled as ambiguous, none wrong): 5 % margin.
+    EXPECT_GT(o["snapshots"]["t_e"]["triangles"].get<int>(), 2900);
     EXPECT_LT(o["relative_distance_error_refined"]["median"].get<double>(), 0.002);
     EXPECT_LT(o["relative_distance_error_refined"]["median"].get<double>(),
               o["relative_distance_error_paper"]["median"].get<double>());

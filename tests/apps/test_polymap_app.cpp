@@ -1,6 +1,9 @@
 // End-to-end polygon-map runs: the steps map from config/polymap_steps.ini, the map-file
 // scenario, determinism, and bad [polymap] input.
 #include <gtest/gtest.h>
+#include <mrloc/common/Polygon.h>
+#include <mrloc/polymap/PolymapFiles.h>
+#include <mrpt/img/CImage.h>
 #include <mrloc/common/Metrics.h>
 
 #include "MrlocCli.h"
@@ -20,8 +23,11 @@ TEST(MrlocPolymap, StepsMapRunFindsTwelveHypothesesWithTheTruthAmongThem) {
     EXPECT_TRUE(m["robots"]["r1"]["truth_in_hypotheses"].get<bool>()) << m.dump(2);
     EXPECT_LT(m["robots"]["r1"]["nearest_hypothesis_m"].get<double>(), 0.02);
     EXPECT_EQ(m["robots"]["r1"]["estimates"], 0);  // not localized yet: 12 candidates
-    EXPECT_TRUE(fs::exists(out + "/polymap.r1.png"));
-    EXPECT_TRUE(fs::exists(out + "/map.poly"));
+    mrpt::img::CImage png;
+    ASSERT_TRUE(png.loadFromFile(out + "/polymap.r1.png"));
+    EXPECT_EQ(png.getWidth(), 1200u);
+    EXPECT_EQ(common::Polygon::load(out + "/map.poly").size(), 148u);
+    EXPECT_EQ(polymap::HypothesesFile::read(out, "r1").hypotheses.size(), 12u);
     EXPECT_NE(slurp(out + "/report.html").find("12 hypotheses"), std::string::npos);
 }
 
@@ -72,4 +78,31 @@ TEST(MrlocPolymap, BadPolymapInputIsAClearErrorAndWritesNothing) {
             EXPECT_FALSE(fs::exists(out)) << c.to;
         }
     }
+}
+
+TEST(MrlocPolymap, SimulateLocalizeAndRunWriteTheSameEffectiveIniWhichRunsAgain) {
+    const std::string a = tmp("eff_sim"), b = tmp("eff_loc"), c = tmp("eff_run"), d = tmp("eff_again");
+    const std::string ini = config("polymap_steps");
+    ASSERT_EQ(mrlocCmd("simulate " + ini + " -q --out " + a).code, 0);
+    ASSERT_EQ(mrlocCmd("localize " + ini + " " + a + "/polymap_steps.rawlog -q --out " + b).code, 0);
+    ASSERT_EQ(mrlocCmd("run " + ini + " -q --out " + c).code, 0);
+    const std::string effective = slurp(c + "/effective.ini");
+    EXPECT_NE(effective.find("[polymap]"), std::string::npos);
+    EXPECT_EQ(slurp(a + "/effective.ini"), effective);
+    EXPECT_EQ(slurp(b + "/effective.ini"), effective);
+    // effective.ini is a complete INI: it runs again to the same rawlog and result.
+    ASSERT_EQ(mrlocCmd("run " + c + "/effective.ini -q --out " + d).code, 0);
+    EXPECT_EQ(slurp(d + "/polymap_steps.rawlog"), slurp(c + "/polymap_steps.rawlog"));
+    EXPECT_EQ(slurp(d + "/hypotheses.r1.txt"), slurp(c + "/hypotheses.r1.txt"));
+}
+
+TEST(MrlocPolymap, AFailedRunLeavesNothingBehind) {
+    // Every beam beyond scan_max_range: the simulation succeeds, the localizer refuses a
+    // scan with no return; the simulated rawlog must not stay behind.
+    const std::string ini = writeIniFrom(config("polymap_steps"), "noreturn",
+                                         "scan_max_range    = 100", "scan_max_range = 0.01");
+    const std::string out = tmp("noreturn");
+    const auto r = mrlocCmd("run " + ini + " -q --out " + out);
+    EXPECT_EQ(r.code, 1) << r.output;
+    EXPECT_FALSE(fs::exists(out)) << r.output;
 }

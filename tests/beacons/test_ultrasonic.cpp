@@ -84,13 +84,18 @@ Loaded load(const std::string& ultrasonic) {
 
 TEST(UltrasonicOptions, ZeroBeamAngleIsAnErrorNamingTheKey) {
     EXPECT_NO_THROW(load("beam_angle = 40\n"));
-    for (const char* bad : {"beam_angle = 0\n", "beam_angle = -5\n", "rise_time = 0\n",
-                            "pan_min = 90\npan_max = 10\n", "beam_agnle = 40\n"}) {
+    const std::pair<const char*, const char*> cases[] = {
+        {"beam_angle = 0\n", "[ultrasonic] beam_angle"},
+        {"beam_angle = -5\n", "[ultrasonic] beam_angle"},
+        {"rise_time = 0\n", "[ultrasonic] rise_time"},
+        {"pan_min = 90\npan_max = 10\n", "[ultrasonic] pan_"},
+        {"beam_agnle = 40\n", "[ultrasonic] beam_agnle: unknown key"}};
+    for (const auto& [bad, where] : cases) {
         try {
             load(bad);
             ADD_FAILURE() << "accepted " << bad;
         } catch (const Error& e) {
-            EXPECT_NE(std::string(e.what()).find("[ultrasonic]"), std::string::npos) << e.what();
+            EXPECT_NE(std::string(e.what()).find(where), std::string::npos) << e.what();
         }
     }
 }

@@ -58,7 +58,7 @@ TEST(Geometry, Footnote1SpecialCasesAt90Degrees) {
     const auto above = directionsOf({0, 0}, {4, 0}, {0, 3});
     EXPECT_NEAR(above.ac, 90 * kDeg, 1e-12);
     EXPECT_NEAR((4 * unitBaselinePoint(above) - Vec2(0, 3)).norm(), 0, 1e-12);
-    EXPECT_NEAR(-4 * std::sin(above.bc), -2.4, 1e-12);
+    EXPECT_NEAR(4 * unitBaselinePoint(above).y(), -4 * std::tan(above.bc), 1e-12);  // the tan
     // C above B: theta_BC = 90 deg, C = (L, L tan theta_AC).
     const auto overB = directionsOf({0, 0}, {4, 0}, {4, 3});
     EXPECT_NEAR(overB.bc, 90 * kDeg, 1e-12);

@@ -1,0 +1,31 @@
+// [polymap] options: effective.ini's round trip (save, load, save gives the same text).
+#include <gtest/gtest.h>
+#include <mrloc/polymap/PolymapOptions.h>
+#include <mrpt/config/CConfigFile.h>
+#include <mrpt/config/CConfigFileMemory.h>
+
+using namespace mrloc;
+
+TEST(PolymapOptions, EffectiveIniRoundTrips) {
+    for (const char* name : {"polymap_steps", "polymap_rooms", "polymap_file"}) {
+        mrpt::config::CConfigFile ini(std::string(MRLOC_SOURCE_DIR) + "/config/" + name + ".ini");
+        polymap::PolymapOptions first;
+        first.loadFromConfigFile(ini, "polymap");
+        mrpt::config::CConfigFileMemory saved;
+        first.saveToConfigFile(saved, "polymap");
+        polymap::PolymapOptions second;
+        second.loadFromConfigFile(saved, "polymap");  // every key written is accepted
+        mrpt::config::CConfigFileMemory again;
+        second.saveToConfigFile(again, "polymap");
+        EXPECT_EQ(saved.getContent(), again.getContent()) << name;
+        EXPECT_EQ(second.generator, first.generator) << name;
+        EXPECT_EQ(second.mapFile, first.mapFile) << name;
+        EXPECT_EQ(second.scanRays, first.scanRays) << name;
+        EXPECT_EQ(second.heading, first.heading) << name;
+        // The same map and start come out of it.
+        const auto m1 = first.buildMap(), m2 = second.buildMap();
+        EXPECT_EQ(m1.polygon.size(), m2.polygon.size()) << name;
+        EXPECT_EQ(first.startIn(m1).x, second.startIn(m2).x) << name;
+        EXPECT_EQ(first.startIn(m1).y, second.startIn(m2).y) << name;
+    }
+}
