@@ -210,23 +210,37 @@ std::optional<int> parseArgs(TCLAP::CmdLine& cmd, int argc, char** argv) {
     return 2;
 }
 
+namespace {
+
+/** The command line of the commands that simulate an INI: <ini> [--seed] [--out] [-q]. */
+struct ScenarioCommand {
+    TCLAP::CmdLine cmd;
+    TCLAP::UnlabeledValueArg<std::string> ini{"ini", "scenario INI file", true, "", "INI", cmd};
+    TCLAP::ValueArg<long> seed{"s", "seed", "random seed (overrides [scenario] seed)", false, 0,
+                               "N", cmd};
+    OutputArgs output;
+
+    explicit ScenarioCommand(const std::string& description) : cmd(description, ' ', kVersion) {
+        cmd.add(output.out);
+        cmd.add(output.quiet);
+    }
+    Setup setup(const method::Registry& registry) {
+        return loadSetup(registry, ini.getValue(), seedOf(seed), true);
+    }
+};
+
+}  // namespace
+
 int simulate(const method::Registry& registry, int argc, char** argv) {
-    TCLAP::CmdLine cmd(
+    ScenarioCommand c(
         "mrloc simulate: simulate the INI's scenario into a rawlog "
         "(<out>/<name>.rawlog), ground truth (<out>/<name>.<robot>.gt.txt) and "
-        "effective.ini",
-        ' ', kVersion);
-    TCLAP::UnlabeledValueArg<std::string> iniArg("ini", "scenario INI file", true, "", "INI", cmd);
-    TCLAP::ValueArg<long> seed("s", "seed", "random seed (overrides [scenario] seed)", false, 0,
-                               "N", cmd);
-    OutputArgs o;
-    cmd.add(o.out);
-    cmd.add(o.quiet);
-    if (const auto code = parseArgs(cmd, argc, argv)) return *code;
-    Setup s = loadSetup(registry, iniArg.getValue(), seedOf(seed), true);
-    const std::string dir = o.dirOr(s.scenario.name);
+        "effective.ini");
+    if (const auto code = parseArgs(c.cmd, argc, argv)) return *code;
+    Setup s = c.setup(registry);
+    const std::string dir = c.output.dirOr(s.scenario.name);
     OutputGuard guard(dir);
-    const std::string rawlog = doSimulate(s, dir, o.quiet.getValue());
+    const std::string rawlog = doSimulate(s, dir, c.output.quiet.getValue());
     writeProvenance(s, dir, "simulate", commandLine(argc, argv));
     guard.keep();
     std::cout << rawlog << "\n";
@@ -267,24 +281,16 @@ int report(const method::Registry& registry, int argc, char** argv) {
 }
 
 int run(const method::Registry& registry, int argc, char** argv) {
-    TCLAP::CmdLine cmd(
+    ScenarioCommand c(
         "mrloc run: simulate, localize and report in a row; everything goes to "
-        "<out> (default out/<scenario name>)",
-        ' ', kVersion);
-    TCLAP::UnlabeledValueArg<std::string> iniArg("ini", "scenario INI file", true, "", "INI", cmd);
-    TCLAP::ValueArg<long> seed("s", "seed", "random seed (overrides [scenario] seed)", false, 0,
-                               "N", cmd);
-    OutputArgs o;
-    cmd.add(o.out);
-    cmd.add(o.quiet);
-    if (const auto code = parseArgs(cmd, argc, argv)) return *code;
-    Setup s = loadSetup(registry, iniArg.getValue(), seedOf(seed), true);
-    const std::string dir = o.dirOr(s.scenario.name);
+        "<out> (default out/<scenario name>)");
+    if (const auto code = parseArgs(c.cmd, argc, argv)) return *code;
+    Setup s = c.setup(registry);
+    const std::string dir = c.output.dirOr(s.scenario.name);
     OutputGuard guard(dir);
-    const std::string rawlog = doSimulate(s, dir, o.quiet.getValue());
-    doLocalize(s, rawlog, dir, o.quiet.getValue());
-    const std::string command = commandLine(argc, argv);
-    writeProvenance(s, dir, "run", command);
+    const std::string rawlog = doSimulate(s, dir, c.output.quiet.getValue());
+    doLocalize(s, rawlog, dir, c.output.quiet.getValue());
+    writeProvenance(s, dir, "run", commandLine(argc, argv));
     const std::string page = doReport(registry, dir);
     guard.keep();
     std::cout << "report: " << page << "\n";

@@ -3,9 +3,9 @@
 #include <gtest/gtest.h>
 #include <mrloc/beacons/ShotLog.h>
 #include <mrloc/common/Metrics.h>
+#include <mrloc/common/Rawlog.h>
 #include <mrpt/core/format.h>
 #include <mrpt/img/CImage.h>
-#include <mrloc/common/Rawlog.h>
 #include <mrpt/io/CFileGZOutputStream.h>
 #include <mrpt/obs/CActionCollection.h>
 #include <mrpt/obs/CActionRobotMovement2D.h>
@@ -61,8 +61,8 @@ TEST(MrlocRun, QuickstartEndToEndWithinBound) {
         EXPECT_EQ(img.getWidth(), width) << f;
     }
     const std::string page = slurp(out + "/report.html");
-    for (const char* s : {"RMSE (m)", "mrloc version", "quickstart.ini", "<img src='topview.png'",
-                          "run command"})
+    for (const char* s :
+         {"RMSE (m)", "mrloc version", "quickstart.ini", "<img src='topview.png'", "run command"})
         EXPECT_NE(page.find(s), std::string::npos) << s;
     const std::string eff = slurp(out + "/effective.ini");
     for (const char* s : {"[scenario]", "[world]", "[sensors]", "[ultrasonic]", "[robot.r1]",
@@ -262,9 +262,9 @@ TEST(MrlocErrors, MisspeltReportKeyStopsBeforeAnyOutput) {
 TEST(MrlocErrors, ARunWithNoEstimateStopsAndWritesNothing) {
     // The polymap method on a beacon rawlog: no scan, so no robot to estimate.
     const std::string out = tmp("noestimate");
-    const auto r = mrlocCmd("localize " + config("polymap_steps") + " " +
-                            std::string(MRLOC_SOURCE_DIR) + "/rawlogs/quickstart.rawlog -q --out " +
-                            out);
+    const auto r =
+        mrlocCmd("localize " + config("polymap_steps") + " " + std::string(MRLOC_SOURCE_DIR) +
+                 "/rawlogs/quickstart.rawlog -q --out " + out);
     EXPECT_EQ(r.code, 1);
     EXPECT_NE(r.output.find("the method 'polymap' produced no estimate (1499 observations read"),
               std::string::npos)

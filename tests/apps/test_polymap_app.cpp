@@ -1,10 +1,10 @@
 // End-to-end polygon-map runs: the steps map from config/polymap_steps.ini, the map-file
 // scenario, determinism, and bad [polymap] input.
 #include <gtest/gtest.h>
+#include <mrloc/common/Metrics.h>
 #include <mrloc/common/Polygon.h>
 #include <mrloc/polymap/PolymapFiles.h>
 #include <mrpt/img/CImage.h>
-#include <mrloc/common/Metrics.h>
 
 #include "MrlocCli.h"
 
@@ -81,10 +81,12 @@ TEST(MrlocPolymap, BadPolymapInputIsAClearErrorAndWritesNothing) {
 }
 
 TEST(MrlocPolymap, SimulateLocalizeAndRunWriteTheSameEffectiveIniWhichRunsAgain) {
-    const std::string a = tmp("eff_sim"), b = tmp("eff_loc"), c = tmp("eff_run"), d = tmp("eff_again");
+    const std::string a = tmp("eff_sim"), b = tmp("eff_loc"), c = tmp("eff_run"),
+                      d = tmp("eff_again");
     const std::string ini = config("polymap_steps");
     ASSERT_EQ(mrlocCmd("simulate " + ini + " -q --out " + a).code, 0);
-    ASSERT_EQ(mrlocCmd("localize " + ini + " " + a + "/polymap_steps.rawlog -q --out " + b).code, 0);
+    ASSERT_EQ(mrlocCmd("localize " + ini + " " + a + "/polymap_steps.rawlog -q --out " + b).code,
+              0);
     ASSERT_EQ(mrlocCmd("run " + ini + " -q --out " + c).code, 0);
     const std::string effective = slurp(c + "/effective.ini");
     EXPECT_NE(effective.find("[polymap]"), std::string::npos);

@@ -54,7 +54,7 @@ beacon_3 = 3.8 2.0 2.5
 class AllBeaconsAtTruth : public beacons::RangingController {
  public:
     AllBeaconsAtTruth(beacons::BeaconMap map, double shotInterval = 0.0001)
-            : map_(std::move(map)), shotInterval_(shotInterval) {}
+        : map_(std::move(map)), shotInterval_(shotInterval) {}
     std::optional<beacons::RangingEpoch> nextEpoch(
         double, const std::vector<beacons::RobotReport>& requests) override {
         beacons::RangingEpoch e;
@@ -82,8 +82,8 @@ method::Scenario scenario(const std::vector<std::array<std::string, 3>>& changes
     for (const auto& [section, key, value] : changes) ini.write(section, key, value);
     auto s = beacons::loadScenario(ini);
     common::IniSection section(ini, "beacons");
-    auto controller = std::make_unique<AllBeaconsAtTruth>(beacons::loadBeaconMap(ini, section),
-                                                          shotInterval);
+    auto controller =
+        std::make_unique<AllBeaconsAtTruth>(beacons::loadBeaconMap(ini, section), shotInterval);
     dynamic_cast<beacons::BeaconPayload&>(*s.payload).replaceController(std::move(controller));
     return s;
 }
@@ -134,18 +134,21 @@ TEST(Simulator, NoiseFreeRangesAreTheGeometricDistancesAndNlosIsDropped) {
 
 TEST(Simulator, SameSeedGivesByteIdenticalRawlogAndOtherSeedDoesNot) {
     const std::vector<std::array<std::string, 3>> noisy = {{"sensors", "range_sigma", "0.02"},
-                                                          {"sensors", "range_dropout", "0.1"}};
+                                                           {"sensors", "range_dropout", "0.1"}};
     auto sa = scenario(noisy), sb = scenario(noisy), sc = scenario(noisy);
     const std::string a =
-        sim::simulateToFiles(sa.config, testing::TempDir() + "/det_a", true, sa.payload.get()).rawlog;
+        sim::simulateToFiles(sa.config, testing::TempDir() + "/det_a", true, sa.payload.get())
+            .rawlog;
     const std::string b =
-        sim::simulateToFiles(sb.config, testing::TempDir() + "/det_b", true, sb.payload.get()).rawlog;
+        sim::simulateToFiles(sb.config, testing::TempDir() + "/det_b", true, sb.payload.get())
+            .rawlog;
     EXPECT_EQ(slurp(a), slurp(b));
     EXPECT_EQ(slurp(common::groundTruthPath(a, "r1")), slurp(common::groundTruthPath(b, "r1")));
     EXPECT_EQ(slurp(beacons::shotLogPath(a)), slurp(beacons::shotLogPath(b)));
     sc.config.scenario.seed = 8;
     const std::string c =
-        sim::simulateToFiles(sc.config, testing::TempDir() + "/det_c", true, sc.payload.get()).rawlog;
+        sim::simulateToFiles(sc.config, testing::TempDir() + "/det_c", true, sc.payload.get())
+            .rawlog;
     EXPECT_NE(slurp(a), slurp(c));
 }
 

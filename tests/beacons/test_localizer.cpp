@@ -53,9 +53,10 @@ struct Outcome {
 Outcome runOn(const std::string& iniText, const std::string& tag, double settle = 0) {
     mrpt::config::CConfigFileMemory ini(iniText);
     auto scenario = beacons::loadScenario(ini);  // its payload aims the heads, schedules epochs
-    const std::string rawlog = sim::simulateToFiles(scenario.config, testing::TempDir() + "/loc_" + tag,
-                                                    true, scenario.payload.get())
-                                   .rawlog;
+    const std::string rawlog =
+        sim::simulateToFiles(scenario.config, testing::TempDir() + "/loc_" + tag, true,
+                             scenario.payload.get())
+            .rawlog;
     beacons::BeaconLocalizer loc;
     loc.configure(ini);
     common::RawlogReader reader(rawlog);

@@ -1,9 +1,9 @@
 // The ultrasonic link model: closed-form levels and trigger delays, the beam's directivity,
 // and its INI checks.
 #include <gtest/gtest.h>
-#include <mrloc/common/Error.h>
 #include <mrloc/beacons/BeaconRanging.h>
 #include <mrloc/beacons/BeaconsMethod.h>
+#include <mrloc/common/Error.h>
 #include <mrloc/sim/Scenario.h>
 #include <mrpt/config/CConfigFileMemory.h>
 #include <mrpt/random/RandomGenerators.h>

@@ -79,4 +79,3 @@ TEST(IniSection, OutOfRangeIsAnError) {
                   .find("out of range"),
               std::string::npos);
 }
-

@@ -1,8 +1,8 @@
 #pragma once
 // Synthetic swarms for the omnivision tests and benchmarks: random robots in a square,
 // the views their cameras give (sim's bearings mode geometry) and the true labels.
-#include <mrloc/omnivision/TriangleSearch.h>
 #include <mrloc/omnivision/OmniCamera.h>
+#include <mrloc/omnivision/TriangleSearch.h>
 #include <mrpt/random/RandomGenerators.h>
 
 #include <algorithm>

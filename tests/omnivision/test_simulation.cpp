@@ -1,10 +1,10 @@
 // The simulator's omni-camera run (snapshots, stops, the LiDAR) and the localizer's input
 // checks.
 #include <gtest/gtest.h>
-#include <mrloc/omnivision/OmniMethod.h>
 #include <mrloc/common/Error.h>
 #include <mrloc/common/Rawlog.h>
 #include <mrloc/omnivision/OmniLocalizer.h>
+#include <mrloc/omnivision/OmniMethod.h>
 #include <mrloc/sim/Simulator.h>
 #include <mrpt/config/CConfigFileMemory.h>
 #include <mrpt/obs/CObservationBearingRange.h>

@@ -1,23 +1,15 @@
 // [polymap] options: effective.ini's round trip (save, load, save gives the same text).
 #include <gtest/gtest.h>
 #include <mrloc/polymap/PolymapOptions.h>
-#include <mrpt/config/CConfigFile.h>
-#include <mrpt/config/CConfigFileMemory.h>
+
+#include "OptionsRoundTrip.h"
 
 using namespace mrloc;
 
 TEST(PolymapOptions, EffectiveIniRoundTrips) {
     for (const char* name : {"polymap_steps", "polymap_rooms", "polymap_file"}) {
-        mrpt::config::CConfigFile ini(std::string(MRLOC_SOURCE_DIR) + "/config/" + name + ".ini");
-        polymap::PolymapOptions first;
-        first.loadFromConfigFile(ini, "polymap");
-        mrpt::config::CConfigFileMemory saved;
-        first.saveToConfigFile(saved, "polymap");
-        polymap::PolymapOptions second;
-        second.loadFromConfigFile(saved, "polymap");  // every key written is accepted
-        mrpt::config::CConfigFileMemory again;
-        second.saveToConfigFile(again, "polymap");
-        EXPECT_EQ(saved.getContent(), again.getContent()) << name;
+        const auto [first, second] =
+            testing_options::roundTrip<polymap::PolymapOptions>(name, "polymap");
         EXPECT_EQ(second.generator, first.generator) << name;
         EXPECT_EQ(second.mapFile, first.mapFile) << name;
         EXPECT_EQ(second.scanRays, first.scanRays) << name;

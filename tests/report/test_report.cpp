@@ -65,7 +65,7 @@ TEST(TopView, DrawsPathsAndBeaconsWhereTheyAre) {
     EXPECT_GT(violet(px(3.1), py(2.0), 150, 200), 3);  // the truth, pale
     EXPECT_EQ(violet(px(3.1), py(2.0), 0, 140), 0);
     EXPECT_GT(countColoured(img, px(0.5), py(3.5), {30, 90, 220}), 3);  // the landmark
-    EXPECT_EQ(violet(px(1.5), py(3.0), 0, 255), 0);  // no path elsewhere
+    EXPECT_EQ(violet(px(1.5), py(3.0), 0, 255), 0);                     // no path elsewhere
     // The legend (top right) names the robot and the landmarks; the scale bar (bottom
     // left) is black on white.
     EXPECT_GT(countColoured(img, 400 - 30, 20, {255, 255, 255}), 20);

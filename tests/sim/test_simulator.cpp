@@ -62,7 +62,6 @@ TEST(Robot, UnicycleReachesWaypointAtConfiguredSpeed) {
     EXPECT_NEAR(travelled, 2.0, 1e-6);
 }
 
-
 TEST(Robot, StopGoDriveAndTurnAsCommanded) {
     auto cfg = config();
     sim::Robot robot(cfg.robots[0]);

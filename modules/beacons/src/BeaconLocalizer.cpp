@@ -2,8 +2,8 @@
 #include <mrloc/common/Error.h>
 #include <mrloc/common/IniSection.h>
 #include <mrloc/common/Rawlog.h>
-#include <mrpt/obs/CObservationOdometry.h>
 #include <mrpt/core/format.h>
+#include <mrpt/obs/CObservationOdometry.h>
 #include <mrpt/system/datetime.h>
 
 #include <cmath>

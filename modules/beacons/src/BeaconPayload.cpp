@@ -65,8 +65,9 @@ void BeaconPayload::sense(sim::Step& step) {
             requests.push_back(report(step, i));
     }
     if (requests.empty()) return;
-    const auto epoch = (controller_ ? *controller_ : static_cast<RangingController&>(onboard_.rfBeacon))
-                           .nextEpoch(t, requests);
+    const auto epoch =
+        (controller_ ? *controller_ : static_cast<RangingController&>(onboard_.rfBeacon))
+            .nextEpoch(t, requests);
     if (!epoch) return;
     const size_t i = epochRobot_ = step.fleet.indexOf(epoch->robot);
     state_[i].lastEpoch = t;

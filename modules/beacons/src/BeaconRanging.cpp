@@ -1,6 +1,6 @@
+#include <mrloc/beacons/BeaconRanging.h>
 #include <mrloc/common/Error.h>
 #include <mrloc/common/IniSection.h>
-#include <mrloc/beacons/BeaconRanging.h>
 
 #include <algorithm>
 #include <cmath>
@@ -35,7 +35,6 @@ void SensorOptions::saveToConfigFile(mrpt::config::CConfigFileBase& t,
     t.write(section, "range_outlier_max", outlierMax);
     t.write(section, "nlos", nlosReflect ? "reflect" : "drop");
 }
-
 
 BeaconRanging::BeaconRanging(const sim::World& world, const BeaconMap& beacons,
                              SensorOptions sensors, UltrasonicOptions ultrasonic)

@@ -58,9 +58,10 @@ std::string receptionSection(const report::RunView& run) {
     }
     std::string t = "<h2>Beacon system: reception and errors per robot</h2>\n";
     if (!options.paperReception.empty())
-        t += "<p>Ours, with the paper's in brackets" +
-             (paper.paperCaption.empty() ? std::string() : ": " + report::html(paper.paperCaption)) +
-             ".</p>\n";
+        t +=
+            "<p>Ours, with the paper's in brackets" +
+            (paper.paperCaption.empty() ? std::string() : ": " + report::html(paper.paperCaption)) +
+            ".</p>\n";
     t += "<table><tr><th>successful receiving rate (%)</th>";
     for (const auto& r : robots) t += "<th>" + report::html(r) + "</th>";
     t += "</tr>\n";

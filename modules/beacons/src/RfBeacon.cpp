@@ -50,8 +50,8 @@ std::optional<size_t> RfBeacon::servingSection(double t, const RobotReport& r) {
     return here;
 }
 
-std::optional<RangingEpoch> RfBeacon::nextEpoch(
-    double t, const std::vector<RobotReport>& requests) {
+std::optional<RangingEpoch> RfBeacon::nextEpoch(double t,
+                                                const std::vector<RobotReport>& requests) {
     std::vector<RobotReport> candidates;
     std::vector<size_t> sectionOf;
     for (const auto& r : requests) {

@@ -1,6 +1,6 @@
+#include <mrloc/beacons/ShotLog.h>
 #include <mrloc/common/AtomicFile.h>
 #include <mrloc/common/Error.h>
-#include <mrloc/beacons/ShotLog.h>
 #include <mrpt/core/format.h>
 
 #include <fstream>

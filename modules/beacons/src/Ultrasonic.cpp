@@ -1,6 +1,6 @@
+#include <mrloc/beacons/Ultrasonic.h>
 #include <mrloc/common/Error.h>
 #include <mrloc/common/IniSection.h>
-#include <mrloc/beacons/Ultrasonic.h>
 #include <mrpt/core/bits_math.h>
 
 #include <cmath>

@@ -46,7 +46,7 @@ std::vector<TimedError> positionErrors(const Trajectory& estimate, const Traject
 
 nlohmann::json statsToJson(const ErrorStats& s) {
     if (s.n == 0)  // no error to summarise: null, never a zero that reads as perfect
-        return {{"n", 0},         {"rmse_m", nullptr}, {"mean_m", nullptr}, {"median_m", nullptr},
+        return {{"n", 0},           {"rmse_m", nullptr}, {"mean_m", nullptr}, {"median_m", nullptr},
                 {"p95_m", nullptr}, {"max_m", nullptr}};
     return {{"n", s.n},       {"rmse_m", s.rmse}, {"mean_m", s.mean}, {"median_m", s.median},
             {"p95_m", s.p95}, {"max_m", s.max}};

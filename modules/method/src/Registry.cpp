@@ -44,7 +44,8 @@ std::vector<std::string> Registry::names() const {
 
 std::vector<std::string> Registry::sections() const {
     std::vector<std::string> out = frameworkSections();
-    for (const auto& [name, m] : methods_) out.insert(out.end(), m.sections.begin(), m.sections.end());
+    for (const auto& [name, m] : methods_)
+        out.insert(out.end(), m.sections.begin(), m.sections.end());
     return out;
 }
 

@@ -98,9 +98,9 @@ mrpt::img::CImage OmniRenderer::render(const std::vector<mrpt::poses::CPose2D>& 
     mrpt::img::CImage strip(pano.width(), pano.height, mrpt::img::CH_RGB);
     const auto& me = poses[observer];
     for (int k = 0; k < pano.views; ++k) {
-        const auto view = impl_->camera.render(
-            *scene, sim::cameraPoseLooking({me.x(), me.y(), o.cameraHeight},
-                                           me.phi() + pano.viewAzimuth(k)));
+        const auto view =
+            impl_->camera.render(*scene, sim::cameraPoseLooking({me.x(), me.y(), o.cameraHeight},
+                                                                me.phi() + pano.viewAzimuth(k)));
         strip.drawImage(k * pano.viewWidth, 0, view);
     }
     return strip;

@@ -22,8 +22,8 @@ void LayoutFile::write(const std::string& dir) const {
            "(m, m^2; nan: unknown)\n";
     for (const auto& p : points) {
         out << p.robot;
-        for (double v : {p.paperX, p.paperY, p.refinedX, p.refinedY, p.cxx, p.cxy, p.cyy, p.trueX,
-                         p.trueY})
+        for (double v :
+             {p.paperX, p.paperY, p.refinedX, p.refinedY, p.cxx, p.cxy, p.cyy, p.trueX, p.trueY})
             out << " " << formatNumber(v);
         out << "\n";
     }
@@ -90,9 +90,8 @@ AccuracyFile AccuracyFile::read(const std::string& dir) {
 
 void plotLayout(const LayoutFile& layout, const std::string& pngPath) {
     const auto& points = layout.points;
-    const std::string title =
-        "layout at t = " + mrpt::format("%.2f", layout.time) + " s: " + layout.a +
-        " at the origin, " + layout.b + " on the x axis";
+    const std::string title = "layout at t = " + mrpt::format("%.2f", layout.time) +
+                              " s: " + layout.a + " at the origin, " + layout.b + " on the x axis";
     std::string truth = "$truth << EOD\n", paper = "$paper << EOD\n", refined = "$refined << EOD\n",
                 ellipses = "$ellipses << EOD\n";
     char line[256];
@@ -149,8 +148,8 @@ void plotAccuracy(const AccuracyFile& sweep, const std::string& pngPath) {
         }
     }
     if (ap.empty() || dp.empty()) throw Error("no accuracy sweep to plot for " + pngPath);
-    std::string body =
-        report::dataBlock("ap", ap) + report::dataBlock("ar", ar) + report::dataBlock("dp", dp) + report::dataBlock("dr", dr);
+    std::string body = report::dataBlock("ap", ap) + report::dataBlock("ar", ar) +
+                       report::dataBlock("dp", dp) + report::dataBlock("dr", dr);
     body +=
         "set multiplot layout 1,2\nset logscale y\nset ylabel 'median relative distance error "
         "(%)'\nset xlabel 'bearing noise sigma (deg)'\nset logscale x\n"

@@ -3,8 +3,8 @@
 #include <mrloc/common/IniSection.h>
 #include <mrloc/common/Metrics.h>
 #include <mrloc/common/Rawlog.h>
-#include <mrloc/omnivision/OmniFiles.h>
 #include <mrloc/omnivision/MarkerDetector.h>
+#include <mrloc/omnivision/OmniFiles.h>
 #include <mrloc/omnivision/OmniLocalizer.h>
 #include <mrpt/core/format.h>
 #include <mrpt/obs/CObservationBearingRange.h>
@@ -14,8 +14,8 @@
 
 #include <algorithm>
 #include <cmath>
-#include <set>
 #include <limits>
+#include <set>
 
 namespace mrloc::omnivision {
 
@@ -233,7 +233,8 @@ std::vector<std::optional<Vec2>> OmniLocalizer::truthAtLayout(
     std::vector<std::optional<Vec2>> out(r.robots.size());
     for (size_t k = 0; k < r.robots.size(); ++k)
         if (const auto it = truth.find(r.robots[k]); it != truth.end())
-            if (const auto p = common::interpolate(it->second, r.time)) out[k] = Vec2(p->x(), p->y());
+            if (const auto p = common::interpolate(it->second, r.time))
+                out[k] = Vec2(p->x(), p->y());
     return out;
 }
 
@@ -311,8 +312,16 @@ void OmniLocalizer::writeOutputs(const std::string& outDir,
     layout.b = r.robots[size_t(r.b)];
     for (size_t k = 0; k < r.robots.size(); ++k) {
         const auto& p = r.paper.position[k];
-        LayoutPoint lp{r.robots[k], p ? p->x() : nan, p ? p->y() : nan, nan, nan, nan, nan, nan,
-                       truth[k] ? truth[k]->x() : nan, truth[k] ? truth[k]->y() : nan};
+        LayoutPoint lp{r.robots[k],
+                       p ? p->x() : nan,
+                       p ? p->y() : nan,
+                       nan,
+                       nan,
+                       nan,
+                       nan,
+                       nan,
+                       truth[k] ? truth[k]->x() : nan,
+                       truth[k] ? truth[k]->y() : nan};
         if (r.refined && final[k]) {
             const auto& c = r.refined->covariance.back()[k];
             lp.refinedX = final[k]->x(), lp.refinedY = final[k]->y();
@@ -330,8 +339,7 @@ AccuracyLayout OmniLocalizer::accuracyLayout(const common::Trajectories& truthIn
     L.a = r.a, L.b = r.b;
     const auto poseAt = [&](size_t k, double t) {
         const auto it = truthInFrame.find(r.robots[k]);
-        const auto p =
-            it == truthInFrame.end() ? std::nullopt : common::interpolate(it->second, t);
+        const auto p = it == truthInFrame.end() ? std::nullopt : common::interpolate(it->second, t);
         if (!p) throw Error("omnivision accuracy sweep: no truth for " + r.robots[k]);
         return mrpt::poses::CPose2D(p->x(), p->y(), p->yaw());
     };

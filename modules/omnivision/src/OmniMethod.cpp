@@ -21,9 +21,11 @@ void OmniPayload::command(sim::Step& step) {
     // Seed 000: the pair that stops stands still in (from, to].
     for (size_t i = 0; i < step.fleet.size(); ++i) {
         auto& robot = step.fleet.robot(i);
-        const bool stopped = std::any_of(setup_.stops.begin(), setup_.stops.end(), [&](const auto& s) {
-            return s.robot == robot.options().name && step.t > s.from + 1e-9 && step.t <= s.to + 1e-9;
-        });
+        const bool stopped =
+            std::any_of(setup_.stops.begin(), setup_.stops.end(), [&](const auto& s) {
+                return s.robot == robot.options().name && step.t > s.from + 1e-9 &&
+                       step.t <= s.to + 1e-9;
+            });
         if (stopped)
             robot.stop();
         else
@@ -100,8 +102,8 @@ std::vector<sim::RobotOptions> generateSwarm(const OmniOptions& o, const sim::Wo
     return robots;
 }
 
-OmniSetup omniSetupOf(const OmniOptions& o, const std::vector<std::string>& robots,
-                      double duration, const std::string& origin) {
+OmniSetup omniSetupOf(const OmniOptions& o, const std::vector<std::string>& robots, double duration,
+                      const std::string& origin) {
     const auto need = [&](const std::string& robot, const char* key) {
         if (std::find(robots.begin(), robots.end(), robot) == robots.end())
             throw Error(origin + ": [omnivision] " + key + ": robot '" + robot +
@@ -197,9 +199,10 @@ std::string omnivisionSection(const report::RunView& run) {
     for (const auto& p : layout.points)
         out += "<tr><td>" + report::html(p.robot) + "</td><td>" + xy(p.paperX, p.paperY) +
                "</td><td>" + xy(p.refinedX, p.refinedY) + "</td><td>" +
-               (std::isfinite(p.cxx) ? mrpt::format("%.1f, %.1f", 1000 * std::sqrt(std::max(0.0, p.cxx)),
-                                                    1000 * std::sqrt(std::max(0.0, p.cyy)))
-                                     : std::string("none")) +
+               (std::isfinite(p.cxx)
+                    ? mrpt::format("%.1f, %.1f", 1000 * std::sqrt(std::max(0.0, p.cxx)),
+                                   1000 * std::sqrt(std::max(0.0, p.cyy)))
+                    : std::string("none")) +
                "</td><td>" + xy(p.trueX, p.trueY) + "</td></tr>\n";
     out += "</table>\n";
     if (!std::filesystem::exists(AccuracyFile::path(run.dir))) return out;
@@ -216,8 +219,8 @@ std::string omnivisionSection(const report::RunView& run) {
         out += mrpt::format(
             "<tr><td>%s</td><td>%g</td><td>%g</td><td>%.3f</td><td>%.3f</td><td>%d</td>"
             "<td>%d</td></tr>\n",
-            r.axis.c_str(), r.angleSigmaDeg, 100 * r.distanceSigma, 100 * r.paper,
-            100 * r.refined, r.trials, r.failures);
+            r.axis.c_str(), r.angleSigmaDeg, 100 * r.distanceSigma, 100 * r.paper, 100 * r.refined,
+            r.trials, r.failures);
     return out + "</table>\n";
 }
 

@@ -53,8 +53,8 @@ void renderPolygonView(const PolygonViewContent& c, const std::string& pngPath, 
     report::Legend legend = {{"map P", {30, 30, 30}}, {"V at each hypothesis", {240, 140, 20}}};
     if (c.truth) legend.push_back({"V at the true start", {20, 150, 50}});
     legend.push_back({"hypotheses", {220, 40, 30}});
-    report::saveTopDown(scene, P.min().x - m, P.min().y - m, P.max().x + m, P.max().y + m,
-                        pngPath, width, height, legend);
+    report::saveTopDown(scene, P.min().x - m, P.min().y - m, P.max().x + m, P.max().y + m, pngPath,
+                        width, height, legend);
 }
 
 }  // namespace mrloc::polymap

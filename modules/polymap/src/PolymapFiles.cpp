@@ -20,7 +20,8 @@ void HypothesesFile::write(const std::string& dir, const std::string& robot) con
            "robot frame (m)\n"
         << "# H x y translation_x translation_y mismatch: a hypothesis (m)\n"
         << "t " << formatNumber(time) << "\n";
-    for (const auto& p : sensed) out << "V " << formatNumber(p.x) << " " << formatNumber(p.y) << "\n";
+    for (const auto& p : sensed)
+        out << "V " << formatNumber(p.x) << " " << formatNumber(p.y) << "\n";
     for (const auto& h : hypotheses)
         out << "H " << formatNumber(h.point.x) << " " << formatNumber(h.point.y) << " "
             << formatNumber(h.translation.x) << " " << formatNumber(h.translation.y) << " "

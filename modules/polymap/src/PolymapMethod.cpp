@@ -47,8 +47,9 @@ method::Scenario loadScenario(const mrpt::config::CConfigFileBase& ini) {
     if (ini.sectionExists("robot." + r.name)) r.loadFromConfigFile(ini, "robot." + r.name);
     r.start = mrpt::poses::CPose2D(start.x, start.y, mrpt::DEG2RAD(o.heading));
     if (!map.polygon.contains(start))
-        throw Error(common::configOrigin(ini) +
-                    mrpt::format(": the start (%g %g) is outside the floor plan", start.x, start.y));
+        throw Error(
+            common::configOrigin(ini) +
+            mrpt::format(": the start (%g %g) is outside the floor plan", start.x, start.y));
     s.config.robots.push_back(r);
     s.payload = std::make_unique<PolymapPayload>(sim::FloorPlan{
         std::move(map.polygon), {o.scanRays, o.scanRangeSigma, o.scanMaxRange, o.scanRate}});

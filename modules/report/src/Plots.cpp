@@ -1,6 +1,7 @@
 #include <mrloc/common/AtomicFile.h>
 #include <mrloc/common/Error.h>
 #include <mrloc/report/Plots.h>
+#include <mrpt/core/format.h>
 
 #include <algorithm>
 #include <cmath>
@@ -9,7 +10,6 @@
 #include <filesystem>
 #include <fstream>
 #include <limits>
-#include <mrpt/core/format.h>
 
 namespace mrloc::report {
 
@@ -82,11 +82,14 @@ void plotErrorPerRobot(const RobotErrors& errors, const std::string& pngPath) {
     for (const auto& [robot, e] : errors)
         for (const auto& te : e) rows += mrpt::format("%d %.6f %s\n", i++, te.error, robot.c_str());
     if (i == 0) throw Error("no errors to plot for " + pngPath);
-    runGnuplot(rows + "EOD\nset xlabel 'robot'\nset ylabel 'position error (m)'\n"
-                      "set xrange [-0.5:" + std::to_string(i) + "-0.5]\nset yrange [0:*]\n"
-                      "set xtics rotate by -45\nset key top right\n"
-                      "plot $e using 1:2:xtic(3) with points pt 7 ps 1.5 lc rgb '#d00000' "
-                      "title 'error of the estimate'\n",
+    runGnuplot(rows +
+                   "EOD\nset xlabel 'robot'\nset ylabel 'position error (m)'\n"
+                   "set xrange [-0.5:" +
+                   std::to_string(i) +
+                   "-0.5]\nset yrange [0:*]\n"
+                   "set xtics rotate by -45\nset key top right\n"
+                   "plot $e using 1:2:xtic(3) with points pt 7 ps 1.5 lc rgb '#d00000' "
+                   "title 'error of the estimate'\n",
                pngPath);
 }
 

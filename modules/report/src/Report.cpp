@@ -54,7 +54,8 @@ std::string keyInWords(const std::string& key) {
     std::string words = key, unit;
     for (const auto& [suffix, u] : units) {
         const std::string sfx = suffix;
-        if (words.size() > sfx.size() && words.compare(words.size() - sfx.size(), sfx.size(), sfx) == 0) {
+        if (words.size() > sfx.size() &&
+            words.compare(words.size() - sfx.size(), sfx.size(), sfx) == 0) {
             words.resize(words.size() - sfx.size());
             unit = u;
             break;
@@ -185,8 +186,9 @@ std::string makeReport(const std::string& dir, const Section& section) {
     page += "<p>rawlog: <code>" + html(metrics.value("rawlog", "?")) + "</code></p>\n";
     page += "<h2>Position error against the truth (horizontal, all robots)</h2>\n" +
             metricsTable(metrics);
-    page += "<h2>Per robot</h2>\n<table><tr><th>robot</th><th>estimates</th><th>compared</th>"
-            "<th>RMSE (m)</th><th>median (m)</th><th>95th percentile (m)</th><th>max (m)</th></tr>\n";
+    page +=
+        "<h2>Per robot</h2>\n<table><tr><th>robot</th><th>estimates</th><th>compared</th>"
+        "<th>RMSE (m)</th><th>median (m)</th><th>95th percentile (m)</th><th>max (m)</th></tr>\n";
     for (const auto& [robot, r] : metrics["robots"].items()) {
         page += "<tr><td>" + html(robot) + "</td><td>" + cell(r.value("estimates", 0)) + "</td>";
         for (const char* k : {"n", "rmse_m", "median_m", "p95_m", "max_m"})
@@ -205,8 +207,9 @@ std::string makeReport(const std::string& dir, const Section& section) {
     if (errors.empty())
         page += "<p>No estimate with ground truth beside it: no errors to plot.</p>\n";
     else if (perRobot)
-        page += "<h2>Error per robot</h2>\n<p>One estimate per robot: one marker each.</p>\n"
-                "<img src='error_robots.png' alt='error per robot'>\n";
+        page +=
+            "<h2>Error per robot</h2>\n<p>One estimate per robot: one marker each.</p>\n"
+            "<img src='error_robots.png' alt='error per robot'>\n";
     else
         page +=
             "<h2>Error over time</h2>\n<img src='error_time.png' alt='error over time'>\n"

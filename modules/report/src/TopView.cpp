@@ -1,12 +1,12 @@
 #include <mrloc/common/AtomicFile.h>
 #include <mrloc/common/Error.h>
 #include <mrloc/report/TopView.h>
+#include <mrpt/core/format.h>
 #include <mrpt/opengl/CBox.h>
 #include <mrpt/opengl/CFBORender.h>
 #include <mrpt/opengl/CGridPlaneXY.h>
 #include <mrpt/opengl/CSetOfLines.h>
 #include <mrpt/opengl/CSphere.h>
-#include <mrpt/core/format.h>
 
 #include <algorithm>
 #include <cmath>
@@ -74,9 +74,9 @@ struct Extent {
 
 mrpt::img::TColor robotColour(size_t i) {
     // gnuplot's default line colours, so that a robot has one colour in every picture.
-    static const mrpt::img::TColor palette[] = {{148, 0, 211}, {0, 158, 115}, {86, 180, 233},
-                                                {230, 159, 0},  {240, 228, 66}, {0, 114, 178},
-                                                {229, 30, 16},  {0, 0, 0}};
+    static const mrpt::img::TColor palette[] = {{148, 0, 211}, {0, 158, 115},  {86, 180, 233},
+                                                {230, 159, 0}, {240, 228, 66}, {0, 114, 178},
+                                                {229, 30, 16}, {0, 0, 0}};
     return palette[i % (sizeof palette / sizeof palette[0])];
 }
 
@@ -151,7 +151,8 @@ void renderTopView(const TopViewContent& c, const std::string& pngPath, unsigned
         }
         legend.emplace_back(robot + " estimate", colour);
     }
-    if (c.world && !c.world->obstacles.empty()) legend.emplace_back("obstacles", mrpt::img::TColor(90, 90, 90));
+    if (c.world && !c.world->obstacles.empty())
+        legend.emplace_back("obstacles", mrpt::img::TColor(90, 90, 90));
     saveTopDown(scene, ext.x0, ext.y0, ext.x1, ext.y1, pngPath, width, height, legend);
 }
 

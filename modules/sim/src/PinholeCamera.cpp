@@ -37,8 +37,7 @@ mrpt::opengl::COpenGLScene::Ptr makeWorldScene(const WorldOptions& w, bool withW
 
 mrpt::poses::CPose3D cameraPoseLooking(const mrpt::math::TPoint3D& p, double yaw, double pitch) {
     // Camera axes in the world: +Z forward (yaw, pitched down), +X right, +Y down.
-    const double cy = std::cos(yaw), sy = std::sin(yaw), cp = std::cos(pitch),
-                 sp = std::sin(pitch);
+    const double cy = std::cos(yaw), sy = std::sin(yaw), cp = std::cos(pitch), sp = std::sin(pitch);
     mrpt::math::CMatrixDouble33 R;
     R(0, 0) = sy, R(0, 1) = -sp * cy, R(0, 2) = cp * cy;
     R(1, 0) = -cy, R(1, 1) = -sp * sy, R(1, 2) = cp * sy;

@@ -2,9 +2,9 @@
 // The "beacons" localization method: beacon TOF ranges (+ odometry) -> robot trajectories.
 // Runs on any MRPT rawlog that carries CObservationBeaconRanges, with or without odometry,
 // in either rawlog format; robots are told apart by the sensor label prefix ("r1.beacons").
+#include <mrloc/beacons/BeaconMap.h>
 #include <mrloc/beacons/BeaconTracker.h>
 #include <mrloc/beacons/RfBeacon.h>
-#include <mrloc/beacons/BeaconMap.h>
 #include <mrloc/common/Localizer.h>
 #include <mrloc/common/OdometryPath.h>
 #include <mrpt/config/CLoadableOptions.h>

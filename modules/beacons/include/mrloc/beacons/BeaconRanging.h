@@ -6,10 +6,10 @@
 #include <mrloc/beacons/BeaconMap.h>
 #include <mrloc/beacons/PanTilt.h>
 #include <mrloc/beacons/RangingEpoch.h>
-#include <mrpt/config/CLoadableOptions.h>
 #include <mrloc/beacons/ShotLog.h>
 #include <mrloc/beacons/Ultrasonic.h>
 #include <mrloc/sim/World.h>
+#include <mrpt/config/CLoadableOptions.h>
 #include <mrpt/obs/CObservationBeaconRanges.h>
 #include <mrpt/random/RandomGenerators.h>
 
@@ -32,7 +32,6 @@ struct SensorOptions : public mrpt::config::CLoadableOptions {
     void saveToConfigFile(mrpt::config::CConfigFileBase& target,
                           const std::string& section) const override;
 };
-
 
 class BeaconRanging {
  public:

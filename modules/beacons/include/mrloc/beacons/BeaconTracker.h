@@ -9,8 +9,8 @@
 // re-initialises from a robust multilateration fix (the bias was in the filter, not the
 // ranges). Start-up: position from a fix; heading from two fixes a baseline apart compared
 // with the odometry between them.
-#include <mrloc/beacons/Multilateration.h>
 #include <mrloc/beacons/BeaconMap.h>
+#include <mrloc/beacons/Multilateration.h>
 #include <mrpt/obs/CObservationBeaconRanges.h>
 #include <mrpt/poses/CPosePDFGaussian.h>
 

@@ -11,10 +11,10 @@
 // the robot's estimate enters the section, so fixes stop meanwhile; with handover the
 // neighbouring RF beacon sends it as soon as the robot comes within handover_margin of the
 // boundary, and the fixes keep flowing across it.
+#include <mrloc/beacons/RangingEpoch.h>
 #include <mrloc/beacons/Sections.h>
 #include <mrloc/beacons/ShotScheduler.h>
 #include <mrloc/common/IniSection.h>
-#include <mrloc/beacons/RangingEpoch.h>
 
 #include <map>
 #include <set>
@@ -47,8 +47,8 @@ struct RfBeaconStats {
 class RfBeacon : public beacons::RangingController {
  public:
     explicit RfBeacon(RfBeaconOptions options);
-    std::optional<RangingEpoch> nextEpoch(
-        double t, const std::vector<RobotReport>& requests) override;
+    std::optional<RangingEpoch> nextEpoch(double t,
+                                          const std::vector<RobotReport>& requests) override;
     const RfBeaconStats& stats() const { return stats_; }
 
  private:

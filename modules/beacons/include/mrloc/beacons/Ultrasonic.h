@@ -34,7 +34,7 @@ struct UltrasonicOptions : public mrpt::config::CLoadableOptions {
     double riseTime = 150e-6;            ///< envelope time constant at the receiver (s)
     double firingTime = 450e-6;          ///< burst length, seed 001 section 5.2 (s)
     double calibrationDistance = 1.0;    ///< on-axis distance of the receiver's calibration (m)
-    beacons::PanTiltLimits head;          ///< pan_min, pan_max, tilt_max, slew_rate
+    beacons::PanTiltLimits head;         ///< pan_min, pan_max, tilt_max, slew_rate
 
     void loadFromConfigFile(const mrpt::config::CConfigFileBase& source,
                             const std::string& section) override;

@@ -3,7 +3,8 @@
 // a coloured band around the camera, so that a camera sees the others but cannot tell
 // them apart.
 //  - render mode: the panorama (omnivision::Panorama) rendered off screen with
-//    sim::PinholeCamera in the world's scene, `views` pinhole views stitched into one strip, as a CObservationImage <robot>.omni;
+//    sim::PinholeCamera in the world's scene, `views` pinhole views stitched into one strip, as a
+//    CObservationImage <robot>.omni;
 //  - bearings mode: the bearings of the visible markers with Gaussian noise, as a
 //    CObservationBearingRange <robot>.omni_bearings (range and identity unknown), for
 //    fast Monte Carlo.
@@ -33,8 +34,9 @@ struct OmniCameraOptions {
     double cameraHeight = 0.5;                ///< m: camera and band centre above the floor
 };
 
-/** The omni-directional camera run of a scenario (seed 000), from [omnivision]: when every camera fires, who stands still when, and (for the
- *  conventional method) one LiDAR distance measured at each snapshot. */
+/** The omni-directional camera run of a scenario (seed 000), from [omnivision]: when every camera
+ * fires, who stands still when, and (for the conventional method) one LiDAR distance measured at
+ * each snapshot. */
 struct OmniSetup {
     OmniCameraOptions camera;
     std::vector<double> snapshotTimes;  ///< s from the start; all cameras fire together

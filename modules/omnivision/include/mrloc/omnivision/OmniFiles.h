@@ -18,8 +18,8 @@ struct LayoutPoint {
 };
 
 struct LayoutFile {
-    double time = 0;        ///< of the layout (s)
-    std::string a, b;       ///< the frame: a at the origin, b on the x axis
+    double time = 0;   ///< of the layout (s)
+    std::string a, b;  ///< the frame: a at the origin, b on the x axis
     std::vector<LayoutPoint> points;
 
     static std::string path(const std::string& dir) { return dir + "/layout.txt"; }

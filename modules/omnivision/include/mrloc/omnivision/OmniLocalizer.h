@@ -39,7 +39,8 @@ class OmniLocalizer : public common::Localizer {
     void saveConfig(mrpt::config::CConfigFileBase& target) const override;
     void process(const mrpt::obs::CObservation::Ptr& obs) override;
     std::map<std::string, common::Trajectory> estimates() const override;
-    common::Trajectories truthInEstimateFrame(const common::Trajectories& worldTruth) const override;
+    common::Trajectories truthInEstimateFrame(
+        const common::Trajectories& worldTruth) const override;
     nlohmann::json methodMetrics() const override;
     nlohmann::json truthMetrics(const common::Trajectories& truth) const override;
     /** layout.txt (OmniFiles.h). */

@@ -24,10 +24,10 @@ struct OmniOptions : public mrpt::config::CLoadableOptions {
     double snapshot = 10;      ///< s
     double lidarSigma = 0.01;  ///< m
     // Cameras.
-    bool render = true;          ///< camera = render | bearings
-    omnivision::Panorama panorama;   ///< views, view_width, view_height
-    double bearingSigma = 0.05;  ///< deg (bearings mode)
-    double maxRange = 0;         ///< m (0: unlimited)
+    bool render = true;             ///< camera = render | bearings
+    omnivision::Panorama panorama;  ///< views, view_width, view_height
+    double bearingSigma = 0.05;     ///< deg (bearings mode)
+    double maxRange = 0;            ///< m (0: unlimited)
     double markerRadius = 0.15, markerHeight = 0.2, cameraHeight = 0.5;  ///< m
     // Method.
     double sumTolerance = 0;      ///< deg; 0: 6 x the bearing accuracy

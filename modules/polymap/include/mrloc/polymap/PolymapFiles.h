@@ -14,8 +14,8 @@ inline std::string mapFilePath(const std::string& dir) { return dir + "/map.poly
 
 /** One robot's result: V as sensed (robot frame) and H. */
 struct HypothesesFile {
-    double time = 0;                   ///< of the scan (s)
-    std::vector<TPoint2D> sensed;      ///< V's vertices, robot frame
+    double time = 0;               ///< of the scan (s)
+    std::vector<TPoint2D> sensed;  ///< V's vertices, robot frame
     std::vector<Hypothesis> hypotheses;
 
     static std::string path(const std::string& dir, const std::string& robot);

@@ -29,8 +29,7 @@ class PolymapLocalizer : public common::Localizer {
     nlohmann::json methodMetrics() const override;
     nlohmann::json groundTruthMetrics(const std::string& robot,
                                       const common::Trajectory& gt) const override;
-    void writeOutputs(const std::string& outDir,
-                      const common::Trajectories& truth) const override;
+    void writeOutputs(const std::string& outDir, const common::Trajectories& truth) const override;
 
     const common::Polygon& map() const { return map_->polygon; }
     const std::map<std::string, RobotHypotheses>& results() const { return results_; }

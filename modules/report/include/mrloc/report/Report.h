@@ -19,9 +19,10 @@ namespace mrloc::report {
 struct RunView {
     std::string dir;
     nlohmann::json metrics;
-    std::shared_ptr<mrpt::config::CConfigFileMemory> effective;  ///< effective.ini (empty if absent)
-    common::Trajectories estimates;             ///< per robot
-    common::Trajectories truth;                 ///< groundtruth.<robot>.txt, estimates' frame
+    std::shared_ptr<mrpt::config::CConfigFileMemory>
+        effective;                   ///< effective.ini (empty if absent)
+    common::Trajectories estimates;  ///< per robot
+    common::Trajectories truth;      ///< groundtruth.<robot>.txt, estimates' frame
 };
 
 /** A method's part of the report. */

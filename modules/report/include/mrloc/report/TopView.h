@@ -35,7 +35,6 @@ using Legend = std::vector<std::pair<std::string, mrpt::img::TColor>>;
  *  (temporary name, then rename), with the legend and a scale bar in metres. Shared by
  *  every top-down picture. */
 void saveTopDown(mrpt::opengl::COpenGLScene& scene, double x0, double y0, double x1, double y1,
-                 const std::string& pngPath, unsigned width, unsigned height,
-                 const Legend& legend);
+                 const std::string& pngPath, unsigned width, unsigned height, const Legend& legend);
 
 }  // namespace mrloc::report

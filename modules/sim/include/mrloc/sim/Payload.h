@@ -45,10 +45,10 @@ class Fleet {
 
 /** One simulation step as the payload sees it. */
 struct Step {
-    long index = 0;         ///< step number, 0 at the start
-    double t = 0;           ///< s since the start
-    double dt = 0;          ///< step length (s)
-    double startTime = 0;   ///< time stamp of t = 0 (s since 1970)
+    long index = 0;                 ///< step number, 0 at the start
+    double t = 0;                   ///< s since the start
+    double dt = 0;                  ///< step length (s)
+    double startTime = 0;           ///< time stamp of t = 0 (s since 1970)
     mrpt::Clock::time_point stamp;  ///< of t
     Fleet& fleet;
     const World& world;
