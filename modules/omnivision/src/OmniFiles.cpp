@@ -90,8 +90,8 @@ AccuracyFile AccuracyFile::read(const std::string& dir) {
 
 void plotLayout(const LayoutFile& layout, const std::string& pngPath) {
     const auto& points = layout.points;
-    const std::string title = "layout at t = " + mrpt::format("%.2f", layout.time) +
-                              " s: " + layout.a + " at the origin, " + layout.b + " on the x axis";
+    const std::string title = "layout at the last snapshot: " + layout.a + " at the origin, " +
+                              layout.b + " on the x axis";
     std::string truth = "$truth << EOD\n", paper = "$paper << EOD\n", refined = "$refined << EOD\n",
                 ellipses = "$ellipses << EOD\n";
     char line[256];

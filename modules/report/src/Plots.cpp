@@ -47,6 +47,9 @@ std::string dataBlock(const std::string& name, const std::vector<std::pair<doubl
     return s + "EOD\n";
 }
 
+/** At most this many errors per robot are plotted as markers. */
+constexpr size_t kSparse = 50;
+
 bool oneErrorPerRobot(const RobotErrors& errors) {
     return std::all_of(errors.begin(), errors.end(),
                        [](const auto& robotErrors) { return robotErrors.second.size() <= 1; });
@@ -63,8 +66,10 @@ void plotErrorOverTime(const RobotErrors& errors, const std::string& pngPath) {
         std::vector<std::pair<double, double>> xy;
         for (const auto& te : e) xy.emplace_back(te.t - t0, te.error);
         body += dataBlock("d" + std::to_string(i), xy);
+        // Sparse errors (a few trials at a test point) as markers, not a zig-zag line.
+        const std::string style = e.size() <= kSparse ? "points pt 7 ps 1" : "lines lw 1.5";
         plot += std::string(plot.empty() ? "plot " : ", ") + "$d" + std::to_string(i) +
-                " using 1:2 with lines lw 1.5 lc " + std::to_string(i + 1) + " title '" + robot +
+                " using 1:2 with " + style + " lc " + std::to_string(i + 1) + " title '" + robot +
                 "'";
         ++i;
     }

@@ -63,6 +63,13 @@ void drawScaleAndLegend(mrpt::img::CImage& img, double metresPerPixel, const Leg
     }
 }
 
+/** True if every pose lies within 2 cm of the first: a robot that does not move. */
+bool standsStill(const common::Trajectory& t) {
+    return std::all_of(t.begin(), t.end(), [&](const common::StampedPose& p) {
+        return std::hypot(p.pose.x() - t.front().pose.x(), p.pose.y() - t.front().pose.y()) < 0.02;
+    });
+}
+
 struct Extent {
     double x0 = 1e300, y0 = 1e300, x1 = -1e300, y1 = -1e300;
     void add(double x, double y) {
@@ -138,17 +145,28 @@ void renderTopView(const TopViewContent& c, const std::string& pngPath, unsigned
         const mrpt::img::TColor pale(uint8_t((colour.R + 2 * 255) / 3),
                                      uint8_t((colour.G + 2 * 255) / 3),
                                      uint8_t((colour.B + 2 * 255) / 3));
-        if (const auto gt = c.groundTruth.find(robot); gt != c.groundTruth.end()) {
-            scene.insert(pathLines(gt->second, pale, 0.02f));
+        // A robot that stands still (a test point) is drawn as markers: a line through its
+        // estimates would zig-zag between trials.
+        const auto gt = c.groundTruth.find(robot);
+        const bool still = gt != c.groundTruth.end() ? standsStill(gt->second) : standsStill(est);
+        const auto marker = [&](const mrpt::poses::CPose3D& p, float radius, float z,
+                                mrpt::img::TColor col) {
+            auto s = CSphere::Create(radius);
+            s->setLocation(p.x(), p.y(), z);
+            s->setColor_u8(col);
+            scene.insert(s);
+        };
+        if (gt != c.groundTruth.end()) {
+            if (still && !gt->second.empty())
+                marker(gt->second.front().pose, 0.05f, 0.02f, pale);
+            else
+                scene.insert(pathLines(gt->second, pale, 0.02f));
             legend.emplace_back(robot + " truth", pale);
         }
-        scene.insert(pathLines(est, colour, 0.03f));
-        if (est.size() == 1) {
-            auto s = CSphere::Create(0.05f);
-            s->setLocation(est[0].pose.x(), est[0].pose.y(), 0.04);
-            s->setColor_u8(colour);
-            scene.insert(s);
-        }
+        if (still || est.size() == 1)
+            for (const auto& e : est) marker(e.pose, 0.02f, 0.04f, colour);
+        else
+            scene.insert(pathLines(est, colour, 0.03f));
         legend.emplace_back(robot + " estimate", colour);
     }
     if (c.world && !c.world->obstacles.empty())
