@@ -86,7 +86,7 @@ mrpt::img::CImage OmniRenderer::render(const std::vector<mrpt::poses::CPose2D>& 
     const auto& pano = o.panorama;
     // The paper's open room: with the walls drawn behind the bands, 3 of the 10 triangles of
     // omnivision_5robots.ini were lost (doc/omnivision.md); obstacles are drawn.
-    auto scene = sim::makeWorldScene(impl_->world, /*walls=*/false);
+    auto scene = sim::makeWorldScene(impl_->world, true);
     for (size_t j = 0; j < poses.size(); ++j) {
         if (j == observer) continue;  // the camera sits inside its own band
         auto band = mrpt::opengl::CCylinder::Create(o.markerRadius, o.markerRadius, o.markerHeight);
