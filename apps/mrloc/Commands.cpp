@@ -88,12 +88,12 @@ Setup loadSetup(const method::Registry& registry, const std::string& iniPath,
         s.scenario.seed = (unsigned long)*seed;
     }
     s.method = &registry.get(s.scenario.method);
-    if (needSimulation || s.ini->sectionExists("scenario")) {
-        s.simulation = s.method->scenario(*s.ini);
-        s.simulation->config.scenario.seed = s.scenario.seed;
-    }
     s.localizer = s.method->localizer();
     s.localizer->configure(*s.ini);
+    if (needSimulation || s.ini->sectionExists("scenario")) {
+        s.simulation = s.method->scenario(*s.ini, *s.localizer);
+        s.simulation->config.scenario.seed = s.scenario.seed;
+    }
     s.reportOptions.loadFromConfigFile(*s.ini, "report");
     return s;
 }

@@ -106,7 +106,7 @@ void registerToy(method::Registry& registry) {
     m.name = "toy";
     m.sections = {"toy"};
     m.localizer = [] { return std::make_unique<ToyLocalizer>(); };
-    m.scenario = [](const mrpt::config::CConfigFileBase& ini) {
+    m.scenario = [](const mrpt::config::CConfigFileBase& ini, const common::Localizer&) {
         ToyOptions o;
         o.load(ini);
         method::Scenario s;
@@ -187,7 +187,9 @@ TEST(ToyMethod, RegistryRefusesDuplicatesAndSectionsOwnedByOthers) {
     thief.name = "thief";
     thief.sections = {"toy"};
     thief.localizer = [] { return std::make_unique<ToyLocalizer>(); };
-    thief.scenario = [](const mrpt::config::CConfigFileBase&) { return method::Scenario{}; };
+    thief.scenario = [](const mrpt::config::CConfigFileBase&, const common::Localizer&) {
+        return method::Scenario{};
+    };
     EXPECT_THROW(registry.add(thief), Error);
     thief.sections = {"world"};
     EXPECT_THROW(registry.add(thief), Error);

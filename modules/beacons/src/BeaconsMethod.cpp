@@ -114,7 +114,9 @@ void registerMethod(method::Registry& registry) {
     m.name = "beacons";
     m.sections = {"beacons", "sensors", "ultrasonic"};
     m.localizer = [] { return std::make_unique<BeaconLocalizer>(); };
-    m.scenario = loadScenario;
+    m.scenario = [](const mrpt::config::CConfigFileBase& ini, const common::Localizer&) {
+        return loadScenario(ini);
+    };
     m.report.html = receptionSection;
     m.report.topView = beaconsInTopView;
     registry.add(std::move(m));

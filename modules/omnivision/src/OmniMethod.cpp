@@ -141,7 +141,8 @@ OmniSetup omniSetupOf(const OmniOptions& o, const std::vector<std::string>& robo
 
 namespace {
 
-method::Scenario loadScenario(const mrpt::config::CConfigFileBase& ini) {
+method::Scenario loadScenario(const mrpt::config::CConfigFileBase& ini,
+                              const common::Localizer& /*localizer*/) {
     OmniOptions o;
     o.loadFromConfigFile(ini, "omnivision");
     method::Scenario s;

@@ -28,11 +28,13 @@ void PolymapPayload::sense(sim::Step& step) {
 
 namespace {
 
-/** One robot at the [polymap] start; [robot.<name>] is optional and may not set a start. */
-method::Scenario loadScenario(const mrpt::config::CConfigFileBase& ini) {
-    PolymapOptions o;
-    o.loadFromConfigFile(ini, "polymap");
-    auto map = o.buildMap();
+/** One robot at the [polymap] start in the localizer's map (built once, when the localizer
+ *  was configured); [robot.<name>] is optional and may not set a start. */
+method::Scenario loadScenario(const mrpt::config::CConfigFileBase& ini,
+                              const common::Localizer& localizer) {
+    const auto& polymap = dynamic_cast<const PolymapLocalizer&>(localizer);
+    const PolymapOptions& o = polymap.options();
+    const GeneratedMap& map = polymap.generatedMap();
     const auto start = o.startIn(map);
     method::Scenario s;
     s.config = sim::ScenarioConfig::loadWithoutRobots(ini);
@@ -51,8 +53,8 @@ method::Scenario loadScenario(const mrpt::config::CConfigFileBase& ini) {
             common::configOrigin(ini) +
             mrpt::format(": the start (%g %g) is outside the floor plan", start.x, start.y));
     s.config.robots.push_back(r);
-    s.payload = std::make_unique<PolymapPayload>(sim::FloorPlan{
-        std::move(map.polygon), {o.scanRays, o.scanRangeSigma, o.scanMaxRange, o.scanRate}});
+    s.payload = std::make_unique<PolymapPayload>(
+        sim::FloorPlan{map.polygon, {o.scanRays, o.scanRangeSigma, o.scanMaxRange, o.scanRate}});
     return s;
 }
 

@@ -43,8 +43,11 @@ struct Method {
      *  lower-case sections an INI may have. */
     std::vector<std::string> sections;
     std::function<std::unique_ptr<common::Localizer>()> localizer;
-    /** Reads the scenario from the INI; throws mrloc::Error naming file, section and key. */
-    std::function<Scenario(const mrpt::config::CConfigFileBase&)> scenario;
+    /** Reads the scenario from the INI; throws mrloc::Error naming file, section and key.
+     *  The method's localizer, already configured from the same INI, is handed over so
+     *  that what it built (a map, say) is not built twice. */
+    std::function<Scenario(const mrpt::config::CConfigFileBase&, const common::Localizer&)>
+        scenario;
     std::function<std::vector<std::string>(const ExperimentInput&)> experiment;  ///< optional
     report::Section report;
 };

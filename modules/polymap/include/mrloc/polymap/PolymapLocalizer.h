@@ -32,6 +32,8 @@ class PolymapLocalizer : public common::Localizer {
     void writeOutputs(const std::string& outDir, const common::Trajectories& truth) const override;
 
     const common::Polygon& map() const { return map_->polygon; }
+    const GeneratedMap& generatedMap() const { return *map_; }
+    const PolymapOptions& options() const { return options_; }
     const std::map<std::string, RobotHypotheses>& results() const { return results_; }
 
  private:
