@@ -1,13 +1,48 @@
 #include <mrloc/beacons/BeaconPayload.h>
+#include <mrloc/common/IniSection.h>
+#include <mrpt/core/format.h>
 #include <mrpt/math/wrap2pi.h>
 
 #include <algorithm>
 
 namespace mrloc::beacons {
 
+namespace {
+/** Where a receiver mounted at `onRobot` is when the robot is at `pose`. */
+mrpt::math::TPoint3D receiverAt(const mrpt::poses::CPose2D& pose,
+                                const mrpt::math::TPoint3D& onRobot) {
+    return mrpt::poses::CPose3D(pose).composePoint(onRobot);
+}
+}  // namespace
+
+const std::vector<std::string>& BeaconRobotOptions::keys() {
+    static const std::vector<std::string> k = {"receiver", "beacon_rate", "ranging_epochs"};
+    return k;
+}
+
+void BeaconRobotOptions::load(const mrpt::config::CConfigFileBase& ini, const std::string& robot) {
+    common::IniSection s(ini, "robot." + robot);  // the simulator checks the other keys
+    const auto rc = s.reals("receiver", {0, 0, 0.3}, 3);
+    receiver = {rc[0], rc[1], rc[2]};
+    beaconRate = s.real("beacon_rate", 5, 0.01, 1000);
+    rangingEpochs = s.integer("ranging_epochs", 0, 0, 1L << 40);
+}
+
+void BeaconRobotOptions::save(mrpt::config::CConfigFileBase& t, const std::string& robot) const {
+    const std::string section = "robot." + robot;
+    t.write(section, "receiver", mrpt::format("%g %g %g", receiver.x, receiver.y, receiver.z));
+    t.write(section, "beacon_rate", beaconRate);
+    t.write(section, "ranging_epochs", std::to_string(rangingEpochs));
+}
+
 BeaconPayload::BeaconPayload(const mrpt::config::CConfigFileBase& ini, const BeaconMap& beacons,
-                             SensorOptions sensors, UltrasonicOptions ultrasonic)
-    : onboard_(ini), beacons_(beacons), sensors_(sensors), ultrasonic_(ultrasonic) {}
+                             SensorOptions sensors, UltrasonicOptions ultrasonic,
+                             std::vector<BeaconRobotOptions> robots)
+    : onboard_(ini),
+      beacons_(beacons),
+      sensors_(sensors),
+      ultrasonic_(ultrasonic),
+      robots_(std::move(robots)) {}
 
 void BeaconPayload::onObservation(const mrpt::obs::CObservation::Ptr& obs) {
     onboard_.localizer.process(obs);
@@ -25,9 +60,9 @@ void BeaconPayload::fireDue(sim::Step& step) {
         const auto& p1 = robot.pose();
         const mrpt::poses::CPose2D p(p0.x() + a * (p1.x() - p0.x()), p0.y() + a * (p1.y() - p0.y()),
                                      p0.phi() + a * mrpt::math::wrapToPi(p1.phi() - p0.phi()));
-        return sim::receiverAt(p, robot.options().receiver);
+        return receiverAt(p, robots_[i].receiver);
     };
-    auto obs = ranging_->fireDue(t, receiverAtTime, robot.options().receiver, step.rng, shots_);
+    auto obs = ranging_->fireDue(t, receiverAtTime, robots_[i].receiver, step.rng, shots_);
     if (!obs) return;
     obs->sensorLabel = robot.options().name + ".beacons";
     obs->timestamp = mrpt::Clock::fromDouble(step.startTime + ranging_->lastShotTime());
@@ -44,7 +79,7 @@ RobotReport BeaconPayload::report(const sim::Step& step, size_t i) const {
     const auto est = onboard_.localizer.latestEstimate(ro.name);
     const mrpt::poses::CPose2D believed =
         est ? mrpt::poses::CPose2D(est->x(), est->y(), est->yaw()) : ro.start;
-    r.receiver = sim::receiverAt(believed, ro.receiver);
+    r.receiver = receiverAt(believed, robots_[i].receiver);
     return r;
 }
 
@@ -58,9 +93,8 @@ void BeaconPayload::sense(sim::Step& step) {
     if (ranging_->inEpoch() || t < channelFree_ - 1e-9) return;
     std::vector<RobotReport> requests;
     for (size_t i = 0; i < step.fleet.size(); ++i) {
-        const auto& ro = step.fleet.robot(i).options();
-        const long cap = ro.rangingEpochs;
-        if (t - state_[i].lastEpoch >= 1.0 / ro.beaconRate - 1e-9 &&
+        const long cap = robots_[i].rangingEpochs;
+        if (t - state_[i].lastEpoch >= 1.0 / robots_[i].beaconRate - 1e-9 &&
             (cap == 0 || state_[i].epochs < cap))
             requests.push_back(report(step, i));
     }

@@ -12,7 +12,9 @@ namespace mrloc::beacons {
 
 method::Scenario loadScenario(const mrpt::config::CConfigFileBase& ini) {
     method::Scenario s;
-    s.config = sim::ScenarioConfig::load(ini);
+    s.config = sim::ScenarioConfig::load(ini, BeaconRobotOptions::keys());
+    std::vector<BeaconRobotOptions> robots(s.config.robots.size());
+    for (size_t i = 0; i < robots.size(); ++i) robots[i].load(ini, s.config.robots[i].name);
     SensorOptions sensors;
     sensors.loadFromConfigFile(ini, "sensors");
     UltrasonicOptions ultrasonic;
@@ -23,10 +25,12 @@ method::Scenario loadScenario(const mrpt::config::CConfigFileBase& ini) {
         if (!s.config.world.contains(p, 1e-9))
             throw Error(common::configOrigin(ini) + ": [beacons] beacon_" + std::to_string(id) +
                         ": position " + p.asString() + " is outside the room [world] size");
-    s.payload = std::make_unique<BeaconPayload>(ini, map, sensors, ultrasonic);
-    s.saveOptions = [sensors, ultrasonic](mrpt::config::CConfigFileBase& t) {
+    s.payload = std::make_unique<BeaconPayload>(ini, map, sensors, ultrasonic, robots);
+    s.saveOptions = [sensors, ultrasonic, robots,
+                     names = s.config.scenario.robots](mrpt::config::CConfigFileBase& t) {
         sensors.saveToConfigFile(t, "sensors");
         ultrasonic.saveToConfigFile(t, "ultrasonic");
+        for (size_t i = 0; i < robots.size(); ++i) robots[i].save(t, names[i]);
     };
     return s;
 }

@@ -10,6 +10,7 @@
 
 namespace mrloc::common {
 
+
 std::map<int, std::string> IniSection::numberedKeys(const std::string& prefix) {
     allowPrefix(prefix);
     std::map<int, std::string> out;
@@ -28,6 +29,8 @@ std::map<int, std::string> IniSection::numberedKeys(const std::string& prefix) {
 namespace {
 std::string lower(std::string s) { return mrpt::system::lowerCase(s); }
 }  // namespace
+
+void IniSection::allowKey(const std::string& key) { used_.insert(lower(key)); }
 
 std::string configOrigin(const mrpt::config::CConfigFileBase& cfg) {
     if (auto* f = dynamic_cast<const mrpt::config::CConfigFile*>(&cfg))

@@ -31,16 +31,13 @@ void RobotOptions::loadFromConfigFile(const mrpt::config::CConfigFileBase& src,
     loop = s.flag("loop", true);
     speed = s.real("speed", 0.3, 1e-3, 10);
     maxTurnRate = s.real("max_turn_rate", 1.5, 1e-3, 100);
-    const auto rc = s.reals("receiver", {0, 0, 0.3}, 3);
-    receiver = {rc[0], rc[1], rc[2]};
     odometryRate = s.real("odometry_rate", 20, 0.1, 1000);
-    beaconRate = s.real("beacon_rate", 5, 0.01, 1000);
-    rangingEpochs = s.integer("ranging_epochs", 0, 0, 1L << 40);
     odometrySigmaXY = s.real("odometry_sigma_xy", 0.02, 0, 1);
     odometrySigmaPhi = s.real("odometry_sigma_phi", 0.01, 0, 1);
     odometrySigmaPhiPerMetre = s.real("odometry_sigma_phi_per_m", 0.005, 0, 1);
     actuationSigmaV = s.real("actuation_sigma_v", 0, 0, 1);
     actuationSigmaW = s.real("actuation_sigma_w", 0, 0, 10);
+    for (const auto& k : methodKeys) s.allowKey(k);
     s.finish();
 }
 
@@ -56,20 +53,12 @@ void RobotOptions::saveToConfigFile(mrpt::config::CConfigFileBase& t,
     t.write(section, "loop", loop);
     t.write(section, "speed", speed);
     t.write(section, "max_turn_rate", maxTurnRate);
-    t.write(section, "receiver", mrpt::format("%g %g %g", receiver.x, receiver.y, receiver.z));
     t.write(section, "odometry_rate", odometryRate);
-    t.write(section, "beacon_rate", beaconRate);
-    t.write(section, "ranging_epochs", std::to_string(rangingEpochs));
     t.write(section, "odometry_sigma_xy", odometrySigmaXY);
     t.write(section, "odometry_sigma_phi", odometrySigmaPhi);
     t.write(section, "odometry_sigma_phi_per_m", odometrySigmaPhiPerMetre);
     t.write(section, "actuation_sigma_v", actuationSigmaV);
     t.write(section, "actuation_sigma_w", actuationSigmaW);
-}
-
-mrpt::math::TPoint3D receiverAt(const mrpt::poses::CPose2D& pose,
-                                const mrpt::math::TPoint3D& onRobot) {
-    return mrpt::poses::CPose3D(pose).composePoint(onRobot);
 }
 
 Robot::Robot(RobotOptions options) : options_(std::move(options)), pose_(options_.start) {}

@@ -52,7 +52,8 @@ ScenarioConfig ScenarioConfig::loadWithoutRobots(const mrpt::config::CConfigFile
     return c;
 }
 
-ScenarioConfig ScenarioConfig::load(const mrpt::config::CConfigFileBase& ini) {
+ScenarioConfig ScenarioConfig::load(const mrpt::config::CConfigFileBase& ini,
+                                    const std::vector<std::string>& methodKeys) {
     ScenarioConfig c = loadWithoutRobots(ini);
     if (c.scenario.robots.empty())
         throw Error(common::configOrigin(ini) +
@@ -65,6 +66,7 @@ ScenarioConfig ScenarioConfig::load(const mrpt::config::CConfigFileBase& ini) {
                         "' has no section [" + section + "]");
         RobotOptions r;
         r.name = name;
+        r.methodKeys = methodKeys;
         r.loadFromConfigFile(ini, section);
         if (!c.world.contains({r.start.x(), r.start.y(), 0}))
             throw Error(common::configOrigin(ini) + ": [" + section + "] start: outside the room");

@@ -15,12 +15,25 @@
 
 namespace mrloc::beacons {
 
+/** A robot's beacon keys in [robot.<name>] (the simulator's robot options accept them). */
+struct BeaconRobotOptions {
+    mrpt::math::TPoint3D receiver{0, 0, 0.3};  ///< receiver = x y z on the robot (m)
+    double beaconRate = 5;                     ///< beacon_rate: most ranging epochs it asks for (Hz)
+    long rangingEpochs = 0;  ///< ranging_epochs: stops asking after this many (0: never)
+
+    static const std::vector<std::string>& keys();
+    void load(const mrpt::config::CConfigFileBase& ini, const std::string& robot);
+    void save(mrpt::config::CConfigFileBase& target, const std::string& robot) const;
+};
+
 class BeaconPayload : public sim::Payload {
  public:
     /** The on-board part is configured from the INI's [beacons]; `world` must outlive the
      *  payload. */
+    /** `robots` in the scenario's robot order. */
     BeaconPayload(const mrpt::config::CConfigFileBase& ini, const BeaconMap& beacons,
-                  SensorOptions sensors, UltrasonicOptions ultrasonic);
+                  SensorOptions sensors, UltrasonicOptions ultrasonic,
+                  std::vector<BeaconRobotOptions> robots);
     /** Another controller instead of the RF beacon (tests: every beacon at the truth). */
     void replaceController(std::unique_ptr<RangingController> controller) {
         controller_ = std::move(controller);
@@ -46,6 +59,7 @@ class BeaconPayload : public sim::Payload {
     SensorOptions sensors_;
     UltrasonicOptions ultrasonic_;
     std::unique_ptr<BeaconRanging> ranging_;  ///< made at the first step, with the world
+    std::vector<BeaconRobotOptions> robots_;
     std::vector<RobotState> state_;
     size_t epochRobot_ = 0;  ///< the robot the current epoch serves
     double channelFree_ = 0;

@@ -40,6 +40,9 @@ class IniSection {
     std::vector<double> reals(const std::string& key, std::vector<double> def, size_t count = 0);
     std::vector<double> requireReals(const std::string& key, size_t count = 0);
 
+    /** This key is accepted by finish(): another reader owns it (a method's key in
+     *  [robot.<name>]). */
+    void allowKey(const std::string& key);
     /** Keys beginning with this prefix are accepted by finish() (e.g. "beacon_"). */
     void allowPrefix(const std::string& prefix) { prefixes_.push_back(prefix); }
     /** Keys `<prefix><id>` with a non-negative integer id, by id (the prefix is allowed;

@@ -21,10 +21,7 @@ struct RobotOptions : public mrpt::config::CLoadableOptions {
     bool loop = true;                             ///< go back to the first waypoint at the end
     double speed = 0.3;                           ///< m/s
     double maxTurnRate = 1.5;                     ///< rad/s
-    mrpt::math::TPoint3D receiver{0, 0, 0.3};     ///< beacon receiver on the robot (m)
     double odometryRate = 20;                     ///< Hz
-    double beaconRate = 5;                        ///< Hz: most ranging epochs it asks for
-    long rangingEpochs = 0;                       ///< stops asking after this many (0: never)
     double odometrySigmaXY = 0.02;                ///< per metre travelled
     double odometrySigmaPhi = 0.01;               ///< per radian turned
     double odometrySigmaPhiPerMetre = 0.005;      ///< rad per metre travelled
@@ -32,16 +29,15 @@ struct RobotOptions : public mrpt::config::CLoadableOptions {
     double actuationSigmaW = 0;  ///< rad/s noise on the commanded turn rate (0: none drawn)
     /** start is a required key (false: the scenario sets it, and the key is an error). */
     bool startInSection = true;
+    /** Keys of [robot.<name>] that the method reads and writes itself (a beacon receiver's
+     *  mounting, say): accepted here, not read. */
+    std::vector<std::string> methodKeys;
 
     void loadFromConfigFile(const mrpt::config::CConfigFileBase& source,
                             const std::string& section) override;
     void saveToConfigFile(mrpt::config::CConfigFileBase& target,
                           const std::string& section) const override;
 };
-
-/** Where a receiver mounted at `onRobot` is when the robot is at `pose`. */
-mrpt::math::TPoint3D receiverAt(const mrpt::poses::CPose2D& pose,
-                                const mrpt::math::TPoint3D& onRobot);
 
 /** Unicycle. By default a waypoint follower: turn towards the waypoint (at most
  *  maxTurnRate), drive at `speed` scaled down while the heading error is large. A method's
@@ -51,8 +47,6 @@ class Robot {
     explicit Robot(RobotOptions options);
     const RobotOptions& options() const { return options_; }
     const mrpt::poses::CPose2D& pose() const { return pose_; }
-    /** The beacon receiver's position in the world at the current pose. */
-    mrpt::math::TPoint3D receiverInWorld() const { return receiverAt(pose_, options_.receiver); }
     /** Advances by dt; returns the motion in the robot frame (for odometry). Draws from
      *  rng only when the options ask for actuation noise. */
     mrpt::poses::CPose2D step(double dt, mrpt::random::CRandomGenerator& rng);

@@ -39,8 +39,10 @@ struct ScenarioConfig {
     /** [scenario] and [world], no robots yet; errors name the file, section and key. */
     static ScenarioConfig loadWithoutRobots(const mrpt::config::CConfigFileBase& ini);
     /** Also the robots of [scenario] robots, each from its [robot.<name>] section, which
-     *  must exist; each must start inside the room. */
-    static ScenarioConfig load(const mrpt::config::CConfigFileBase& ini);
+     *  must exist; each must start inside the room. `methodKeys` are keys of those
+     *  sections that the method reads itself. */
+    static ScenarioConfig load(const mrpt::config::CConfigFileBase& ini,
+                               const std::vector<std::string>& methodKeys = {});
     /** Adds robots the method made; throws if [scenario] robots names any, or if one
      *  starts outside the room. */
     void addGeneratedRobots(const mrpt::config::CConfigFileBase& ini,
