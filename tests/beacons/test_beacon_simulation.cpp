@@ -16,19 +16,14 @@
 #include <functional>
 #include <sstream>
 
+#include "WalledRoomIni.h"
+
 using namespace mrloc;
 
 namespace {
 
-const char* kIni = R"(
-[scenario]
-name = simtest
-seed = 7
-duration = 10
-robots = r1
-[world]
-size = 4 4 2.5
-obstacle_wall = 1.9 0 0 2.1 4 2.5
+/** The walled room with an ideal ultrasonic link, noise-free ranges and three beacons. */
+const std::string kIni = std::string(testing_room::kWalledRoomIni) + R"(receiver = 0 0 0.5
 [sensors]
 range_sigma = 0
 range_dropout = 0
@@ -38,12 +33,6 @@ nlos = drop
 beam_angle = 360        // an ideal link: no trigger delay, no misses
 source_margin_db = 200
 fading_sigma_db = 0
-[robot.r1]
-start = 0.5 0.5 90
-waypoints = 0.5 3.5
-loop = false
-speed = 0.5
-receiver = 0 0 0.5
 [beacons]
 beacon_1 = 0.2 0.2 2.5
 beacon_2 = 1.5 3.8 2.5

@@ -7,28 +7,16 @@
 
 #include <cmath>
 
+#include "WalledRoomIni.h"
+
 using namespace mrloc;
 
 namespace {
 
-const char* kIni = R"(
-[scenario]
-name = simtest
-seed = 7
-duration = 10
-robots = r1
-[world]
-size = 4 4 2.5
-obstacle_wall = 1.9 0 0 2.1 4 2.5
-[robot.r1]
-start = 0.5 0.5 90
-waypoints = 0.5 3.5
-loop = false
-speed = 0.5
-)";
+using testing_room::kWalledRoomIni;
 
 sim::ScenarioConfig config() {
-    mrpt::config::CConfigFileMemory ini(kIni);
+    mrpt::config::CConfigFileMemory ini(kWalledRoomIni);
     return sim::ScenarioConfig::load(ini);
 }
 
