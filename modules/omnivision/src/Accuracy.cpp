@@ -29,14 +29,16 @@ Snapshot noisyViews(const std::vector<mrpt::poses::CPose2D>& poses,
 
 }  // namespace
 
-std::vector<AccuracyPoint> accuracySweep(const AccuracyLayout& L, int trials, unsigned long seed) {
+std::vector<AccuracyPoint> accuracySweep(const AccuracyLayout& truth, int trials,
+                                         unsigned long seed) {
     mrpt::random::CRandomGenerator rng(static_cast<uint32_t>(seed));
     std::vector<AccuracyPoint> levels;
     for (double a : {0.05, 0.1, 0.5}) levels.push_back({"angle", a, 0.01});
     for (double d : {0.0, 0.01, 0.02, 0.05}) levels.push_back({"distance", 0.1, d});
-    const size_t n = L.after.size();
+    const size_t n = truth.after.size();
     const auto trueDistance = [&](size_t i, size_t j) {
-        return std::hypot(L.after[i].x() - L.after[j].x(), L.after[i].y() - L.after[j].y());
+        return std::hypot(truth.after[i].x() - truth.after[j].x(),
+                          truth.after[i].y() - truth.after[j].y());
     };
     for (auto& level : levels) {
         const double sigma = level.angleSigmaDeg * M_PI / 180;
@@ -46,40 +48,40 @@ std::vector<AccuracyPoint> accuracySweep(const AccuracyLayout& L, int trials, un
         double paperSum = 0, refinedSum = 0;
         for (int t = 0; t < trials; ++t) {
             try {
-                const auto se = noisyViews(L.after, L.seenAfter, sigma, rng);
+                const auto se = noisyViews(truth.after, truth.seenAfter, sigma, rng);
                 const auto ie = identify(se, o);
                 RefinementProblem p;
                 Solution paper;
                 p.bearingSigma = sigma;
-                p.a = L.a, p.b = L.b;
-                if (L.proposed) {
-                    const auto sb = noisyViews(L.before, L.seenBefore, sigma, rng);
+                p.a = truth.a, p.b = truth.b;
+                if (truth.proposed) {
+                    const auto sb = noisyViews(truth.before, truth.seenBefore, sigma, rng);
                     const auto ib = identify(sb, o);
                     std::vector<double> travelled(n);
                     for (size_t r = 0; r < n; ++r)
-                        travelled[r] = std::hypot(L.after[r].x() - L.before[r].x(),
-                                                  L.after[r].y() - L.before[r].y()) *
+                        travelled[r] = std::hypot(truth.after[r].x() - truth.before[r].x(),
+                                                  truth.after[r].y() - truth.before[r].y()) *
                                        (1 + rng.drawGaussian1D(0, level.distanceSigma));
-                    const auto prop = proposedMethod(sb, ib, se, ie, L.a, L.b, travelled);
+                    const auto prop = proposedMethod(sb, ib, se, ie, truth.a, truth.b, travelled);
                     paper = prop.after;
                     p.snapshots = {sb, se};
                     p.labels = {ib.labels, ie.labels};
                     p.initial = {prop.before.position, prop.after.position};
-                    p.stationary = {L.a, L.b};
+                    p.stationary = {truth.a, truth.b};
                     for (size_t r = 0; r < n; ++r)
                         if (travelled[r] > 0 && prop.before.position[r] && prop.after.position[r])
                             p.distances.push_back(
                                 {0, int(r), 1, int(r), travelled[r],
                                  std::max(1e-4, level.distanceSigma) * travelled[r]});
                 } else {
-                    const double d = trueDistance(size_t(L.a), size_t(L.b)) *
+                    const double d = trueDistance(size_t(truth.a), size_t(truth.b)) *
                                      (1 + rng.drawGaussian1D(0, level.distanceSigma));
-                    paper = conventionalMethod(se, ie, L.a, L.b, d);
+                    paper = conventionalMethod(se, ie, truth.a, truth.b, d);
                     p.snapshots = {se};
                     p.labels = {ie.labels};
                     p.initial = {paper.position};
                     p.distances.push_back(
-                        {0, L.a, 0, L.b, d, std::max(1e-4, level.distanceSigma) * d});
+                        {0, truth.a, 0, truth.b, d, std::max(1e-4, level.distanceSigma) * d});
                 }
                 const auto fit = refineLayout(p);
                 const auto& refined = fit.position.back();

@@ -334,9 +334,9 @@ void OmniLocalizer::writeOutputs(const std::string& outDir,
 
 AccuracyLayout OmniLocalizer::accuracyLayout(const common::Trajectories& truthInFrame) const {
     const auto& r = result();
-    AccuracyLayout L;
-    L.proposed = options_.method == "proposed";
-    L.a = r.a, L.b = r.b;
+    AccuracyLayout layout;
+    layout.proposed = options_.method == "proposed";
+    layout.a = r.a, layout.b = r.b;
     const auto poseAt = [&](size_t k, double t) {
         const auto it = truthInFrame.find(r.robots[k]);
         const auto p = it == truthInFrame.end() ? std::nullopt : common::interpolate(it->second, t);
@@ -351,12 +351,12 @@ AccuracyLayout OmniLocalizer::accuracyLayout(const common::Trajectories& truthIn
         return out;
     };
     for (size_t k = 0; k < r.robots.size(); ++k) {
-        L.after.push_back(poseAt(k, r.time));
-        L.before.push_back(poseAt(k, L.proposed ? r.timeBefore : r.time));
+        layout.after.push_back(poseAt(k, r.time));
+        layout.before.push_back(poseAt(k, layout.proposed ? r.timeBefore : r.time));
     }
-    L.seenAfter = seen(r.ids.size() - 1);
-    L.seenBefore = seen(0);
-    return L;
+    layout.seenAfter = seen(r.ids.size() - 1);
+    layout.seenBefore = seen(0);
+    return layout;
 }
 
 }  // namespace mrloc::omnivision
