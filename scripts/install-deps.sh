@@ -11,6 +11,8 @@ packages=(
   libgtest-dev libbenchmark-dev
   gnuplot-nox            # error-over-time and CDF plots (pngcairo terminal)
   libegl1 libegl-mesa0 libgl1-mesa-dri   # head-less EGL rendering for CFBORender
+  clang libclang-rt-14-dev   # the sanitized build and libFuzzer (scripts/sanitize.sh, fuzz.sh)
+  mrpt-common            # MRPT's example rawlogs and INIs: tests and fuzzing seeds
 )
 
 missing=()

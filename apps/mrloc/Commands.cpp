@@ -2,6 +2,7 @@
 
 #include <mrloc/common/AtomicFile.h>
 #include <mrloc/common/Error.h>
+#include <mrloc/common/IniLint.h>
 #include <mrloc/common/IniSection.h>
 #include <mrloc/common/LocalizationRun.h>
 #include <mrloc/common/Metrics.h>
@@ -33,6 +34,14 @@ namespace {
 std::unique_ptr<mrpt::config::CConfigFile> openIni(const std::string& path,
                                                    const method::Registry& registry) {
     if (!fs::is_regular_file(path)) throw Error("config " + path + ": no such file");
+    std::ifstream file(path, std::ios::binary);
+    std::stringstream text;
+    text << file.rdbuf();
+    if (!file) throw Error("config " + path + ": cannot read");
+    // mrloc's sections (lower case) are checked line by line; MRPT's are left as MRPT reads them.
+    common::lintIni(text.str(), path, [](const std::string& section) {
+        return section.empty() || std::islower(static_cast<unsigned char>(section[0]));
+    });
     auto ini = std::make_unique<mrpt::config::CConfigFile>(path);
     std::vector<std::string> sections;
     ini->getAllSections(sections);
@@ -77,8 +86,24 @@ struct Setup {
     report::ReportOptions reportOptions;
 };
 
+Setup loadSetupUnguarded(const method::Registry& registry, const std::string& iniPath,
+                         std::optional<long> seed, bool needSimulation);
+
+/** Everything read from an INI fails as mrloc::Error naming the INI: MRPT's parser throws its
+ *  own exceptions (a `$env{` without its `}`, say), without the file's name. */
 Setup loadSetup(const method::Registry& registry, const std::string& iniPath,
                 std::optional<long> seed, bool needSimulation) {
+    try {
+        return loadSetupUnguarded(registry, iniPath, seed, needSimulation);
+    } catch (const Error&) {
+        throw;
+    } catch (const std::exception& e) {
+        throw Error(iniPath + ": " + oneLine(e.what()));
+    }
+}
+
+Setup loadSetupUnguarded(const method::Registry& registry, const std::string& iniPath,
+                         std::optional<long> seed, bool needSimulation) {
     Setup s;
     s.iniPath = iniPath;
     s.ini = openIni(iniPath, registry);
@@ -142,10 +167,12 @@ void writeProvenance(const Setup& s, const std::string& dir, const std::string& 
 }
 
 /** Removes, on failure, every file a command created in its output directory (and the
- *  directory if it created it), so that a failed run leaves nothing under final names. */
+ *  directory if it created it), so that a failed run leaves nothing under final names; a
+ *  SIGINT or SIGTERM meanwhile removes the same (common::RunOutputs). */
 class OutputGuard {
  public:
-    explicit OutputGuard(std::string dir) : dir_(std::move(dir)), existed_(fs::exists(dir_)) {
+    explicit OutputGuard(std::string dir)
+        : dir_(std::move(dir)), existed_(fs::exists(dir_)), outputs_(existed_ ? "" : dir_) {
         if (existed_)
             for (const auto& e : fs::directory_iterator(dir_)) before_.insert(e.path());
     }
@@ -156,11 +183,15 @@ class OutputGuard {
             if (!before_.count(e.path())) fs::remove_all(e.path(), ec);
         if (!existed_) fs::remove(dir_, ec);
     }
-    void keep() { done_ = true; }
+    void keep() {
+        done_ = true;
+        outputs_.keep();
+    }
 
  private:
     std::string dir_;
     bool existed_;
+    common::RunOutputs outputs_;  // what SIGINT / SIGTERM remove while the command runs
     std::set<fs::path> before_;
     bool done_ = false;
 };
@@ -200,6 +231,10 @@ std::optional<long> seedOf(TCLAP::ValueArg<long>& seed) {
 }
 
 }  // namespace
+
+std::string checkIni(const method::Registry& registry, const std::string& iniPath) {
+    return effectiveIni(loadSetup(registry, iniPath, std::nullopt, false));
+}
 
 std::optional<int> parseArgs(TCLAP::CmdLine& cmd, int argc, char** argv) {
     if (cmd.parse(argc, argv)) return std::nullopt;
@@ -288,10 +323,16 @@ int run(const method::Registry& registry, int argc, char** argv) {
     Setup s = c.setup(registry);
     const std::string dir = c.output.dirOr(s.scenario.name);
     OutputGuard guard(dir);
-    const std::string rawlog = doSimulate(s, dir, c.output.quiet.getValue());
-    doLocalize(s, rawlog, dir, c.output.quiet.getValue());
-    writeProvenance(s, dir, "run", commandLine(argc, argv));
-    const std::string page = doReport(registry, dir);
+    std::string page;
+    try {
+        const std::string rawlog = doSimulate(s, dir, c.output.quiet.getValue());
+        doLocalize(s, rawlog, dir, c.output.quiet.getValue());
+        writeProvenance(s, dir, "run", commandLine(argc, argv));
+        page = doReport(registry, dir);
+    } catch (const Error& e) {
+        // The files named in the message are the run's own, removed with the rest of it.
+        throw Error(s.iniPath + ": " + e.what() + " (nothing of the run was kept)");
+    }
     guard.keep();
     std::cout << "report: " << page << "\n";
     return 0;
@@ -310,6 +351,7 @@ constexpr const char* kUsage =
 }  // namespace
 
 int main(const method::Registry& registry, int argc, char** argv) {
+    common::installSignalCleanup();
     if (argc < 2 || !std::strcmp(argv[1], "--help") || !std::strcmp(argv[1], "-h")) {
         std::cout << kUsage;
         return argc < 2 ? 2 : 0;
@@ -328,10 +370,10 @@ int main(const method::Registry& registry, int argc, char** argv) {
                   << "see: mrloc " << command << " --help\n";
         return 2;
     } catch (const mrloc::Error& e) {
-        std::cerr << "mrloc " << command << ": error: " << e.what() << "\n";
+        std::cerr << "mrloc " << command << ": error: " << oneLine(e.what()) << "\n";
         return 1;
     } catch (const std::exception& e) {
-        std::cerr << "mrloc " << command << ": unexpected error: " << e.what() << "\n";
+        std::cerr << "mrloc " << command << ": unexpected error: " << oneLine(e.what()) << "\n";
         return 1;
     }
 }

@@ -19,6 +19,11 @@ int report(const method::Registry& registry, int argc, char** argv);
 int run(const method::Registry& registry, int argc, char** argv);
 int info(int argc, char** argv);
 
+/** Reads and validates everything an INI asks for, as `simulate`, `localize` and `run` do
+ *  before they write anything (the scenario built when it has [scenario]), and renders its
+ *  effective.ini; throws mrloc::Error naming file, section, key or line. Writes nothing. */
+std::string checkIni(const method::Registry& registry, const std::string& iniPath);
+
 /** Dispatches `mrloc <command> ...` (argv[0] is the program); prints errors, returns the
  *  exit code: 0 done, 1 error, 2 usage. */
 int main(const method::Registry& registry, int argc, char** argv);

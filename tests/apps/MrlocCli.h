@@ -12,7 +12,7 @@
 namespace mrloc::testing_cli {
 
 struct Result {
-    int code;
+    int code;            // the exit status, or 128 + the signal that ended the process
     std::string output;  // stdout and stderr
 };
 
@@ -23,7 +23,8 @@ inline Result mrlocCmd(const std::string& args) {
     std::array<char, 4096> buf;
     while (size_t n = fread(buf.data(), 1, buf.size(), p)) out.append(buf.data(), n);
     const int status = pclose(p);
-    return {WEXITSTATUS(status), out};
+    // popen's shell reports a child killed by signal s as exit 128 + s.
+    return {WIFSIGNALED(status) ? 128 + WTERMSIG(status) : WEXITSTATUS(status), out};
 }
 
 /** An empty temporary folder name (removed if it exists). */

@@ -105,7 +105,8 @@ TEST(Simulator, NoiseFreeRangesAreTheGeometricDistancesAndNlosIsDropped) {
         const auto pose = common::interpolate(gt, mrpt::Clock::toDouble(r->timestamp));
         ASSERT_TRUE(pose);
         const mrpt::math::TPoint3D rx(pose->x(), pose->y(), 0.5);
-        for (const auto& [id, b] : beaconMap) {
+        for (const auto& [beaconId, b] : beaconMap) {
+            const int id = beaconId;  // a lambda cannot capture a structured binding in C++17
             const auto it = std::find_if(r->sensedData.begin(), r->sensedData.end(),
                                          [&](const auto& m) { return m.beaconID == id; });
             const bool visible = world.lineOfSight(b, rx);

@@ -6,6 +6,7 @@
 #include <mrloc/common/Rawlog.h>
 #include <mrloc/common/Trajectory.h>
 #include <mrpt/io/CFileGZOutputStream.h>
+#include <mrpt/io/CFileOutputStream.h>
 #include <mrpt/obs/CActionCollection.h>
 #include <mrpt/obs/CActionRobotMovement2D.h>
 #include <mrpt/obs/CObservationBeaconRanges.h>
@@ -122,32 +123,44 @@ TEST(Rawlog, MissingEmptyTruncatedAndWrongClassAreClearErrors) {
         EXPECT_NE(std::string(e.what()).find("the file is empty"), std::string::npos) << e.what();
     }
 
-    // Truncate an uncompressed rawlog in the middle of its last object.
-    const std::string full = tmp("full.rawlog");
-    {
-        common::RawlogWriter w(full, /*compressionLevel=*/0);
-        for (int i = 0; i < 20; ++i) w.write(*ranges(i, 1));
-        w.commit();
-    }
-    std::string bytes;
-    {
-        std::ifstream in(full, std::ios::binary);
-        bytes.assign(std::istreambuf_iterator<char>(in), {});
-    }
-    const std::string cut = tmp("cut.rawlog");
-    {
-        std::ofstream out(cut, std::ios::binary);
-        out.write(bytes.data(), std::streamsize(bytes.size() - 40));
-    }
-    try {
-        common::RawlogReader r(cut);
-        for (mrpt::obs::CObservation::Ptr obs; r.next(obs);) {
+    // Truncate a rawlog in the middle of its last object: a .gz one (the stream's end is
+    // missing) and a plain one (MRPT's reader hits the end inside the entry).
+    auto truncated = [&](bool gz) -> std::string {
+        const std::string full = tmp(gz ? "full.rawlog" : "plain.rawlog");
+        if (gz) {
+            common::RawlogWriter w(full, /*compressionLevel=*/0);
+            for (int i = 0; i < 20; ++i) w.write(*ranges(i, 1));
+            w.commit();
+        } else {
+            mrpt::io::CFileOutputStream f(full);
+            auto a = mrpt::serialization::archiveFrom(f);
+            for (int i = 0; i < 20; ++i) a << *ranges(i, 1);
         }
-        FAIL() << "a truncated rawlog must not read as complete";
-    } catch (const Error& e) {
-        EXPECT_NE(std::string(e.what()).find("mrloc_io_cut.rawlog"), std::string::npos) << e.what();
-        EXPECT_NE(std::string(e.what()).find("entry"), std::string::npos) << e.what();
-    }
+        std::string bytes;
+        {
+            std::ifstream in(full, std::ios::binary);
+            bytes.assign(std::istreambuf_iterator<char>(in), {});
+        }
+        const std::string cut = tmp(gz ? "cut.rawlog" : "cut_plain.rawlog");
+        {
+            std::ofstream out(cut, std::ios::binary);
+            out.write(bytes.data(), std::streamsize(bytes.size() - 40));
+        }
+        try {
+            common::RawlogReader r(cut);
+        } catch (const Error& e) {
+            return e.what();
+        }
+        return "a truncated rawlog opened as complete";
+    };
+    const std::string gzCut = truncated(true);
+    EXPECT_NE(gzCut.find("mrloc_io_cut.rawlog: the gzip stream stops at byte"), std::string::npos)
+        << gzCut;
+    EXPECT_NE(gzCut.find("truncated"), std::string::npos) << gzCut;
+    const std::string plainCut = truncated(false);
+    EXPECT_NE(plainCut.find("mrloc_io_cut_plain.rawlog: cannot read entry 20 (truncated"),
+              std::string::npos)
+        << plainCut;
 
     // A serialized object that is no observation: a pose interpolator.
     const std::string wrong = tmp("wrong.rawlog");

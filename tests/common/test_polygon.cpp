@@ -3,6 +3,7 @@
 #include <mrloc/common/Error.h>
 #include <mrloc/common/Polygon.h>
 
+#include <cmath>
 #include <filesystem>
 #include <fstream>
 
@@ -70,6 +71,30 @@ TEST(Polygon, PolyFileRoundTripAndErrors) {
         EXPECT_NE(std::string(e.what()).find("mrloc_bad.poly:3"), std::string::npos) << e.what();
     }
     EXPECT_THROW(Polygon::load("/nonexistent/x.poly"), Error);
+}
+
+TEST(Polygon, SizeAndCoordinateBounds) {
+    // More vertices than kMaxVertices: the file reader stops at the first one too many.
+    std::string text;
+    for (size_t i = 0; i <= Polygon::kMaxVertices; ++i) {
+        const double a = 2 * M_PI * double(i) / double(Polygon::kMaxVertices + 1);
+        text += std::to_string(100 * std::cos(a)) + " " + std::to_string(100 * std::sin(a)) + "\n";
+    }
+    try {
+        Polygon::load(writeTemp("mrloc_huge.poly", text));
+        FAIL() << "no error";
+    } catch (const Error& e) {
+        EXPECT_NE(std::string(e.what()).find("mrloc_huge.poly:20001: more than the 20000 vertices"),
+                  std::string::npos)
+            << e.what();
+    }
+    EXPECT_NE(errorOf({{0, 0}, {2e6, 0}, {0, 1}}).find("vertex 2 lies beyond 1000000 m"),
+              std::string::npos);
+    // star5000.poly (tests/data/bad-inputs): a valid map of 5000 vertices on a 2^-16 grid.
+    const auto star =
+        Polygon::load(std::string(MRLOC_SOURCE_DIR) + "/tests/data/bad-inputs/star5000.poly");
+    EXPECT_EQ(star.size(), 5000u);
+    EXPECT_GT(star.area(), 0);
 }
 
 TEST(Polygon, LocateAndRayCast) {

@@ -6,6 +6,8 @@
 #include <mrloc/common/Rawlog.h>
 #include <mrloc/common/RunDirectory.h>
 
+#include <mrpt/core/format.h>
+
 #include <chrono>
 #include <filesystem>
 
@@ -17,7 +19,16 @@ LocalizationResult runLocalization(Localizer& localizer, const LocalizationRunOp
     Progress progress("localizing", 0, o.quiet);
     size_t n = 0;
     for (mrpt::obs::CObservation::Ptr obs; reader.next(obs);) {
-        localizer.process(obs);
+        try {
+            localizer.process(obs);
+        } catch (const Error& e) {
+            // Say which observation the method could not use.
+            throw Error("rawlog " + o.rawlogPath + ": observation " + std::to_string(n + 1) +
+                        " ('" + obs->sensorLabel + "', " + obs->GetRuntimeClass()->className +
+                        ", t = " +
+                        mrpt::format("%.3f", mrpt::Clock::toDouble(obs->timestamp)) +
+                        " s): " + e.what());
+        }
         progress.update(++n);
     }
     progress.finish();

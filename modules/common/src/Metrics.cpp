@@ -53,7 +53,9 @@ nlohmann::json statsToJson(const ErrorStats& s) {
 }
 
 void saveJson(const std::string& path, const nlohmann::json& j) {
-    writeFileAtomically(path, j.dump(2) + "\n");
+    // Paths on Linux are bytes, not always UTF-8 (a file named in Latin-1, say): such a byte
+    // is written as U+FFFD rather than throwing after other outputs were written.
+    writeFileAtomically(path, j.dump(2, ' ', false, nlohmann::json::error_handler_t::replace) + "\n");
 }
 
 nlohmann::json loadJson(const std::string& path) {

@@ -52,12 +52,18 @@ Polygon Polygon::fromVertices(std::vector<TPoint2D> v, const std::string& what) 
     const size_t n = v.size();
     if (n < 3)
         throw Error(what + ": a polygon needs at least 3 vertices, got " + std::to_string(n));
+    if (n > kMaxVertices)
+        throw Error(what + ": " + std::to_string(n) + " vertices, more than the " +
+                    std::to_string(kMaxVertices) + " mrloc takes");
     Polygon P;
     P.min_ = {std::numeric_limits<double>::infinity(), std::numeric_limits<double>::infinity()};
     P.max_ = -P.min_;
     for (size_t i = 0; i < n; ++i) {
         if (!std::isfinite(v[i].x) || !std::isfinite(v[i].y))
             throw Error(what + ": vertex " + std::to_string(i + 1) + " is not a finite number");
+        if (std::abs(v[i].x) > kMaxCoordinate || std::abs(v[i].y) > kMaxCoordinate)
+            throw Error(what + ": vertex " + std::to_string(i + 1) + " lies beyond " +
+                        std::to_string(int(kMaxCoordinate)) + " m of the origin");
         P.min_ = {std::min(P.min_.x, v[i].x), std::min(P.min_.y, v[i].y)};
         P.max_ = {std::max(P.max_.x, v[i].x), std::max(P.max_.y, v[i].y)};
     }
@@ -109,7 +115,11 @@ Polygon Polygon::load(const std::string& path) {
             throw Error(path + ":" + std::to_string(lineNo) + ": expected \"x y\", got \"" + line +
                         "\"");
         v.push_back({x, y});
+        if (v.size() > kMaxVertices)
+            throw Error(path + ":" + std::to_string(lineNo) + ": more than the " +
+                        std::to_string(kMaxVertices) + " vertices mrloc takes");
     }
+    if (in.bad()) throw Error("polygon map " + path + ": read error");
     return fromVertices(std::move(v), path);
 }
 

@@ -1,15 +1,25 @@
 #include <mrloc/common/Error.h>
 #include <mrloc/common/Rawlog.h>
+#include <mrloc/common/RawlogProbe.h>
 #include <mrpt/obs/CActionCollection.h>
 #include <mrpt/obs/CActionRobotMovement2D.h>
 #include <mrpt/obs/CObservationOdometry.h>
+#include <mrpt/maps/registerAllClasses.h>
+#include <mrpt/obs/registerAllClasses.h>
 #include <mrpt/serialization/CArchive.h>
 
+#include <cstring>
 #include <filesystem>
 
 namespace mrloc::common {
 
 using mrpt::obs::CObservation;
+
+bool storedFlag(const bool& flag) {
+    unsigned char byte;
+    std::memcpy(&byte, &flag, 1);
+    return byte != 0;
+}
 
 std::string robotOfLabel(const std::string& label) {
     const auto dot = label.find('.');
@@ -22,6 +32,19 @@ std::string sensorOfLabel(const std::string& label) {
 }
 
 RawlogReader::RawlogReader(const std::string& path) : path_(path) {
+    open();
+    probeRawlog(path);
+}
+
+RawlogReader::RawlogReader(const std::string& path, Unchecked) : path_(path) { open(); }
+
+void RawlogReader::open() {
+    // Every observation class, also those mrloc never names (a rawlog may hold any):
+    // mrpt-maps holds some (CObservationRotatingScan, CObservationPointCloud).
+    static const bool registered =
+        (mrpt::obs::registerAllClasses_mrpt_obs(), mrpt::maps::registerAllClasses_mrpt_maps(), true);
+    (void)registered;
+    const std::string& path = path_;
     std::error_code ec;
     if (!std::filesystem::is_regular_file(path, ec))
         throw Error("rawlog " + path + ": no such file");
@@ -43,12 +66,12 @@ void RawlogReader::absorbActions(const mrpt::serialization::CSerializable::Ptr& 
     odo->sensorLabel = kActionOdometryLabel;
     odo->timestamp = move->timestamp;
     odo->odometry = actionOdometry_;
-    if (move->hasEncodersInfo) {
+    if (storedFlag(move->hasEncodersInfo)) {
         odo->hasEncodersInfo = true;
         odo->encoderLeftTicks = move->encoderLeftTicks;
         odo->encoderRightTicks = move->encoderRightTicks;
     }
-    if (move->hasVelocities) {
+    if (storedFlag(move->hasVelocities)) {
         odo->hasVelocities = true;
         odo->velocityLocal = move->velocityLocal;
     }
@@ -62,13 +85,15 @@ bool RawlogReader::next(CObservation::Ptr& obs) {
         const uint64_t before = file_.getPosition();
         try {
             obj = archive.ReadObject();
+        } catch (const std::bad_alloc&) {
+            throw;  // a corrupt size: the probe names the entry and the memory cap
         } catch (const mrpt::serialization::CExceptionEOF&) {
             if (file_.getPosition() == before) return false;  // clean end between objects
             throw Error("rawlog " + path_ + ": truncated inside entry " +
                         std::to_string(entries_ + 1));
         } catch (const std::exception& e) {
             throw Error("rawlog " + path_ + ": cannot read entry " + std::to_string(entries_ + 1) +
-                        " (truncated or not a rawlog): " + e.what());
+                        " (truncated or not a rawlog): " + oneLine(e.what()));
         }
         ++entries_;
         if (!obj) continue;

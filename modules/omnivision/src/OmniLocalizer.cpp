@@ -168,7 +168,9 @@ const OmniResult& OmniLocalizer::result() const {
             throw Error("omnivision: no stopped pair gave the baseline L:" + why);
         }
     } else {
-        const auto& [na, nb] = options_.measuredPair;
+        // Named references, not a structured binding: C++17 lambdas cannot capture those.
+        const std::string& na = options_.measuredPair.first;
+        const std::string& nb = options_.measuredPair.second;
         const int a = index(na, "measured_pair"), b = index(nb, "measured_pair");
         const Snapshot s = snapshotAt(start + options_.snapshot, r.robots);
         const auto reading = std::find_if(lidar_.begin(), lidar_.end(), [&](const auto& l) {

@@ -41,7 +41,7 @@ void PolymapOptions::loadFromConfigFile(const mrpt::config::CConfigFileBase& src
     startSite = (int)s.integer("start_site", 1, 1, 1000000);
     if (!start && !mapFile.empty()) s.fail("start", "required with a map file (start = x y)");
     heading = s.real("heading", 0, -360, 360);
-    scanRays = (int)s.integer("scan_rays", 1440, 16, 1000000);
+    scanRays = (int)s.integer("scan_rays", 1440, 16, 100000);
     scanRangeSigma = s.real("scan_range_sigma", 0.005, 0, 10);
     scanMaxRange = s.real("scan_max_range", 100, 1e-3, 1e6);
     scanRate = s.real("scan_rate", 0, 0, 1000);

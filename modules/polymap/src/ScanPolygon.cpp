@@ -1,4 +1,5 @@
 #include <mrloc/common/Error.h>
+#include <mrloc/common/Rawlog.h>
 #include <mrloc/polymap/ScanPolygon.h>
 #include <mrpt/core/format.h>
 
@@ -97,7 +98,7 @@ VisibilityPolygon visibilityFromScan(const mrpt::obs::CObservation2DRangeScan& s
         const double r = scan.getScanRange(i);
         if (!std::isfinite(r) || r < 0)
             throw Error(what + mrpt::format(": beam %zu range is %g", i, r));
-        angle[i] = heading + scan.getScanAngle(i) * (scan.rightToLeft ? 1 : -1);
+        angle[i] = heading + scan.getScanAngle(i) * (common::storedFlag(scan.rightToLeft) ? 1 : -1);
         pts[i] = {r * std::cos(angle[i]), r * std::sin(angle[i])};
     }
     // Jumps: the gap to the next beam is larger than a wall at incidence breakAngle gives.

@@ -3,6 +3,11 @@
 #include <mrloc/report/Plots.h>
 #include <mrpt/core/format.h>
 
+#include <fcntl.h>
+#include <spawn.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
@@ -13,27 +18,58 @@
 
 namespace mrloc::report {
 
+namespace {
+
+/** A path inside a gnuplot single-quoted string, where a quote is written twice. */
+std::string gnuplotQuoted(const std::string& path) {
+    std::string q = "'";
+    for (char c : path) q += c == '\'' ? std::string("''") : std::string(1, c);
+    return q + "'";
+}
+
+/** Runs `gnuplot script` with stderr into `errPath`; its exit status. Spawned directly, not
+ *  through std::system: no shell to quote paths for, and std::system would ignore SIGINT
+ *  while gnuplot runs, so Ctrl-C would not end mrloc. */
+int spawnGnuplot(const std::string& script, const std::string& errPath) {
+    posix_spawn_file_actions_t actions;
+    posix_spawn_file_actions_init(&actions);
+    posix_spawn_file_actions_addopen(&actions, STDERR_FILENO, errPath.c_str(),
+                                     O_WRONLY | O_CREAT | O_TRUNC, 0644);
+    std::string program = "gnuplot";
+    char* argv[] = {program.data(), const_cast<char*>(script.c_str()), nullptr};
+    pid_t pid = 0;
+    const int rc = posix_spawnp(&pid, "gnuplot", &actions, nullptr, argv, environ);
+    posix_spawn_file_actions_destroy(&actions);
+    if (rc != 0) return -1;
+    int status = 0;
+    while (waitpid(pid, &status, 0) < 0)
+        if (errno != EINTR) return -1;
+    return WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+}
+
+}  // namespace
+
 void runGnuplot(const std::string& body, const std::string& pngPath, const std::string& size) {
     common::PendingFile out(pngPath);
-    const std::string script = out.tempPath() + ".gp";
+    // Temporaries that are never committed: removed when done, or by a signal meanwhile.
+    common::PendingFile script(out.tempPath() + ".gp", ""), err(out.tempPath() + ".err", "");
     {
-        std::ofstream s(script);
+        std::ofstream s(script.tempPath());
         s << "set terminal pngcairo size " << size << " font 'Sans,11'\n"
-          << "set output '" << out.tempPath() << "'\n"
+          << "set output " << gnuplotQuoted(out.tempPath()) << "\n"
           << "set grid\nset key top left\n"
           << body;
+        if (!s) throw Error("cannot write " + script.tempPath());
     }
-    const std::string cmd = "gnuplot '" + script + "' 2>'" + script + ".err'";
-    const int rc = std::system(cmd.c_str());
-    std::string err;
+    const int rc = spawnGnuplot(script.tempPath(), err.tempPath());
+    std::string message;
     {
-        std::ifstream e(script + ".err");
-        std::getline(e, err, '\0');
+        std::ifstream e(err.tempPath());
+        std::getline(e, message, '\0');
     }
-    std::filesystem::remove(script);
-    std::filesystem::remove(script + ".err");
     if (rc != 0)
-        throw Error("gnuplot failed for " + pngPath + " (is gnuplot-nox installed?): " + err);
+        throw Error("gnuplot failed for " + pngPath + " (is gnuplot-nox installed?): " +
+                    oneLine(message));
     out.commit();
 }
 

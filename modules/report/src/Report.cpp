@@ -82,7 +82,8 @@ std::string cell(const nlohmann::json& v) {
         for (const auto& e : v) out += (out.empty() ? "" : ", ") + cell(e);
         return out.empty() ? "none" : out;
     }
-    return html(v.is_string() ? v.get<std::string>() : v.dump());
+    return html(v.is_string() ? v.get<std::string>()
+                              : v.dump(-1, ' ', false, nlohmann::json::error_handler_t::replace));
 }
 
 /** Reads the run directory: metrics, effective.ini, estimates and truth. */

@@ -6,7 +6,7 @@
 #include <mrpt/opengl/CFBORender.h>
 #include <mrpt/opengl/CGridPlaneXY.h>
 #include <mrpt/opengl/CSetOfLines.h>
-#include <mrpt/opengl/CSphere.h>
+#include <mrpt/opengl/CDisk.h>
 
 #include <algorithm>
 #include <cmath>
@@ -14,6 +14,13 @@
 namespace mrloc::report {
 
 using namespace mrpt::opengl;
+
+namespace {
+/** A marker seen from above. A disk, not a CSphere: CSphere's constructor, inline in MRPT's
+ *  header, touches its virtual base at an address misaligned for the base's 32-byte alignment
+ *  (undefined behaviour, fatal under UBSan; doc/hardening.md). */
+CDisk::Ptr disk(float radius) { return CDisk::Create(radius, 0.0f); }
+}  // namespace
 
 namespace {
 
@@ -131,7 +138,7 @@ void renderTopView(const TopViewContent& c, const std::string& pngPath, unsigned
     // Landmarks (beacons on the ceiling, say) drawn at floor level so paths stay visible.
     const mrpt::img::TColor landmarkColour{30, 90, 220};
     for (const auto& b : c.landmarks) {
-        auto s = CSphere::Create(0.06f);
+        auto s = disk(0.06f);
         s->setLocation(b.x, b.y, 0.05);
         s->setColor_u8(landmarkColour);
         scene.insert(s);
@@ -151,7 +158,7 @@ void renderTopView(const TopViewContent& c, const std::string& pngPath, unsigned
         const bool still = gt != c.groundTruth.end() ? standsStill(gt->second) : standsStill(est);
         const auto marker = [&](const mrpt::poses::CPose3D& p, float radius, float z,
                                 mrpt::img::TColor col) {
-            auto s = CSphere::Create(radius);
+            auto s = disk(radius);
             s->setLocation(p.x(), p.y(), z);
             s->setColor_u8(col);
             scene.insert(s);

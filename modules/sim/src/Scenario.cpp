@@ -3,6 +3,7 @@
 #include <mrloc/sim/Scenario.h>
 #include <mrpt/core/format.h>
 
+#include <algorithm>
 #include <set>
 #include <sstream>
 
@@ -12,12 +13,17 @@ void ScenarioOptions::loadFromConfigFile(const mrpt::config::CConfigFileBase& sr
                                          const std::string& section) {
     common::IniSection s(src, section);
     name = s.text("name", "run");
-    if (name.empty() || name.find_first_of("/\\ ") != std::string::npos)
-        s.fail("name", "must be a non-empty file name without '/' or spaces");
+    if (name.empty() || name.find_first_of("/\\ ") != std::string::npos ||
+        std::any_of(name.begin(), name.end(), [](unsigned char c) { return c < 0x20 || c == 0x7f; }))
+        s.fail("name", "must be a non-empty file name without '/', spaces or control characters");
     method = s.text("method", "beacons");
     seed = (unsigned long)s.integer("seed", 1, 0, 4294967295L);
     duration = s.real("duration", 60, 1e-3, 1e6);
     dt = s.real("dt", 0.01, 1e-4, 1.0);
+    if (duration / dt > kMaxSteps)
+        s.fail("dt", mrpt::format("duration / dt = %.3g simulation steps, more than the %.3g "
+                                  "allowed: a longer dt or a shorter duration",
+                                  duration / dt, kMaxSteps));
     startTime = s.real("start_time", 1.7e9, 1.0, 4e9);
     groundTruthRate = s.real("ground_truth_rate", 20, 0.1, 1000);
     robots.clear();
@@ -28,6 +34,8 @@ void ScenarioOptions::loadFromConfigFile(const mrpt::config::CConfigFileBase& sr
         if (!seen.insert(r).second) s.fail("robots", "robot '" + r + "' is listed twice");
         robots.push_back(r);
     }
+    if (robots.size() > kMaxRobots)
+        s.fail("robots", "more than " + std::to_string(kMaxRobots) + " robots");
     s.finish();
 }
 

@@ -2,6 +2,7 @@
 #include <mrloc/sim/World.h>
 #include <mrpt/core/format.h>
 
+#include <algorithm>
 #include <cmath>
 
 namespace mrloc::sim {
@@ -14,8 +15,16 @@ void WorldOptions::loadFromConfigFile(const mrpt::config::CConfigFileBase& src,
     const auto size = s.reals("size", {sizeX, sizeY, height}, 3);
     for (int i = 0; i < 3; ++i)
         if (!(size[i] > 0)) s.fail("size", "every extent must be positive");
+    if (size[0] > kMaxSide || size[1] > kMaxSide || size[2] > kMaxHeight)
+        s.fail("size", mrpt::format("at most %g x %g x %g m", kMaxSide, kMaxSide, kMaxHeight));
     sizeX = size[0], sizeY = size[1], height = size[2];
     resolution = s.real("resolution", 0.05, 0.005, 1.0);
+    // OctoMap addresses a voxel with 16-bit keys centred on the origin.
+    const double octomapReach = 32000 * resolution;
+    if (std::max({sizeX, sizeY, height}) + resolution > octomapReach)
+        s.fail("size", mrpt::format("beyond OctoMap's reach of %g m at resolution %g m: "
+                                    "use a coarser resolution",
+                                    octomapReach, resolution));
     s.allowPrefix("obstacle_");
     obstacles.clear();
     for (const auto& key : s.keys()) {
@@ -23,8 +32,15 @@ void WorldOptions::loadFromConfigFile(const mrpt::config::CConfigFileBase& src,
         const auto v = s.reals(key, {}, 6);
         if (v[0] >= v[3] || v[1] >= v[4] || v[2] >= v[5])
             s.fail(key, "expected xmin ymin zmin xmax ymax zmax with min < max");
-        obstacles.push_back({key.substr(9), {v[0], v[1], v[2]}, {v[3], v[4], v[5]}});
+        Box b{key.substr(9), {v[0], v[1], v[2]}, {v[3], v[4], v[5]}};
+        if (!contains(b.min, resolution) || !contains(b.max, resolution))
+            s.fail(key, "the obstacle must lie inside the world (size)");
+        obstacles.push_back(b);
     }
+    if (filledVoxels() > kMaxVoxels)
+        s.fail("resolution", mrpt::format("walls and obstacles would fill %.3g voxels, more than "
+                                          "the %.3g allowed: use a coarser resolution",
+                                          filledVoxels(), kMaxVoxels));
     s.finish();
 }
 
@@ -36,6 +52,15 @@ void WorldOptions::saveToConfigFile(mrpt::config::CConfigFileBase& t,
         t.write(section, "obstacle_" + b.name,
                 mrpt::format("%g %g %g %g %g %g", b.min.x, b.min.y, b.min.z, b.max.x, b.max.y,
                              b.max.z));
+}
+
+double WorldOptions::filledVoxels() const {
+    const double r = resolution;
+    auto cells = [r](double extent) { return std::ceil(extent / r) + 1; };
+    double n = 2 * (cells(sizeX) + cells(sizeY)) * cells(height);  // the four walls
+    for (const auto& b : obstacles)
+        n += cells(b.max.x - b.min.x) * cells(b.max.y - b.min.y) * cells(b.max.z - b.min.z);
+    return n;
 }
 
 bool WorldOptions::contains(const TPoint3D& p, double m) const {

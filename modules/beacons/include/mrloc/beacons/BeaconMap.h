@@ -20,7 +20,17 @@ namespace mrloc::beacons {
 
 using common::IniSection;
 
-using BeaconMap = std::map<int, mrpt::math::TPoint3D>;  ///< beacon ID -> position
+/** A beacon's position. MRPT packs TPoint3D to 1-byte alignment, so in a std::map<int,
+ *  TPoint3D> its doubles sit at offset 4 of the node and every read of them is a misaligned
+ *  load (undefined behaviour, fatal under UBSan). This keeps the doubles 8-byte aligned and
+ *  converts to TPoint3D wherever MRPT wants one. */
+struct alignas(alignof(double)) BeaconPosition : mrpt::math::TPoint3D {
+    using mrpt::math::TPoint3D::TPoint3D;
+    BeaconPosition() = default;
+    BeaconPosition(const mrpt::math::TPoint3D& p) : mrpt::math::TPoint3D(p) {}
+};
+
+using BeaconMap = std::map<int, BeaconPosition>;  ///< beacon ID -> position
 
 inline constexpr const char* kMrptLandmarksSection = "MetricMap_landmarksMap_00_creationOpts";
 

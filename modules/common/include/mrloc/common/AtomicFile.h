@@ -26,6 +26,26 @@ class PendingFile {
  private:
     std::string final_, temp_;
     bool committed_ = false;
+    int slot_ = -1;  // the signal handler's entry for temp_ (or for final_ inside a run)
+};
+
+/** Installs SIGINT and SIGTERM handlers that remove every temporary of a live PendingFile,
+ *  the files a guarded run committed so far and the directory it created (RunOutputs), then
+ *  exit with 128 + the signal (130, 143). */
+void installSignalCleanup();
+
+/** While one of these lives, files committed by PendingFile belong to a run that is not
+ *  finished yet: a signal removes them too, and so does the destructor unless keep() was
+ *  called. `createdDir`, if not empty, is the run's directory, made by the run, removed
+ *  (if empty) after its files on a signal. */
+class RunOutputs {
+ public:
+    explicit RunOutputs(const std::string& createdDir = "");
+    ~RunOutputs();
+    RunOutputs(const RunOutputs&) = delete;
+    RunOutputs& operator=(const RunOutputs&) = delete;
+    /** The run finished: its files stay. */
+    void keep();
 };
 
 /** Creates a directory and its parents; an error names the directory. */

@@ -10,4 +10,8 @@ class Error : public std::runtime_error {
     explicit Error(const std::string& what) : std::runtime_error(what) {}
 };
 
+/** An exception's text on one line. MRPT's exceptions span many lines (a banner, nested
+ *  "Message:" lines, a location and a call stack); of those the innermost message is kept. */
+std::string oneLine(const std::string& what);
+
 }  // namespace mrloc

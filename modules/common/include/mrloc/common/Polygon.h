@@ -33,7 +33,12 @@ class Polygon {
  public:
     enum class Where { Outside, Inside, Boundary };
 
-    /** Validates (at least 3 finite vertices, none repeated, no zero-width spike, no two
+    /** Upper bounds (doc/errors.md): validation costs O(n^2), about 5 s at kMaxVertices;
+     *  coordinates beyond kMaxCoordinate (m) leave too few bits for the tolerances. */
+    static constexpr size_t kMaxVertices = 20000;
+    static constexpr double kMaxCoordinate = 1e6;
+
+    /** Validates (3 to kMaxVertices finite vertices within kMaxCoordinate, none repeated, no zero-width spike, no two
      *  edges crossing or touching) and reorients clockwise input. `what` names the source
      *  in errors, e.g. "maps/x.poly". Throws mrloc::Error. */
     static Polygon fromVertices(std::vector<TPoint2D> vertices, const std::string& what);

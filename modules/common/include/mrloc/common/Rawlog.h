@@ -27,13 +27,27 @@ std::string robotOfLabel(const std::string& sensorLabel);
 /** Sensor part of the label: "r1.beacons" -> "beacons"; no dot -> the whole label. */
 std::string sensorOfLabel(const std::string& sensorLabel);
 
+/** A bool member of a deserialized MRPT object, read safely. MRPT's deserializer copies the
+ *  file's byte into the bool, and MRPT's own example rawlogs hold 8 or 249 there
+ *  (hasEncodersInfo in localization_demo.rawlog and uwb_ro-localization_demo.rawlog).
+ *  Loading such a bool is undefined behaviour; its byte is read instead, non-zero meaning
+ *  true as the writer meant it. */
+bool storedFlag(const bool& flag);
+
 /** Label given to odometry synthesised from CActionRobotMovement2D. */
 inline constexpr const char* kActionOdometryLabel = "odometry";
 
 class RawlogReader {
  public:
-    /** Opens the file; throws mrloc::Error if it is missing or not a rawlog. */
+    /** Opens the file after checking all of it (probeRawlog: gzip stream, every entry
+     *  deserialized in an isolated process); throws mrloc::Error if it is missing, corrupt,
+     *  truncated or not a rawlog. */
     explicit RawlogReader(const std::string& path);
+
+    /** Opens the file without the check: the probe's own child, which is the isolation. */
+    struct Unchecked {};
+    static constexpr Unchecked kUnchecked{};
+    RawlogReader(const std::string& path, Unchecked);
 
     /** Next observation in file order; false at the clean end of the file. Throws
      *  mrloc::Error naming the file and entry on a truncated or corrupt file or on an
@@ -46,6 +60,7 @@ class RawlogReader {
     const std::string& path() const { return path_; }
 
  private:
+    void open();
     void absorbActions(const mrpt::serialization::CSerializable::Ptr& obj);
 
     std::string path_;

@@ -13,6 +13,9 @@ namespace mrloc::sim {
 
 /** Section [scenario]. */
 struct ScenarioOptions : public mrpt::config::CLoadableOptions {
+    /** Upper bounds (doc/errors.md): 1e7 steps is 28 h at the default 10 ms step. */
+    static constexpr double kMaxSteps = 1e7;
+    static constexpr size_t kMaxRobots = 1000;
     std::string name = "run";        ///< names the output folder and files
     std::string method = "beacons";  ///< localization method (registry name)
     unsigned long seed = 1;

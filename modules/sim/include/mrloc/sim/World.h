@@ -19,6 +19,14 @@ struct Box {
 
 /** Section [world]. */
 struct WorldOptions : public mrpt::config::CLoadableOptions {
+    /** Upper bounds that keep building the world finite and quick (doc/errors.md): a room
+     *  of at most 1 km x 1 km x 100 m, at most kMaxVoxels voxels filled (walls + obstacles,
+     *  a few seconds), and every point inside OctoMap's 16-bit key range. */
+    static constexpr double kMaxSide = 1000, kMaxHeight = 100;
+    static constexpr double kMaxVoxels = 1e7;
+    /** Voxels the walls and obstacles fill. */
+    double filledVoxels() const;
+
     double sizeX = 5, sizeY = 5, height = 2.5;  ///< room extent (m)
     double resolution = 0.05;                   ///< OcTree voxel size (m)
     std::vector<Box> obstacles;                 ///< obstacle_<name> = xmin ymin zmin xmax ymax zmax

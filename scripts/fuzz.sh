@@ -1,0 +1,57 @@
+#!/usr/bin/env bash
+# Runs mrloc's libFuzzer targets (tests/fuzz) from the sanitized clang build (build-asan/).
+#   scripts/fuzz.sh [SECONDS_PER_TARGET=600] [TARGET...]    targets: rawlog ini poly
+# Seeds: rawlogs/, config/, maps/, tests/data/bad-inputs/ and MRPT's example datasets and INIs.
+# The corpus grows in build-asan/fuzz/corpus/<target>; a crash, a leak of a non-mrloc
+# exception, a timeout or an out-of-memory is written to build-asan/fuzz/findings/ and makes
+# this script fail. CI runs it briefly after the sanitized tests; see doc/hardening.md.
+set -euo pipefail
+cd "$(dirname "$0")/.."
+seconds="${1:-600}"
+shift || true
+targets=("$@")
+[ ${#targets[@]} -eq 0 ] && targets=(rawlog ini poly)
+
+if [ ! -f build-asan/CMakeCache.txt ]; then
+  CXX=clang++ cmake -S . -B build-asan -DCMAKE_BUILD_TYPE=Release \
+    -DCMAKE_CXX_FLAGS_RELEASE="-O1 -DNDEBUG" -DMRLOC_SANITIZE=ON >/dev/null
+fi
+cmake --build build-asan -j "$(nproc)" --target "${targets[@]/#/fuzz_}" 2>&1 |
+  grep -v -E '^\[ *[0-9]+%\] (Building|Linking|Built)' || true
+test "${PIPESTATUS[0]}" -eq 0
+
+root="$PWD"
+work="$root/build-asan/fuzz"
+mkdir -p "$work/findings"
+seeds() {  # the seed files of a target, one per line
+  case "$1" in
+    rawlog) ls "$root"/rawlogs/*.rawlog /usr/share/mrpt/datasets/*.rawlog \
+              "$root"/tests/data/bad-inputs/*.rawlog* 2>/dev/null ;;
+    ini)    ls "$root"/config/*.ini "$root"/tests/data/bad-inputs/*.ini 2>/dev/null
+            find /usr/share/mrpt/config_files -name '*.ini' 2>/dev/null | head -40 ;;
+    poly)   ls "$root"/maps/*.poly "$root"/tests/data/bad-inputs/*.poly 2>/dev/null ;;
+  esac
+}
+max_len() {
+  case "$1" in rawlog) echo 1048576 ;; ini) echo 16384 ;; poly) echo 65536 ;; esac
+}
+
+status=0
+for t in "${targets[@]}"; do
+  corpus="$work/corpus/$t" seed_dir="$work/seeds/$t"
+  mkdir -p "$corpus" "$seed_dir"
+  i=0
+  while IFS= read -r f; do cp "$f" "$seed_dir/seed_$((i++))"; done < <(seeds "$t")
+  echo "fuzz_$t: ${seconds} s, $(ls "$seed_dir" | wc -l) seeds, corpus $(ls "$corpus" | wc -l)" >&2
+  # The INI target reads its paths (map = maps/...) from the project's root.
+  if ! (cd "$root" && "$root/build-asan/tests/fuzz/fuzz_$t" "$corpus" "$seed_dir" \
+          -max_total_time="$seconds" -max_len="$(max_len "$t")" -timeout=60 \
+          -rss_limit_mb=4096 -print_final_stats=1 -close_fd_mask=1 \
+          -artifact_prefix="$work/findings/${t}-" 2> "$work/$t.log"); then
+    echo "fuzz_$t: FINDING (log: $work/$t.log, inputs: $work/findings/)" >&2
+    tail -40 "$work/$t.log" >&2
+    status=1
+  fi
+  grep -E '^stat::number_of_executed_units|^stat::peak_rss_mb|^Done [0-9]+ runs' "$work/$t.log" >&2 || true
+done
+exit $status

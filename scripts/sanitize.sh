@@ -1,0 +1,18 @@
+#!/usr/bin/env bash
+# Builds mrloc with clang, AddressSanitizer + UndefinedBehaviorSanitizer (every finding
+# fatal) and libFuzzer's coverage into build-asan/, and runs the whole test suite in it. CI
+# calls this after the Release tests; scripts/fuzz.sh runs the fuzz targets of this build.
+# Suppressions and their reasons: doc/hardening.md.
+set -euo pipefail
+cd "$(dirname "$0")/.."
+if [ ! -f build-asan/CMakeCache.txt ]; then
+  # -O1: quicker to build than -O3, and sanitizer reports keep their line numbers.
+  CXX=clang++ cmake -S . -B build-asan -DCMAKE_BUILD_TYPE=Release \
+    -DCMAKE_CXX_FLAGS_RELEASE="-O1 -DNDEBUG" -DMRLOC_SANITIZE=ON >/dev/null
+fi
+cmake --build build-asan -j "$(nproc)" 2>&1 | grep -v -E '^\[ *[0-9]+%\] (Building|Linking|Built)' || true
+test "${PIPESTATUS[0]}" -eq 0
+export ASAN_OPTIONS="halt_on_error=1:detect_leaks=0:abort_on_error=0:${ASAN_OPTIONS:-}"
+export UBSAN_OPTIONS="halt_on_error=1:print_stacktrace=1:${UBSAN_OPTIONS:-}"
+cd build-asan
+ctest --output-on-failure -j "$(nproc)" "$@"

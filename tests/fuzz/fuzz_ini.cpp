@@ -1,0 +1,33 @@
+// Fuzzes the INI reader as `simulate`, `localize` and `run` use it before writing anything:
+// the line checks, MRPT's parser, every registered method's options, the scenario (world,
+// robots, maps) and effective.ini. Any input must be accepted or refused with mrloc::Error,
+// in bounded time and memory.
+#include <mrloc/beacons/BeaconsMethod.h>
+#include <mrloc/common/Error.h>
+#include <mrloc/omnivision/OmniMethod.h>
+#include <mrloc/polymap/PolymapMethod.h>
+
+#include "Commands.h"
+#include "FuzzInput.h"
+
+namespace {
+const mrloc::method::Registry& registry() {
+    static const mrloc::method::Registry r = [] {
+        mrloc::method::Registry r;
+        mrloc::beacons::registerMethod(r);
+        mrloc::polymap::registerMethod(r);
+        mrloc::omnivision::registerMethod(r);
+        return r;
+    }();
+    return r;
+}
+}  // namespace
+
+extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
+    const std::string& path = mrloc::fuzz::writeInput(data, size, ".ini");
+    try {
+        mrloc::app::checkIni(registry(), path);
+    } catch (const mrloc::Error&) {
+    }
+    return 0;
+}
