@@ -9,6 +9,17 @@
 #include <unistd.h>
 #include <zlib.h>
 
+#if defined(__SANITIZE_ADDRESS__)
+#define MRLOC_HAS_SANITIZER 1
+#elif defined(__has_feature)
+#if __has_feature(address_sanitizer)
+#define MRLOC_HAS_SANITIZER 1
+#endif
+#endif
+#if MRLOC_HAS_SANITIZER
+#include <sanitizer/common_interface_defs.h>
+#endif
+
 #include <cstdio>
 #include <cstdlib>
 #include <cstring>
@@ -111,8 +122,12 @@ size_t memoryLimitOf(const RawlogProbeLimits& limits) {
 [[noreturn]] void runChild(const std::string& path, size_t memoryLimit, double cpuSeconds,
                            ProbeState* state) {
     // A signal ends the child plainly; the parent, signalled too, removes its own outputs.
-    signal(SIGINT, SIG_DFL);
-    signal(SIGTERM, SIG_DFL);
+    // A crash ends it plainly too: no handler inherited from the parent (a sanitizer's or a
+    // fuzzer's, which would report the crash of MRPT's code as the parent's) runs here.
+    for (int sig : {SIGINT, SIGTERM, SIGSEGV, SIGBUS, SIGFPE, SIGILL, SIGABRT}) signal(sig, SIG_DFL);
+#if MRLOC_HAS_SANITIZER
+    __sanitizer_set_death_callback(nullptr);
+#endif
     // MRPT and the sanitizers print what they find on stderr; the parent reports it in one
     // line instead.
     if (!std::getenv("MRLOC_PROBE_VERBOSE")) {
