@@ -1,15 +1,10 @@
-// mrloc: localization of low-cost mobile robots and robot teams on MRPT. One line per
-// method: the rest of the program knows none of them by name.
-#include <mrloc/beacons/BeaconsMethod.h>
-#include <mrloc/omnivision/OmniMethod.h>
-#include <mrloc/polymap/PolymapMethod.h>
-
+// mrloc: localization of low-cost mobile robots and robot teams on MRPT. The methods are
+// registered in AllMethods.cpp, one line each.
+#include "AllMethods.h"
 #include "Commands.h"
 
 int main(int argc, char** argv) {
     mrloc::method::Registry registry;
-    mrloc::beacons::registerMethod(registry);
-    mrloc::polymap::registerMethod(registry);
-    mrloc::omnivision::registerMethod(registry);
+    mrloc::app::registerAllMethods(registry);
     return mrloc::app::main(registry, argc, argv);
 }

@@ -2,11 +2,9 @@
 // the line checks, MRPT's parser, every registered method's options, the scenario (world,
 // robots, maps) and effective.ini. Any input must be accepted or refused with mrloc::Error,
 // in bounded time and memory.
-#include <mrloc/beacons/BeaconsMethod.h>
 #include <mrloc/common/Error.h>
-#include <mrloc/omnivision/OmniMethod.h>
-#include <mrloc/polymap/PolymapMethod.h>
 
+#include "AllMethods.h"
 #include "Commands.h"
 #include "FuzzInput.h"
 
@@ -14,9 +12,7 @@ namespace {
 const mrloc::method::Registry& registry() {
     static const mrloc::method::Registry r = [] {
         mrloc::method::Registry r;
-        mrloc::beacons::registerMethod(r);
-        mrloc::polymap::registerMethod(r);
-        mrloc::omnivision::registerMethod(r);
+        mrloc::app::registerAllMethods(r);
         return r;
     }();
     return r;
