@@ -59,8 +59,10 @@ BENCHMARK(BM_Fix3D_Range)->Arg(4)->Arg(8);
 BENCHMARK(BM_Fix3D_SquaredRange_Seed001)->Arg(4)->Arg(8);
 BENCHMARK(BM_Fix2D_Range)->Arg(4)->Arg(8);
 
-// Playback: read a 200,000-observation rawlog (beacon ranges, 4 beacons each).
-void BM_RawlogPlayback(benchmark::State& state) {
+// Playback: read a 200,000-observation rawlog (beacon ranges, 4 beacons each), as every
+// command does (checked first: the gzip stream, then every entry in an isolated child), and,
+// for comparison, unchecked. Wall-clock time: the check runs in another process.
+void playback(benchmark::State& state, bool checked) {
     const std::string path =
         (std::filesystem::temp_directory_path() / "mrloc_bench_playback.rawlog").string();
     const size_t n = 200000;
@@ -81,7 +83,8 @@ void BM_RawlogPlayback(benchmark::State& state) {
         w.commit();
     }
     for (auto _ : state) {
-        common::RawlogReader r(path);
+        auto r = checked ? common::RawlogReader(path)
+                         : common::RawlogReader(path, common::RawlogReader::kUnchecked);
         size_t count = 0;
         for (mrpt::obs::CObservation::Ptr o; r.next(o);) ++count;
         if (count != n) state.SkipWithError("wrong count");
@@ -91,7 +94,10 @@ void BM_RawlogPlayback(benchmark::State& state) {
         benchmark::Counter(double(state.iterations() * n), benchmark::Counter::kIsRate);
     std::filesystem::remove(path);
 }
-BENCHMARK(BM_RawlogPlayback)->Unit(benchmark::kMillisecond);
+void BM_RawlogPlayback(benchmark::State& state) { playback(state, true); }
+void BM_RawlogPlaybackUnchecked(benchmark::State& state) { playback(state, false); }
+BENCHMARK(BM_RawlogPlayback)->Unit(benchmark::kMillisecond)->UseRealTime();
+BENCHMARK(BM_RawlogPlaybackUnchecked)->Unit(benchmark::kMillisecond)->UseRealTime();
 
 }  // namespace
 

@@ -25,7 +25,9 @@
 #include <cstring>
 #include <filesystem>
 #include <fstream>
+#include <atomic>
 #include <new>
+#include <thread>
 #include <vector>
 
 namespace mrloc::common {
@@ -164,7 +166,6 @@ size_t memoryLimitOf(const RawlogProbeLimits& limits) {
 }  // namespace
 
 size_t probeRawlog(const std::string& path, const RawlogProbeLimits& limits) {
-    checkGzipFile(path, "rawlog");
     const size_t memoryLimit = memoryLimitOf(limits);
     std::error_code ec;
     const double cpuSeconds =
@@ -184,6 +185,26 @@ size_t probeRawlog(const std::string& path, const RawlogProbeLimits& limits) {
     if (pid < 0) throw Error("rawlog " + path + ": cannot fork to check it");
     if (pid == 0) runChild(path, memoryLimit, cpuSeconds, state);
 
+    // The gzip stream is checked meanwhile, on a second thread (after the fork: a child
+    // forked from a threaded process inherits only the forking thread). Its error comes first:
+    // a corrupt stream also makes the child's entries look truncated.
+    std::exception_ptr gzipError;
+    std::atomic<bool> gzipFailed{false};
+    std::thread gzipCheck([&] {
+        try {
+            checkGzipFile(path, "rawlog");
+        } catch (...) {
+            gzipError = std::current_exception();
+            gzipFailed.store(true);
+        }
+    });
+    struct Join {
+        std::thread& t;
+        ~Join() {
+            if (t.joinable()) t.join();
+        }
+    } join{gzipCheck};
+
     // The address-space cap turns a huge allocation into bad_alloc with glibc's allocator;
     // AddressSanitizer's allocator serves from space reserved up front, which the cap does
     // not see. So the parent also watches the child's resident memory and stops it there.
@@ -195,6 +216,11 @@ size_t probeRawlog(const std::string& path, const RawlogProbeLimits& limits) {
         const pid_t done = waitpid(pid, &status, WNOHANG);
         if (done == pid) break;
         if (done < 0 && errno != EINTR) throw Error("rawlog " + path + ": lost the checking process");
+        if (gzipFailed.load()) {  // the child's verdict no longer matters
+            kill(pid, SIGKILL);
+            waitpid(pid, &status, 0);
+            break;
+        }
         size_t pages = 0, resident = 0;
         std::ifstream(statm) >> pages >> resident;
         if (resident * pageSize > memoryLimit) {
@@ -205,6 +231,8 @@ size_t probeRawlog(const std::string& path, const RawlogProbeLimits& limits) {
         }
         usleep(2000);
     }
+    gzipCheck.join();
+    if (gzipError) std::rethrow_exception(gzipError);
     if (state->finished == 1 && WIFEXITED(status) && WEXITSTATUS(status) == 0)
         return state->entriesDone;
     if (state->finished == 2) throw Error(std::string(state->message));
