@@ -5,6 +5,7 @@
 # The corpus grows in build-asan/fuzz/corpus/<target>; a crash, a leak of a non-mrloc
 # exception, a timeout or an out-of-memory is written to build-asan/fuzz/findings/ and makes
 # this script fail. CI runs it briefly after the sanitized tests; see doc/hardening.md.
+# MRLOC_FUZZ_FLAGS adds libFuzzer flags (CI: -detect_leaks=0).
 set -euo pipefail
 cd "$(dirname "$0")/.."
 seconds="${1:-600}"
@@ -52,7 +53,7 @@ for t in "${targets[@]}"; do
   if ! (cd "$root" && "$root/build-asan/tests/fuzz/fuzz_$t" "$corpus" "$seed_dir" \
           -max_total_time="$seconds" -max_len="$(max_len "$t")" -timeout=60 \
           -rss_limit_mb=4096 -malloc_limit_mb="$(malloc_limit "$t")" -print_final_stats=1 -close_fd_mask=1 \
-          -artifact_prefix="$work/findings/${t}-" 2> "$work/$t.log"); then
+          -artifact_prefix="$work/findings/${t}-" ${MRLOC_FUZZ_FLAGS:-} 2> "$work/$t.log"); then
     echo "fuzz_$t: FINDING (log: $work/$t.log, inputs: $work/findings/)" >&2
     tail -40 "$work/$t.log" >&2
     status=1
