@@ -28,26 +28,37 @@ namespace fs = std::filesystem;
 
 namespace {
 
-/** Opens an INI and rejects lower-case sections that no registered method nor the
- *  framework owns (a misspelt section would otherwise be ignored). Sections of MRPT's apps
- *  start with upper case and are left alone. */
-std::unique_ptr<mrpt::config::CConfigFile> openIni(const std::string& path,
-                                                   const method::Registry& registry) {
+/** mrloc's sections are the lower-case ones; MRPT's apps name theirs in upper case. */
+bool ownedByMrloc(const std::string& section) {
+    return !section.empty() && std::islower(static_cast<unsigned char>(section[0]));
+}
+
+/** The INI's bytes, as read once: checked, parsed and copied into config.ini from these. */
+std::string readIniText(const std::string& path) {
     if (!fs::is_regular_file(path)) throw Error("config " + path + ": no such file");
     std::ifstream file(path, std::ios::binary);
     std::stringstream text;
     text << file.rdbuf();
     if (!file) throw Error("config " + path + ": cannot read");
-    // mrloc's sections (lower case) are checked line by line; MRPT's are left as MRPT reads them.
-    common::lintIni(text.str(), path, [](const std::string& section) {
-        return section.empty() || std::islower(static_cast<unsigned char>(section[0]));
+    return text.str();
+}
+
+/** Opens an INI and rejects lower-case sections that no registered method nor the
+ *  framework owns (a misspelt section would otherwise be ignored). Sections of MRPT's apps
+ *  start with upper case and are left alone. */
+std::unique_ptr<mrpt::config::CConfigFile> openIni(const std::string& path,
+                                                   const std::string& text,
+                                                   const method::Registry& registry) {
+    // mrloc's sections are checked line by line; MRPT's are left as MRPT reads them.
+    common::lintIni(text, path, [](const std::string& section) {
+        return section.empty() || ownedByMrloc(section);
     });
     auto ini = std::make_unique<mrpt::config::CConfigFile>(path);
     std::vector<std::string> sections;
     ini->getAllSections(sections);
     const auto known = registry.sections();
     for (const auto& s : sections) {
-        if (s.empty() || !std::islower(static_cast<unsigned char>(s[0]))) continue;
+        if (!ownedByMrloc(s)) continue;
         if (std::find(known.begin(), known.end(), s) != known.end() || s.rfind("robot.", 0) == 0)
             continue;
         std::string list;
@@ -77,6 +88,7 @@ std::string commandLine(int argc, char** argv) {
 /** Everything one INI asks for, read and validated before anything is written. */
 struct Setup {
     std::string iniPath;
+    std::string iniText;  ///< the file as read, copied to config.ini
     std::unique_ptr<mrpt::config::CConfigFile> ini;
     sim::ScenarioOptions scenario;  ///< [scenario], with --seed applied
     const method::Method* method = nullptr;
@@ -87,26 +99,11 @@ struct Setup {
 };
 
 Setup loadSetupUnguarded(const method::Registry& registry, const std::string& iniPath,
-                         std::optional<long> seed, bool needSimulation);
-
-/** Everything read from an INI fails as mrloc::Error naming the INI: MRPT's parser throws its
- *  own exceptions (a `$env{` without its `}`, say), without the file's name. */
-Setup loadSetup(const method::Registry& registry, const std::string& iniPath,
-                std::optional<long> seed, bool needSimulation) {
-    try {
-        return loadSetupUnguarded(registry, iniPath, seed, needSimulation);
-    } catch (const Error&) {
-        throw;
-    } catch (const std::exception& e) {
-        throw Error(iniPath + ": " + oneLine(e.what()));
-    }
-}
-
-Setup loadSetupUnguarded(const method::Registry& registry, const std::string& iniPath,
                          std::optional<long> seed, bool needSimulation) {
     Setup s;
     s.iniPath = iniPath;
-    s.ini = openIni(iniPath, registry);
+    s.iniText = readIniText(iniPath);
+    s.ini = openIni(iniPath, s.iniText, registry);
     s.scenario.loadFromConfigFile(*s.ini, "scenario");
     if (seed) {
         if (*seed < 0) throw Error("--seed must be non-negative");
@@ -121,6 +118,19 @@ Setup loadSetupUnguarded(const method::Registry& registry, const std::string& in
     }
     s.reportOptions.loadFromConfigFile(*s.ini, "report");
     return s;
+}
+
+/** Everything read from an INI fails as mrloc::Error naming the INI: MRPT's parser throws its
+ *  own exceptions (a `$env{` without its `}`, say), without the file's name. */
+Setup loadSetup(const method::Registry& registry, const std::string& iniPath,
+                std::optional<long> seed, bool needSimulation) {
+    try {
+        return loadSetupUnguarded(registry, iniPath, seed, needSimulation);
+    } catch (const Error&) {
+        throw;
+    } catch (const std::exception& e) {
+        throw Error(iniPath + ": " + oneLine(e.what()));
+    }
 }
 
 /** effective.ini: every section of the INI as given (MRPT's own sections too), then every
@@ -151,10 +161,7 @@ std::string effectiveIni(const Setup& s) {
 void writeProvenance(const Setup& s, const std::string& dir, const std::string& step,
                      const std::string& command) {
     common::makeDirectories(dir);
-    std::ifstream in(s.iniPath, std::ios::binary);
-    std::stringstream text;
-    text << in.rdbuf();
-    common::writeFileAtomically(common::run_dir::configCopy(dir), text.str());
+    common::writeFileAtomically(common::run_dir::configCopy(dir), s.iniText);
     common::writeFileAtomically(common::run_dir::effectiveIni(dir), effectiveIni(s));
     nlohmann::json p = nlohmann::json::object();
     const std::string path = common::run_dir::provenance(dir);
@@ -183,10 +190,7 @@ class OutputGuard {
             if (!before_.count(e.path())) fs::remove_all(e.path(), ec);
         if (!existed_) fs::remove(dir_, ec);
     }
-    void keep() {
-        done_ = true;
-        outputs_.keep();
-    }
+    void keep() { done_ = true; }
 
  private:
     std::string dir_;

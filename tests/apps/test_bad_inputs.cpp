@@ -163,8 +163,9 @@ TEST(BadIni, FinerWorldThanTheVoxelBudgetIsRefused) {
 TEST(BadIni, NonUtf8ScenarioNameIsRefused) {
     const std::string ini = writeIniFrom(config("quickstart"), "latin1", "name     = quickstart",
                                          "name = q\xe9");
-    expectHas(refused("run", ini), "latin1.ini:");
-    expectHas(refused("run", ini), "bytes that are not valid UTF-8");
+    const auto line = refused("run", ini);
+    expectHas(line, "latin1.ini:");
+    expectHas(line, "bytes that are not valid UTF-8");
     // A control character would end up in file names.
     const std::string tab = writeIniFrom(config("quickstart"), "tab", "name     = quickstart",
                                          "name = q\x1bx");

@@ -43,12 +43,11 @@ void releaseSlot(int slot) {
     if (slot >= 0) g_slots[slot].kind.store(int(SlotKind::Free));
 }
 
-void releaseRunSlots(bool remove) {
+void releaseRunSlots() {
     for (auto& slot : g_slots) {
         const int kind = slot.kind.load();
-        if (kind != int(SlotKind::RunFile) && kind != int(SlotKind::RunDirectory)) continue;
-        if (remove && kind == int(SlotKind::RunFile)) ::unlink(slot.path);
-        slot.kind.store(int(SlotKind::Free));
+        if (kind == int(SlotKind::RunFile) || kind == int(SlotKind::RunDirectory))
+            slot.kind.store(int(SlotKind::Free));
     }
 }
 
@@ -81,11 +80,7 @@ RunOutputs::RunOutputs(const std::string& createdDir) {
 }
 
 RunOutputs::~RunOutputs() {
-    if (--g_runDepth == 0) releaseRunSlots(/*remove=*/true);
-}
-
-void RunOutputs::keep() {
-    if (g_runDepth == 1) releaseRunSlots(/*remove=*/false);
+    if (--g_runDepth == 0) releaseRunSlots();
 }
 
 PendingFile::PendingFile(std::string finalPath, const std::string& tempSuffix)

@@ -72,15 +72,12 @@ void lintIni(const std::string& text, const std::string& origin,
     while (std::getline(in, raw)) {
         const size_t start = ++lineNo;
         // MRPT joins a line ending in '\' with the next one.
-        while (!raw.empty() && trim(raw).size() && trim(raw).back() == '\\') {
-            std::string next;
-            if (!std::getline(in, next)) break;
+        std::string t = trim(raw);
+        for (std::string next; !t.empty() && t.back() == '\\' && std::getline(in, next);) {
             ++lineNo;
-            raw = trim(raw);
-            raw.pop_back();
-            raw += next;
+            t.pop_back();
+            t = trim(t + next);
         }
-        const std::string t = trim(raw);
         if (t.empty()) continue;
         if (t[0] == '[') {
             const auto close = t.find(']');

@@ -23,11 +23,10 @@ LocalizationResult runLocalization(Localizer& localizer, const LocalizationRunOp
             localizer.process(obs);
         } catch (const Error& e) {
             // Say which observation the method could not use.
-            throw Error("rawlog " + o.rawlogPath + ": observation " + std::to_string(n + 1) +
-                        " ('" + obs->sensorLabel + "', " + obs->GetRuntimeClass()->className +
-                        ", t = " +
-                        mrpt::format("%.3f", mrpt::Clock::toDouble(obs->timestamp)) +
-                        " s): " + e.what());
+            throw Error(mrpt::format("rawlog %s: observation %zu ('%s', %s, t = %.3f s): %s",
+                                     o.rawlogPath.c_str(), n + 1, obs->sensorLabel.c_str(),
+                                     obs->GetRuntimeClass()->className,
+                                     mrpt::Clock::toDouble(obs->timestamp), e.what()));
         }
         progress.update(++n);
     }

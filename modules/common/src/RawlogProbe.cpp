@@ -32,7 +32,7 @@
 
 namespace mrloc::common {
 
-size_t checkGzipFile(const std::string& path, const std::string& what) {
+void checkGzipFile(const std::string& path, const std::string& what) {
     std::ifstream in(path, std::ios::binary);
     if (!in) throw Error(what + " " + path + ": cannot open");
     unsigned char magic[2] = {0, 0};
@@ -40,7 +40,7 @@ size_t checkGzipFile(const std::string& path, const std::string& what) {
     const bool gzip = in.gcount() == 2 && magic[0] == 0x1f && magic[1] == 0x8b;
     in.clear();
     in.seekg(0);
-    if (!gzip) return size_t(std::filesystem::file_size(path));
+    if (!gzip) return;
 
     z_stream z{};
     if (inflateInit2(&z, 16 + MAX_WBITS) != Z_OK) throw Error("zlib: cannot initialise");
@@ -91,7 +91,6 @@ size_t checkGzipFile(const std::string& path, const std::string& what) {
     if (head[0] == 0x1f && head[1] == 0x8b)
         throw Error(what + " " + path + ": a gzip stream inside a gzip stream (compressed "
                     "twice? decompress it once with gunzip and read the result)");
-    return inflated;
 }
 
 namespace {
@@ -165,7 +164,7 @@ size_t memoryLimitOf(const RawlogProbeLimits& limits) {
 
 }  // namespace
 
-size_t probeRawlog(const std::string& path, const RawlogProbeLimits& limits) {
+void probeRawlog(const std::string& path, const RawlogProbeLimits& limits) {
     const size_t memoryLimit = memoryLimitOf(limits);
     std::error_code ec;
     const double cpuSeconds =
@@ -233,8 +232,7 @@ size_t probeRawlog(const std::string& path, const RawlogProbeLimits& limits) {
     }
     gzipCheck.join();
     if (gzipError) std::rethrow_exception(gzipError);
-    if (state->finished == 1 && WIFEXITED(status) && WEXITSTATUS(status) == 0)
-        return state->entriesDone;
+    if (state->finished == 1 && WIFEXITED(status) && WEXITSTATUS(status) == 0) return;
     if (state->finished == 2) throw Error(std::string(state->message));
 
     const std::string entry = "entry " + std::to_string(state->entriesDone + 1);

@@ -34,18 +34,16 @@ class PendingFile {
  *  exit with 128 + the signal (130, 143). */
 void installSignalCleanup();
 
-/** While one of these lives, files committed by PendingFile belong to a run that is not
- *  finished yet: a signal removes them too, and so does the destructor unless keep() was
- *  called. `createdDir`, if not empty, is the run's directory, made by the run, removed
- *  (if empty) after its files on a signal. */
+/** While one of these lives, files committed by PendingFile belong to a command that has
+ *  not finished: a signal removes them too. `createdDir`, if not empty, is the command's
+ *  output folder, made by it, removed (if empty) after its files on a signal. Removing them
+ *  on an error is the caller's job (the app's OutputGuard). */
 class RunOutputs {
  public:
     explicit RunOutputs(const std::string& createdDir = "");
     ~RunOutputs();
     RunOutputs(const RunOutputs&) = delete;
     RunOutputs& operator=(const RunOutputs&) = delete;
-    /** The run finished: its files stay. */
-    void keep();
 };
 
 /** Creates a directory and its parents; an error names the directory. */

@@ -23,12 +23,12 @@ struct RawlogProbeLimits {
 };
 
 /** Throws mrloc::Error naming `path` (and the entry or byte) if the file is not a complete,
- *  readable rawlog. Returns the number of serialized entries. */
-size_t probeRawlog(const std::string& path, const RawlogProbeLimits& limits = {});
+ *  readable rawlog. */
+void probeRawlog(const std::string& path, const RawlogProbeLimits& limits = {});
 
 /** Checks a gzip stream (all members) to its end; throws mrloc::Error naming `what` and the
- *  compressed byte offset on corruption or truncation. Returns the inflated size. A file
- *  without gzip's magic bytes is left alone (returns its size). */
-size_t checkGzipFile(const std::string& path, const std::string& what);
+ *  compressed byte offset on corruption or truncation. A file without gzip's magic bytes is
+ *  left alone. */
+void checkGzipFile(const std::string& path, const std::string& what);
 
 }  // namespace mrloc::common
