@@ -1,5 +1,6 @@
 #include <mrloc/common/AtomicFile.h>
 #include <mrloc/common/Error.h>
+#include <mrloc/common/ExactPredicates.h>
 #include <mrloc/common/Polygon.h>
 #include <mrpt/core/format.h>
 
@@ -7,6 +8,8 @@
 #include <cmath>
 #include <fstream>
 #include <limits>
+#include <optional>
+#include <set>
 #include <sstream>
 
 namespace mrloc::common {
@@ -46,6 +49,108 @@ bool segmentsTouch(const TPoint2D& a, const TPoint2D& b, const TPoint2D& c, cons
            distanceToSegment(a, c, d) <= eps || distanceToSegment(b, c, d) <= eps;
 }
 
+
+/** Two vertices within eps of each other, if any: O(n log n) after sorting by x. */
+std::optional<std::pair<size_t, size_t>> repeatedVertex(const std::vector<TPoint2D>& v,
+                                                        double eps) {
+    std::vector<size_t> order(v.size());
+    for (size_t i = 0; i < v.size(); ++i) order[i] = i;
+    std::sort(order.begin(), order.end(), [&](size_t a, size_t b) {
+        return v[a].x < v[b].x || (v[a].x == v[b].x && a < b);
+    });
+    for (size_t k = 0; k < order.size(); ++k)
+        for (size_t m = k + 1; m < order.size() && v[order[m]].x - v[order[k]].x <= eps; ++m)
+            if ((v[order[k]] - v[order[m]]).norm() <= eps)
+                return std::make_pair(std::min(order[k], order[m]), std::max(order[k], order[m]));
+    return std::nullopt;
+}
+
+/** The first touching pair by testing all pairs: only when the sweep's order broke, which
+ *  two crossing edges cause (the sweep then need not have met them side by side). */
+template <class Touch>
+std::optional<std::pair<size_t, size_t>> everyPair(size_t n, const Touch& touch) {
+    for (size_t i = 0; i < n; ++i)
+        for (size_t j = i + 1; j < n; ++j)
+            if (touch(i, j)) return std::make_pair(i, j);
+    return std::nullopt;
+}
+
+bool lexLess(const TPoint2D& a, const TPoint2D& b) { return a.x < b.x || (a.x == b.x && a.y < b.y); }
+
+/** Two non-adjacent edges that cross or touch (within eps), if any: the Shamos-Hoey sweep
+ *  (Shamos and Hoey, "Geometric intersection problems", FOCS 1976), O(n log n), ordering the
+ *  sweep's edges with exact orientations. Edges closer than eps without touching are found
+ *  where the sweep holds them side by side. */
+std::optional<std::pair<size_t, size_t>> touchingEdges(const std::vector<TPoint2D>& v,
+                                                       double eps) {
+    const size_t n = v.size();
+    struct Edge {
+        TPoint2D left, right;
+    };
+    std::vector<Edge> edges(n);
+    for (size_t i = 0; i < n; ++i) {
+        const TPoint2D &a = v[i], &b = v[(i + 1) % n];
+        edges[i] = lexLess(a, b) ? Edge{a, b} : Edge{b, a};
+    }
+    // s below t where the sweep meets both; valid while no two edges of the set cross.
+    const auto below = [&edges](size_t s, size_t t) {
+        if (s == t) return false;
+        const Edge &S = edges[s], &T = edges[t];
+        if (!lexLess(S.left, T.left)) {  // S starts later: where is its start against T?
+            if (const int o = orientation(T.left, T.right, S.left)) return o < 0;
+            if (const int o = orientation(T.left, T.right, S.right)) return o < 0;
+        } else {
+            if (const int o = orientation(S.left, S.right, T.left)) return o > 0;
+            if (const int o = orientation(S.left, S.right, T.right)) return o > 0;
+        }
+        return s < t;
+    };
+    std::set<size_t, decltype(below)> status(below);
+    const auto adjacent = [n](size_t i, size_t j) {
+        return (i + 1) % n == j || (j + 1) % n == i;
+    };
+    const auto touch = [&](size_t i, size_t j) {
+        return !adjacent(i, j) &&
+               segmentsTouch(edges[i].left, edges[i].right, edges[j].left, edges[j].right, eps);
+    };
+    // Events: removals before insertions at one point, so an edge through a vertex meets
+    // the edges leaving it.
+    struct Event {
+        TPoint2D at;
+        bool insert;
+        size_t edge;
+    };
+    std::vector<Event> events;
+    events.reserve(2 * n);
+    for (size_t i = 0; i < n; ++i) {
+        events.push_back({edges[i].left, true, i});
+        events.push_back({edges[i].right, false, i});
+    }
+    std::sort(events.begin(), events.end(), [](const Event& a, const Event& b) {
+        if (lexLess(a.at, b.at)) return true;
+        if (lexLess(b.at, a.at)) return false;
+        if (a.insert != b.insert) return !a.insert;
+        return a.edge < b.edge;
+    });
+    for (const auto& e : events) {
+        if (e.insert) {
+            const auto [it, fresh] = status.insert(e.edge);
+            if (it != status.begin() && touch(*std::prev(it), e.edge))
+                return std::make_pair(*std::prev(it), e.edge);
+            if (std::next(it) != status.end() && touch(*std::next(it), e.edge))
+                return std::make_pair(*std::next(it), e.edge);
+        } else {
+            const auto it = status.find(e.edge);
+            if (it == status.end()) return everyPair(edges.size(), touch);  // order broke
+            if (it != status.begin() && std::next(it) != status.end() &&
+                touch(*std::prev(it), *std::next(it)))
+                return std::make_pair(*std::prev(it), *std::next(it));
+            status.erase(it);
+        }
+    }
+    return std::nullopt;
+}
+
 }  // namespace
 
 Polygon Polygon::fromVertices(std::vector<TPoint2D> v, const std::string& what) {
@@ -69,10 +174,9 @@ Polygon Polygon::fromVertices(std::vector<TPoint2D> v, const std::string& what) 
     }
     P.eps_ = 1e-9 * std::max((P.max_ - P.min_).norm(), 1e-300);
     const double eps = P.eps_;
-    for (size_t i = 0; i < n; ++i)
-        for (size_t j = i + 1; j < n; ++j)
-            if ((v[i] - v[j]).norm() <= eps)
-                throw Error(what + ": " + vertexName(i, v) + " repeats " + vertexName(j, v));
+    if (const auto repeat = repeatedVertex(v, eps))
+        throw Error(what + ": " + vertexName(repeat->first, v) + " repeats " +
+                    vertexName(repeat->second, v));
     double twiceArea = 0;
     for (size_t i = 0; i < n; ++i) twiceArea += cross(v[i], v[(i + 1) % n]);
     if (std::abs(twiceArea) <= eps * (P.max_ - P.min_).norm())
@@ -85,14 +189,12 @@ Polygon Polygon::fromVertices(std::vector<TPoint2D> v, const std::string& what) 
             throw Error(what + ": " + vertexName(i, v) +
                         " is a collinear duplicate: its two edges overlap (a zero-width spike)");
     }
-    for (size_t i = 0; i < n; ++i)
-        for (size_t j = i + 2; j < n; ++j) {
-            if (i == 0 && j == n - 1) continue;  // adjacent through the closing edge
-            if (segmentsTouch(v[i], v[i + 1], v[j], v[(j + 1) % n], eps))
-                throw Error(what + mrpt::format(": the polygon intersects itself: edge %zu-%zu "
-                                                "meets edge %zu-%zu",
-                                                i + 1, i + 2, j + 1, (j + 1) % n + 1));
-        }
+    if (const auto meet = touchingEdges(v, eps)) {
+        const size_t i = std::min(meet->first, meet->second), j = std::max(meet->first, meet->second);
+        throw Error(what + mrpt::format(": the polygon intersects itself: edge %zu-%zu "
+                                        "meets edge %zu-%zu",
+                                        i + 1, i + 2, j + 1, (j + 1) % n + 1));
+    }
     P.v_ = std::move(v);
     return P;
 }

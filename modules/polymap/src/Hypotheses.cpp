@@ -18,7 +18,7 @@ long long cellKey(long long ix, long long iy) { return ix * 73856093LL ^ iy * 19
 }  // namespace
 
 HypothesisGenerator::HypothesisGenerator(const common::Polygon& map, HypothesisOptions options)
-    : map_(map), options_(options) {
+    : map_(map), triangulation_(map), options_(options) {
     if (!(options_.tolerance > 0) || !(options_.angleTolerance > 0))
         throw Error("hypothesis generation: tolerance and angle tolerance must be positive");
     const size_t n = map_.size();
@@ -135,12 +135,14 @@ std::vector<Hypothesis> HypothesisGenerator::generate(const VisibilityPolygon& V
         }
         if (!all) continue;
         TPoint2D p = sum * (1.0 / features.size());
-        const auto where = map_.locate(p, options_.tolerance);
-        if (where == common::Polygon::Where::Outside) continue;
-        if (where == common::Polygon::Where::Boundary && !map_.contains(p))
-            p = map_.closestBoundaryPoint(p).first;  // sensing noise pushed it out
+        if (const auto loc = triangulation_.locate(p);
+            loc.triangle == Triangulation::kNone || !triangulation_[loc.triangle].inside) {
+            // Outside: sensing noise may have pushed it out by up to the tolerance.
+            if (map_.locate(p, options_.tolerance) == common::Polygon::Where::Outside) continue;
+            p = map_.closestBoundaryPoint(p).first;
+        }
         ++st.verified;
-        const double mismatch = boundaryDistance(V, visibilityPolygon(map_, p), step);
+        const double mismatch = boundaryDistance(V, visibilityPolygon(triangulation_, p), step);
         if (mismatch <= options_.tolerance) H.push_back({p, {0, 0}, mismatch});
     }
     std::sort(H.begin(), H.end(), [](const Hypothesis& a, const Hypothesis& b) {

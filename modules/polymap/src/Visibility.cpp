@@ -1,4 +1,6 @@
 #include <mrloc/common/Error.h>
+#include <mrloc/common/ExactPredicates.h>
+#include <mrpt/core/format.h>
 #include <mrloc/polymap/Visibility.h>
 
 #include <algorithm>
@@ -37,177 +39,201 @@ std::vector<TPoint2D> VisibilityPolygon::placedAt(const TPoint2D& p) const {
 
 namespace {
 
-/** Counter-clockwise order of directions starting at angle -pi (exact for exact input). */
-bool angleLess(const TVector2D& a, const TVector2D& b) {
-    const auto half = [](const TVector2D& d) { return d.y < 0 || (d.y == 0 && d.x < 0) ? 0 : 1; };
-    const int ha = half(a), hb = half(b);
-    if (ha != hb) return ha < hb;
-    return cross(a, b) > 0;
-}
+using common::orientation;
+using Tri = Triangulation;
 
-/** Where q sits in P: strictly inside, on the edge `edge`, or on the vertex `vertex`. */
+/** Where the viewpoint sits: the fan of triangle edges around it, counter-clockwise, and
+ *  for a viewpoint on P's boundary the P edges it leaves along and comes back along. */
 struct Seat {
-    std::optional<size_t> vertex, edge;
+    TPoint2D q;                               ///< the viewpoint (snapped onto a vertex)
+    std::vector<std::pair<int, int>> fan;     ///< (triangle, edge) seen first
+    int firstEdge = -1, lastEdge = -1;        ///< P edges through q (boundary seats only)
 };
 
-Seat seatOf(const common::Polygon& P, TPoint2D& q) {
+/** The P edge, inside triangle t's edge i, that lies on P's boundary: P is
+ *  counter-clockwise, so the edge runs from vertex from(i) to from(i) + 1. */
+int polygonEdge(const Tri& T, int t, int i) { return T[t].from(i); }
+
+/** Fan of the inside triangles about vertex w, counter-clockwise, from P's edge w -> w+1 round
+ *  to edge w-1 -> w. */
+Seat vertexSeat(const Tri& T, int w) {
+    std::vector<int> around;
+    const int start = T.triangleAt(w);
+    int t = start;
+    do {
+        around.push_back(t);
+        t = T[t].neighbour[(size_t)((T.indexOf(t, w) + 1) % 3)];
+    } while (t != start);
+    const size_t m = around.size();
+    size_t first = 0;
+    while (!(T[around[first]].inside && !T[around[(first + m - 1) % m]].inside)) ++first;
+    Seat seat;
+    seat.q = T.point(w);
+    for (size_t k = 0; k < m && T[around[(first + k) % m]].inside; ++k) {
+        const int tri = around[(first + k) % m];
+        seat.fan.push_back({tri, T.indexOf(tri, w)});
+    }
+    const size_t n = T.polygon().size();
+    seat.firstEdge = w;
+    seat.lastEdge = (int)((w + n - 1) % n);
+    return seat;
+}
+
+/** Fan about a point on edge e of inside triangle t (and of its neighbour, unless e is P's). */
+Seat edgeSeat(const Tri& T, const TPoint2D& q, int t, int e) {
+    Seat seat;
+    seat.q = q;
+    seat.fan = {{t, (e + 1) % 3}, {t, (e + 2) % 3}};
+    if (T[t].constrained[(size_t)e]) {
+        seat.firstEdge = seat.lastEdge = polygonEdge(T, t, e);
+    } else {
+        const int u = T[t].neighbour[(size_t)e], j = T.edgeTowards(u, t);
+        seat.fan.push_back({u, (j + 1) % 3});
+        seat.fan.push_back({u, (j + 2) % 3});
+    }
+    return seat;
+}
+
+Seat seatOf(const Tri& T, const TPoint2D& q) {
+    const auto& P = T.polygon();
     const double eps = P.epsilon();
-    for (size_t i = 0; i < P.size(); ++i)
-        if ((P[i] - q).norm() <= eps) {
-            q = P[i];  // snap, so that directions along its edges are exact
-            return {i, std::nullopt};
+    const auto loc = T.locate(q);
+    if (loc.triangle != Tri::kNone && T[loc.triangle].inside) {
+        const auto& tri = T[loc.triangle];
+        if (loc.vertex >= 0) return vertexSeat(T, tri.v[(size_t)loc.vertex]);
+        for (int k = 0; k < 3; ++k)  // within P's tolerance of a vertex: on it
+            if ((T.point(tri.v[(size_t)k]) - q).norm() <= eps) return vertexSeat(T, tri.v[(size_t)k]);
+        if (loc.edge >= 0) return edgeSeat(T, q, loc.triangle, loc.edge);
+        return {q, {{loc.triangle, 0}, {loc.triangle, 1}, {loc.triangle, 2}}, -1, -1};
+    }
+    // Outside by less than P's tolerance counts as on the boundary (a point computed as a
+    // difference of coordinates, or an edge midpoint, is rarely exactly on the edge): the
+    // nearest P edge among the outside triangles within eps of q.
+    if (loc.triangle != Tri::kNone) {
+        std::vector<int> stack{loc.triangle}, seen{loc.triangle};
+        double best = eps;
+        int bestTri = Tri::kNone, bestEdge = -1;
+        while (!stack.empty()) {
+            const int t = stack.back();
+            stack.pop_back();
+            for (int i = 0; i < 3; ++i) {
+                const TPoint2D &a = T.point(T[t].from(i)), &b = T.point(T[t].to(i));
+                const double d = common::distanceToSegment(q, a, b);
+                if (d > eps) continue;
+                const int u = T[t].neighbour[(size_t)i];
+                if (T[t].constrained[(size_t)i]) {
+                    if (d <= best) best = d, bestTri = u, bestEdge = T.edgeTowards(u, t);
+                } else if (u != Tri::kNone &&
+                           std::find(seen.begin(), seen.end(), u) == seen.end()) {
+                    seen.push_back(u);
+                    stack.push_back(u);
+                }
+            }
         }
-    switch (P.locate(q)) {
-        case common::Polygon::Where::Inside:
-            return {};
-        case common::Polygon::Where::Boundary:
-            return {std::nullopt, P.closestBoundaryPoint(q).second};
-        default:
-            break;
+        if (bestTri != Tri::kNone) {
+            const auto& tri = T[bestTri];
+            for (const int w : {tri.from(bestEdge), tri.to(bestEdge)})
+                if ((T.point(w) - q).norm() <= eps) return vertexSeat(T, w);
+            return edgeSeat(T, q, bestTri, bestEdge);
+        }
     }
     throw Error(
         mrpt::format("visibility polygon: the viewpoint (%.9g %.9g) is outside the map", q.x, q.y));
 }
 
-/** Does a ray from q along m start into P's interior? */
-bool entersInterior(const common::Polygon& P, const Seat& seat, const TVector2D& m) {
-    if (seat.edge) {
-        const size_t e = *seat.edge;
-        return cross(P[P.next(e)] - P[e], m) > 0;
-    }
-    if (seat.vertex) {
-        const size_t i = *seat.vertex;
-        const double leftOfOut = cross(P[P.next(i)] - P[i], m);
-        const double leftOfIn = cross(P[i] - P[P.prev(i)], m);
-        return P.isReflex(i) ? (leftOfOut > 0 || leftOfIn > 0) : (leftOfOut > 0 && leftOfIn > 0);
-    }
-    return true;
+/** Where the ray from q through d meets segment a-b: an endpoint exactly when the ray passes
+ *  through it, else the intersection of the two lines, kept on the segment. */
+TPoint2D hit(const TPoint2D& q, const TPoint2D& d, const TPoint2D& a, const TPoint2D& b) {
+    const TVector2D r = d - q;
+    if (orientation(q, d, a) == 0 && dot(a - q, r) > 0) return a;
+    if (orientation(q, d, b) == 0 && dot(b - q, r) > 0) return b;
+    const TVector2D e = b - a;
+    const double s = std::clamp(cross(q - a, r) / cross(e, r), 0.0, 1.0);
+    return a + e * s;
 }
 
-/** One direction from the viewpoint, up to rounding. */
-bool sameDirection(const TVector2D& a, const TVector2D& b) {
-    return dot(a, b) > 0 && std::abs(cross(a, b)) <= 1e-12 * a.norm() * b.norm();
+/** Two P edges on one line, in one direction (their shared vertex is no corner). */
+bool straightOn(const common::Polygon& P, int e, int f) {
+    if (e == f) return true;
+    const TPoint2D &a = P[(size_t)e], &b = P[P.next((size_t)e)];
+    const TPoint2D &c = P[(size_t)f], &d = P[P.next((size_t)f)];
+    return orientation(a, b, c) == 0 && orientation(a, b, d) == 0 && dot(b - a, d - c) > 0;
 }
-
-struct Direction {
-    TVector2D d;                  ///< towards the first vertex of the group
-    std::vector<size_t> members;  ///< P's vertices in this direction
-};
 
 }  // namespace
 
-VisibilityPolygon visibilityPolygon(const common::Polygon& P, const TPoint2D& viewpoint) {
-    TPoint2D q = viewpoint;
-    const Seat seat = seatOf(P, q);
-    const double eps = P.epsilon();
-
-    // Directions of P's vertices around q, grouped when collinear and on the same side.
-    std::vector<size_t> order;
-    for (size_t i = 0; i < P.size(); ++i)
-        if (!(seat.vertex && *seat.vertex == i)) order.push_back(i);
-    std::sort(order.begin(), order.end(),
-              [&](size_t a, size_t b) { return angleLess(P[a] - q, P[b] - q); });
-    std::vector<Direction> dirs;
-    for (size_t i : order) {
-        const TVector2D d = P[i] - q;
-        if (!dirs.empty()) {
-            const TVector2D& last = dirs.back().d;
-            if (sameDirection(last, d)) {
-                dirs.back().members.push_back(i);
-                continue;
-            }
-        }
-        dirs.push_back({d, {i}});
-    }
-    if (dirs.size() > 1) {  // the first and last groups may be one direction (angle -pi)
-        const TVector2D &a = dirs.front().d, &b = dirs.back().d;
-        if (sameDirection(a, b)) {
-            dirs.front().members.insert(dirs.front().members.end(), dirs.back().members.begin(),
-                                        dirs.back().members.end());
-            dirs.pop_back();
-        }
-    }
-    const size_t m = dirs.size();
-    if (m < 2) throw Error("visibility polygon: degenerate map around the viewpoint");
-
-    // The wedges each edge spans as seen from q: a wedge's ray is cast against those edges
-    // only, which keeps the sweep near-linear unless many long edges cross many wedges.
-    std::vector<size_t> groupOf(P.size(), m);
-    for (size_t k = 0; k < m; ++k)
-        for (size_t i : dirs[k].members) groupOf[i] = k;
-    std::vector<std::vector<size_t>> spanning(m);
-    for (size_t e = 0; e < P.size(); ++e) {
-        const size_t ga = groupOf[e], gb = groupOf[P.next(e)];
-        if (ga == m || gb == m) continue;  // an edge from q itself
-        const double c = cross(P[e] - q, P[P.next(e)] - q);
-        if (c == 0) continue;  // seen edge-on
-        for (size_t k = c > 0 ? ga : gb, to = c > 0 ? gb : ga; k != to; k = (k + 1) % m)
-            spanning[k].push_back(e);
-    }
-
-    // Nearest edge in each open wedge (dirs[k], dirs[k+1]); none if the wedge leaves P.
-    std::vector<std::optional<size_t>> wedgeEdge(m);
-    for (size_t k = 0; k < m; ++k) {
-        const TVector2D& a = dirs[k].d;
-        const TVector2D& b = dirs[(k + 1) % m].d;
-        TVector2D mid;
-        if (cross(a, b) > 0)
-            mid = a * (1 / a.norm()) + b * (1 / b.norm());
-        else
-            mid = TVector2D(-a.y, a.x);  // the wedge spans half a turn or more
-        mid = mid * (1 / mid.norm());
-        if (!entersInterior(P, seat, mid)) continue;
-        auto hit = P.rayCastEdge(q, mid, eps, spanning[k]);
-        if (!hit) hit = P.rayCastEdge(q, mid, eps);  // only if rounding misfiled an edge
-        if (!hit) throw Error("visibility polygon: a ray from the viewpoint left the map");
-        wedgeEdge[k] = hit->second;
-    }
-
-    // Where edge e meets the ray along direction k: a vertex of the group exactly, else the
-    // intersection of the ray with the edge's line.
-    const auto pointOn = [&](size_t e, size_t k) -> TPoint2D {
-        for (size_t i : dirs[k].members)
-            if (i == e || i == P.next(e)) return P[i];
-        const TPoint2D& a = P[e];
-        const TVector2D ev = P[P.next(e)] - a, d = dirs[k].d;
-        const double denom = cross(d, ev);
-        if (denom == 0) return (P[e] - q).norm() < (P[P.next(e)] - q).norm() ? P[e] : P[P.next(e)];
-        return q + d * (cross(a - q, ev) / denom);
+VisibilityPolygon visibilityPolygon(const Triangulation& T, const TPoint2D& viewpoint) {
+    // Triangular expansion (Bungiu, Hemmer, Hershberger, Huang and Kroller, EuroCG 2014): the
+    // view through each edge of the viewpoint's triangle is a cone bounded by rays through
+    // the edge's ends; it is carried into the next triangle, split where that triangle's far
+    // vertex lies strictly inside it, and stops at P's edges, each giving one visible piece.
+    // Depth first, right part before left, so the pieces come out counter-clockwise.
+    const Seat seat = seatOf(T, viewpoint);
+    const TPoint2D& q = seat.q;
+    struct Cone {
+        int tri, edge;
+        TPoint2D right, left;
     };
-
+    std::vector<Cone> stack;
+    for (auto it = seat.fan.rbegin(); it != seat.fan.rend(); ++it)
+        stack.push_back({it->first, it->second, T.point(T[it->first].from(it->second)),
+                         T.point(T[it->first].to(it->second))});
     std::vector<TPoint2D> boundary;
-    const auto emit = [&](const TPoint2D& p) {
-        if (boundary.empty() || (boundary.back() - p).norm() > eps) boundary.push_back(p);
-    };
-    for (size_t k = 0; k < m; ++k) {
-        const auto& arriving = wedgeEdge[(k + m - 1) % m];
-        const auto& leaving = wedgeEdge[k];
-        emit(arriving ? pointOn(*arriving, k) : q);
-        emit(leaving ? pointOn(*leaving, k) : q);
-    }
-    while (boundary.size() > 1 && (boundary.front() - boundary.back()).norm() <= eps)
-        boundary.pop_back();
-
-    // Drop vertices that lie on the straight line through their neighbours.
-    VisibilityPolygon V;
-    bool changed = true;
-    while (changed && boundary.size() > 3) {
-        changed = false;
-        for (size_t i = 0; i < boundary.size() && boundary.size() > 3; ++i) {
-            const size_t n = boundary.size();
-            const TPoint2D &a = boundary[(i + n - 1) % n], &b = boundary[i],
-                           &c = boundary[(i + 1) % n];
-            const TVector2D ab = b - a, bc = c - b;
-            if (std::abs(cross(ab, bc)) <= eps * (c - a).norm() && dot(ab, bc) > 0) {
-                boundary.erase(boundary.begin() + (long)i);
-                changed = true;
-                --i;
+    std::vector<int> support;  // the P edge under boundary[k] -> boundary[k+1] (-1: window)
+    while (!stack.empty()) {
+        const Cone c = stack.back();
+        stack.pop_back();
+        const auto& tri = T[c.tri];
+        const TPoint2D &x = T.point(tri.from(c.edge)), &y = T.point(tri.to(c.edge));
+        if (tri.constrained[(size_t)c.edge]) {
+            const TPoint2D a = hit(q, c.right, x, y), b = hit(q, c.left, x, y);
+            if (a == b) continue;
+            if (!boundary.empty() && boundary.back() == a) {
+                support.back() = polygonEdge(T, c.tri, c.edge);
+            } else {
+                boundary.push_back(a);
+                support.push_back(polygonEdge(T, c.tri, c.edge));
             }
+            boundary.push_back(b);
+            support.push_back(-1);
+            continue;
+        }
+        const int u = tri.neighbour[(size_t)c.edge], j = T.edgeTowards(u, c.tri);
+        const TPoint2D& w = T.point(T[u].v[(size_t)j]);
+        const int rightEdge = (j + 1) % 3, leftEdge = (j + 2) % 3;  // x->w and w->y
+        if (orientation(q, c.right, w) <= 0) {
+            stack.push_back({u, leftEdge, c.right, c.left});
+        } else if (orientation(q, c.left, w) >= 0) {
+            stack.push_back({u, rightEdge, c.right, c.left});
+        } else {
+            stack.push_back({u, leftEdge, w, c.left});
+            stack.push_back({u, rightEdge, c.right, w});
         }
     }
-    V.vertices.reserve(boundary.size());
-    for (const auto& p : boundary) V.vertices.push_back(p - q);
+    if (seat.firstEdge >= 0) {  // on the boundary: q itself is a corner of V
+        boundary.insert(boundary.begin(), q);
+        support.insert(support.begin(), seat.firstEdge);
+        support.back() = seat.lastEdge;
+    } else if (boundary.size() > 1 && boundary.front() == boundary.back()) {
+        boundary.pop_back();
+        support.pop_back();
+    }
+    // A vertex between two pieces of one straight wall is no corner: dropped, decided on P's
+    // edges (exact), not on the computed points.
+    const auto& P = T.polygon();
+    const size_t m = boundary.size();
+    VisibilityPolygon V;
+    V.vertices.reserve(m);
+    for (size_t k = 0; k < m; ++k) {
+        const int before = support[(k + m - 1) % m], after = support[k];
+        if (m > 3 && before >= 0 && after >= 0 && straightOn(P, before, after)) continue;
+        V.vertices.push_back(boundary[k] - q);
+    }
     return V;
+}
+
+VisibilityPolygon visibilityPolygon(const common::Polygon& P, const TPoint2D& q) {
+    return visibilityPolygon(Triangulation(P), q);
 }
 
 namespace {

@@ -33,14 +33,15 @@ class Polygon {
  public:
     enum class Where { Outside, Inside, Boundary };
 
-    /** Upper bounds (doc/errors.md): validation costs O(n^2) (a whole `simulate` of an
-     *  18,200-vertex steps map took 3.8 s); coordinates beyond kMaxCoordinate (m) leave too
-     *  few bits for the tolerances. */
+    /** Upper bounds (doc/errors.md): the maps mrloc is built and measured for (star5000,
+     *  steps maps to n = 5000) are well inside; coordinates beyond kMaxCoordinate (m) leave
+     *  too few bits for the tolerances. */
     static constexpr size_t kMaxVertices = 20000;
     static constexpr double kMaxCoordinate = 1e6;
 
-    /** Validates (3 to kMaxVertices finite vertices within kMaxCoordinate, none repeated, no zero-width spike, no two
-     *  edges crossing or touching) and reorients clockwise input. `what` names the source
+    /** Validates (3 to kMaxVertices finite vertices within kMaxCoordinate, none repeated,
+     *  no zero-width spike, no two edges crossing or touching; O(n log n), a sweep on exact
+     *  orientations) and reorients clockwise input. `what` names the source
      *  in errors, e.g. "maps/x.poly". Throws mrloc::Error. */
     static Polygon fromVertices(std::vector<TPoint2D> vertices, const std::string& what);
     /** A .poly file: one "x y" vertex per line; '#' starts a comment; blank lines skipped. */

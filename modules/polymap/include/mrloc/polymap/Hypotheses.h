@@ -11,6 +11,7 @@
 // Without corners (V bounded by windows), a window's near end, a vertex of P with
 // one visible edge, proposes instead.
 #include <mrloc/common/Polygon.h>
+#include <mrloc/polymap/Triangulation.h>
 #include <mrloc/polymap/Visibility.h>
 
 #include <unordered_map>
@@ -41,7 +42,8 @@ struct HypothesisStats {
 
 class HypothesisGenerator {
  public:
-    /** Indexes P's vertices by edge directions and by position; P must outlive this. */
+    /** Triangulates P and indexes its vertices by edge directions and by position; P must
+     *  outlive this. */
     HypothesisGenerator(const common::Polygon& map, HypothesisOptions options = {});
     /** H, sorted by x then y; hypotheses[0] is the origin of the translations. Throws
      *  mrloc::Error if V has no feature to anchor on. */
@@ -61,6 +63,7 @@ class HypothesisGenerator {
     std::optional<size_t> vertexNear(const TPoint2D& p, const Feature& f) const;
 
     const common::Polygon& map_;
+    Triangulation triangulation_;  ///< for V(p) by triangular expansion and point location
     HypothesisOptions options_;
     std::vector<double> inAngle_, outAngle_;
     double cell_;

@@ -4,6 +4,7 @@
 // robot's frame: vertices relative to q, axes along the map's (the robot knows its heading,
 // seed 002 sec. 1), counter-clockwise.
 #include <mrloc/common/Polygon.h>
+#include <mrloc/polymap/Triangulation.h>
 
 #include <vector>
 
@@ -29,12 +30,15 @@ struct VisibilityPolygon {
     std::vector<TPoint2D> placedAt(const TPoint2D& p) const;
 };
 
-/** Exact V(q) by sweeping the directions of P's vertices around q: between two consecutive
- *  directions one edge is nearest, so the boundary is that edge's piece; along each
- *  direction it steps from the left neighbour's edge to the right one's (a window, or a
- *  vertex). O(n log n + the wedges each edge spans), O(n^2) at worst. Works for q strictly inside,
- * on an edge or on a vertex (within P.epsilon()); collinear vertices are allowed. Throws
- * mrloc::Error if q is outside P. */
+/** Exact V(q) by triangular expansion over P's triangulation (Bungiu et al., EuroCG 2014):
+ *  the cost is the triangles the view passes through, not n. Exact topology (every decision
+ *  is an exact orientation); the only rounding is where a window's ray meets a wall. Works
+ *  for q strictly inside, on an edge or on a vertex; q within P.epsilon() of a vertex is
+ *  moved onto it, and q outside by less than P.epsilon() counts as on the nearest edge.
+ *  Collinear vertices of P are allowed and never corners of V. Throws mrloc::Error if q is
+ *  outside P. */
+VisibilityPolygon visibilityPolygon(const Triangulation& T, const TPoint2D& q);
+/** The same, triangulating P first (O(n log n)): for one query; keep a Triangulation for many. */
 VisibilityPolygon visibilityPolygon(const common::Polygon& P, const TPoint2D& q);
 
 /** Symmetric Hausdorff distance between the boundaries of two visibility polygons placed at
