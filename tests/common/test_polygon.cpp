@@ -1,11 +1,14 @@
 // common::Polygon: validation, orientation, .poly I/O and the predicates.
 #include <gtest/gtest.h>
 #include <mrloc/common/Error.h>
+#include <mrloc/common/ExactPredicates.h>
 #include <mrloc/common/Polygon.h>
 
 #include <cmath>
 #include <filesystem>
 #include <fstream>
+#include <iostream>
+#include <random>
 
 using mrloc::Error;
 using mrloc::common::Polygon;
@@ -107,4 +110,62 @@ TEST(Polygon, LocateAndRayCast) {
     EXPECT_FALSE(P.isReflex(0));
     EXPECT_NEAR(*P.rayCast({1, 1}, {1, 0}), 3.0, 1e-12);
     EXPECT_NEAR(*P.rayCast({1, 1}, {0, 1}), 2.0, 1e-12);  // the notch's edge (0,4)-(2,2) at y=3
+}
+
+namespace {
+
+/** Closed segments a-b and c-d share a point (exact). */
+bool closedSegmentsMeet(const TPoint2D& a, const TPoint2D& b, const TPoint2D& c, const TPoint2D& d) {
+    using mrloc::common::orientation;
+    const int o1 = orientation(a, b, c), o2 = orientation(a, b, d);
+    const int o3 = orientation(c, d, a), o4 = orientation(c, d, b);
+    const auto within = [](const TPoint2D& p, const TPoint2D& q, const TPoint2D& x) {
+        return std::min(p.x, q.x) <= x.x && x.x <= std::max(p.x, q.x) &&
+               std::min(p.y, q.y) <= x.y && x.y <= std::max(p.y, q.y);
+    };
+    if (o1 * o2 < 0 && o3 * o4 < 0) return true;
+    return (o1 == 0 && within(a, b, c)) || (o2 == 0 && within(a, b, d)) ||
+           (o3 == 0 && within(c, d, a)) || (o4 == 0 && within(c, d, b));
+}
+
+/** The validation rules, every pair tested: what the sweep must agree with. */
+bool validByBruteForce(const std::vector<TPoint2D>& v) {
+    const size_t n = v.size();
+    for (size_t i = 0; i < n; ++i)
+        for (size_t j = i + 1; j < n; ++j)
+            if (v[i] == v[j]) return false;
+    double area = 0;
+    for (size_t i = 0; i < n; ++i) area += mrloc::common::cross(v[i], v[(i + 1) % n]);
+    if (area == 0) return false;
+    for (size_t i = 0; i < n; ++i) {  // a zero-width spike
+        const TPoint2D &a = v[(i + n - 1) % n], &b = v[i], &c = v[(i + 1) % n];
+        if (mrloc::common::orientation(a, b, c) == 0 && mrloc::common::dot(a - b, c - b) > 0)
+            return false;
+    }
+    for (size_t i = 0; i < n; ++i)
+        for (size_t j = i + 2; j < n; ++j) {
+            if (i == 0 && j == n - 1) continue;
+            if (closedSegmentsMeet(v[i], v[i + 1], v[j], v[(j + 1) % n])) return false;
+        }
+    return true;
+}
+
+}  // namespace
+
+TEST(Polygon, SweepValidationAgreesWithEveryPairOnDegenerateGrids) {
+    // Random vertex lists on a 6 x 6 integer grid: full of collinear edges, vertices on
+    // other edges, edges touching end to end, overlapping, crossing; and some simple ones.
+    std::mt19937 rng(17);
+    size_t valid = 0, invalid = 0;
+    for (int k = 0; k < 40000; ++k) {
+        const int n = 3 + (int)(rng() % 8);
+        std::vector<TPoint2D> v;
+        for (int i = 0; i < n; ++i) v.push_back({(double)(rng() % 6), (double)(rng() % 6)});
+        const bool expected = validByBruteForce(v);
+        const bool accepted = errorOf(v).empty();
+        ASSERT_EQ(accepted, expected) << ::testing::PrintToString(v);
+        (expected ? valid : invalid)++;
+    }
+    std::cout << valid << " simple, " << invalid << " not\n";
+    EXPECT_GT(valid, 1000u);
 }
