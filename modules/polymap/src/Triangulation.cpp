@@ -1,6 +1,7 @@
 #include <mrloc/common/Error.h>
 #include <mrloc/common/ExactPredicates.h>
 #include <mrloc/polymap/Triangulation.h>
+#include <mrpt/core/format.h>
 
 #include <algorithm>
 #include <cmath>
@@ -363,6 +364,41 @@ Triangulation::Location Triangulation::locate(const TPoint2D& p) const {
     const int col = std::clamp((int)std::floor((p.x - gridMin_.x) / cellSize_), 0, gridW_ - 1);
     const int row = std::clamp((int)std::floor((p.y - gridMin_.y) / cellSize_), 0, gridH_ - 1);
     return walk(p, gridHint_[(size_t)row * (size_t)gridW_ + (size_t)col]);
+}
+
+Triangulation::Location Triangulation::locateInside(const TPoint2D& p,
+                                                    const std::string& what) const {
+    const Location loc = locate(p);
+    if (loc.triangle != kNone && tris_[(size_t)loc.triangle].inside) return loc;
+    // Outside: the nearest edge of P within eps, searched among the outside triangles
+    // within eps of p.
+    const double eps = P_->epsilon();
+    double best = eps;
+    Location found;
+    if (loc.triangle != kNone) {
+        std::vector<int> stack{loc.triangle}, seen{loc.triangle};
+        while (!stack.empty()) {
+            const int t = stack.back();
+            stack.pop_back();
+            const auto& T = tris_[(size_t)t];
+            for (int i = 0; i < 3; ++i) {
+                const double d = common::distanceToSegment(p, pts_[(size_t)T.from(i)],
+                                                           pts_[(size_t)T.to(i)]);
+                const int u = T.neighbour[(size_t)i];
+                if (d > eps || u == kNone) continue;
+                if (T.constrained[(size_t)i]) {
+                    if (d <= best) best = d, found = {u, edgeTowards(u, t), -1};
+                } else if (std::find(seen.begin(), seen.end(), u) == seen.end()) {
+                    seen.push_back(u);
+                    stack.push_back(u);
+                }
+            }
+        }
+    }
+    if (found.triangle == kNone)
+        throw Error(mrpt::format("%s (%.9g %.9g) is outside the map", what.c_str(),
+                                 p.x, p.y));
+    return found;
 }
 
 }  // namespace mrloc::polymap

@@ -95,50 +95,14 @@ Seat edgeSeat(const Tri& T, const TPoint2D& q, int t, int e) {
 }
 
 Seat seatOf(const Tri& T, const TPoint2D& q) {
-    const auto& P = T.polygon();
-    const double eps = P.epsilon();
-    const auto loc = T.locate(q);
-    if (loc.triangle != Tri::kNone && T[loc.triangle].inside) {
-        const auto& tri = T[loc.triangle];
-        if (loc.vertex >= 0) return vertexSeat(T, tri.v[(size_t)loc.vertex]);
-        for (int k = 0; k < 3; ++k)  // within P's tolerance of a vertex: on it
-            if ((T.point(tri.v[(size_t)k]) - q).norm() <= eps) return vertexSeat(T, tri.v[(size_t)k]);
-        if (loc.edge >= 0) return edgeSeat(T, q, loc.triangle, loc.edge);
-        return {q, {{loc.triangle, 0}, {loc.triangle, 1}, {loc.triangle, 2}}, -1, -1};
-    }
-    // Outside by less than P's tolerance counts as on the boundary (a point computed as a
-    // difference of coordinates, or an edge midpoint, is rarely exactly on the edge): the
-    // nearest P edge among the outside triangles within eps of q.
-    if (loc.triangle != Tri::kNone) {
-        std::vector<int> stack{loc.triangle}, seen{loc.triangle};
-        double best = eps;
-        int bestTri = Tri::kNone, bestEdge = -1;
-        while (!stack.empty()) {
-            const int t = stack.back();
-            stack.pop_back();
-            for (int i = 0; i < 3; ++i) {
-                const TPoint2D &a = T.point(T[t].from(i)), &b = T.point(T[t].to(i));
-                const double d = common::distanceToSegment(q, a, b);
-                if (d > eps) continue;
-                const int u = T[t].neighbour[(size_t)i];
-                if (T[t].constrained[(size_t)i]) {
-                    if (d <= best) best = d, bestTri = u, bestEdge = T.edgeTowards(u, t);
-                } else if (u != Tri::kNone &&
-                           std::find(seen.begin(), seen.end(), u) == seen.end()) {
-                    seen.push_back(u);
-                    stack.push_back(u);
-                }
-            }
-        }
-        if (bestTri != Tri::kNone) {
-            const auto& tri = T[bestTri];
-            for (const int w : {tri.from(bestEdge), tri.to(bestEdge)})
-                if ((T.point(w) - q).norm() <= eps) return vertexSeat(T, w);
-            return edgeSeat(T, q, bestTri, bestEdge);
-        }
-    }
-    throw Error(
-        mrpt::format("visibility polygon: the viewpoint (%.9g %.9g) is outside the map", q.x, q.y));
+    const auto loc = T.locateInside(q, "visibility polygon: the viewpoint");
+    const auto& tri = T[loc.triangle];
+    if (loc.vertex >= 0) return vertexSeat(T, tri.v[(size_t)loc.vertex]);
+    for (int k = 0; k < 3; ++k)  // within P's tolerance of a vertex: on it
+        if ((T.point(tri.v[(size_t)k]) - q).norm() <= T.polygon().epsilon())
+            return vertexSeat(T, tri.v[(size_t)k]);
+    if (loc.edge >= 0) return edgeSeat(T, q, loc.triangle, loc.edge);
+    return {q, {{loc.triangle, 0}, {loc.triangle, 1}, {loc.triangle, 2}}, -1, -1};
 }
 
 /** Where the ray from q through d meets segment a-b: an endpoint exactly when the ray passes

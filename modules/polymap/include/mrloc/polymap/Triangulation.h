@@ -15,6 +15,7 @@
 
 #include <array>
 #include <cstdint>
+#include <string>
 #include <vector>
 
 namespace mrloc::polymap {
@@ -55,6 +56,10 @@ class Triangulation {
 
     /** Exact point location by a walk from a grid hint. */
     Location locate(const TPoint2D& p) const;
+    /** Location in a triangle inside P; a point outside P by at most P.epsilon() (an edge
+     *  midpoint, a difference of coordinates) is put on the nearest edge of P (`edge` set,
+     *  the point itself not moved). Throws mrloc::Error "<what> (x y) is outside the map". */
+    Location locateInside(const TPoint2D& p, const std::string& what) const;
     /** One triangle (inside or outside P) with vertex v. */
     int triangleAt(int v) const { return vertexTriangle_[(size_t)v]; }
     /** Index (0-2) of vertex v in triangle t, or -1. */
