@@ -8,6 +8,7 @@ packages=(
   libmrpt-dev            # MRPT 2.5: poses, observations, rawlogs, config, opengl (CFBORender)
   libeigen3-dev liboctomap-dev libopencv-dev zlib1g-dev
   nlohmann-json3-dev     # metrics.json writing and reading
+  libboost-dev           # Boost.Geometry: the overlay region of polymap (polygon booleans)
   libgtest-dev libbenchmark-dev
   gnuplot-nox            # error-over-time and CDF plots (pngcairo terminal)
   libegl1 libegl-mesa0 libgl1-mesa-dri   # head-less EGL rendering for CFBORender

@@ -15,20 +15,20 @@ using Rational = boost::multiprecision::cpp_rational;
 
 namespace {
 
-int sign(const Rational& r) { return r > 0 ? 1 : (r < 0 ? -1 : 0); }
+int sign(const Rational& r) { return boost::multiprecision::sign(r); }
 
 int orientationRational(const TPoint2D& a, const TPoint2D& b, const TPoint2D& c) {
     const Rational ax(a.x), ay(a.y), bx(b.x), by(b.y), cx(c.x), cy(c.y);
-    return sign((ax - cx) * (by - cy) - (ay - cy) * (bx - cx));
+    return sign(Rational((ax - cx) * (by - cy) - (ay - cy) * (bx - cx)));
 }
 
 int inCircleRational(const TPoint2D& a, const TPoint2D& b, const TPoint2D& c, const TPoint2D& d) {
     const Rational adx = Rational(a.x) - d.x, ady = Rational(a.y) - d.y;
     const Rational bdx = Rational(b.x) - d.x, bdy = Rational(b.y) - d.y;
     const Rational cdx = Rational(c.x) - d.x, cdy = Rational(c.y) - d.y;
-    return sign((adx * adx + ady * ady) * (bdx * cdy - bdy * cdx) +
-                (bdx * bdx + bdy * bdy) * (cdx * ady - cdy * adx) +
-                (cdx * cdx + cdy * cdy) * (adx * bdy - ady * bdx));
+    return sign(Rational((adx * adx + ady * ady) * (bdx * cdy - bdy * cdx) +
+                         (bdx * bdx + bdy * bdy) * (cdx * ady - cdy * adx) +
+                         (cdx * cdx + cdy * cdy) * (adx * bdy - ady * bdx)));
 }
 
 }  // namespace
