@@ -230,3 +230,19 @@ TEST(Visibility, RandomAndGeneratedMapsUpTo5000) {
     std::cout << "rooms n = " << rooms.size() << ": largest disagreement "
               << worstOverMap(rooms, 100, 512, 25, 1e-11) << " m\n";
 }
+
+TEST(Visibility, VertexwiseDistanceBoundsTheBoundaryDistance) {
+    polymap::VisibilityPolygon a, b, c;
+    a.vertices = {{-1, -1}, {2, -1}, {2, 1}, {-1, 1}};
+    b.vertices = {{2.25, 1}, {-1, 1}, {-1, -1}, {2.25, -1}};  // a's right wall moved 0.25 m,
+    c.vertices = {{-1, -1}, {2, -1}, {2, 1}};                 // listed from another vertex
+    EXPECT_NEAR(polymap::vertexwiseDistance(a, b), 0.25, 1e-15);
+    EXPECT_NEAR(polymap::boundaryDistance(a, b, 0.01), 0.25, 1e-12);
+    EXPECT_TRUE(std::isinf(polymap::vertexwiseDistance(a, c)));
+    mrpt::random::CRandomGenerator rng(2);
+    for (int k = 0; k < 200; ++k) {  // an upper bound, for any perturbation
+        polymap::VisibilityPolygon d = a;
+        for (auto& v : d.vertices) v += TVector2D{rng.drawUniform(-0.1, 0.1), rng.drawUniform(-0.1, 0.1)};
+        EXPECT_GE(polymap::vertexwiseDistance(a, d) + 1e-12, polymap::boundaryDistance(a, d, 1e-3));
+    }
+}

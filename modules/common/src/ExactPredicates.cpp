@@ -23,6 +23,13 @@ inline void twoSum(double a, double b, double& x, double& err) {
 }
 
 /** Adds one double to e exactly (Grow-Expansion with zero elimination). */
+/** d, computed as a - b, is exactly a - b (Two-Sum's error is zero). */
+inline bool exactDifference(double a, double b, double d) {
+    double x, err;
+    twoSum(a, -b, x, err);
+    return x == d && err == 0;
+}
+
 void grow(Expansion& e, double b) {
     double q = b;
     size_t out = 0;
@@ -92,12 +99,35 @@ int inCircleExact(const TPoint2D& a, const TPoint2D& b, const TPoint2D& c, const
 }  // namespace
 
 int orientation(const TPoint2D& a, const TPoint2D& b, const TPoint2D& c) {
-    const double left = (a.x - c.x) * (b.y - c.y), right = (a.y - c.y) * (b.x - c.x);
+    const double acx = a.x - c.x, bcy = b.y - c.y, acy = a.y - c.y, bcx = b.x - c.x;
+    const double left = acx * bcy, right = acy * bcx;
     const double det = left - right;
     const double bound = kOrientBound * (std::abs(left) + std::abs(right));
     if (det > bound) return 1;
     if (-det > bound) return -1;
     if (left == 0 && right == 0) return 0;  // both products exactly zero
+    // Differences without rounding (grid and integer maps, nearby points): the two products
+    // split exactly with fma make a four-term sum, summed exactly on the stack.
+    if (exactDifference(a.x, c.x, acx) && exactDifference(b.y, c.y, bcy) &&
+        exactDifference(a.y, c.y, acy) && exactDifference(b.x, c.x, bcx)) {
+        const double terms[4] = {std::fma(acx, bcy, -left), left, -std::fma(acy, bcx, -right),
+                                 -right};
+        double e[4];
+        size_t m = 0;
+        for (const double t : terms) {
+            double q = t;
+            size_t out = 0;
+            for (size_t i = 0; i < m; ++i) {
+                double sum, err;
+                twoSum(q, e[i], sum, err);
+                q = sum;
+                if (err != 0) e[out++] = err;
+            }
+            m = out;
+            if (q != 0) e[m++] = q;
+        }
+        return m == 0 ? 0 : (e[m - 1] > 0 ? 1 : -1);
+    }
     return orientationExact(a, b, c);
 }
 

@@ -142,7 +142,11 @@ std::vector<Hypothesis> HypothesisGenerator::generate(const VisibilityPolygon& V
             p = map_.closestBoundaryPoint(p).first;
         }
         ++st.verified;
-        const double mismatch = boundaryDistance(V, visibilityPolygon(triangulation_, p), step);
+        // Vertex by vertex when V and V(p) pair up (an exact or clean V: O(|V|)), else the
+        // sampled boundary distance (O(|V|^2), for a scan's V whose corners differ).
+        const VisibilityPolygon Vp = visibilityPolygon(triangulation_, p);
+        double mismatch = vertexwiseDistance(V, Vp);
+        if (mismatch > options_.tolerance) mismatch = boundaryDistance(V, Vp, step);
         if (mismatch <= options_.tolerance) H.push_back({p, {0, 0}, mismatch});
     }
     std::sort(H.begin(), H.end(), [](const Hypothesis& a, const Hypothesis& b) {

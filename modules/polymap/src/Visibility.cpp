@@ -228,4 +228,17 @@ double boundaryDistance(const VisibilityPolygon& a, const VisibilityPolygon& b, 
     return std::max(directedDistance(a, b, step), directedDistance(b, a, step));
 }
 
+double vertexwiseDistance(const VisibilityPolygon& a, const VisibilityPolygon& b) {
+    const size_t n = a.size();
+    if (n == 0 || b.size() != n) return std::numeric_limits<double>::infinity();
+    size_t shift = 0;  // pair a[0] with its nearest vertex of b
+    for (size_t j = 1; j < n; ++j)
+        if ((b.vertices[j] - a.vertices[0]).norm() < (b.vertices[shift] - a.vertices[0]).norm())
+            shift = j;
+    double worst = 0;
+    for (size_t i = 0; i < n; ++i)
+        worst = std::max(worst, (b.vertices[(i + shift) % n] - a.vertices[i]).norm());
+    return worst;
+}
+
 }  // namespace mrloc::polymap

@@ -31,7 +31,9 @@ struct HypothesisOptions {
 struct Hypothesis {
     TPoint2D point;         ///< where the robot would stand in P
     TVector2D translation;  ///< point minus the origin hypothesis' point (seed 002 step 4)
-    double mismatch = 0;    ///< boundary distance between V and V(point) (m)
+    /** Boundary distance between V and V(point), bounded above (m): the largest vertex
+     *  displacement when the two pair vertex by vertex, else sampled. */
+    double mismatch = 0;
 };
 
 struct HypothesisStats {

@@ -45,4 +45,9 @@ VisibilityPolygon visibilityPolygon(const common::Polygon& P, const TPoint2D& q)
  *  the same viewpoint, sampled every `step` along the edges (error at most step / 2). */
 double boundaryDistance(const VisibilityPolygon& a, const VisibilityPolygon& b, double step);
 
+/** If a and b have the same number of vertices, the largest distance between corresponding
+ *  ones (the best cyclic pairing), else infinity: an upper bound on the boundary distance
+ *  (each edge stays within that distance of its partner), in O(|V|). */
+double vertexwiseDistance(const VisibilityPolygon& a, const VisibilityPolygon& b);
+
 }  // namespace mrloc::polymap
