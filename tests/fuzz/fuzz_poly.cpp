@@ -1,19 +1,46 @@
-// Fuzzes the .poly reader and the polygon validation behind it: any input must give a valid
-// simple polygon or mrloc::Error. A polygon that loads must have positive area and
-// counter-clockwise vertices, which the target checks.
+// Fuzzes the .poly reader, the polygon validation behind it, and the geometry built on a map
+// that loads: any input must give a valid simple polygon or mrloc::Error. A polygon that
+// loads must have positive area, triangulate into n - 2 triangles inside it, and give a
+// visibility polygon from a vertex, an edge midpoint and a triangle's centroid, and a
+// shortest path between two vertices, without an error: the target aborts otherwise.
 #include <mrloc/common/Error.h>
 #include <mrloc/common/Polygon.h>
+#include <mrloc/polymap/ShortestPath.h>
+#include <mrloc/polymap/Visibility.h>
 
+#include <cstdio>
+#include <optional>
 #include <cstdlib>
 
 #include "FuzzInput.h"
 
 extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
     const std::string& path = mrloc::fuzz::writeInput(data, size, ".poly");
+    std::optional<mrloc::common::Polygon> P;
     try {
-        const auto P = mrloc::common::Polygon::load(path);
-        if (!(P.area() > 0)) std::abort();  // validation let a degenerate polygon through
+        P = mrloc::common::Polygon::load(path);
     } catch (const mrloc::Error&) {
+        return 0;
+    }
+    if (!(P->area() > 0)) std::abort();  // validation let a degenerate polygon through
+    try {
+        using namespace mrloc::polymap;
+        const Triangulation T(*P);
+        if (T.insideCount() + 2 != P->size()) std::abort();
+        int inside = 0;
+        while (!T[inside].inside) ++inside;
+        const auto& tri = T[inside];
+        const auto centroid = (T.point(tri.v[0]) + T.point(tri.v[1]) + T.point(tri.v[2])) * (1.0 / 3);
+        const size_t n = P->size();
+        for (const auto& q : {(*P)[0], ((*P)[n / 2] + (*P)[n / 2 + 1 == n ? 0 : n / 2 + 1]) * 0.5,
+                              centroid})
+            if (visibilityPolygon(T, q).size() < 3) std::abort();
+        const ShortestPaths paths(T);
+        if (!(paths.distance((*P)[0], (*P)[n / 2]) >= ((*P)[0] - (*P)[n / 2]).norm() * (1 - 1e-12)))
+            std::abort();  // a path shorter than the straight line
+    } catch (const mrloc::Error& e) {
+        std::fprintf(stderr, "geometry failed on a valid map: %s\n", e.what());
+        std::abort();
     }
     return 0;
 }
