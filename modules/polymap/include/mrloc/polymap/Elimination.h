@@ -1,0 +1,117 @@
+#pragma once
+// Hypothesis elimination with little travel (seed 002 steps 4-10): with k hypotheses left,
+// the robot travels inside the overlay intersection region OI (a displacement valid under
+// every live hypothesis) to a probe point whose view differs between at least two of them,
+// senses, keeps the hypotheses whose predicted view matches, and repeats until one is left.
+//
+// One machinery, several probe strategies (seed 002 sec. 2):
+//   - Randomized (algorithm 2, Rao-Dudek-Whitesides 2007): X uniform random points of OI;
+//   - Triangulation, LUT (algorithm 3): midpoints of the map triangulation's edges and
+//     centroids of its triangles, placed at the origin hypothesis, inside OI;
+//   - Windows, LUW (algorithm 4): midpoints of OI's windows, the edges of OI that are a wall
+//     of some live copies but not of all.
+// Every strategy keeps the candidates that separate and goes to the nearest by shortest path
+// inside OI. Frame: displacements from the robot's start, axes along the map's.
+#include <mrloc/common/Polygon.h>
+#include <mrloc/polymap/Overlay.h>
+#include <mrloc/polymap/ShortestPath.h>
+#include <mrloc/polymap/Triangulation.h>
+#include <mrloc/polymap/Visibility.h>
+#include <mrpt/obs/CObservation2DRangeScan.h>
+
+#include <cstdint>
+#include <optional>
+#include <string>
+#include <vector>
+
+namespace mrloc::polymap {
+
+enum class ProbeStrategy { Randomized, Triangulation, Windows };
+
+/** "randomized", "triangulation", "windows" (the INI's names). */
+std::string strategyName(ProbeStrategy s);
+/** Parses a name of strategyName(); throws mrloc::Error naming the valid ones. */
+ProbeStrategy strategyFromName(const std::string& name);
+
+struct EliminationOptions {
+    ProbeStrategy strategy = ProbeStrategy::Windows;
+    int randomPoints = 100;  ///< algorithm 2's X (the paper: 100 and 500)
+    uint32_t seed = 1;       ///< algorithm 2's random points
+    /** A sensed view matches a predicted one within this boundary distance (m): the
+     *  sensing error's bound (the hypothesis generation's tolerance); tiny for exact views.
+     *  A candidate separates only if two predicted views differ by more than twice it, so
+     *  that every probe eliminates a hypothesis and never the truth. */
+    double tolerance = 1e-6;
+    /** The scanner the probes are for: 0 for exact views (polygons compared), else its beams
+     *  per turn; then a candidate separates two hypotheses only if their predicted ranges
+     *  differ by more than 2 x rangeTolerance on over 2 % of the beams, so that a scan, each
+     *  beam within rangeTolerance of the truth, is sure to tell them apart. */
+    int sensorBeams = 0;
+    double rangeTolerance = 0.04;  ///< m: a beam's range error bound (6 sigma + 1 cm)
+    /** Probes keep this far from OI's boundary and from the line of every wall they see (m):
+     *  the robot stands off the walls, and sees none edge-on (grazing beams make a scan's
+     *  polygon worthless). Window midpoints move inwards by it. */
+    double clearance = 0.1;
+};
+
+/** One probe: where, how the robot gets there, and what the choice cost. */
+struct Probe {
+    TPoint2D at;          ///< displacement from the start
+    GeodesicPath path;    ///< from the previous position, inside OI (displacements)
+    size_t candidates = 0;  ///< the strategy's candidates inside OI
+    size_t tested = 0;      ///< candidates whose views were computed (nearest first)
+    double oiArea = 0;      ///< m^2
+};
+
+class Eliminator {
+ public:
+    /** P and the hypotheses' positions (map frame; hypotheses[i] is H's i-th). P must
+     *  outlive this. */
+    Eliminator(const common::Polygon& P, std::vector<TPoint2D> hypotheses,
+               EliminationOptions options);
+
+    /** The next probe for the live hypotheses (indices into the hypotheses), the robot at
+     *  displacement `at`; nothing if no candidate of the strategy separates them. */
+    std::optional<Probe> chooseProbe(const std::vector<size_t>& live, const TPoint2D& at) const;
+    /** The live hypotheses whose view at displacement `at` matches the sensed one within
+     *  `tolerance` (negative: the options'; at most the options', see there). */
+    std::vector<size_t> consistent(const std::vector<size_t>& live, const TPoint2D& at,
+                                   const VisibilityPolygon& sensed, double tolerance = -1) const;
+    /** The live hypotheses that a 360-degree scan taken at displacement `at` (heading known)
+     *  agrees with, beam by beam: a beam agrees if its range is within `rangeTolerance` of
+     *  the predicted view's, looked up at its direction and half a beam step either side (a
+     *  window's end); a hypothesis is kept if at most 1 % of the beams disagree. Comparing
+     *  beams, not polygons: a wall seen at grazing incidence breaks a scan's polygon into
+     *  pieces but leaves its beams right. Throws mrloc::Error for a scan that is not a full
+     *  turn or has a beam without a return. */
+    std::vector<size_t> consistentWithScan(const std::vector<size_t>& live, const TPoint2D& at,
+                                           const mrpt::obs::CObservation2DRangeScan& scan,
+                                           double heading, double rangeTolerance) const;
+    /** The view hypothesis i predicts at displacement `at`: V(p_i + at). */
+    VisibilityPolygon viewOf(size_t i, const TPoint2D& at) const;
+    /** Same view within `tolerance` (vertex by vertex, else the sampled boundary distance). */
+    static bool sameView(const VisibilityPolygon& a, const VisibilityPolygon& b, double tolerance);
+
+    const std::vector<TPoint2D>& hypotheses() const { return hypotheses_; }
+    const EliminationOptions& options() const { return options_; }
+
+ private:
+    std::vector<TPoint2D> candidates(const std::vector<size_t>& live, const OverlayRegion& oi,
+                                     const common::Polygon& oiPolygon, size_t step) const;
+
+    const common::Polygon& P_;
+    Triangulation T_;
+    std::vector<TPoint2D> hypotheses_;
+    EliminationOptions options_;
+};
+
+/** A whole elimination in closed loop, the sensor being the exact view from the true
+ *  hypothesis (tests, benchmarks, the paper's experiment). */
+struct EliminationRun {
+    std::vector<Probe> probes;
+    std::vector<size_t> survivors;  ///< one, the truth, when it worked
+    double travel = 0;              ///< m, the sum of the probes' paths
+};
+EliminationRun eliminateExactly(const Eliminator& eliminator, size_t truth);
+
+}  // namespace mrloc::polymap

@@ -1,0 +1,287 @@
+#include <mrloc/common/Error.h>
+#include <mrloc/common/Rawlog.h>
+#include <mrloc/polymap/Elimination.h>
+#include <mrpt/core/format.h>
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <random>
+
+namespace mrloc::polymap {
+
+std::string strategyName(ProbeStrategy s) {
+    switch (s) {
+        case ProbeStrategy::Randomized:
+            return "randomized";
+        case ProbeStrategy::Triangulation:
+            return "triangulation";
+        case ProbeStrategy::Windows:
+            return "windows";
+    }
+    return "?";
+}
+
+ProbeStrategy strategyFromName(const std::string& name) {
+    for (const auto s :
+         {ProbeStrategy::Randomized, ProbeStrategy::Triangulation, ProbeStrategy::Windows})
+        if (strategyName(s) == name) return s;
+    throw Error("probe strategy '" + name + "': expected randomized, triangulation or windows");
+}
+
+namespace {
+
+/** OI as a simple polygon, for point location and shortest paths inside it: Boost's ring
+ *  with the points it repeats (up to rounding) and the zero-width spikes it leaves dropped. */
+common::Polygon polygonOf(const OverlayRegion& oi) {
+    if (!oi.holes.empty())
+        throw Error(mrpt::format("elimination: the overlay region has %zu hole(s); paths "
+                                 "around holes are not supported yet",
+                                 oi.holes.size()));
+    std::vector<TPoint2D> ring = oi.outer;
+    TPoint2D lo{INFINITY, INFINITY}, hi{-INFINITY, -INFINITY};
+    for (const auto& p : ring)
+        lo = {std::min(lo.x, p.x), std::min(lo.y, p.y)}, hi = {std::max(hi.x, p.x), std::max(hi.y, p.y)};
+    const double tol = 1e-8 * (hi - lo).norm();
+    for (bool changed = true; changed && ring.size() > 3;) {
+        changed = false;
+        for (size_t i = 0; i < ring.size() && ring.size() > 3; ++i) {
+            const size_t n = ring.size();
+            const TPoint2D &a = ring[(i + n - 1) % n], &b = ring[i], &c = ring[(i + 1) % n];
+            const bool repeat = (b - a).norm() <= tol;
+            const bool spike = std::abs(common::cross(a - b, c - b)) <= tol * (c - a).norm() &&
+                               common::dot(a - b, c - b) > 0;
+            if (repeat || spike) {
+                ring.erase(ring.begin() + (long)i);
+                changed = true;
+            }
+        }
+    }
+    return common::Polygon::fromVertices(ring, "elimination: the overlay region");
+}
+
+/** No wall of V is seen edge-on: its line passing nearer than `clearance` to the viewpoint
+ *  beside the wall (not facing it), where a scanner's beams graze it and the sensed V is not
+ *  worth comparing. */
+bool wellConditioned(const VisibilityPolygon& V, double clearance) {
+    const size_t n = V.size();
+    for (size_t i = 0; i < n; ++i) {
+        if (V.isRadial(i)) continue;  // a window: not a wall
+        const TPoint2D &a = V.vertices[i], &b = V.vertices[(i + 1) % n];
+        const TVector2D ab = b - a;
+        const double length = ab.norm();
+        if (length == 0 || std::abs(common::cross(a, b)) / length >= clearance) continue;
+        const double foot = -common::dot(a, ab) / (length * length);  // viewpoint's foot
+        if (foot < 0 || foot > 1) return false;
+    }
+    return true;
+}
+
+/** Over 2 % of `beams` directions see ranges differing by more than `margin`, a beam's own
+ *  direction and half a step either side allowed (a window's end). */
+bool beamsTellApart(const VisibilityPolygon& a, const VisibilityPolygon& b, int beams,
+                    double margin) {
+    const double step = 2 * M_PI / beams;
+    int differ = 0;
+    for (int k = 0; k < beams; ++k) {
+        const double t = k * step;
+        const double ra = a.radius({std::cos(t), std::sin(t)});
+        double best = INFINITY;
+        for (const double d : {0.0, -0.5 * step, 0.5 * step})
+            best = std::min(best, std::abs(ra - b.radius({std::cos(t + d), std::sin(t + d)})));
+        differ += best > margin;
+        if (differ * 50 > beams) return true;
+    }
+    return false;
+}
+
+}  // namespace
+
+Eliminator::Eliminator(const common::Polygon& P, std::vector<TPoint2D> hypotheses,
+                       EliminationOptions options)
+    : P_(P), T_(P), hypotheses_(std::move(hypotheses)), options_(options) {
+    if (hypotheses_.empty()) throw Error("elimination: no hypotheses");
+    if (options_.randomPoints < 1) throw Error("elimination: random_points must be at least 1");
+    if (!(options_.tolerance > 0)) throw Error("elimination: the tolerance must be positive");
+    if (!(options_.clearance >= 0)) throw Error("elimination: the clearance must not be negative");
+}
+
+VisibilityPolygon Eliminator::viewOf(size_t i, const TPoint2D& at) const {
+    return visibilityPolygon(T_, hypotheses_[i] + at);
+}
+
+bool Eliminator::sameView(const VisibilityPolygon& a, const VisibilityPolygon& b,
+                          double tolerance) {
+    if (vertexwiseDistance(a, b) <= tolerance) return true;
+    double extent = 0;
+    for (const auto& v : a.vertices) extent = std::max(extent, v.norm());
+    return boundaryDistance(a, b, std::max(tolerance / 4, extent / 250)) <= tolerance;
+}
+
+std::vector<TPoint2D> Eliminator::candidates(const std::vector<size_t>& live,
+                                             const OverlayRegion& oi,
+                                             const common::Polygon& oiPolygon,
+                                             size_t step) const {
+    std::vector<TPoint2D> out;
+    const double clearance = options_.clearance;
+    // Inside OI, `clearance` from its boundary (up to rounding: window probes sit at it).
+    const auto inOI = [&oiPolygon, clearance](const TPoint2D& c) {
+        return oiPolygon.locate(c) == common::Polygon::Where::Inside &&
+               (clearance == 0 ||
+                (oiPolygon.closestBoundaryPoint(c).first - c).norm() >= clearance * (1 - 1e-9));
+    };
+    switch (options_.strategy) {
+        case ProbeStrategy::Triangulation: {
+            // seed 002 algorithm 3, step 7: edge midpoints and centroids of the map's
+            // triangles, placed at the origin hypothesis.
+            const TPoint2D origin = hypotheses_[live.front()];
+            for (int t = 0; t < (int)T_.triangles().size(); ++t) {
+                const auto& tri = T_[t];
+                if (!tri.inside) continue;
+                const TPoint2D &a = T_.point(tri.v[0]), &b = T_.point(tri.v[1]),
+                               &c = T_.point(tri.v[2]);
+                for (const TPoint2D p : {(a + b + c) * (1.0 / 3), (a + b) * 0.5, (b + c) * 0.5,
+                                         (c + a) * 0.5})
+                    if (inOI(p - origin)) out.push_back(p - origin);
+            }
+            std::sort(out.begin(), out.end(), [](const TPoint2D& a, const TPoint2D& b) {
+                return a.x < b.x || (a.x == b.x && a.y < b.y);
+            });
+            out.erase(std::unique(out.begin(), out.end()), out.end());  // shared edges
+            break;
+        }
+        case ProbeStrategy::Randomized: {
+            // Algorithm 2 (Rao-Dudek-Whitesides): X uniform points of OI, seeded per step.
+            std::mt19937 rng(options_.seed * 2654435761u + (uint32_t)step);
+            std::uniform_real_distribution<double> ux(oiPolygon.min().x, oiPolygon.max().x);
+            std::uniform_real_distribution<double> uy(oiPolygon.min().y, oiPolygon.max().y);
+            const size_t want = (size_t)options_.randomPoints;
+            for (size_t tries = 0; out.size() < want && tries < 1000 * want; ++tries) {
+                const TPoint2D p{ux(rng), uy(rng)};
+                if (inOI(p)) out.push_back(p);
+            }
+            break;
+        }
+        case ProbeStrategy::Windows: {
+            // Algorithm 4, step 6: midpoints of OI's windows, edges that are a wall of some
+            // live copies but not of all (a wall of all tells nothing).
+            const double onWall = 1e-7 * (P_.max() - P_.min()).norm();
+            const size_t m = oi.outer.size();
+            for (size_t e = 0; e < m; ++e) {
+                const TPoint2D mid = (oi.outer[e] + oi.outer[(e + 1) % m]) * 0.5;
+                size_t walls = 0;
+                for (size_t i : live)
+                    walls += (P_.closestBoundaryPoint(hypotheses_[i] + mid).first -
+                              (hypotheses_[i] + mid))
+                                 .norm() <= onWall;
+                if (walls == 0 || walls == live.size()) continue;
+                // Stand off the window, inwards (OI is counter-clockwise: its inside is left).
+                const TVector2D along = oi.outer[(e + 1) % m] - oi.outer[e];
+                const TVector2D inwards = TVector2D{-along.y, along.x} * (1 / along.norm());
+                const TPoint2D probe = mid + inwards * std::max(clearance, 1e-6 * along.norm());
+                if (inOI(probe)) out.push_back(probe);
+            }
+            break;
+        }
+    }
+    return out;
+}
+
+std::optional<Probe> Eliminator::chooseProbe(const std::vector<size_t>& live,
+                                             const TPoint2D& at) const {
+    if (live.size() < 2) return std::nullopt;
+    std::vector<TPoint2D> positions;
+    for (size_t i : live) positions.push_back(hypotheses_[i]);
+    const OverlayRegion oi = overlayRegion(P_, positions);  // seed 002 steps 4-6
+    const common::Polygon oiPolygon = polygonOf(oi);
+    const Triangulation oiTriangles(oiPolygon);
+    const ShortestPaths paths(oiTriangles);
+    const size_t step = hypotheses_.size() - live.size();
+    const auto found = candidates(live, oi, oiPolygon, step);
+    // Nearest first by travel inside OI; the first that separates is the probe (step 7).
+    std::vector<std::pair<double, size_t>> order;
+    order.reserve(found.size());
+    for (size_t c = 0; c < found.size(); ++c)
+        order.push_back({paths.distance(at, found[c]), c});
+    std::sort(order.begin(), order.end());
+    Probe probe;
+    probe.candidates = found.size();
+    probe.oiArea = oi.area;
+    for (const auto& [distance, c] : order) {
+        ++probe.tested;
+        std::vector<VisibilityPolygon> views;
+        for (size_t i : live) views.push_back(viewOf(i, found[c]));
+        bool separates = false;
+        for (size_t k = 1; k < views.size() && !separates; ++k)
+            separates = options_.sensorBeams > 0
+                            ? beamsTellApart(views.front(), views[k], options_.sensorBeams,
+                                             2 * options_.rangeTolerance)
+                            : !sameView(views.front(), views[k], 2 * options_.tolerance);
+        if (!separates || !std::all_of(views.begin(), views.end(), [this](const auto& V) {
+                return wellConditioned(V, options_.clearance);
+            }))
+            continue;
+        probe.at = found[c];
+        probe.path = paths.path(at, found[c]);
+        return probe;
+    }
+    return std::nullopt;
+}
+
+std::vector<size_t> Eliminator::consistent(const std::vector<size_t>& live, const TPoint2D& at,
+                                           const VisibilityPolygon& sensed,
+                                           double tolerance) const {
+    if (tolerance < 0) tolerance = options_.tolerance;
+    std::vector<size_t> out;
+    for (size_t i : live)  // seed 002 step 9
+        if (sameView(viewOf(i, at), sensed, tolerance)) out.push_back(i);
+    return out;
+}
+
+std::vector<size_t> Eliminator::consistentWithScan(const std::vector<size_t>& live,
+                                                   const TPoint2D& at,
+                                                   const mrpt::obs::CObservation2DRangeScan& scan,
+                                                   double heading, double rangeTolerance) const {
+    const size_t n = scan.getScanSize();
+    const std::string what = "elimination: scan '" + scan.sensorLabel + "'";
+    if (n < 8 || std::abs(scan.aperture / double(n - 1) * double(n) - 2 * M_PI) >
+                     0.5 * scan.aperture / double(n - 1))
+        throw Error(what + ": not a full turn of at least 8 beams");
+    const double step = scan.aperture / double(n - 1);
+    const double sign = common::storedFlag(scan.rightToLeft) ? 1 : -1;
+    std::vector<size_t> out;
+    for (size_t i : live) {  // seed 002 step 9, on the beams
+        const VisibilityPolygon V = viewOf(i, at);
+        size_t disagree = 0;
+        for (size_t b = 0; b < n; ++b) {
+            if (!scan.getScanRangeValidity(b))
+                throw Error(what + mrpt::format(": beam %zu has no return", b));
+            const double r = scan.getScanRange(b);
+            const double a = heading + sign * scan.getScanAngle(b);
+            double best = INFINITY;
+            for (const double d : {0.0, -0.5 * step, 0.5 * step})
+                best = std::min(best, std::abs(r - V.radius({std::cos(a + d), std::sin(a + d)})));
+            disagree += best > rangeTolerance;
+        }
+        if (disagree * 100 <= n) out.push_back(i);
+    }
+    return out;
+}
+
+EliminationRun eliminateExactly(const Eliminator& eliminator, size_t truth) {
+    EliminationRun run;
+    for (size_t i = 0; i < eliminator.hypotheses().size(); ++i) run.survivors.push_back(i);
+    TPoint2D at{0, 0};
+    while (run.survivors.size() > 1) {
+        const auto probe = eliminator.chooseProbe(run.survivors, at);
+        if (!probe) break;  // no candidate of the strategy separates what is left
+        run.survivors = eliminator.consistent(run.survivors, probe->at,
+                                              eliminator.viewOf(truth, probe->at));
+        run.travel += probe->path.length;
+        at = probe->at;
+        run.probes.push_back(*probe);
+    }
+    return run;
+}
+
+}  // namespace mrloc::polymap

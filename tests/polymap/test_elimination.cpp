@@ -1,0 +1,132 @@
+// Hypothesis elimination (seed 002 steps 4-10) in closed loop with exact views: every start
+// of the steps maps and of rooms maps ends with exactly the true hypothesis, for every probe
+// strategy.
+#include <gtest/gtest.h>
+#include <mrloc/common/Error.h>
+#include <mrloc/polymap/Elimination.h>
+#include <mrloc/polymap/Hypotheses.h>
+#include <mrloc/polymap/MapGenerators.h>
+#include <mrloc/polymap/ScanPolygon.h>
+#include <mrloc/sim/Scanner.h>
+
+#include <chrono>
+#include <iostream>
+
+using namespace mrloc;
+using polymap::ProbeStrategy;
+
+namespace {
+
+const ProbeStrategy kAll[] = {ProbeStrategy::Randomized, ProbeStrategy::Triangulation,
+                              ProbeStrategy::Windows};
+
+/** Every site as the truth; returns the mean travel. */
+double everyStartEndsWithTheTruth(const polymap::GeneratedMap& map, ProbeStrategy strategy) {
+    polymap::EliminationOptions o;
+    o.strategy = strategy;
+    const polymap::Eliminator eliminator(map.polygon, map.sites, o);
+    double travel = 0;
+    for (size_t truth = 0; truth < map.sites.size(); ++truth) {
+        const auto run = polymap::eliminateExactly(eliminator, truth);
+        EXPECT_EQ(run.survivors, std::vector<size_t>{truth})
+            << map.description << ", " << polymap::strategyName(strategy) << ", start " << truth;
+        EXPECT_LE(run.probes.size(), map.sites.size() - 1);
+        travel += run.travel;
+    }
+    return travel / double(map.sites.size());
+}
+
+}  // namespace
+
+TEST(Elimination, StepsMapsEveryStartEveryStrategy) {
+    for (int steps : {3, 6}) {
+        polymap::StepsMapOptions s;
+        s.steps = steps;
+        const auto map = polymap::stepsMap(s);
+        for (const auto strategy : kAll) {
+            const auto t0 = std::chrono::steady_clock::now();
+            const double mean = everyStartEndsWithTheTruth(map, strategy);
+            const double seconds =
+                std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+            std::cout << "n = " << map.polygon.size() << ", k = " << map.sites.size() << ", "
+                      << polymap::strategyName(strategy) << ": mean path " << mean << " m, "
+                      << seconds / map.sites.size() * 1e3 << " ms per start\n";
+        }
+    }
+}
+
+TEST(Elimination, RoomsMapsEveryStartEveryStrategy) {
+    mrpt::random::CRandomGenerator rng(31);
+    for (int rooms : {2, 4, 7}) {
+        polymap::RoomsMapOptions o;
+        o.rooms = rooms;
+        auto map = polymap::roomsMap(o, rng);
+        // The hypotheses a robot at the first site generates (the sites are all of them).
+        for (const auto strategy : kAll) everyStartEndsWithTheTruth(map, strategy);
+    }
+}
+
+TEST(Elimination, FromNoisyScansTheTruthIsNeverEliminated) {
+    // The sensor is a 1440-beam scan at the probe with 5 mm range noise (the quickstart's
+    // scanner); views compare with the hypothesis generation's automatic tolerance.
+    const auto map = polymap::stepsMap({});
+    mrpt::random::CRandomGenerator rng(8);
+    for (const auto strategy : kAll) {
+        polymap::EliminationOptions o;
+        o.strategy = strategy;
+        o.sensorBeams = 1440;
+        o.rangeTolerance = 6 * 0.005 + 0.01;
+        const polymap::Eliminator eliminator(map.polygon, map.sites, o);
+        for (size_t truth = 0; truth < map.sites.size(); ++truth) {
+            std::vector<size_t> live(map.sites.size());
+            for (size_t i = 0; i < live.size(); ++i) live[i] = i;
+            polymap::TPoint2D at{0, 0};
+            while (live.size() > 1) {
+                const auto probe = eliminator.chooseProbe(live, at);
+                ASSERT_TRUE(probe) << polymap::strategyName(strategy) << " start " << truth;
+                at = probe->at;
+                const auto p = map.sites[truth] + at;
+                const double heading = 0.4;  // any: the robot knows it
+                const auto scan = sim::scanFloorPlan(map.polygon, {p.x, p.y, heading}, {}, rng);
+                const size_t before = live.size();
+                live = eliminator.consistentWithScan(live, at, *scan, heading, o.rangeTolerance);
+                ASSERT_LT(live.size(), before) << "no progress";
+                ASSERT_NE(std::find(live.begin(), live.end(), truth), live.end())
+                    << polymap::strategyName(strategy) << " start " << truth
+                    << ": the truth was eliminated";
+            }
+            EXPECT_EQ(live, std::vector<size_t>{truth});
+        }
+    }
+}
+
+TEST(Elimination, OfficeFloorOfTwentyFourIdenticalRooms) {
+    mrpt::random::CRandomGenerator rng(5);
+    polymap::RoomsMapOptions o;
+    o.rooms = 24;
+    const auto map = polymap::roomsMap(o, rng);
+    ASSERT_EQ(map.sites.size(), 24u);
+    for (const auto strategy : kAll) everyStartEndsWithTheTruth(map, strategy);
+}
+
+TEST(Elimination, BadOptionsAreRefused) {
+    const auto map = polymap::stepsMap({});
+    EXPECT_EQ(polymap::strategyFromName("windows"), ProbeStrategy::Windows);
+    try {
+        polymap::strategyFromName("cells");
+        FAIL() << "no error";
+    } catch (const Error& e) {
+        EXPECT_NE(std::string(e.what()).find("expected randomized, triangulation or windows"),
+                  std::string::npos);
+    }
+    EXPECT_THROW(polymap::Eliminator(map.polygon, {}, {}), Error);
+    polymap::EliminationOptions o;
+    o.randomPoints = 0;
+    EXPECT_THROW(polymap::Eliminator(map.polygon, map.sites, o), Error);
+    o = {};
+    o.tolerance = std::nan("");
+    EXPECT_THROW(polymap::Eliminator(map.polygon, map.sites, o), Error);
+    // One hypothesis: nothing to do.
+    const polymap::Eliminator one(map.polygon, {map.sites[0]}, {});
+    EXPECT_FALSE(one.chooseProbe({0}, {0, 0}));
+}
