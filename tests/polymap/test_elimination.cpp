@@ -17,8 +17,8 @@ using polymap::ProbeStrategy;
 
 namespace {
 
-const ProbeStrategy kAll[] = {ProbeStrategy::Randomized, ProbeStrategy::Triangulation,
-                              ProbeStrategy::Windows};
+const ProbeStrategy kAll[] = {ProbeStrategy::VisibilityCells, ProbeStrategy::Randomized,
+                              ProbeStrategy::Triangulation, ProbeStrategy::Windows};
 
 /** Every site as the truth; returns the mean travel. */
 double everyStartEndsWithTheTruth(const polymap::GeneratedMap& map, ProbeStrategy strategy) {
@@ -112,11 +112,12 @@ TEST(Elimination, OfficeFloorOfTwentyFourIdenticalRooms) {
 TEST(Elimination, BadOptionsAreRefused) {
     const auto map = polymap::stepsMap({});
     EXPECT_EQ(polymap::strategyFromName("windows"), ProbeStrategy::Windows);
+    EXPECT_EQ(polymap::strategyFromName("cells"), ProbeStrategy::VisibilityCells);
     try {
-        polymap::strategyFromName("cells");
+        polymap::strategyFromName("cell");
         FAIL() << "no error";
     } catch (const Error& e) {
-        EXPECT_NE(std::string(e.what()).find("expected randomized, triangulation or windows"),
+        EXPECT_NE(std::string(e.what()).find("expected cells, randomized, triangulation or windows"),
                   std::string::npos);
     }
     EXPECT_THROW(polymap::Eliminator(map.polygon, {}, {}), Error);

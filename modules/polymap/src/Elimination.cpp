@@ -1,4 +1,5 @@
 #include <mrloc/common/Error.h>
+#include <mrloc/common/ExactPredicates.h>
 #include <mrloc/common/Rawlog.h>
 #include <mrloc/polymap/Elimination.h>
 #include <mrpt/core/format.h>
@@ -12,6 +13,8 @@ namespace mrloc::polymap {
 
 std::string strategyName(ProbeStrategy s) {
     switch (s) {
+        case ProbeStrategy::VisibilityCells:
+            return "cells";
         case ProbeStrategy::Randomized:
             return "randomized";
         case ProbeStrategy::Triangulation:
@@ -23,10 +26,11 @@ std::string strategyName(ProbeStrategy s) {
 }
 
 ProbeStrategy strategyFromName(const std::string& name) {
-    for (const auto s :
-         {ProbeStrategy::Randomized, ProbeStrategy::Triangulation, ProbeStrategy::Windows})
+    for (const auto s : {ProbeStrategy::VisibilityCells, ProbeStrategy::Randomized,
+                         ProbeStrategy::Triangulation, ProbeStrategy::Windows})
         if (strategyName(s) == name) return s;
-    throw Error("probe strategy '" + name + "': expected randomized, triangulation or windows");
+    throw Error("probe strategy '" + name +
+                "': expected cells, randomized, triangulation or windows");
 }
 
 namespace {
@@ -86,10 +90,10 @@ bool beamsTellApart(const VisibilityPolygon& a, const VisibilityPolygon& b, int 
     for (int k = 0; k < beams; ++k) {
         const double t = k * step;
         const double ra = a.radius({std::cos(t), std::sin(t)});
-        double best = INFINITY;
-        for (const double d : {0.0, -0.5 * step, 0.5 * step})
-            best = std::min(best, std::abs(ra - b.radius({std::cos(t + d), std::sin(t + d)})));
-        differ += best > margin;
+        const auto off = [&](double d) {
+            return std::abs(ra - b.radius({std::cos(t + d), std::sin(t + d)}));
+        };
+        differ += off(0) > margin && off(-0.5 * step) > margin && off(0.5 * step) > margin;
         if (differ * 50 > beams) return true;
     }
     return false;
@@ -131,6 +135,53 @@ std::vector<TPoint2D> Eliminator::candidates(const std::vector<size_t>& live,
                 (oiPolygon.closestBoundaryPoint(c).first - c).norm() >= clearance * (1 - 1e-9));
     };
     switch (options_.strategy) {
+        case ProbeStrategy::VisibilityCells: {
+            // Algorithm 1 (Dudek-Romanik-Whitesides): what a point of OI sees changes only
+            // where its sight line to a vertex grazes a reflex vertex, i.e. across the chord
+            // that extends the line from vertex v through reflex vertex r into OI. The
+            // decomposition's cells are bounded by these chords and OI's edges, and the
+            // nearest point of a cell lies on its boundary: candidates are points along
+            // every chord (every `clearance`, at most 32 per chord), on both sides of it.
+            const auto& R = oiPolygon.vertices();
+            const size_t m = R.size();
+            const double eps = oiPolygon.epsilon();
+            const auto sees = [&](size_t a, size_t b) {  // segment R[a]-R[b] inside OI
+                for (size_t e = 0; e < m; ++e) {
+                    const size_t f = (e + 1) % m;
+                    if (e == a || e == b || f == a || f == b) continue;
+                    if (common::distanceToSegment(R[e], R[a], R[b]) <= eps) return false;
+                    const int o1 = common::orientation(R[a], R[b], R[e]);
+                    const int o2 = common::orientation(R[a], R[b], R[f]);
+                    const int o3 = common::orientation(R[e], R[f], R[a]);
+                    const int o4 = common::orientation(R[e], R[f], R[b]);
+                    if (o1 * o2 < 0 && o3 * o4 < 0) return false;
+                }
+                return oiPolygon.locate((R[a] + R[b]) * 0.5) != common::Polygon::Where::Outside;
+            };
+            for (size_t r = 0; r < m; ++r) {
+                if (!oiPolygon.isReflex(r)) continue;
+                for (size_t v = 0; v < m; ++v) {
+                    if (v == r || !sees(r, v)) continue;
+                    const TVector2D d = (R[r] - R[v]) * (1 / (R[r] - R[v]).norm());
+                    if (!oiPolygon.contains(R[r] + d * (1e3 * eps)) ||
+                        oiPolygon.locate(R[r] + d * (1e3 * eps)) != common::Polygon::Where::Inside)
+                        continue;  // the extension leaves OI at once: no chord
+                    const auto hit = oiPolygon.rayCast(R[r], d, 1e3 * eps);
+                    if (!hit) continue;
+                    const TVector2D normal{-d.y, d.x};
+                    const int samples =
+                        std::clamp((int)std::ceil(*hit / std::max(clearance, 1e-3)), 1, 32);
+                    for (int k = 0; k < samples; ++k) {
+                        const TPoint2D on = R[r] + d * (*hit * (k + 0.5) / samples);
+                        for (const double side : {-1.0, 1.0}) {
+                            const TPoint2D c = on + normal * (side * std::max(clearance, 1e-6));
+                            if (inOI(c)) out.push_back(c);
+                        }
+                    }
+                }
+            }
+            break;
+        }
         case ProbeStrategy::Triangulation: {
             // seed 002 algorithm 3, step 7: edge midpoints and centroids of the map's
             // triangles, placed at the origin hypothesis.
@@ -204,6 +255,7 @@ std::optional<Probe> Eliminator::chooseProbe(const std::vector<size_t>& live,
     for (size_t c = 0; c < found.size(); ++c)
         order.push_back({paths.distance(at, found[c]), c});
     std::sort(order.begin(), order.end());
+    const double extent = (P_.max() - P_.min()).norm();
     Probe probe;
     probe.candidates = found.size();
     probe.oiArea = oi.area;
@@ -214,8 +266,10 @@ std::optional<Probe> Eliminator::chooseProbe(const std::vector<size_t>& live,
         bool separates = false;
         for (size_t k = 1; k < views.size() && !separates; ++k)
             separates = options_.sensorBeams > 0
-                            ? beamsTellApart(views.front(), views[k], options_.sensorBeams,
-                                             2 * options_.rangeTolerance)
+                            // identical views first (cheap), then the beams
+                            ? vertexwiseDistance(views.front(), views[k]) > 1e-9 * extent &&
+                                  beamsTellApart(views.front(), views[k], options_.sensorBeams,
+                                                 2 * options_.rangeTolerance)
                             : !sameView(views.front(), views[k], 2 * options_.tolerance);
         if (!separates || !std::all_of(views.begin(), views.end(), [this](const auto& V) {
                 return wellConditioned(V, options_.clearance);
@@ -258,10 +312,13 @@ std::vector<size_t> Eliminator::consistentWithScan(const std::vector<size_t>& li
                 throw Error(what + mrpt::format(": beam %zu has no return", b));
             const double r = scan.getScanRange(b);
             const double a = heading + sign * scan.getScanAngle(b);
-            double best = INFINITY;
-            for (const double d : {0.0, -0.5 * step, 0.5 * step})
-                best = std::min(best, std::abs(r - V.radius({std::cos(a + d), std::sin(a + d)})));
-            disagree += best > rangeTolerance;
+            const auto off = [&](double d) {
+                return std::abs(r - V.radius({std::cos(a + d), std::sin(a + d)}));
+            };
+            // Half a step either side only when the beam's own direction disagrees.
+            disagree += off(0) > rangeTolerance && off(-0.5 * step) > rangeTolerance &&
+                        off(0.5 * step) > rangeTolerance;
+            if (disagree * 100 > n) break;  // already out
         }
         if (disagree * 100 <= n) out.push_back(i);
     }

@@ -4,7 +4,11 @@
 // every live hypothesis) to a probe point whose view differs between at least two of them,
 // senses, keeps the hypotheses whose predicted view matches, and repeats until one is left.
 //
-// One machinery, several probe strategies (seed 002 sec. 2):
+// One machinery, four probe strategies (seed 002 sec. 2):
+//   - VisibilityCells (algorithm 1, Dudek-Romanik-Whitesides 1998): views change only across
+//     the critical chords of OI (a reflex vertex's extension of its sight line to another
+//     vertex); the nearest point of each cell lies on a chord, so the candidates are points
+//     along every chord, on both of its sides;
 //   - Randomized (algorithm 2, Rao-Dudek-Whitesides 2007): X uniform random points of OI;
 //   - Triangulation, LUT (algorithm 3): midpoints of the map triangulation's edges and
 //     centroids of its triangles, placed at the origin hypothesis, inside OI;
@@ -26,9 +30,9 @@
 
 namespace mrloc::polymap {
 
-enum class ProbeStrategy { Randomized, Triangulation, Windows };
+enum class ProbeStrategy { VisibilityCells, Randomized, Triangulation, Windows };
 
-/** "randomized", "triangulation", "windows" (the INI's names). */
+/** "cells", "randomized", "triangulation", "windows" (the INI's names). */
 std::string strategyName(ProbeStrategy s);
 /** Parses a name of strategyName(); throws mrloc::Error naming the valid ones. */
 ProbeStrategy strategyFromName(const std::string& name);
