@@ -1,23 +1,54 @@
 // [polymap] options: effective.ini's round trip (save, load, save gives the same text).
 #include <gtest/gtest.h>
+#include <mrloc/common/Error.h>
 #include <mrloc/polymap/PolymapOptions.h>
+#include <mrpt/config/CConfigFileMemory.h>
 
 #include "OptionsRoundTrip.h"
 
 using namespace mrloc;
 
 TEST(PolymapOptions, EffectiveIniRoundTrips) {
-    for (const char* name : {"polymap_steps", "polymap_rooms", "polymap_file"}) {
+    for (const char* name :
+         {"polymap_steps", "polymap_rooms", "polymap_file", "polymap_steps148", "polymap_steps76"}) {
         const auto [first, second] =
             testing_options::roundTrip<polymap::PolymapOptions>(name, "polymap");
         EXPECT_EQ(second.generator, first.generator) << name;
         EXPECT_EQ(second.mapFile, first.mapFile) << name;
         EXPECT_EQ(second.scanRays, first.scanRays) << name;
         EXPECT_EQ(second.heading, first.heading) << name;
+        EXPECT_EQ(second.elimination, first.elimination) << name;
+        EXPECT_EQ(second.randomPoints, first.randomPoints) << name;
+        EXPECT_EQ(second.clearance, first.clearance) << name;
         // The same map and start come out of it.
         const auto m1 = first.buildMap(), m2 = second.buildMap();
         EXPECT_EQ(m1.polygon.size(), m2.polygon.size()) << name;
         EXPECT_EQ(first.startIn(m1).x, second.startIn(m2).x) << name;
         EXPECT_EQ(first.startIn(m1).y, second.startIn(m2).y) << name;
+    }
+}
+
+TEST(PolymapOptions, EliminationKeys) {
+    const auto load = [](const std::string& lines) {
+        mrpt::config::CConfigFileMemory ini("[polymap]\n" + lines);
+        polymap::PolymapOptions o;
+        o.loadFromConfigFile(ini, "polymap");
+        return o;
+    };
+    EXPECT_TRUE(load("").elimination.empty());  // none by default
+    EXPECT_EQ(load("elimination = all").elimination.size(), 4u);
+    EXPECT_EQ(load("elimination = windows cells").elimination,
+              (std::vector<polymap::ProbeStrategy>{polymap::ProbeStrategy::Windows,
+                                                   polymap::ProbeStrategy::VisibilityCells}));
+    EXPECT_EQ(load("random_points = 50").randomPoints, std::vector<int>{50});
+    for (const char* bad : {"elimination = cell", "elimination = all windows",
+                            "random_points = 0", "random_points = 10.5", "clearance = -1"}) {
+        try {
+            load(bad);
+            ADD_FAILURE() << bad << ": no error";
+        } catch (const Error& e) {
+            const std::string key = std::string(bad).substr(0, std::string(bad).find(' '));
+            EXPECT_NE(std::string(e.what()).find(key), std::string::npos) << e.what();
+        }
     }
 }

@@ -5,6 +5,7 @@
 #include <mrpt/opengl/CSetOfLines.h>
 
 #include <algorithm>
+#include <array>
 
 namespace mrloc::polymap {
 
@@ -12,6 +13,9 @@ using namespace mrpt::opengl;
 using common::TPoint2D;
 
 namespace {
+
+const std::array<mrpt::img::TColor, 5> kRouteColours = {
+    mrpt::img::TColor{40, 90, 220}, {160, 40, 200}, {0, 170, 190}, {120, 120, 0}, {230, 60, 140}};
 
 CSetOfLines::Ptr outline(const std::vector<TPoint2D>& v, const TPoint2D& at,
                          mrpt::img::TColor color, float width, float z) {
@@ -40,7 +44,8 @@ void renderPolygonView(const PolygonViewContent& c, const std::string& pngPath, 
     const auto& P = *c.map;
     COpenGLScene scene;
     scene.getViewport()->setCustomBackgroundColor({1, 1, 1});
-    const double size = std::max(P.max().x - P.min().x, P.max().y - P.min().y);
+    const TPoint2D lo = c.box ? c.box->first : P.min(), hi = c.box ? c.box->second : P.max();
+    const double size = std::max(hi.x - lo.x, hi.y - lo.y);
     const double dot = std::max(0.004 * size, 0.05);
     // Orange: V placed at each hypothesis; green: at the true start; red: hypotheses.
     for (const auto& h : c.hypotheses) scene.insert(outline(c.sensed, h, {240, 140, 20}, 2, 0.01f));
@@ -49,12 +54,30 @@ void renderPolygonView(const PolygonViewContent& c, const std::string& pngPath, 
     scene.insert(outline(P.vertices(), {0, 0}, {30, 30, 30}, 2, 0.03f));
     for (const auto& h : c.hypotheses) scene.insert(marker(h, 1.6 * dot, {220, 40, 30}, 0.04f));
     if (c.truth) scene.insert(marker(*c.truth, dot, {20, 150, 50}, 0.05f));
+    // Routes: one colour each, drawn a little apart so that shared legs stay visible.
+    for (size_t k = 0; k < c.routes.size(); ++k) {
+        const auto colour = kRouteColours[k % kRouteColours.size()];
+        const double shift = 0.6 * dot * (double(k) - 0.5 * double(c.routes.size() - 1));
+        auto lines = CSetOfLines::Create();
+        lines->setLineWidth(2.5f);
+        lines->setColor_u8(colour);
+        const auto& path = c.routes[k].path;
+        for (size_t i = 0; i + 1 < path.size(); ++i)
+            lines->appendLine(path[i].x + shift, path[i].y + shift, 0.06, path[i + 1].x + shift,
+                              path[i + 1].y + shift, 0.06);
+        scene.insert(lines);
+        for (const auto& p : c.routes[k].probes)
+            scene.insert(marker({p.x + shift, p.y + shift}, 0.9 * dot, colour, 0.07f));
+    }
     const double m = 0.02 * size;
     report::Legend legend = {{"map P", {30, 30, 30}}, {"V at each hypothesis", {240, 140, 20}}};
     if (c.truth) legend.push_back({"V at the true start", {20, 150, 50}});
     legend.push_back({"hypotheses", {220, 40, 30}});
-    report::saveTopDown(scene, P.min().x - m, P.min().y - m, P.max().x + m, P.max().y + m, pngPath,
-                        width, height, legend);
+    for (size_t k = 0; k < c.routes.size(); ++k)
+        legend.push_back({c.routes[k].label + ": route and probes",
+                          kRouteColours[k % kRouteColours.size()]});
+    report::saveTopDown(scene, lo.x - m, lo.y - m, hi.x + m, hi.y + m, pngPath, width, height,
+                        legend);
 }
 
 }  // namespace mrloc::polymap

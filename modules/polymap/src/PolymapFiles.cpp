@@ -3,6 +3,7 @@
 #include <mrloc/common/Error.h>
 #include <mrloc/polymap/PolymapFiles.h>
 
+#include <cmath>
 #include <sstream>
 
 namespace mrloc::polymap {
@@ -51,6 +52,89 @@ HypothesesFile HypothesesFile::read(const std::string& dir, const std::string& r
         }
     }
     return f;
+}
+
+void EliminationFile::write(const std::string& dir) const {
+    std::ostringstream out;
+    out << "# polymap elimination experiment (seed 002 Tables 1-2), exact views\n"
+        << "# true_start i: the run's true start, index into H (0-based)\n"
+        << "# C column name: an algorithm (cells, randomized:X, triangulation, windows)\n"
+        << "# R column start travel probes survivors: one localization (m)\n"
+        << "# P column x y: the route from the true start; Q column x y: its probes (m)\n"
+        << "true_start " << trueStart << "\n";
+    for (size_t c = 0; c < columns.size(); ++c) {
+        const auto& col = columns[c];
+        out << "C " << c << " " << col.name << "\n";
+        for (size_t i = 0; i < col.travel.size(); ++i)
+            out << "R " << c << " " << i << " " << formatNumber(col.travel[i]) << " "
+                << col.probes[i] << " " << col.survivors[i] << "\n";
+        for (const auto& p : col.route)
+            out << "P " << c << " " << formatNumber(p.x) << " " << formatNumber(p.y) << "\n";
+        for (const auto& p : col.stops)
+            out << "Q " << c << " " << formatNumber(p.x) << " " << formatNumber(p.y) << "\n";
+    }
+    common::writeFileAtomically(path(dir), out.str());
+}
+
+EliminationFile EliminationFile::read(const std::string& dir) {
+    EliminationFile f;
+    for (const auto& line : common::readDataLines(path(dir))) {
+        const std::string& kind = line.fields[0];
+        const auto column = [&f, &line]() -> Column& {
+            const double c = line.number(1);
+            if (c < 0 || c >= (double)f.columns.size() || c != std::floor(c))
+                throw Error(line.where + ": no column " + line.fields[1] + " declared before");
+            return f.columns[(size_t)c];
+        };
+        if (kind == "true_start") {
+            line.expectFields(2);
+            f.trueStart = (size_t)line.number(1);
+        } else if (kind == "C") {
+            line.expectFields(3);
+            if (line.number(1) != (double)f.columns.size())
+                throw Error(line.where + ": columns must be numbered 0, 1, ... in order");
+            f.columns.push_back({line.fields[2], {}, {}, {}, {}, {}});
+        } else if (kind == "R") {
+            line.expectFields(6);
+            auto& col = column();
+            if (line.number(2) != (double)col.travel.size())
+                throw Error(line.where + ": starts must be numbered 0, 1, ... in order");
+            col.travel.push_back(line.number(3));
+            col.probes.push_back((int)line.number(4));
+            col.survivors.push_back((int)line.number(5));
+        } else if (kind == "P" || kind == "Q") {
+            line.expectFields(4);
+            (kind == "P" ? column().route : column().stops)
+                .push_back({line.number(2), line.number(3)});
+        } else {
+            throw Error(line.where + ": expected a line starting with true_start, C, R, P or Q");
+        }
+    }
+    return f;
+}
+
+void EliminationTimes::write(const std::string& dir) const {
+    std::ostringstream out;
+    out << "# polymap elimination experiment: T column start seconds (one localization)\n";
+    for (size_t c = 0; c < seconds.size(); ++c)
+        for (size_t i = 0; i < seconds[c].size(); ++i)
+            out << "T " << c << " " << i << " " << formatNumber(seconds[c][i]) << "\n";
+    common::writeFileAtomically(path(dir), out.str());
+}
+
+EliminationTimes EliminationTimes::read(const std::string& dir) {
+    EliminationTimes t;
+    for (const auto& line : common::readDataLines(path(dir))) {
+        line.expectFields(4);
+        if (line.fields[0] != "T") throw Error(line.where + ": expected a line starting with T");
+        const size_t c = (size_t)line.number(1), i = (size_t)line.number(2);
+        if (c > 1000 || i > 100000) throw Error(line.where + ": column or start out of range");
+        if (t.seconds.size() <= c) t.seconds.resize(c + 1);
+        if (t.seconds[c].size() != i)
+            throw Error(line.where + ": starts must be numbered 0, 1, ... in order");
+        t.seconds[c].push_back(line.number(3));
+    }
+    return t;
 }
 
 }  // namespace mrloc::polymap

@@ -1,5 +1,6 @@
 #include <mrloc/common/Error.h>
 #include <mrloc/common/IniSection.h>
+#include <mrloc/polymap/PaperTables.h>
 #include <mrloc/polymap/PolygonView.h>
 #include <mrloc/polymap/PolymapFiles.h>
 #include <mrloc/polymap/PolymapLocalizer.h>
@@ -7,7 +8,10 @@
 #include <mrpt/core/bits_math.h>
 #include <mrpt/core/format.h>
 
+#include <chrono>
 #include <cmath>
+#include <filesystem>
+#include <optional>
 
 namespace mrloc::polymap {
 
@@ -58,6 +62,137 @@ method::Scenario loadScenario(const mrpt::config::CConfigFileBase& ini,
     return s;
 }
 
+/** Seed 002's experiment (Tables 1-2) on the run's hypotheses: every hypothesis in turn the
+ *  truth, every configured algorithm, closed loop with exact views, deciding with the
+ *  tolerance the hypotheses were generated with. */
+std::vector<std::string> eliminationExperiment(const method::ExperimentInput& in) {
+    const auto& loc = dynamic_cast<const PolymapLocalizer&>(in.localizer);
+    const PolymapOptions& o = loc.options();
+    if (o.elimination.empty()) return {};
+    if (loc.results().empty())
+        throw Error("[polymap] elimination: the rawlog gave no scan to generate hypotheses from");
+    const auto& [robot, r] = *loc.results().begin();
+    std::vector<TPoint2D> positions;
+    for (const auto& h : r.hypotheses) positions.push_back(h.point);
+    if (positions.empty()) throw Error("[polymap] elimination: no hypotheses to eliminate");
+    // The run's true start: the hypothesis nearest the truth (or the configured start).
+    TPoint2D truth = o.startIn(loc.generatedMap());
+    if (const auto gt = in.truth.find(robot); gt != in.truth.end())
+        if (const auto p = common::interpolate(gt->second, r.time)) truth = {p->x(), p->y()};
+    EliminationFile file;
+    for (size_t i = 1; i < positions.size(); ++i)
+        if ((positions[i] - truth).norm() < (positions[file.trueStart] - truth).norm())
+            file.trueStart = i;
+    EliminationTimes times;
+    const auto& P = loc.generatedMap().polygon;
+    for (const ProbeStrategy strategy : o.elimination) {
+        const std::vector<int> xs =
+            strategy == ProbeStrategy::Randomized ? o.randomPoints : std::vector<int>{0};
+        for (const int x : xs) {
+            EliminationOptions eo;
+            eo.strategy = strategy;
+            if (x > 0) eo.randomPoints = x;
+            eo.seed = (uint32_t)o.eliminationSeed;
+            eo.tolerance = r.tolerance;  // the generation's: see doc/polymap.md
+            eo.clearance = o.clearance;
+            const Eliminator eliminator(P, positions, eo);
+            EliminationFile::Column col;
+            col.name = strategyName(strategy) + (x > 0 ? ":" + std::to_string(x) : "");
+            times.seconds.emplace_back();
+            for (size_t start = 0; start < positions.size(); ++start) {
+                const auto t0 = std::chrono::steady_clock::now();
+                const auto run = eliminateExactly(eliminator, start);
+                times.seconds.back().push_back(
+                    std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count());
+                col.travel.push_back(run.travel);
+                col.probes.push_back((int)run.probes.size());
+                col.survivors.push_back((int)run.survivors.size());
+                if (start != file.trueStart) continue;
+                col.route.push_back(positions[start]);
+                for (const auto& probe : run.probes) {
+                    for (size_t k = 1; k < probe.path.points.size(); ++k)
+                        col.route.push_back(positions[start] + probe.path.points[k]);
+                    col.stops.push_back(positions[start] + probe.at);
+                }
+            }
+            file.columns.push_back(std::move(col));
+        }
+    }
+    file.write(in.outDir);
+    times.write(in.outDir);
+    return {EliminationFile::path(in.outDir), EliminationTimes::path(in.outDir)};
+}
+
+/** The experiment's tables, ours beside the paper's where the run is the paper's case. */
+std::string eliminationTables(const EliminationFile& file, const EliminationTimes& times) {
+    const size_t starts = file.columns.front().travel.size();
+    std::vector<int> paperColumn;  // ours -> the paper's, -1 if it has none
+    for (const auto& c : file.columns) {
+        int match = -1;
+        for (int k = 0; k < paper::kColumns; ++k)
+            if (c.name == paper::kColumnNames[k]) match = k;
+        paperColumn.push_back(starts == (size_t)paper::kStarts ? match : -1);
+    }
+    const auto mean = [](const std::vector<double>& v) {
+        double s = 0;
+        for (double x : v) s += x;
+        return v.empty() ? 0.0 : s / double(v.size());
+    };
+    const auto table = [&](bool travel) {
+        std::string out = "<table><tr><th>start</th>";
+        for (size_t c = 0; c < file.columns.size(); ++c)
+            out += "<th>" + report::html(file.columns[c].name) +
+                   (travel ? " d (m)" : " t (ms)") + "</th>" +
+                   (paperColumn[c] >= 0 ? std::string(travel ? "<th>paper d</th>" : "<th>paper t (s)</th>")
+                                        : std::string());
+        out += "</tr>\n";
+        for (size_t i = 0; i < starts; ++i) {
+            out += "<tr><td>" + std::to_string(i + 1) + (i == file.trueStart ? " (run)" : "") +
+                   "</td>";
+            for (size_t c = 0; c < file.columns.size(); ++c) {
+                const auto& col = file.columns[c];
+                const std::string ok = col.survivors[i] == 1 ? "" : " (not localized)";
+                out += travel ? mrpt::format("<td>%.2f%s</td>", col.travel[i], ok.c_str())
+                              : mrpt::format("<td>%.2f</td>", 1e3 * times.seconds.at(c).at(i));
+                if (paperColumn[c] >= 0)
+                    out += mrpt::format("<td>%.1f</td>",
+                                        (travel ? paper::kTravel : paper::kSeconds)[i][paperColumn[c]]);
+            }
+            out += "</tr>\n";
+        }
+        // Averages, and each average over the first column's (the paper's d_i/d_1, t_i/t_1).
+        std::string avg = "<tr><td>mean</td>", ratio = "<tr><td>ratio to column 1</td>";
+        const double first = travel ? mean(file.columns[0].travel) : mean(times.seconds.at(0));
+        double paperFirst = 0;
+        if (paperColumn[0] >= 0)
+            for (int i = 0; i < paper::kStarts; ++i)
+                paperFirst += (travel ? paper::kTravel : paper::kSeconds)[i][paperColumn[0]] / 12;
+        for (size_t c = 0; c < file.columns.size(); ++c) {
+            const double m = travel ? mean(file.columns[c].travel) : mean(times.seconds.at(c));
+            avg += mrpt::format("<td>%.2f</td>", travel ? m : 1e3 * m);
+            ratio += mrpt::format("<td>%.3f</td>", first > 0 ? m / first : 0.0);
+            if (paperColumn[c] >= 0) {
+                double pm = 0;
+                for (int i = 0; i < paper::kStarts; ++i)
+                    pm += (travel ? paper::kTravel : paper::kSeconds)[i][paperColumn[c]] / 12;
+                avg += mrpt::format("<td>%.2f</td>", pm);
+                ratio += paperFirst > 0 ? mrpt::format("<td>%.3f</td>", pm / paperFirst)
+                                        : std::string("<td></td>");
+            }
+        }
+        return out + avg + "</tr>\n" + ratio + "</tr>\n</table>\n";
+    };
+    return "<h3>Elimination: path length per start (seed 002 Table 1)</h3>\n"
+           "<p>Every hypothesis in turn the truth; closed loop with exact views; d is the "
+           "robot's travel in metres. The paper's map units are not stated: compare the "
+           "ratios.</p>\n" +
+           table(true) +
+           "<h3>Elimination: run time per start (seed 002 Table 2)</h3>\n"
+           "<p>One whole localization, this machine, one core, milliseconds; the paper's in "
+           "seconds (Visual C++ 2010).</p>\n" +
+           table(false);
+}
+
 std::string polymapSection(const report::RunView& run) {
     std::string out =
         "<h2>Polygon map: hypotheses</h2>\n<p>The map P; the sensed visibility polygon V at "
@@ -73,10 +208,33 @@ std::string polymapSection(const report::RunView& run) {
         if (const auto gt = run.truth.find(robot); gt != run.truth.end())
             if (const auto p = common::interpolate(gt->second, file.time))
                 view.truth = common::TPoint2D{p->x(), p->y()};
+        std::optional<EliminationFile> elimination;
+        if (std::filesystem::exists(EliminationFile::path(run.dir))) {
+            elimination = EliminationFile::read(run.dir);
+            for (const auto& col : elimination->columns)
+                view.routes.push_back({col.name, col.route, col.stops});
+        }
         const std::string png = "polymap." + robot + ".png";
         renderPolygonView(view, run.dir + "/" + png);
         out += "<h3>Robot " + report::html(robot) + ": " + std::to_string(file.hypotheses.size()) +
                " hypotheses</h3>\n<img src='" + png + "' alt='map, V and hypotheses'>\n";
+        if (!view.routes.empty()) {  // a close-up of the routes from the true start
+            TPoint2D lo{INFINITY, INFINITY}, hi{-INFINITY, -INFINITY};
+            for (const auto& route : view.routes)
+                for (const auto& p : route.path)
+                    lo = {std::min(lo.x, p.x), std::min(lo.y, p.y)},
+                    hi = {std::max(hi.x, p.x), std::max(hi.y, p.y)};
+            // Routes on the left, room on the right for the legend (top right).
+            const double pad = 0.25 * std::max({hi.x - lo.x, hi.y - lo.y, 4.0});
+            const double wide = std::max(hi.x - lo.x + 2 * pad, 2 * (hi.y - lo.y + 2 * pad));
+            view.box = std::make_pair(lo - TPoint2D{pad, pad},
+                                      TPoint2D{lo.x - pad + 1.8 * wide, hi.y + pad});
+            const std::string zoom = "polymap." + robot + ".routes.png";
+            renderPolygonView(view, run.dir + "/" + zoom, 1200, 600);
+            out += "<p>Close-up: each algorithm's route from the run's true start (seed 002 "
+                   "figs. 2-5), its probes as dots.</p>\n<img src='" + zoom +
+                   "' alt='elimination routes from the true start'>\n";
+        }
         out +=
             "<table><tr><th>#</th><th>x (m)</th><th>y (m)</th><th>translation (m)</th>"
             "<th>mismatch (m)</th><th>distance to truth (m)</th></tr>\n";
@@ -91,6 +249,8 @@ std::string polymapSection(const report::RunView& run) {
                 d.c_str());
         }
         out += "</table>\n";
+        if (elimination && !elimination->columns.empty())
+            out += eliminationTables(*elimination, EliminationTimes::read(run.dir));
     }
     return out;
 }
@@ -103,6 +263,7 @@ void registerMethod(method::Registry& registry) {
     m.sections = {"polymap"};
     m.localizer = [] { return std::make_unique<PolymapLocalizer>(); };
     m.scenario = loadScenario;
+    m.experiment = eliminationExperiment;
     m.report.html = polymapSection;  // its own picture: no world top view
     registry.add(std::move(m));
 }

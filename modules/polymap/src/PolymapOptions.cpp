@@ -4,6 +4,8 @@
 #include <mrpt/core/format.h>
 
 #include <cmath>
+#include <iterator>
+#include <sstream>
 
 namespace mrloc::polymap {
 
@@ -48,6 +50,25 @@ void PolymapOptions::loadFromConfigFile(const mrpt::config::CConfigFileBase& src
     tolerance = s.real("tolerance", 0, 0, 1e3);
     angleTolerance = s.real("angle_tolerance", 3, 1e-6, 45);
     breakAngle = s.real("break_angle", 10, 1, 45);
+    elimination.clear();
+    std::istringstream names(s.text("elimination", "none"));
+    std::vector<std::string> list{std::istream_iterator<std::string>(names), {}};
+    if (list == std::vector<std::string>{"all"}) list = {"cells", "randomized", "triangulation", "windows"};
+    if (list != std::vector<std::string>{"none"})
+        for (const auto& name : list) try {
+                elimination.push_back(strategyFromName(name));
+            } catch (const Error& e) {
+                s.fail("elimination", std::string(e.what()) + " (or none, all)");
+            }
+    randomPoints.clear();
+    for (const double x : s.reals("random_points", {100, 500})) {
+        if (x < 1 || x > 1e6 || x != std::floor(x))
+            s.fail("random_points", "each X must be a whole number from 1 to 1000000");
+        randomPoints.push_back((int)x);
+    }
+    if (randomPoints.empty()) s.fail("random_points", "give at least one X");
+    eliminationSeed = (unsigned long)s.integer("elimination_seed", 1, 0, 4294967295L);
+    clearance = s.real("clearance", 0.1, 0, 10);
     s.finish();
 }
 
@@ -87,6 +108,14 @@ void PolymapOptions::saveToConfigFile(mrpt::config::CConfigFileBase& t,
     t.write(section, "tolerance", tolerance);
     t.write(section, "angle_tolerance", angleTolerance);
     t.write(section, "break_angle", breakAngle);
+    std::string names;
+    for (const auto e : elimination) names += (names.empty() ? "" : " ") + strategyName(e);
+    t.write(section, "elimination", names.empty() ? std::string("none") : names);
+    std::string xs;
+    for (const int x : randomPoints) xs += (xs.empty() ? "" : " ") + std::to_string(x);
+    t.write(section, "random_points", xs);
+    t.write(section, "elimination_seed", std::to_string(eliminationSeed));
+    t.write(section, "clearance", clearance);
 }
 
 GeneratedMap PolymapOptions::buildMap() const {

@@ -14,6 +14,14 @@ struct PolygonViewContent {
     std::vector<common::TPoint2D> sensed;      ///< V in the robot frame
     std::vector<common::TPoint2D> hypotheses;  ///< where V fits the map
     std::optional<common::TPoint2D> truth;
+    /** Elimination routes from the true start (map frame), each with its probes. */
+    struct Route {
+        std::string label;
+        std::vector<common::TPoint2D> path, probes;
+    };
+    std::vector<Route> routes;
+    /** Draw only this box (min, max corners; map frame): a close-up. Default: all of P. */
+    std::optional<std::pair<common::TPoint2D, common::TPoint2D>> box;
 };
 
 void renderPolygonView(const PolygonViewContent& content, const std::string& pngPath,

@@ -3,6 +3,8 @@
 // section, each defined once, write and read side by side:
 //   map.poly                  the map P (common::Polygon's own format)
 //   hypotheses.<robot>.txt    the sensed V (robot frame) and the hypotheses H
+//   elimination.txt           the elimination experiment: travel per algorithm and start
+//   elimination.times.txt     its run times (the one output that differs run to run)
 #include <mrloc/polymap/Hypotheses.h>
 
 #include <string>
@@ -22,6 +24,35 @@ struct HypothesesFile {
     void write(const std::string& dir, const std::string& robot) const;
     /** Throws mrloc::Error naming the file and line on a malformed line. */
     static HypothesesFile read(const std::string& dir, const std::string& robot);
+};
+
+/** The elimination experiment (seed 002 Tables 1-2): each column an algorithm, each row a
+ *  start (H's order, every hypothesis in turn the truth). */
+struct EliminationFile {
+    struct Column {
+        std::string name;  ///< cells, randomized:X, triangulation, windows
+        std::vector<double> travel;   ///< m, per start
+        std::vector<int> probes;      ///< per start
+        std::vector<int> survivors;   ///< per start: hypotheses left (1: localized)
+        std::vector<TPoint2D> route;  ///< the run's true start: its path (map frame)
+        std::vector<TPoint2D> stops;  ///< and its probes (map frame)
+    };
+    size_t trueStart = 0;  ///< index in H of the run's true start
+    std::vector<Column> columns;
+
+    static std::string path(const std::string& dir) { return dir + "/elimination.txt"; }
+    void write(const std::string& dir) const;
+    static EliminationFile read(const std::string& dir);
+};
+
+/** Seconds per localization, [column][start]: kept apart, as the only output that is not
+ *  the same from run to run. */
+struct EliminationTimes {
+    std::vector<std::vector<double>> seconds;
+
+    static std::string path(const std::string& dir) { return dir + "/elimination.times.txt"; }
+    void write(const std::string& dir) const;
+    static EliminationTimes read(const std::string& dir);
 };
 
 }  // namespace mrloc::polymap

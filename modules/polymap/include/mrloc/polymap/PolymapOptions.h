@@ -2,6 +2,7 @@
 // Section [polymap]: the map (a .poly file or a generator), the robot's true start and
 // heading, its 360-degree scanner, and the hypothesis tolerances. The simulator gets the
 // map, start and scanner through the app; the localizer reads the same section.
+#include <mrloc/polymap/Elimination.h>
 #include <mrloc/polymap/Hypotheses.h>
 #include <mrloc/polymap/MapGenerators.h>
 #include <mrloc/polymap/ScanPolygon.h>
@@ -9,6 +10,7 @@
 
 #include <optional>
 #include <string>
+#include <vector>
 
 namespace mrloc::polymap {
 
@@ -28,6 +30,13 @@ struct PolymapOptions : public mrpt::config::CLoadableOptions {
     double tolerance = 0;           ///< tolerance (m); 0: from the scan (see doc)
     double angleTolerance = 3;      ///< angle_tolerance (deg)
     double breakAngle = 10;         ///< break_angle (deg): scan segmentation
+    /** elimination = none | all | a list of cells, randomized, triangulation, windows: the
+     *  paper's experiment (seed 002 Tables 1-2) run after localization, every hypothesis in
+     *  turn the truth, exact views. */
+    std::vector<ProbeStrategy> elimination;
+    std::vector<int> randomPoints{100, 500};  ///< random_points: X of each randomized run
+    unsigned long eliminationSeed = 1;          ///< elimination_seed
+    double clearance = 0.1;                     ///< clearance (m), see EliminationOptions
 
     void loadFromConfigFile(const mrpt::config::CConfigFileBase& source,
                             const std::string& section) override;
