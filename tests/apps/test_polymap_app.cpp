@@ -152,3 +152,31 @@ TEST(MrlocPolymap, PaperExperimentOnTheSteps76MapLocalizesFromEveryStart) {
         else EXPECT_EQ(text, first);
     }
 }
+
+TEST(MrlocPolymap, SweepOverMapSizesDrawsFigsSixAndSeven) {
+    // polymap_steps76.ini with a small sweep: steps maps of 1 and 2 steps (n = 28 and 52),
+    // two starts each: every algorithm localizes, and both figures are drawn.
+    const std::string ini = (fs::path(testing::TempDir()) / "sweep.ini").lexically_normal();
+    {
+        std::ofstream f(ini);
+        f << slurp(config("polymap_steps76")) << "sweep_steps = 1 2\nsweep_starts = 2\n";
+    }
+    const std::string out = tmp("polymap_sweep");
+    const auto r = mrlocCmd("run " + ini + " -q --out " + out);
+    ASSERT_EQ(r.code, 0) << r.output;
+    const auto sweep = polymap::EliminationSweepFile::read(out);
+    ASSERT_EQ(sweep.rows.size(), 10u);  // 2 maps x 5 algorithms
+    for (const auto& row : sweep.rows) {
+        EXPECT_TRUE(row.n == 28 || row.n == 52) << row.n;
+        EXPECT_EQ(row.k, row.n == 28 ? 2 : 4);
+        EXPECT_EQ(row.starts, 2);
+        EXPECT_EQ(row.notLocalized, 0) << row.column << " n = " << row.n;
+        EXPECT_GT(row.meanTravel, 1.0);
+    }
+    for (const char* png : {"/elimination.fig6.png", "/elimination.fig7.png"}) {
+        mrpt::img::CImage image;
+        ASSERT_TRUE(image.loadFromFile(out + png)) << png;
+        EXPECT_EQ(image.getWidth(), 900u);
+    }
+    EXPECT_NE(slurp(out + "/report.html").find("seed 002 Figs. 6-7"), std::string::npos);
+}

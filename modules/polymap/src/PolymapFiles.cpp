@@ -137,4 +137,25 @@ EliminationTimes EliminationTimes::read(const std::string& dir) {
     return t;
 }
 
+void EliminationSweepFile::write(const std::string& dir) const {
+    std::ostringstream out;
+    out << "# polymap elimination sweep (seed 002 Figs. 6-7), exact views\n"
+        << "# n k starts column mean_travel_m mean_seconds not_localized\n";
+    for (const auto& r : rows)
+        out << r.n << " " << r.k << " " << r.starts << " " << r.column << " "
+            << formatNumber(r.meanTravel) << " " << formatNumber(r.meanSeconds) << " "
+            << r.notLocalized << "\n";
+    common::writeFileAtomically(path(dir), out.str());
+}
+
+EliminationSweepFile EliminationSweepFile::read(const std::string& dir) {
+    EliminationSweepFile f;
+    for (const auto& line : common::readDataLines(path(dir))) {
+        line.expectFields(7);
+        f.rows.push_back({(int)line.number(0), (int)line.number(1), (int)line.number(2),
+                          line.fields[3], line.number(4), line.number(5), (int)line.number(6)});
+    }
+    return f;
+}
+
 }  // namespace mrloc::polymap

@@ -5,9 +5,11 @@
 #include <mrloc/polymap/PolymapFiles.h>
 #include <mrloc/polymap/PolymapLocalizer.h>
 #include <mrloc/polymap/PolymapMethod.h>
+#include <mrloc/report/Plots.h>
 #include <mrpt/core/bits_math.h>
 #include <mrpt/core/format.h>
 
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <filesystem>
@@ -62,9 +64,62 @@ method::Scenario loadScenario(const mrpt::config::CConfigFileBase& ini,
     return s;
 }
 
+/** The algorithms of `elimination`, randomized once per X, as experiment columns. */
+std::vector<std::pair<std::string, EliminationOptions>> experimentColumns(const PolymapOptions& o,
+                                                                          double tolerance) {
+    std::vector<std::pair<std::string, EliminationOptions>> out;
+    for (const ProbeStrategy strategy : o.elimination) {
+        const std::vector<int> xs =
+            strategy == ProbeStrategy::Randomized ? o.randomPoints : std::vector<int>{0};
+        for (const int x : xs) {
+            EliminationOptions eo;
+            eo.strategy = strategy;
+            if (x > 0) eo.randomPoints = x;
+            eo.seed = (uint32_t)o.eliminationSeed;
+            eo.tolerance = tolerance;  // the generation's: see doc/polymap.md
+            eo.clearance = o.clearance;
+            out.push_back({strategyName(strategy) + (x > 0 ? ":" + std::to_string(x) : ""), eo});
+        }
+    }
+    return out;
+}
+
+/** One localization from `start`, timed. */
+std::pair<EliminationRun, double> timedElimination(const Eliminator& eliminator, size_t start) {
+    const auto t0 = std::chrono::steady_clock::now();
+    auto run = eliminateExactly(eliminator, start);
+    return {std::move(run),
+            std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count()};
+}
+
+/** Seed 002 Figs. 6-7: steps maps of each `sweep_steps`, their sites the hypotheses, at most
+ *  `sweep_starts` starts each, evenly spread. */
+EliminationSweepFile eliminationSweep(const PolymapOptions& o, double tolerance) {
+    EliminationSweepFile sweep;
+    for (const int steps : o.sweepSteps) {
+        StepsMapOptions so = o.steps;
+        so.steps = steps;
+        const auto map = stepsMap(so);
+        const size_t k = map.sites.size();
+        const size_t count = std::min(k, (size_t)o.sweepStarts);
+        for (const auto& [name, eo] : experimentColumns(o, tolerance)) {
+            const Eliminator eliminator(map.polygon, map.sites, eo);
+            EliminationSweepFile::Row row{(int)map.polygon.size(), (int)k, (int)count, name};
+            for (size_t s = 0; s < count; ++s) {
+                const auto [run, seconds] = timedElimination(eliminator, s * k / count);
+                row.meanTravel += run.travel / double(count);
+                row.meanSeconds += seconds / double(count);
+                row.notLocalized += run.survivors.size() != 1;
+            }
+            sweep.rows.push_back(row);
+        }
+    }
+    return sweep;
+}
+
 /** Seed 002's experiment (Tables 1-2) on the run's hypotheses: every hypothesis in turn the
  *  truth, every configured algorithm, closed loop with exact views, deciding with the
- *  tolerance the hypotheses were generated with. */
+ *  tolerance the hypotheses were generated with; then the sweep over n, if asked. */
 std::vector<std::string> eliminationExperiment(const method::ExperimentInput& in) {
     const auto& loc = dynamic_cast<const PolymapLocalizer&>(in.localizer);
     const PolymapOptions& o = loc.options();
@@ -85,42 +140,61 @@ std::vector<std::string> eliminationExperiment(const method::ExperimentInput& in
             file.trueStart = i;
     EliminationTimes times;
     const auto& P = loc.generatedMap().polygon;
-    for (const ProbeStrategy strategy : o.elimination) {
-        const std::vector<int> xs =
-            strategy == ProbeStrategy::Randomized ? o.randomPoints : std::vector<int>{0};
-        for (const int x : xs) {
-            EliminationOptions eo;
-            eo.strategy = strategy;
-            if (x > 0) eo.randomPoints = x;
-            eo.seed = (uint32_t)o.eliminationSeed;
-            eo.tolerance = r.tolerance;  // the generation's: see doc/polymap.md
-            eo.clearance = o.clearance;
-            const Eliminator eliminator(P, positions, eo);
-            EliminationFile::Column col;
-            col.name = strategyName(strategy) + (x > 0 ? ":" + std::to_string(x) : "");
-            times.seconds.emplace_back();
-            for (size_t start = 0; start < positions.size(); ++start) {
-                const auto t0 = std::chrono::steady_clock::now();
-                const auto run = eliminateExactly(eliminator, start);
-                times.seconds.back().push_back(
-                    std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count());
-                col.travel.push_back(run.travel);
-                col.probes.push_back((int)run.probes.size());
-                col.survivors.push_back((int)run.survivors.size());
-                if (start != file.trueStart) continue;
-                col.route.push_back(positions[start]);
-                for (const auto& probe : run.probes) {
-                    for (size_t k = 1; k < probe.path.points.size(); ++k)
-                        col.route.push_back(positions[start] + probe.path.points[k]);
-                    col.stops.push_back(positions[start] + probe.at);
-                }
+    for (const auto& [name, eo] : experimentColumns(o, r.tolerance)) {
+        const Eliminator eliminator(P, positions, eo);
+        EliminationFile::Column col;
+        col.name = name;
+        times.seconds.emplace_back();
+        for (size_t start = 0; start < positions.size(); ++start) {
+            const auto [run, seconds] = timedElimination(eliminator, start);
+            times.seconds.back().push_back(seconds);
+            col.travel.push_back(run.travel);
+            col.probes.push_back((int)run.probes.size());
+            col.survivors.push_back((int)run.survivors.size());
+            if (start != file.trueStart) continue;
+            col.route.push_back(positions[start]);
+            for (const auto& probe : run.probes) {
+                for (size_t k = 1; k < probe.path.points.size(); ++k)
+                    col.route.push_back(positions[start] + probe.path.points[k]);
+                col.stops.push_back(positions[start] + probe.at);
             }
-            file.columns.push_back(std::move(col));
         }
+        file.columns.push_back(std::move(col));
     }
     file.write(in.outDir);
     times.write(in.outDir);
-    return {EliminationFile::path(in.outDir), EliminationTimes::path(in.outDir)};
+    std::vector<std::string> written{EliminationFile::path(in.outDir),
+                                     EliminationTimes::path(in.outDir)};
+    if (!o.sweepSteps.empty()) {
+        eliminationSweep(o, r.tolerance).write(in.outDir);
+        written.push_back(EliminationSweepFile::path(in.outDir));
+    }
+    return written;
+}
+
+/** Figs. 6-7: mean path and mean time against n, one line per algorithm. */
+void plotSweep(const EliminationSweepFile& sweep, const std::string& dir) {
+    std::vector<std::string> columns;
+    for (const auto& r : sweep.rows)
+        if (std::find(columns.begin(), columns.end(), r.column) == columns.end())
+            columns.push_back(r.column);
+    for (const bool travel : {true, false}) {
+        std::string body, plot;
+        for (size_t c = 0; c < columns.size(); ++c) {
+            std::vector<std::pair<double, double>> xy;
+            for (const auto& r : sweep.rows)
+                if (r.column == columns[c])
+                    xy.emplace_back(r.n, travel ? r.meanTravel : 1e3 * r.meanSeconds);
+            body += report::dataBlock("c" + std::to_string(c), xy);
+            plot += std::string(plot.empty() ? "plot " : ", ") + "$c" + std::to_string(c) +
+                    " using 1:2 with linespoints lw 2 title '" + columns[c] + "'";
+        }
+        body += std::string("set xlabel 'map vertices n'\n") +
+                (travel ? "set ylabel 'mean path d (m)'\nset key bottom right\n"
+                        : "set ylabel 'mean time t per localization (ms)'\nset logscale y\n") +
+                plot + "\n";
+        report::runGnuplot(body, dir + (travel ? "/elimination.fig6.png" : "/elimination.fig7.png"));
+    }
 }
 
 /** The experiment's tables, ours beside the paper's where the run is the paper's case. */
@@ -251,6 +325,23 @@ std::string polymapSection(const report::RunView& run) {
         out += "</table>\n";
         if (elimination && !elimination->columns.empty())
             out += eliminationTables(*elimination, EliminationTimes::read(run.dir));
+        if (std::filesystem::exists(EliminationSweepFile::path(run.dir))) {
+            const auto sweep = EliminationSweepFile::read(run.dir);
+            plotSweep(sweep, run.dir);
+            out += "<h3>Elimination against map size (seed 002 Figs. 6-7)</h3>\n<p>Steps maps "
+                   "of the run's shape, n vertices, their sites the hypotheses; mean over up "
+                   "to " + std::to_string(sweep.rows.empty() ? 0 : sweep.rows.front().starts) +
+                   " starts per map, evenly spread.</p>\n<img src='elimination.fig6.png' "
+                   "alt='mean path against n'>\n<img src='elimination.fig7.png' alt='mean "
+                   "time against n'>\n<table><tr><th>n</th><th>k</th><th>algorithm</th><th>mean "
+                   "d (m)</th><th>mean t (ms)</th><th>not localized</th></tr>\n";
+            for (const auto& r : sweep.rows)
+                out += mrpt::format("<tr><td>%d</td><td>%d</td><td>%s</td><td>%.2f</td><td>%.2f</td>"
+                                    "<td>%d</td></tr>\n",
+                                    r.n, r.k, report::html(r.column).c_str(), r.meanTravel,
+                                    1e3 * r.meanSeconds, r.notLocalized);
+            out += "</table>\n";
+        }
     }
     return out;
 }

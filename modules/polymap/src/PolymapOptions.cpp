@@ -69,6 +69,17 @@ void PolymapOptions::loadFromConfigFile(const mrpt::config::CConfigFileBase& src
     if (randomPoints.empty()) s.fail("random_points", "give at least one X");
     eliminationSeed = (unsigned long)s.integer("elimination_seed", 1, 0, 4294967295L);
     clearance = s.real("clearance", 0.1, 0, 10);
+    sweepSteps.clear();
+    for (const double x : s.reals("sweep_steps", {})) {
+        if (x < 1 || x > 1000 || x != std::floor(x))
+            s.fail("sweep_steps", "each step count must be a whole number from 1 to 1000");
+        sweepSteps.push_back((int)x);
+    }
+    if (!sweepSteps.empty() && (!mapFile.empty() || generator != "steps"))
+        s.fail("sweep_steps", "the sweep is over steps maps: needs generator = steps");
+    if (!sweepSteps.empty() && elimination.empty())
+        s.fail("sweep_steps", "give the algorithms to sweep in elimination = ...");
+    sweepStarts = (int)s.integer("sweep_starts", 12, 1, 100000);
     s.finish();
 }
 
@@ -116,6 +127,10 @@ void PolymapOptions::saveToConfigFile(mrpt::config::CConfigFileBase& t,
     t.write(section, "random_points", xs);
     t.write(section, "elimination_seed", std::to_string(eliminationSeed));
     t.write(section, "clearance", clearance);
+    std::string sweep;
+    for (const int x : sweepSteps) sweep += (sweep.empty() ? "" : " ") + std::to_string(x);
+    if (!sweep.empty()) t.write(section, "sweep_steps", sweep);
+    t.write(section, "sweep_starts", sweepStarts);
 }
 
 GeneratedMap PolymapOptions::buildMap() const {

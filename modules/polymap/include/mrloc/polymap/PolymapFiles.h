@@ -5,6 +5,7 @@
 //   hypotheses.<robot>.txt    the sensed V (robot frame) and the hypotheses H
 //   elimination.txt           the elimination experiment: travel per algorithm and start
 //   elimination.times.txt     its run times (the one output that differs run to run)
+//   elimination.sweep.txt     mean path and time against n (seed 002 Figs. 6-7)
 #include <mrloc/polymap/Hypotheses.h>
 
 #include <string>
@@ -53,6 +54,23 @@ struct EliminationTimes {
     static std::string path(const std::string& dir) { return dir + "/elimination.times.txt"; }
     void write(const std::string& dir) const;
     static EliminationTimes read(const std::string& dir);
+};
+
+/** Seed 002 Figs. 6-7: per steps map and algorithm, the mean path and time over its starts.
+ *  The times are in the file too: a sweep's plot is of them. */
+struct EliminationSweepFile {
+    struct Row {
+        int n = 0, k = 0, starts = 0;
+        std::string column;   ///< algorithm, as in EliminationFile
+        double meanTravel = 0;   ///< m
+        double meanSeconds = 0;  ///< per localization
+        int notLocalized = 0;    ///< starts that did not end with one hypothesis
+    };
+    std::vector<Row> rows;
+
+    static std::string path(const std::string& dir) { return dir + "/elimination.sweep.txt"; }
+    void write(const std::string& dir) const;
+    static EliminationSweepFile read(const std::string& dir);
 };
 
 }  // namespace mrloc::polymap

@@ -37,6 +37,10 @@ struct PolymapOptions : public mrpt::config::CLoadableOptions {
     std::vector<int> randomPoints{100, 500};  ///< random_points: X of each randomized run
     unsigned long eliminationSeed = 1;          ///< elimination_seed
     double clearance = 0.1;                     ///< clearance (m), see EliminationOptions
+    /** sweep_steps: steps maps of these step counts for seed 002's Figs. 6-7 (mean path and
+     *  time against n), with the run's other steps options; empty: no sweep. */
+    std::vector<int> sweepSteps;
+    int sweepStarts = 12;  ///< sweep_starts: at most this many starts per map, evenly spread
 
     void loadFromConfigFile(const mrpt::config::CConfigFileBase& source,
                             const std::string& section) override;
