@@ -119,6 +119,10 @@ TEST(MrlocPolymap, PaperExperimentOnTheSteps76MapLocalizesFromEveryStart) {
         ASSERT_EQ(r.code, 0) << r.output;
         const auto file = polymap::EliminationFile::read(out);
         ASSERT_EQ(file.columns.size(), 5u);
+        // The first-separation distance bounds every localization's travel (it is found from
+        // above, to within the chord sampling of 5 cm and the 10 cm clearance).
+        ASSERT_TRUE(std::isfinite(file.bound));
+        EXPECT_GT(file.bound, 1.0);
         EXPECT_EQ(file.trueStart, 3u);  // start_site = 4
         const char* names[] = {"cells", "randomized:100", "randomized:500", "triangulation",
                                "windows"};
@@ -133,6 +137,7 @@ TEST(MrlocPolymap, PaperExperimentOnTheSteps76MapLocalizesFromEveryStart) {
                 // Measured 4.9-27 m on this map (step width 16 m): a leg out of the branch
                 // and a few metres of corridor; 60 m would be the whole staircase.
                 EXPECT_GT(col.travel[s], 2.0);
+                EXPECT_GE(col.travel[s], file.bound - 0.15) << col.name << " start " << s;
                 EXPECT_LT(col.travel[s], 60.0);
             }
             ASSERT_FALSE(col.route.empty());

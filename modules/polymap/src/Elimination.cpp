@@ -124,8 +124,9 @@ bool Eliminator::sameView(const VisibilityPolygon& a, const VisibilityPolygon& b
 
 std::vector<TPoint2D> Eliminator::candidates(const std::vector<size_t>& live,
                                              const OverlayRegion& oi,
-                                             const common::Polygon& oiPolygon,
-                                             size_t step) const {
+                                             const common::Polygon& oiPolygon, size_t step,
+                                             ProbeStrategy strategy, double chordSpacing,
+                                             int perChord) const {
     std::vector<TPoint2D> out;
     const double clearance = options_.clearance;
     // Inside OI, `clearance` from its boundary (up to rounding: window probes sit at it).
@@ -134,14 +135,14 @@ std::vector<TPoint2D> Eliminator::candidates(const std::vector<size_t>& live,
                (clearance == 0 ||
                 (oiPolygon.closestBoundaryPoint(c).first - c).norm() >= clearance * (1 - 1e-9));
     };
-    switch (options_.strategy) {
+    switch (strategy) {
         case ProbeStrategy::VisibilityCells: {
             // Algorithm 1 (Dudek-Romanik-Whitesides): what a point of OI sees changes only
             // where its sight line to a vertex grazes a reflex vertex, i.e. across the chord
             // that extends the line from vertex v through reflex vertex r into OI. The
             // decomposition's cells are bounded by these chords and OI's edges, and the
             // nearest point of a cell lies on its boundary: candidates are points along
-            // every chord (every `clearance`, at most 32 per chord), on both sides of it.
+            // every chord (every chordSpacing, at most perChord), on both sides of it.
             const auto& R = oiPolygon.vertices();
             const size_t m = R.size();
             const double eps = oiPolygon.epsilon();
@@ -170,7 +171,7 @@ std::vector<TPoint2D> Eliminator::candidates(const std::vector<size_t>& live,
                     if (!hit) continue;
                     const TVector2D normal{-d.y, d.x};
                     const int samples =
-                        std::clamp((int)std::ceil(*hit / std::max(clearance, 1e-3)), 1, 32);
+                        std::clamp((int)std::ceil(*hit / chordSpacing), 1, perChord);
                     for (int k = 0; k < samples; ++k) {
                         const TPoint2D on = R[r] + d * (*hit * (k + 0.5) / samples);
                         for (const double side : {-1.0, 1.0}) {
@@ -238,6 +239,23 @@ std::vector<TPoint2D> Eliminator::candidates(const std::vector<size_t>& live,
     return out;
 }
 
+bool Eliminator::separates(const std::vector<size_t>& live, const TPoint2D& at) const {
+    const double extent = (P_.max() - P_.min()).norm();
+    std::vector<VisibilityPolygon> views;
+    for (size_t i : live) views.push_back(viewOf(i, at));
+    bool differ = false;
+    for (size_t k = 1; k < views.size() && !differ; ++k)
+        differ = options_.sensorBeams > 0
+                     // identical views first (cheap), then the beams
+                     ? vertexwiseDistance(views.front(), views[k]) > 1e-9 * extent &&
+                           beamsTellApart(views.front(), views[k], options_.sensorBeams,
+                                          2 * options_.rangeTolerance)
+                     : !sameView(views.front(), views[k], 2 * options_.tolerance);
+    return differ && std::all_of(views.begin(), views.end(), [this](const auto& V) {
+               return wellConditioned(V, options_.clearance);
+           });
+}
+
 std::optional<Probe> Eliminator::chooseProbe(const std::vector<size_t>& live,
                                              const TPoint2D& at) const {
     if (live.size() < 2) return std::nullopt;
@@ -248,37 +266,47 @@ std::optional<Probe> Eliminator::chooseProbe(const std::vector<size_t>& live,
     const Triangulation oiTriangles(oiPolygon);
     const ShortestPaths paths(oiTriangles);
     const size_t step = hypotheses_.size() - live.size();
-    const auto found = candidates(live, oi, oiPolygon, step);
+    const auto found = candidates(live, oi, oiPolygon, step, options_.strategy,
+                                  std::max(options_.clearance, 1e-3), 32);
     // Nearest first by travel inside OI; the first that separates is the probe (step 7).
     std::vector<std::pair<double, size_t>> order;
     order.reserve(found.size());
     for (size_t c = 0; c < found.size(); ++c)
         order.push_back({paths.distance(at, found[c]), c});
     std::sort(order.begin(), order.end());
-    const double extent = (P_.max() - P_.min()).norm();
     Probe probe;
     probe.candidates = found.size();
     probe.oiArea = oi.area;
     for (const auto& [distance, c] : order) {
         ++probe.tested;
-        std::vector<VisibilityPolygon> views;
-        for (size_t i : live) views.push_back(viewOf(i, found[c]));
-        bool separates = false;
-        for (size_t k = 1; k < views.size() && !separates; ++k)
-            separates = options_.sensorBeams > 0
-                            // identical views first (cheap), then the beams
-                            ? vertexwiseDistance(views.front(), views[k]) > 1e-9 * extent &&
-                                  beamsTellApart(views.front(), views[k], options_.sensorBeams,
-                                                 2 * options_.rangeTolerance)
-                            : !sameView(views.front(), views[k], 2 * options_.tolerance);
-        if (!separates || !std::all_of(views.begin(), views.end(), [this](const auto& V) {
-                return wellConditioned(V, options_.clearance);
-            }))
-            continue;
+        if (!separates(live, found[c])) continue;
         probe.at = found[c];
         probe.path = paths.path(at, found[c]);
         return probe;
     }
+    return std::nullopt;
+}
+
+std::optional<double> Eliminator::firstSeparation(const std::vector<size_t>& live,
+                                                  const TPoint2D& at, double spacing) const {
+    if (live.size() < 2) return std::nullopt;
+    std::vector<TPoint2D> positions;
+    for (size_t i : live) positions.push_back(hypotheses_[i]);
+    const OverlayRegion oi = overlayRegion(P_, positions);
+    const common::Polygon oiPolygon = polygonOf(oi);
+    const Triangulation oiTriangles(oiPolygon);
+    const ShortestPaths paths(oiTriangles);
+    std::vector<TPoint2D> found;
+    for (const auto strategy : {ProbeStrategy::VisibilityCells, ProbeStrategy::Randomized,
+                                ProbeStrategy::Triangulation, ProbeStrategy::Windows}) {
+        const auto more = candidates(live, oi, oiPolygon, 0, strategy, spacing, 1 << 20);
+        found.insert(found.end(), more.begin(), more.end());
+    }
+    std::vector<std::pair<double, size_t>> order;
+    for (size_t c = 0; c < found.size(); ++c) order.push_back({paths.distance(at, found[c]), c});
+    std::sort(order.begin(), order.end());
+    for (const auto& [distance, c] : order)
+        if (separates(live, found[c])) return distance;
     return std::nullopt;
 }
 

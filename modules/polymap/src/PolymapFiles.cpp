@@ -61,7 +61,8 @@ void EliminationFile::write(const std::string& dir) const {
         << "# C column name: an algorithm (cells, randomized:X, triangulation, windows)\n"
         << "# R column start travel probes survivors: one localization (m)\n"
         << "# P column x y: the route from the true start; Q column x y: its probes (m)\n"
-        << "true_start " << trueStart << "\n";
+        << "# bound d: the first-separation distance, a bound on every strategy's travel (m)\n"
+        << "true_start " << trueStart << "\nbound " << formatNumber(bound) << "\n";
     for (size_t c = 0; c < columns.size(); ++c) {
         const auto& col = columns[c];
         out << "C " << c << " " << col.name << "\n";
@@ -89,6 +90,9 @@ EliminationFile EliminationFile::read(const std::string& dir) {
         if (kind == "true_start") {
             line.expectFields(2);
             f.trueStart = (size_t)line.number(1);
+        } else if (kind == "bound") {
+            line.expectFields(2);
+            f.bound = line.number(1);
         } else if (kind == "C") {
             line.expectFields(3);
             if (line.number(1) != (double)f.columns.size())
@@ -107,7 +111,8 @@ EliminationFile EliminationFile::read(const std::string& dir) {
             (kind == "P" ? column().route : column().stops)
                 .push_back({line.number(2), line.number(3)});
         } else {
-            throw Error(line.where + ": expected a line starting with true_start, C, R, P or Q");
+            throw Error(line.where +
+                        ": expected a line starting with true_start, bound, C, R, P or Q");
         }
     }
     return f;

@@ -77,6 +77,14 @@ class Eliminator {
     /** The next probe for the live hypotheses (indices into the hypotheses), the robot at
      *  displacement `at`; nothing if no candidate of the strategy separates them. */
     std::optional<Probe> chooseProbe(const std::vector<size_t>& live, const TPoint2D& at) const;
+    /** The first-separation distance: the shortest travel inside OI from `at` to a point
+     *  where the live hypotheses' views differ, searched among every strategy's candidates
+     *  with OI's critical chords sampled every `spacing` (m) on both sides. Views change only
+     *  across those chords, so the nearest separating point lies on one: this is the travel
+     *  any strategy needs at least, found from above to within `spacing` plus the clearance.
+     *  Nothing if no point separates them. */
+    std::optional<double> firstSeparation(const std::vector<size_t>& live, const TPoint2D& at,
+                                          double spacing = 0.05) const;
     /** The live hypotheses whose view at displacement `at` matches the sensed one within
      *  `tolerance` (negative: the options'; at most the options', see there). */
     std::vector<size_t> consistent(const std::vector<size_t>& live, const TPoint2D& at,
@@ -101,7 +109,12 @@ class Eliminator {
 
  private:
     std::vector<TPoint2D> candidates(const std::vector<size_t>& live, const OverlayRegion& oi,
-                                     const common::Polygon& oiPolygon, size_t step) const;
+                                     const common::Polygon& oiPolygon, size_t step,
+                                     ProbeStrategy strategy, double chordSpacing,
+                                     int perChord) const;
+    /** The live hypotheses' views at displacement `at` differ (and none sees a wall
+     *  edge-on). */
+    bool separates(const std::vector<size_t>& live, const TPoint2D& at) const;
 
     const common::Polygon& P_;
     Triangulation T_;

@@ -8,6 +8,7 @@
 //   elimination.sweep.txt     mean path and time against n (seed 002 Figs. 6-7)
 #include <mrloc/polymap/Hypotheses.h>
 
+#include <limits>
 #include <string>
 #include <vector>
 
@@ -39,6 +40,9 @@ struct EliminationFile {
         std::vector<TPoint2D> stops;  ///< and its probes (map frame)
     };
     size_t trueStart = 0;  ///< index in H of the run's true start
+    /** The first-separation distance (m), a bound on any strategy's travel
+     *  (Eliminator::firstSeparation); NaN if none was found. */
+    double bound = std::numeric_limits<double>::quiet_NaN();
     std::vector<Column> columns;
 
     static std::string path(const std::string& dir) { return dir + "/elimination.txt"; }
