@@ -20,34 +20,62 @@ void PolymapLocalizer::saveConfig(mrpt::config::CConfigFileBase& target) const {
     options_.saveToConfigFile(target, "polymap");
 }
 
+RobotHypotheses hypothesesFromScan(const PolymapOptions& options, const common::Polygon& map,
+                                   const mrpt::obs::CObservation2DRangeScan& scan) {
+    ScanPolygonOptions so;
+    so.rangeSigma = options.scanRangeSigma;
+    so.breakAngle = options.breakAngle * M_PI / 180;
+    RobotHypotheses r;
+    r.time = mrpt::Clock::toDouble(scan.timestamp);
+    r.sensed = visibilityFromScan(scan, options.heading * M_PI / 180, so);
+    double rMax = 0;
+    for (const auto& v : r.sensed.vertices) rMax = std::max(rMax, v.norm());
+    r.tolerance = options.toleranceFor(rMax);
+    const HypothesisGenerator gen(map, {r.tolerance, options.angleTolerance * M_PI / 180});
+    r.hypotheses = gen.generate(r.sensed, &r.stats);
+    if (options.drive && r.hypotheses.size() > 1) {
+        std::vector<TPoint2D> positions;
+        for (const auto& h : r.hypotheses) positions.push_back(h.point);
+        r.session = std::make_shared<EliminationSession>(
+            map, positions, options.driveOptions(r.tolerance), options.heading * M_PI / 180,
+            kArrivalRadius);
+    }
+    return r;
+}
+
 void PolymapLocalizer::process(const mrpt::obs::CObservation::Ptr& obs) {
     const auto scan = std::dynamic_pointer_cast<mrpt::obs::CObservation2DRangeScan>(obs);
     if (!scan) return;
     const std::string robot = common::robotOfLabel(scan->sensorLabel);
-    if (results_.count(robot)) return;  // hypotheses come from the first scan
-    ScanPolygonOptions so;
-    so.rangeSigma = options_.scanRangeSigma;
-    so.breakAngle = options_.breakAngle * M_PI / 180;
-    RobotHypotheses r;
-    r.time = mrpt::Clock::toDouble(scan->timestamp);
-    r.sensed = visibilityFromScan(*scan, options_.heading * M_PI / 180, so);
-    double rMax = 0;
-    for (const auto& v : r.sensed.vertices) rMax = std::max(rMax, v.norm());
-    r.tolerance = options_.toleranceFor(rMax);
-    const HypothesisGenerator gen(map_->polygon,
-                                  {r.tolerance, options_.angleTolerance * M_PI / 180});
-    r.hypotheses = gen.generate(r.sensed, &r.stats);
-    results_[robot] = std::move(r);
+    if (const auto it = results_.find(robot); it != results_.end()) {
+        // A later scan: at the probe the elimination planned (the robot drove there).
+        auto& r = it->second;
+        if (r.session && r.session->plan()) {
+            r.session->observe(*scan);
+            r.probeTimes.push_back(mrpt::Clock::toDouble(scan->timestamp));
+        }
+        return;
+    }
+    results_[robot] = hypothesesFromScan(options_, map_->polygon, *scan);
 }
 
 std::map<std::string, common::Trajectory> PolymapLocalizer::estimates() const {
     std::map<std::string, common::Trajectory> out;
+    const double heading = options_.heading * M_PI / 180;
     for (const auto& [robot, r] : results_) {
         auto& traj = out[robot];
         if (r.hypotheses.size() == 1) {
             const auto& p = r.hypotheses[0].point;
-            traj.push_back(
-                {r.time, mrpt::poses::CPose3D(p.x, p.y, 0, options_.heading * M_PI / 180, 0, 0)});
+            traj.push_back({r.time, mrpt::poses::CPose3D(p.x, p.y, 0, heading, 0, 0)});
+        } else if (r.session && r.session->live().size() == 1) {
+            // Localized by elimination: the start, and every probe the robot scanned at.
+            const size_t s = r.session->live().front();
+            const TPoint2D p = r.hypotheses[s].point;
+            traj.push_back({r.time, mrpt::poses::CPose3D(p.x, p.y, 0, heading, 0, 0)});
+            for (size_t k = 0; k < r.probeTimes.size(); ++k) {
+                const TPoint2D q = p + r.session->stoppedAt(k, s);
+                traj.push_back({r.probeTimes[k], mrpt::poses::CPose3D(q.x, q.y, 0, heading, 0, 0)});
+            }
         }
     }
     return out;
@@ -68,6 +96,21 @@ nlohmann::json PolymapLocalizer::methodMetrics() const {
         rj["verified"] = r.stats.verified;
         for (const auto& h : r.hypotheses)
             rj["points"].push_back({h.point.x, h.point.y, h.mismatch});
+        if (r.session) {
+            nlohmann::json d;
+            d["strategy"] = strategyName(options_.drive.value());
+            d["probes"] = r.session->visited().size();
+            double travel = 0;
+            for (const auto& p : r.session->visited()) {
+                travel += p.path.length;
+                d["probe_points"].push_back({p.at.x, p.at.y});
+            }
+            d["travel_m"] = travel;
+            d["left"] = r.session->live().size();
+            d["localized"] = r.session->live().size() == 1;
+            rj["elimination"] = d;
+            rj["localized"] = r.session->live().size() == 1;
+        }
         j["robots"][robot] = rj;
     }
     return j;

@@ -8,6 +8,8 @@
 #include <mrloc/report/Plots.h>
 #include <mrpt/core/bits_math.h>
 #include <mrpt/core/format.h>
+#include <mrpt/math/wrap2pi.h>
+#include <mrpt/obs/CObservation2DRangeScan.h>
 
 #include <algorithm>
 #include <chrono>
@@ -22,13 +24,74 @@ void PolymapPayload::sense(sim::Step& step) {
         scanEvery_ = plan_.scanner.rate > 0
                          ? std::max<long>(1, std::lround(1.0 / (plan_.scanner.rate * step.dt)))
                          : 0;
-    if (step.index != 0 && (scanEvery_ == 0 || step.index % scanEvery_ != 0)) return;
+    const bool probe = phase_ == Phase::Scan;
+    if (!probe && step.index != 0 && (scanEvery_ == 0 || step.index % scanEvery_ != 0)) return;
+    if (probe) phase_ = Phase::Plan;  // the scan goes to onObservation, which eliminates
     for (size_t i = 0; i < step.fleet.size(); ++i) {
         const auto& robot = step.fleet.robot(i);
         auto scan = sim::scanFloorPlan(plan_.polygon, robot.pose(), plan_.scanner, step.rng);
         scan->sensorLabel = robot.options().name + ".scan";
         scan->timestamp = step.stamp;
         step.emit(scan);
+    }
+}
+
+void PolymapPayload::onObservation(const mrpt::obs::CObservation::Ptr& obs) {
+    if (!options_.drive) return;
+    const auto scan = std::dynamic_pointer_cast<mrpt::obs::CObservation2DRangeScan>(obs);
+    if (!scan) return;
+    if (!session_) {  // the first scan: hypotheses, then the first probe
+        auto r = hypothesesFromScan(options_, plan_.polygon, *scan);
+        session_ = r.session;
+        phase_ = session_ ? Phase::Plan : Phase::Done;
+        return;
+    }
+    session_->observe(*scan);  // seed 002 step 9
+}
+
+void PolymapPayload::command(sim::Step& step) {
+    if (!options_.drive || step.fleet.size() == 0) return;
+    auto& robot = step.fleet.robot(0);
+    const double heading = options_.heading * M_PI / 180;
+    switch (phase_) {
+        case Phase::Start:
+        case Phase::Scan:
+        case Phase::Done:
+            if (phase_ == Phase::Start) robot.stop();  // stand until the first scan
+            return;
+        case Phase::Plan: {  // seed 002 step 8: drive the planned route
+            if (!session_->plan()) {
+                robot.stop();
+                phase_ = Phase::Done;
+                return;
+            }
+            const auto& start = robot.options().start;
+            std::vector<mrpt::math::TPoint2D> route;
+            for (const auto& p : session_->plan()->path.points)
+                route.push_back({start.x() + p.x, start.y() + p.y});
+            robot.setWaypoints(route, false);
+            robot.go();
+            phase_ = Phase::Driving;
+            return;
+        }
+        case Phase::Driving: {
+            const auto& goal = robot.options().waypoints.back();
+            if (std::hypot(goal.x - robot.pose().x(), goal.y - robot.pose().y()) <=
+                std::max(0.02, robot.options().speed * step.dt))
+                phase_ = Phase::Turning;
+            return;
+        }
+        case Phase::Turning: {  // back to the known heading, then scan
+            const double err = mrpt::math::wrapToPi(heading - robot.pose().phi());
+            if (std::abs(err) < 1e-7) {  // the heading is known (seed 002): scan on it
+                robot.stop();
+                phase_ = Phase::Scan;
+            } else {
+                robot.turn(std::clamp(err / step.dt, -robot.options().maxTurnRate,
+                                      robot.options().maxTurnRate));
+            }
+            return;
+        }
     }
 }
 
@@ -60,7 +123,8 @@ method::Scenario loadScenario(const mrpt::config::CConfigFileBase& ini,
             mrpt::format(": the start (%g %g) is outside the floor plan", start.x, start.y));
     s.config.robots.push_back(r);
     s.payload = std::make_unique<PolymapPayload>(
-        sim::FloorPlan{map.polygon, {o.scanRays, o.scanRangeSigma, o.scanMaxRange, o.scanRate}});
+        sim::FloorPlan{map.polygon, {o.scanRays, o.scanRangeSigma, o.scanMaxRange, o.scanRate}},
+        o);
     return s;
 }
 

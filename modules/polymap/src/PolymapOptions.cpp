@@ -80,6 +80,16 @@ void PolymapOptions::loadFromConfigFile(const mrpt::config::CConfigFileBase& src
     if (!sweepSteps.empty() && elimination.empty())
         s.fail("sweep_steps", "give the algorithms to sweep in elimination = ...");
     sweepStarts = (int)s.integer("sweep_starts", 12, 1, 100000);
+    drive.reset();
+    if (const std::string d = s.text("drive", "none"); d != "none") {
+        try {
+            drive = strategyFromName(d);
+        } catch (const Error& e) {
+            s.fail("drive", std::string(e.what()) + " (or none)");
+        }
+        if (scanRate > 0)
+            s.fail("drive", "a driving robot scans where it eliminates: set scan_rate = 0");
+    }
     s.finish();
 }
 
@@ -131,6 +141,19 @@ void PolymapOptions::saveToConfigFile(mrpt::config::CConfigFileBase& t,
     for (const int x : sweepSteps) sweep += (sweep.empty() ? "" : " ") + std::to_string(x);
     if (!sweep.empty()) t.write(section, "sweep_steps", sweep);
     t.write(section, "sweep_starts", sweepStarts);
+    t.write(section, "drive", drive ? strategyName(*drive) : std::string("none"));
+}
+
+EliminationOptions PolymapOptions::driveOptions(double tolerance) const {
+    EliminationOptions o;
+    o.strategy = drive.value_or(ProbeStrategy::Windows);
+    o.randomPoints = randomPoints.front();
+    o.seed = (uint32_t)eliminationSeed;
+    o.tolerance = tolerance;
+    o.clearance = clearance;
+    o.sensorBeams = scanRays;                  // the scanner the probes are for
+    o.rangeTolerance = 6 * scanRangeSigma + 0.01;  // a beam's error bound
+    return o;
 }
 
 GeneratedMap PolymapOptions::buildMap() const {

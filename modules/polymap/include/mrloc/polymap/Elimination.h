@@ -24,6 +24,7 @@
 #include <mrpt/obs/CObservation2DRangeScan.h>
 
 #include <cstdint>
+#include <map>
 #include <optional>
 #include <string>
 #include <vector>
@@ -94,11 +95,16 @@ class Eliminator {
      *  the predicted view's, looked up at its direction and half a beam step either side (a
      *  window's end); a hypothesis is kept if at most 1 % of the beams disagree. Comparing
      *  beams, not polygons: a wall seen at grazing incidence breaks a scan's polygon into
-     *  pieces but leaves its beams right. Throws mrloc::Error for a scan that is not a full
+     *  pieces but leaves its beams right. With searchRadius > 0 the scan may have been taken
+     *  up to that far from `at` (a robot stops near its goal, not on it): the position that
+     *  explains the beams best is searched on three nested 7 x 7 grids (to 0.3 mm) and counts;
+     *  `refined` then receives it for each hypothesis kept. Throws mrloc::Error for a scan that is not a full
      *  turn or has a beam without a return. */
     std::vector<size_t> consistentWithScan(const std::vector<size_t>& live, const TPoint2D& at,
                                            const mrpt::obs::CObservation2DRangeScan& scan,
-                                           double heading, double rangeTolerance) const;
+                                           double heading, double rangeTolerance,
+                                           double searchRadius = 0,
+                                           std::vector<TPoint2D>* refined = nullptr) const;
     /** The view hypothesis i predicts at displacement `at`: V(p_i + at). */
     VisibilityPolygon viewOf(size_t i, const TPoint2D& at) const;
     /** Same view within `tolerance` (vertex by vertex, else the sampled boundary distance). */
@@ -120,6 +126,37 @@ class Eliminator {
     Triangulation T_;
     std::vector<TPoint2D> hypotheses_;
     EliminationOptions options_;
+};
+
+/** One robot's elimination as it happens, scan by scan: what the simulated robot's on-board
+ *  part runs, and what `mrloc localize` runs again on the rawlog, so that both take the same
+ *  decisions. The robot stands at the start; plan() says where to scan next (a
+ *  displacement); the scan taken there goes to observe(), which eliminates and plans again.
+ *  The scanner's heading is the known heading at every scan (the robot turns back to it). */
+class EliminationSession {
+ public:
+    /** hypotheses: H's positions (map frame); P must outlive this. */
+    EliminationSession(const common::Polygon& P, std::vector<TPoint2D> hypotheses,
+                       EliminationOptions options, double heading, double arrivalRadius);
+    /** The next probe, or nothing: one hypothesis left, or none separates what is left. */
+    const std::optional<Probe>& plan() const { return plan_; }
+    /** A scan taken at plan()'s probe. Throws mrloc::Error if there is no plan. */
+    void observe(const mrpt::obs::CObservation2DRangeScan& scan);
+    const std::vector<size_t>& live() const { return live_; }
+    /** The probes reached so far, in order (displacements). */
+    const std::vector<Probe>& visited() const { return visited_; }
+    /** Where, at visited probe k, the robot stood under hypothesis i (the displacement that
+     *  explains the scan best); for the hypotheses kept there. */
+    TPoint2D stoppedAt(size_t k, size_t i) const { return stops_.at(k).at(i); }
+    const Eliminator& eliminator() const { return eliminator_; }
+
+ private:
+    Eliminator eliminator_;
+    double heading_, arrivalRadius_;
+    std::vector<size_t> live_;
+    std::vector<Probe> visited_;
+    std::vector<std::map<size_t, TPoint2D>> stops_;
+    std::optional<Probe> plan_;
 };
 
 /** A whole elimination in closed loop, the sensor being the exact view from the true

@@ -2,15 +2,22 @@
 // The polygon-map method as a common::Localizer (INI: [scenario] method = polymap). Each
 // robot's first 360-degree scan (<robot>.scan) gives its sensed visibility polygon V and
 // the hypothesis set H (seed 002, hypothesis generation). The robot is localized when H has
-// one member; with more, it is not (part 2, elimination, moves it until one is left), and
-// no estimate is written.
+// one member. With [polymap] drive, the robot then eliminated hypotheses scan by scan
+// (seed 002 steps 4-10): the localizer replays that elimination on the later scans, with the
+// on-board part's own code, and once one hypothesis is left estimates the pose at every
+// scan.
 #include <mrloc/common/Localizer.h>
 #include <mrloc/polymap/PolymapOptions.h>
+#include <mrpt/obs/CObservation2DRangeScan.h>
 
 #include <map>
 #include <memory>
 
 namespace mrloc::polymap {
+
+/** How far from a probe the robot may have stopped (m): the simulator's waypoint follower
+ *  stops within 2 cm. */
+constexpr double kArrivalRadius = 0.03;
 
 struct RobotHypotheses {
     double time = 0;           ///< of the scan
@@ -18,7 +25,14 @@ struct RobotHypotheses {
     double tolerance = 0;      ///< used for this scan
     std::vector<Hypothesis> hypotheses;
     HypothesisStats stats;
+    std::shared_ptr<EliminationSession> session;  ///< with [polymap] drive
+    std::vector<double> probeTimes;                ///< of the scans at the probes
 };
+
+/** Hypothesis generation from a robot's first scan, as the localizer and the simulated
+ *  robot's on-board part both do it. */
+RobotHypotheses hypothesesFromScan(const PolymapOptions& options, const common::Polygon& map,
+                                   const mrpt::obs::CObservation2DRangeScan& scan);
 
 class PolymapLocalizer : public common::Localizer {
  public:

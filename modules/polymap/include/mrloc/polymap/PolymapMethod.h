@@ -3,6 +3,7 @@
 // the scenario (one robot at the start in the floor plan, scanning it: PolymapPayload) and
 // the report section (P, V and H per robot).
 #include <mrloc/method/Registry.h>
+#include <mrloc/polymap/PolymapLocalizer.h>
 #include <mrloc/sim/Payload.h>
 #include <mrloc/sim/Scanner.h>
 
@@ -10,14 +11,28 @@ namespace mrloc::polymap {
 
 /** 360-degree scans of the floor plan (`<robot>.scan`) at the start and then at the
  *  scanner's rate, with the simulator's generic scanner. */
+/** The scanner, and with [polymap] drive the on-board elimination: hypotheses from the
+ *  first scan, then for each probe drive the planned route, turn back to the known heading,
+ *  scan, eliminate (EliminationSession, the localizer's own code), until one is left. The
+ *  route is followed in the robot's start frame by the simulator's waypoint follower (a
+ *  controller that tracks it; odometry is recorded but not used to steer). */
 class PolymapPayload : public sim::Payload {
  public:
-    explicit PolymapPayload(sim::FloorPlan plan) : plan_(std::move(plan)) {}
+    /** options: the run's [polymap] (it must outlive this). */
+    PolymapPayload(sim::FloorPlan plan, const PolymapOptions& options)
+        : plan_(std::move(plan)), options_(options) {}
+    void command(sim::Step& step) override;
     void sense(sim::Step& step) override;
+    void onObservation(const mrpt::obs::CObservation::Ptr& obs) override;
 
  private:
+    enum class Phase { Start, Plan, Driving, Turning, Scan, Done };
+
     sim::FloorPlan plan_;
+    const PolymapOptions& options_;
     long scanEvery_ = -1;  ///< steps between scans (0: only at the start); set at step 0
+    Phase phase_ = Phase::Start;
+    std::shared_ptr<EliminationSession> session_;
 };
 
 void registerMethod(method::Registry& registry);

@@ -41,6 +41,13 @@ struct PolymapOptions : public mrpt::config::CLoadableOptions {
      *  time against n), with the run's other steps options; empty: no sweep. */
     std::vector<int> sweepSteps;
     int sweepStarts = 12;  ///< sweep_starts: at most this many starts per map, evenly spread
+    /** drive = none | cells | randomized | triangulation | windows: the simulated robot
+     *  eliminates with this algorithm, driving to each probe and scanning there, and the
+     *  localizer replays it from the rawlog (randomized: the first random_points X). */
+    std::optional<ProbeStrategy> drive;
+
+    /** The options of the driving robot's elimination, for a scan generated with tolerance. */
+    EliminationOptions driveOptions(double tolerance) const;
 
     void loadFromConfigFile(const mrpt::config::CConfigFileBase& source,
                             const std::string& section) override;
