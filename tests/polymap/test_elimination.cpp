@@ -68,34 +68,39 @@ TEST(Elimination, RoomsMapsEveryStartEveryStrategy) {
 
 TEST(Elimination, FromNoisyScansTheTruthIsNeverEliminated) {
     // The sensor is a 1440-beam scan at the probe with 5 mm range noise (the quickstart's
-    // scanner); views compare with the hypothesis generation's automatic tolerance.
-    const auto map = polymap::stepsMap({});
-    mrpt::random::CRandomGenerator rng(8);
-    for (const auto strategy : kAll) {
-        polymap::EliminationOptions o;
-        o.strategy = strategy;
-        o.sensorBeams = 1440;
-        o.rangeTolerance = 6 * 0.005 + 0.01;
-        const polymap::Eliminator eliminator(map.polygon, map.sites, o);
-        for (size_t truth = 0; truth < map.sites.size(); ++truth) {
-            std::vector<size_t> live(map.sites.size());
-            for (size_t i = 0; i < live.size(); ++i) live[i] = i;
-            polymap::TPoint2D at{0, 0};
-            while (live.size() > 1) {
-                const auto probe = eliminator.chooseProbe(live, at);
-                ASSERT_TRUE(probe) << polymap::strategyName(strategy) << " start " << truth;
-                at = probe->at;
-                const auto p = map.sites[truth] + at;
-                const double heading = 0.4;  // any: the robot knows it
-                const auto scan = sim::scanFloorPlan(map.polygon, {p.x, p.y, heading}, {}, rng);
-                const size_t before = live.size();
-                live = eliminator.consistentWithScan(live, at, *scan, heading, o.rangeTolerance);
-                ASSERT_LT(live.size(), before) << "no progress";
-                ASSERT_NE(std::find(live.begin(), live.end(), truth), live.end())
-                    << polymap::strategyName(strategy) << " start " << truth
-                    << ": the truth was eliminated";
+    // scanner); beams compare within 6 sigma + 1 cm. The steps map (n = 148, k = 12) and a
+    // rooms map (k = 5).
+    mrpt::random::CRandomGenerator roomsRng(14);
+    polymap::RoomsMapOptions rooms;
+    rooms.rooms = 5;
+    for (const auto& map : {polymap::stepsMap({}), polymap::roomsMap(rooms, roomsRng)}) {
+        mrpt::random::CRandomGenerator rng(8);
+        for (const auto strategy : kAll) {
+            polymap::EliminationOptions o;
+            o.strategy = strategy;
+            o.sensorBeams = 1440;
+            o.rangeTolerance = 6 * 0.005 + 0.01;
+            const polymap::Eliminator eliminator(map.polygon, map.sites, o);
+            for (size_t truth = 0; truth < map.sites.size(); ++truth) {
+                std::vector<size_t> live(map.sites.size());
+                for (size_t i = 0; i < live.size(); ++i) live[i] = i;
+                polymap::TPoint2D at{0, 0};
+                while (live.size() > 1) {
+                    const auto probe = eliminator.chooseProbe(live, at);
+                    ASSERT_TRUE(probe) << polymap::strategyName(strategy) << " start " << truth;
+                    at = probe->at;
+                    const auto p = map.sites[truth] + at;
+                    const double heading = 0.4;  // any: the robot knows it
+                    const auto scan = sim::scanFloorPlan(map.polygon, {p.x, p.y, heading}, {}, rng);
+                    const size_t before = live.size();
+                    live = eliminator.consistentWithScan(live, at, *scan, heading, o.rangeTolerance);
+                    ASSERT_LT(live.size(), before) << "no progress";
+                    ASSERT_NE(std::find(live.begin(), live.end(), truth), live.end())
+                        << polymap::strategyName(strategy) << " start " << truth
+                        << ": the truth was eliminated";
+                }
+                EXPECT_EQ(live, std::vector<size_t>{truth});
             }
-            EXPECT_EQ(live, std::vector<size_t>{truth});
         }
     }
 }

@@ -287,6 +287,17 @@ std::optional<Probe> Eliminator::chooseProbe(const std::vector<size_t>& live,
     return std::nullopt;
 }
 
+std::pair<std::vector<TPoint2D>, OverlayRegion> Eliminator::candidatesAndRegion(
+    const std::vector<size_t>& live) const {
+    std::vector<TPoint2D> positions;
+    for (size_t i : live) positions.push_back(hypotheses_[i]);
+    OverlayRegion oi = overlayRegion(P_, positions);
+    const common::Polygon oiPolygon = polygonOf(oi);
+    auto found = candidates(live, oi, oiPolygon, hypotheses_.size() - live.size(),
+                            options_.strategy, std::max(options_.clearance, 1e-3), 32);
+    return {std::move(found), std::move(oi)};
+}
+
 std::optional<double> Eliminator::firstSeparation(const std::vector<size_t>& live,
                                                   const TPoint2D& at, double spacing) const {
     if (live.size() < 2) return std::nullopt;

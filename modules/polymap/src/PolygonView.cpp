@@ -54,6 +54,9 @@ void renderPolygonView(const PolygonViewContent& c, const std::string& pngPath, 
     scene.insert(outline(P.vertices(), {0, 0}, {30, 30, 30}, 2, 0.03f));
     for (const auto& h : c.hypotheses) scene.insert(marker(h, 1.6 * dot, {220, 40, 30}, 0.04f));
     if (c.truth) scene.insert(marker(*c.truth, dot, {20, 150, 50}, 0.05f));
+    if (!c.overlay.empty()) scene.insert(outline(c.overlay, {0, 0}, {110, 190, 250}, 4, 0.015f));
+    for (const auto& p : c.candidates.second)
+        scene.insert(marker(p, 0.35 * dot, {150, 150, 150}, 0.055f));
     // Routes: one colour each, drawn a little apart so that shared legs stay visible.
     for (size_t k = 0; k < c.routes.size(); ++k) {
         const auto colour = kRouteColours[k % kRouteColours.size()];
@@ -73,6 +76,9 @@ void renderPolygonView(const PolygonViewContent& c, const std::string& pngPath, 
     report::Legend legend = {{"map P", {30, 30, 30}}, {"V at each hypothesis", {240, 140, 20}}};
     if (c.truth) legend.push_back({"V at the true start", {20, 150, 50}});
     legend.push_back({"hypotheses", {220, 40, 30}});
+    if (!c.overlay.empty()) legend.push_back({"OI at the true start", {110, 190, 250}});
+    if (!c.candidates.second.empty())
+        legend.push_back({c.candidates.first + ": first candidates", {150, 150, 150}});
     for (size_t k = 0; k < c.routes.size(); ++k)
         legend.push_back({c.routes[k].label + ": route and probes",
                           kRouteColours[k % kRouteColours.size()]});

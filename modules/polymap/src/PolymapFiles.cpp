@@ -61,8 +61,10 @@ void EliminationFile::write(const std::string& dir) const {
         << "# C column name: an algorithm (cells, randomized:X, triangulation, windows)\n"
         << "# R column start travel probes survivors: one localization (m)\n"
         << "# P column x y: the route from the true start; Q column x y: its probes (m)\n"
+        << "# K column x y: the first step's candidates; O x y: OI at the true start (m)\n"
         << "# bound d: the first-separation distance, a bound on every strategy's travel (m)\n"
         << "true_start " << trueStart << "\nbound " << formatNumber(bound) << "\n";
+    for (const auto& p : overlay) out << "O " << formatNumber(p.x) << " " << formatNumber(p.y) << "\n";
     for (size_t c = 0; c < columns.size(); ++c) {
         const auto& col = columns[c];
         out << "C " << c << " " << col.name << "\n";
@@ -73,6 +75,8 @@ void EliminationFile::write(const std::string& dir) const {
             out << "P " << c << " " << formatNumber(p.x) << " " << formatNumber(p.y) << "\n";
         for (const auto& p : col.stops)
             out << "Q " << c << " " << formatNumber(p.x) << " " << formatNumber(p.y) << "\n";
+        for (const auto& p : col.candidates)
+            out << "K " << c << " " << formatNumber(p.x) << " " << formatNumber(p.y) << "\n";
     }
     common::writeFileAtomically(path(dir), out.str());
 }
@@ -97,7 +101,7 @@ EliminationFile EliminationFile::read(const std::string& dir) {
             line.expectFields(3);
             if (line.number(1) != (double)f.columns.size())
                 throw Error(line.where + ": columns must be numbered 0, 1, ... in order");
-            f.columns.push_back({line.fields[2], {}, {}, {}, {}, {}});
+            f.columns.push_back({line.fields[2], {}, {}, {}, {}, {}, {}});
         } else if (kind == "R") {
             line.expectFields(6);
             auto& col = column();
@@ -106,13 +110,16 @@ EliminationFile EliminationFile::read(const std::string& dir) {
             col.travel.push_back(line.number(3));
             col.probes.push_back((int)line.number(4));
             col.survivors.push_back((int)line.number(5));
-        } else if (kind == "P" || kind == "Q") {
+        } else if (kind == "P" || kind == "Q" || kind == "K") {
             line.expectFields(4);
-            (kind == "P" ? column().route : column().stops)
+            (kind == "P" ? column().route : kind == "Q" ? column().stops : column().candidates)
                 .push_back({line.number(2), line.number(3)});
+        } else if (kind == "O") {
+            line.expectFields(3);
+            f.overlay.push_back({line.number(1), line.number(2)});
         } else {
             throw Error(line.where +
-                        ": expected a line starting with true_start, bound, C, R, P or Q");
+                        ": expected a line starting with true_start, bound, O, C, R, P, Q or K");
         }
     }
     return f;

@@ -206,16 +206,25 @@ std::vector<std::string> eliminationExperiment(const method::ExperimentInput& in
     const auto& P = loc.generatedMap().polygon;
     const auto columns = experimentColumns(o, r.tolerance);
     if (positions.size() > 1) {  // the same for every start: all hypotheses are live
-        std::vector<size_t> all(positions.size());
-        for (size_t i = 0; i < all.size(); ++i) all[i] = i;
+        std::vector<size_t> live(positions.size());
+        for (size_t i = 0; i < live.size(); ++i) live[i] = i;
         if (const auto d = Eliminator(P, positions, columns.front().second)
-                               .firstSeparation(all, {0, 0}))
+                               .firstSeparation(live, {0, 0}))
             file.bound = *d;
     }
+    std::vector<size_t> all(positions.size());
+    for (size_t i = 0; i < all.size(); ++i) all[i] = i;
+    const TPoint2D at = positions[file.trueStart];
     for (const auto& [name, eo] : columns) {
         const Eliminator eliminator(P, positions, eo);
         EliminationFile::Column col;
         col.name = name;
+        if (positions.size() > 1) {  // what the first step chose from, for the picture
+            const auto [candidates, oi] = eliminator.candidatesAndRegion(all);
+            for (const auto& c : candidates) col.candidates.push_back(at + c);
+            if (file.overlay.empty())
+                for (const auto& v : oi.outer) file.overlay.push_back(at + v);
+        }
         times.seconds.emplace_back();
         for (size_t start = 0; start < positions.size(); ++start) {
             const auto [run, seconds] = timedElimination(eliminator, start);
@@ -370,6 +379,10 @@ std::string polymapSection(const report::RunView& run) {
             elimination = EliminationFile::read(run.dir);
             for (const auto& col : elimination->columns)
                 view.routes.push_back({col.name, col.route, col.stops});
+            view.overlay = elimination->overlay;
+            if (!elimination->columns.empty())
+                view.candidates = {elimination->columns.front().name,
+                                   elimination->columns.front().candidates};
         }
         const std::string png = "polymap." + robot + ".png";
         renderPolygonView(view, run.dir + "/" + png);
@@ -388,8 +401,10 @@ std::string polymapSection(const report::RunView& run) {
                                       TPoint2D{lo.x - pad + 1.8 * wide, hi.y + pad});
             const std::string zoom = "polymap." + robot + ".routes.png";
             renderPolygonView(view, run.dir + "/" + zoom, 1200, 600);
-            out += "<p>Close-up: each algorithm's route from the run's true start (seed 002 "
-                   "figs. 2-5), its probes as dots.</p>\n<img src='" + zoom +
+            out += "<p>Close-up: the overlay region OI of all hypotheses at the true start, the "
+                   "first algorithm's candidates for its first probe, and each algorithm's route "
+                   "from the run's true start (seed 002 figs. 2-5), its probes as dots.</p>\n"
+                   "<img src='" + zoom +
                    "' alt='elimination routes from the true start'>\n";
         }
         out +=

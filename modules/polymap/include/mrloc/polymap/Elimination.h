@@ -78,6 +78,10 @@ class Eliminator {
     /** The next probe for the live hypotheses (indices into the hypotheses), the robot at
      *  displacement `at`; nothing if no candidate of the strategy separates them. */
     std::optional<Probe> chooseProbe(const std::vector<size_t>& live, const TPoint2D& at) const;
+    /** The strategy's candidates for the live hypotheses (displacements), and OI: what the
+     *  report draws. */
+    std::pair<std::vector<TPoint2D>, OverlayRegion> candidatesAndRegion(
+        const std::vector<size_t>& live) const;
     /** The first-separation distance: the shortest travel inside OI from `at` to a point
      *  where the live hypotheses' views differ, searched among every strategy's candidates
      *  with OI's critical chords sampled every `spacing` (m) on both sides. Views change only

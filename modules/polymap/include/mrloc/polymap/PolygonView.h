@@ -20,6 +20,9 @@ struct PolygonViewContent {
         std::vector<common::TPoint2D> path, probes;
     };
     std::vector<Route> routes;
+    std::vector<common::TPoint2D> overlay;  ///< OI at the true start (map frame), if drawn
+    /** Candidate probes (map frame) and whose they are. */
+    std::pair<std::string, std::vector<common::TPoint2D>> candidates;
     /** Draw only this box (min, max corners; map frame): a close-up. Default: all of P. */
     std::optional<std::pair<common::TPoint2D, common::TPoint2D>> box;
 };

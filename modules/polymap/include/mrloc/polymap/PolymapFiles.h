@@ -38,11 +38,13 @@ struct EliminationFile {
         std::vector<int> survivors;   ///< per start: hypotheses left (1: localized)
         std::vector<TPoint2D> route;  ///< the run's true start: its path (map frame)
         std::vector<TPoint2D> stops;  ///< and its probes (map frame)
+        std::vector<TPoint2D> candidates;  ///< its first step's candidates (map frame)
     };
     size_t trueStart = 0;  ///< index in H of the run's true start
     /** The first-separation distance (m), a bound on any strategy's travel
      *  (Eliminator::firstSeparation); NaN if none was found. */
     double bound = std::numeric_limits<double>::quiet_NaN();
+    std::vector<TPoint2D> overlay;  ///< OI of all hypotheses, placed at the true start
     std::vector<Column> columns;
 
     static std::string path(const std::string& dir) { return dir + "/elimination.txt"; }
