@@ -203,6 +203,8 @@ TEST(MrlocPolymap, DrivingRobotEliminatesAndLocalizeReplaysIt) {
     EXPECT_LT(e["travel_m"].get<double>(), 20.0);
     EXPECT_EQ(m["robots"]["r1"]["estimates"], e["probes"].get<int>() + 1);
     EXPECT_LT(m["rmse_m"].get<double>(), 0.002);
+    EXPECT_NE(slurp(out + "/report.html").find("The robot eliminated as it drove"),
+              std::string::npos);
     // `mrloc localize` on the rawlog takes the same decisions: the same estimates, byte for byte.
     const std::string replay = tmp("polymap_drive76_replay");
     const auto l = mrlocCmd("localize " + config("polymap_steps76") + " " + out +

@@ -41,8 +41,12 @@ TEST(PolymapOptions, EliminationKeys) {
               (std::vector<polymap::ProbeStrategy>{polymap::ProbeStrategy::Windows,
                                                    polymap::ProbeStrategy::VisibilityCells}));
     EXPECT_EQ(load("random_points = 50").randomPoints, std::vector<int>{50});
+    EXPECT_EQ(load("drive = windows").drive, polymap::ProbeStrategy::Windows);
+    EXPECT_FALSE(load("").drive);
     for (const char* bad : {"elimination = cell", "elimination = all windows",
-                            "random_points = 0", "random_points = 10.5", "clearance = -1"}) {
+                            "random_points = 0", "random_points = 10.5", "clearance = -1",
+                            "drive = fast", "drive = cells\nscan_rate = 1",
+                            "sweep_steps = 3\nelimination = none"}) {
         try {
             load(bad);
             ADD_FAILURE() << bad << ": no error";

@@ -388,6 +388,18 @@ std::string polymapSection(const report::RunView& run) {
         renderPolygonView(view, run.dir + "/" + png);
         out += "<h3>Robot " + report::html(robot) + ": " + std::to_string(file.hypotheses.size()) +
                " hypotheses</h3>\n<img src='" + png + "' alt='map, V and hypotheses'>\n";
+        const auto robots = run.metrics.value("polymap", nlohmann::json::object())
+                                .value("robots", nlohmann::json::object());
+        if (robots.contains(robot) && robots[robot].contains("elimination")) {
+            const auto& e = robots[robot]["elimination"];
+            out += mrpt::format(
+                "<p>The robot eliminated as it drove (<code>drive = %s</code>): %d probe(s), "
+                "%.2f m of travel, %s.</p>\n",
+                e.value("strategy", "?").c_str(), e.value("probes", 0), e.value("travel_m", 0.0),
+                e.value("localized", false)
+                    ? "localized: one hypothesis left, the errors above are its estimates"
+                    : mrpt::format("not localized: %d hypotheses left", e.value("left", 0)).c_str());
+        }
         if (!view.routes.empty()) {  // a close-up of the routes from the true start
             TPoint2D lo{INFINITY, INFINITY}, hi{-INFINITY, -INFINITY};
             for (const auto& route : view.routes)
