@@ -1,5 +1,6 @@
 // `mrloc info <rawlog>`: what a rawlog holds, per robot and sensor label, before a run.
 #include <mrloc/common/Rawlog.h>
+#include <mrloc/common/Trajectory.h>
 #include <mrloc/common/Version.h>
 #include <mrpt/3rdparty/tclap/CmdLine.h>
 #include <mrpt/core/format.h>
@@ -29,7 +30,7 @@ int info(int argc, char** argv) {
     common::RawlogReader reader(path.getValue());
     size_t total = 0;
     for (mrpt::obs::CObservation::Ptr obs; reader.next(obs); ++total) {
-        const double t = mrpt::Clock::toDouble(obs->timestamp);
+        const double t = common::stampSeconds(obs->timestamp);
         auto& s = streams[{common::robotOfLabel(obs->sensorLabel), obs->sensorLabel}];
         if (s.count == 0) {
             s.cls = obs->GetRuntimeClass()->className;

@@ -153,8 +153,10 @@ TEST(MrlocPolymap, PaperExperimentOnTheSteps76MapLocalizesFromEveryStart) {
         ASSERT_TRUE(png.loadFromFile(out + "/polymap.r1.routes.png"));
         // Same INI, same seed: the same decisions, byte for byte (times are kept apart).
         const std::string text = slurp(polymap::EliminationFile::path(out));
-        if (i == 0) first = text;
-        else EXPECT_EQ(text, first);
+        if (i == 0)
+            first = text;
+        else
+            EXPECT_EQ(text, first);
     }
 }
 
@@ -216,8 +218,7 @@ TEST(MrlocPolymap, DrivingRobotEliminatesAndLocalizeReplaysIt) {
 TEST(MrlocPolymap, DrivingWithEveryAlgorithmFromTwoStarts) {
     for (const char* strategy : {"cells", "randomized", "triangulation", "windows"})
         for (const int site : {1, 6}) {
-            const std::string ini =
-                (fs::path(testing::TempDir()) / "drive.ini").lexically_normal();
+            const std::string ini = (fs::path(testing::TempDir()) / "drive.ini").lexically_normal();
             {
                 std::ofstream f(ini);
                 std::string text = slurp(config("polymap_steps76"));

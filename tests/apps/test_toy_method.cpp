@@ -9,6 +9,7 @@
 #include <mrloc/common/IniSection.h>
 #include <mrloc/common/Metrics.h>
 #include <mrloc/common/Rawlog.h>
+#include <mrloc/common/Trajectory.h>
 #include <mrpt/obs/CObservationRange.h>
 
 #include <filesystem>
@@ -87,7 +88,7 @@ class ToyLocalizer : public common::Localizer {
         const auto r = std::dynamic_pointer_cast<mrpt::obs::CObservationRange>(obs);
         if (!r || r->sensedData.size() != 2) return;
         traj_[common::robotOfLabel(r->sensorLabel)].push_back(
-            {mrpt::Clock::toDouble(r->timestamp),
+            {common::stampSeconds(r->timestamp),
              mrpt::poses::CPose3D(r->sensedData[0].sensedDistance, r->sensedData[1].sensedDistance,
                                   0, 0, 0, 0)});
     }

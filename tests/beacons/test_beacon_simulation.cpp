@@ -5,6 +5,7 @@
 #include <mrloc/beacons/BeaconsMethod.h>
 #include <mrloc/common/Error.h>
 #include <mrloc/common/Rawlog.h>
+#include <mrloc/common/Trajectory.h>
 #include <mrloc/sim/Simulator.h>
 #include <mrpt/config/CConfigFileMemory.h>
 #include <mrpt/obs/CObservationBeaconRanges.h>
@@ -102,7 +103,7 @@ TEST(Simulator, NoiseFreeRangesAreTheGeometricDistancesAndNlosIsDropped) {
         auto r = std::dynamic_pointer_cast<mrpt::obs::CObservationBeaconRanges>(obs);
         if (!r) continue;
         ++epochs;
-        const auto pose = common::interpolate(gt, mrpt::Clock::toDouble(r->timestamp));
+        const auto pose = common::interpolate(gt, common::stampSeconds(r->timestamp));
         ASSERT_TRUE(pose);
         const mrpt::math::TPoint3D rx(pose->x(), pose->y(), 0.5);
         for (const auto& [beaconId, b] : beaconMap) {

@@ -25,8 +25,8 @@ const polymap::GeneratedMap& mapOfSize(int n) {
     static std::map<int, polymap::GeneratedMap> cache;
     if (const auto it = cache.find(n); it != cache.end()) return it->second;
     if (n == 5000) {
-        auto P = Polygon::load(std::string(MRLOC_SOURCE_DIR) +
-                               "/tests/data/bad-inputs/star5000.poly");
+        auto P =
+            Polygon::load(std::string(MRLOC_SOURCE_DIR) + "/tests/data/bad-inputs/star5000.poly");
         return cache.emplace(n, polymap::GeneratedMap{std::move(P), {}, "star5000"}).first->second;
     }
     polymap::StepsMapOptions o;
@@ -146,11 +146,21 @@ void BM_OverlayRegion(benchmark::State& state) {
 }  // namespace
 
 BENCHMARK(BM_PolygonBuild)->Arg(148)->Arg(988)->Arg(4996)->Arg(5000)->Unit(benchmark::kMillisecond);
-BENCHMARK(BM_Triangulation)->Arg(148)->Arg(988)->Arg(4996)->Arg(5000)->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_Triangulation)
+    ->Arg(148)
+    ->Arg(988)
+    ->Arg(4996)
+    ->Arg(5000)
+    ->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_Visibility)
     ->ArgsProduct({{148, 988, 4996, 5000}, {0, 1, 2}})
     ->Unit(benchmark::kMicrosecond);
-BENCHMARK(BM_Hypotheses_Exact)->Arg(148)->Arg(988)->Arg(1996)->Arg(4996)->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_Hypotheses_Exact)
+    ->Arg(148)
+    ->Arg(988)
+    ->Arg(1996)
+    ->Arg(4996)
+    ->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_Hypotheses_FromScan)->Arg(148)->Arg(988)->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_ScanToPolygon)->Unit(benchmark::kMicrosecond);
 BENCHMARK(BM_ShortestPath)->Arg(148)->Arg(988)->Arg(4996)->Arg(5000)->Unit(benchmark::kMicrosecond);

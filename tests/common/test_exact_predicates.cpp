@@ -51,7 +51,7 @@ TEST(ExactPredicates, OrientationOnTheKettnerGrid) {
         }
     std::cout << naiveWrong << " naive signs wrong, " << collinear << " collinear\n";
     EXPECT_GT(naiveWrong, 10000);  // the test means something: measured 11,972 wrong ...
-    EXPECT_GT(collinear, 200);    // ... and 256 exactly collinear (x = y)
+    EXPECT_GT(collinear, 200);     // ... and 256 exactly collinear (x = y)
 }
 
 TEST(ExactPredicates, InCircleOnCocircularAndPerturbedPoints) {

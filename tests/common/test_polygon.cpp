@@ -115,7 +115,8 @@ TEST(Polygon, LocateAndRayCast) {
 namespace {
 
 /** Closed segments a-b and c-d share a point (exact). */
-bool closedSegmentsMeet(const TPoint2D& a, const TPoint2D& b, const TPoint2D& c, const TPoint2D& d) {
+bool closedSegmentsMeet(const TPoint2D& a, const TPoint2D& b, const TPoint2D& c,
+                        const TPoint2D& d) {
     using mrloc::common::orientation;
     const int o1 = orientation(a, b, c), o2 = orientation(a, b, d);
     const int o3 = orientation(c, d, a), o4 = orientation(c, d, b);

@@ -9,8 +9,8 @@
 #include <mrloc/polymap/Visibility.h>
 
 #include <cstdio>
-#include <optional>
 #include <cstdlib>
+#include <optional>
 
 #include "FuzzInput.h"
 
@@ -30,10 +30,11 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
         int inside = 0;
         while (!T[inside].inside) ++inside;
         const auto& tri = T[inside];
-        const auto centroid = (T.point(tri.v[0]) + T.point(tri.v[1]) + T.point(tri.v[2])) * (1.0 / 3);
+        const auto centroid =
+            (T.point(tri.v[0]) + T.point(tri.v[1]) + T.point(tri.v[2])) * (1.0 / 3);
         const size_t n = P->size();
-        for (const auto& q : {(*P)[0], ((*P)[n / 2] + (*P)[n / 2 + 1 == n ? 0 : n / 2 + 1]) * 0.5,
-                              centroid})
+        for (const auto& q :
+             {(*P)[0], ((*P)[n / 2] + (*P)[n / 2 + 1 == n ? 0 : n / 2 + 1]) * 0.5, centroid})
             if (visibilityPolygon(T, q).size() < 3) std::abort();
         const ShortestPaths paths(T);
         if (!(paths.distance((*P)[0], (*P)[n / 2]) >= ((*P)[0] - (*P)[n / 2]).norm() * (1 - 1e-12)))

@@ -4,6 +4,7 @@
 // beyond the memory cap in this process is a finding.
 #include <mrloc/common/Error.h>
 #include <mrloc/common/Rawlog.h>
+#include <mrloc/common/Trajectory.h>
 
 #include "FuzzInput.h"
 
@@ -13,7 +14,7 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
         mrloc::common::RawlogReader reader(path);
         for (mrpt::obs::CObservation::Ptr obs; reader.next(obs);) {
             (void)obs->sensorLabel.size();
-            (void)mrpt::Clock::toDouble(obs->timestamp);
+            (void)mrloc::common::stampSeconds(obs->timestamp);
         }
     } catch (const mrloc::Error&) {
     }

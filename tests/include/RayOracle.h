@@ -50,7 +50,10 @@ class RayOracle {
                 if (const auto t = common::raySegmentHit(P_[e], P_[P_.next(e)], q, dir, tMin))
                     best = std::min(best, *t);
             if (best <= cellExit + 1e-12 * cell_) return best;
-            if (tX < tY) tX += dX, x += stepX; else tY += dY, y += stepY;
+            if (tX < tY)
+                tX += dX, x += stepX;
+            else
+                tY += dY, y += stepY;
         }
         return 0;
     }

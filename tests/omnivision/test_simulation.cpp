@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 #include <mrloc/common/Error.h>
 #include <mrloc/common/Rawlog.h>
+#include <mrloc/common/Trajectory.h>
 #include <mrloc/omnivision/OmniLocalizer.h>
 #include <mrloc/omnivision/OmniMethod.h>
 #include <mrloc/sim/Simulator.h>
@@ -64,7 +65,7 @@ TEST(OmniSimulation, SnapshotsStopsAndLidarGoToTheRawlog) {
         if (obs->sensorLabel == "A.lidar.B") {
             const auto r = std::dynamic_pointer_cast<mrpt::obs::CObservationRange>(obs);
             ASSERT_TRUE(r);
-            const double t = mrpt::Clock::toDouble(obs->timestamp);
+            const double t = common::stampSeconds(obs->timestamp);
             const auto a =
                 common::interpolate(common::loadTum(common::groundTruthPath(path, "A")), t);
             const auto b =

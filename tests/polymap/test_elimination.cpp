@@ -93,7 +93,8 @@ TEST(Elimination, FromNoisyScansTheTruthIsNeverEliminated) {
                     const double heading = 0.4;  // any: the robot knows it
                     const auto scan = sim::scanFloorPlan(map.polygon, {p.x, p.y, heading}, {}, rng);
                     const size_t before = live.size();
-                    live = eliminator.consistentWithScan(live, at, *scan, heading, o.rangeTolerance);
+                    live =
+                        eliminator.consistentWithScan(live, at, *scan, heading, o.rangeTolerance);
                     ASSERT_LT(live.size(), before) << "no progress";
                     ASSERT_NE(std::find(live.begin(), live.end(), truth), live.end())
                         << polymap::strategyName(strategy) << " start " << truth
@@ -122,8 +123,9 @@ TEST(Elimination, BadOptionsAreRefused) {
         polymap::strategyFromName("cell");
         FAIL() << "no error";
     } catch (const Error& e) {
-        EXPECT_NE(std::string(e.what()).find("expected cells, randomized, triangulation or windows"),
-                  std::string::npos);
+        EXPECT_NE(
+            std::string(e.what()).find("expected cells, randomized, triangulation or windows"),
+            std::string::npos);
     }
     EXPECT_THROW(polymap::Eliminator(map.polygon, {}, {}), Error);
     polymap::EliminationOptions o;

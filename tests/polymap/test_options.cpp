@@ -9,8 +9,8 @@
 using namespace mrloc;
 
 TEST(PolymapOptions, EffectiveIniRoundTrips) {
-    for (const char* name :
-         {"polymap_steps", "polymap_rooms", "polymap_file", "polymap_steps148", "polymap_steps76"}) {
+    for (const char* name : {"polymap_steps", "polymap_rooms", "polymap_file", "polymap_steps148",
+                             "polymap_steps76"}) {
         const auto [first, second] =
             testing_options::roundTrip<polymap::PolymapOptions>(name, "polymap");
         EXPECT_EQ(second.generator, first.generator) << name;
@@ -43,10 +43,10 @@ TEST(PolymapOptions, EliminationKeys) {
     EXPECT_EQ(load("random_points = 50").randomPoints, std::vector<int>{50});
     EXPECT_EQ(load("drive = windows").drive, polymap::ProbeStrategy::Windows);
     EXPECT_FALSE(load("").drive);
-    for (const char* bad : {"elimination = cell", "elimination = all windows",
-                            "random_points = 0", "random_points = 10.5", "clearance = -1",
-                            "drive = fast", "drive = cells\nscan_rate = 1",
-                            "sweep_steps = 3\nelimination = none"}) {
+    for (const char* bad :
+         {"elimination = cell", "elimination = all windows", "random_points = 0",
+          "random_points = 10.5", "clearance = -1", "drive = fast", "drive = cells\nscan_rate = 1",
+          "sweep_steps = 3\nelimination = none"}) {
         try {
             load(bad);
             ADD_FAILURE() << bad << ": no error";

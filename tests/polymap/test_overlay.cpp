@@ -50,16 +50,16 @@ int compareWithSampling(const Polygon& P, const std::vector<TPoint2D>& hyps, dou
             far[(size_t)(j * nx + i)] = nearest > 2 * h;
         }
     const int oi = (int)std::floor((0 - min.x) / h), oj = (int)std::floor((0 - min.y) / h);
-    std::queue<std::pair<int, int>> todo;
-    if (in[(size_t)(oj * nx + oi)]) todo.push({oi, oj}), reached[(size_t)(oj * nx + oi)] = 1;
-    while (!todo.empty()) {
-        const auto [i, j] = todo.front();
-        todo.pop();
+    std::queue<std::pair<int, int>> frontier;
+    if (in[(size_t)(oj * nx + oi)]) frontier.push({oi, oj}), reached[(size_t)(oj * nx + oi)] = 1;
+    while (!frontier.empty()) {
+        const auto [i, j] = frontier.front();
+        frontier.pop();
         for (const auto& [di, dj] : {std::pair{1, 0}, {-1, 0}, {0, 1}, {0, -1}}) {
             const int a = i + di, b = j + dj;
             if (a < 0 || b < 0 || a >= nx || b >= ny) continue;
             const size_t k = (size_t)(b * nx + a);
-            if (in[k] && !reached[k]) reached[k] = 1, todo.push({a, b});
+            if (in[k] && !reached[k]) reached[k] = 1, frontier.push({a, b});
         }
     }
     int checked = 0;
@@ -94,8 +94,8 @@ TEST(Overlay, StepsMapTwelveHypothesesAgainstSampling) {
     const int checked = compareWithSampling(map.polygon, map.sites, 0.05);
     EXPECT_GT(checked, 100);
     const auto OI = polymap::overlayRegion(map.polygon, map.sites);
-    std::cout << "steps k = 12: OI area " << OI.area << " m^2, " << OI.outer.size()
-              << " vertices, " << checked << " samples checked\n";
+    std::cout << "steps k = 12: OI area " << OI.area << " m^2, " << OI.outer.size() << " vertices, "
+              << checked << " samples checked\n";
 }
 
 TEST(Overlay, RoomsMapsAgainstSampling) {

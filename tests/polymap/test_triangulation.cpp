@@ -36,7 +36,7 @@ std::vector<std::pair<std::string, Polygon>> testMaps() {
     for (int n : {12, 300, 5000})
         maps.push_back({"star" + std::to_string(n), polymap::randomStarPolygon(n, 0.1, 1.0, rng)});
     maps.push_back({"star5000.poly", Polygon::load(std::string(MRLOC_SOURCE_DIR) +
-                                                  "/tests/data/bad-inputs/star5000.poly")});
+                                                   "/tests/data/bad-inputs/star5000.poly")});
     std::vector<TPoint2D> circle;
     for (int i = 0; i < 64; ++i)
         circle.push_back({std::cos(2 * M_PI * i / 64), std::sin(2 * M_PI * i / 64)});
@@ -155,8 +155,8 @@ TEST(Triangulation, LocatesExactly) {
 }
 
 TEST(Triangulation, SameMapSameTriangles) {
-    const auto P = Polygon::load(std::string(MRLOC_SOURCE_DIR) +
-                                 "/tests/data/bad-inputs/star5000.poly");
+    const auto P =
+        Polygon::load(std::string(MRLOC_SOURCE_DIR) + "/tests/data/bad-inputs/star5000.poly");
     const Triangulation a(P), b(P);
     ASSERT_EQ(a.triangles().size(), b.triangles().size());
     for (size_t t = 0; t < a.triangles().size(); ++t)

@@ -5,10 +5,10 @@
 #include <mrloc/polymap/MapGenerators.h>
 #include <mrloc/polymap/Visibility.h>
 
-#include "RayOracle.h"
-
 #include <cmath>
 #include <iostream>
+
+#include "RayOracle.h"
 
 using namespace mrloc;
 using common::Polygon;
@@ -178,7 +178,7 @@ double worstOverMap(const Polygon& P, int interior, int rays, int stride, double
     for (const auto& v : views) {
         const double w = worstAgainstOracle(P, oracle, visibilityPolygon(T, v.q), v, rays);
         EXPECT_LT(w, tolerance) << "viewpoint " << v.q.asString() << " vertex " << v.vertex
-                           << " edge " << v.edge;
+                                << " edge " << v.edge;
         worst = std::max(worst, w);
     }
     return worst;
@@ -189,8 +189,8 @@ double worstOverMap(const Polygon& P, int interior, int rays, int stride, double
 TEST(Visibility, Star5000TheBadInputPoint) {
     // ../shared/bad-inputs/star5000.poly: the old sweep was 2.4e-4 m off from this point on
     // edge 895 (its clean-up dropped a real corner between two nearly straight edges).
-    const auto P = Polygon::load(std::string(MRLOC_SOURCE_DIR) +
-                                 "/tests/data/bad-inputs/star5000.poly");
+    const auto P =
+        Polygon::load(std::string(MRLOC_SOURCE_DIR) + "/tests/data/bad-inputs/star5000.poly");
     const mrloc::testing::RayOracle oracle(P);
     const Viewpoint v{{19.6785888671875, 45.824073791503906}, -1, 895};
     const auto V = visibilityPolygon(P, v.q);
@@ -200,8 +200,8 @@ TEST(Visibility, Star5000TheBadInputPoint) {
 }
 
 TEST(Visibility, Star5000EveryVertexAndEdgeMidpoint) {
-    const auto P = Polygon::load(std::string(MRLOC_SOURCE_DIR) +
-                                 "/tests/data/bad-inputs/star5000.poly");
+    const auto P =
+        Polygon::load(std::string(MRLOC_SOURCE_DIR) + "/tests/data/bad-inputs/star5000.poly");
     // Measured: 6.4e-10 m at most, at edge midpoints (a midpoint is off its edge by a
     // rounding, ~1e-14 m, which a window grazing a far wall magnifies ~1e4 times; both V and
     // the oracle see from the rounded point); 1e-12 elsewhere. Margin 3x.
@@ -242,7 +242,8 @@ TEST(Visibility, VertexwiseDistanceBoundsTheBoundaryDistance) {
     mrpt::random::CRandomGenerator rng(2);
     for (int k = 0; k < 200; ++k) {  // an upper bound, for any perturbation
         polymap::VisibilityPolygon d = a;
-        for (auto& v : d.vertices) v += TVector2D{rng.drawUniform(-0.1, 0.1), rng.drawUniform(-0.1, 0.1)};
+        for (auto& v : d.vertices)
+            v += TVector2D{rng.drawUniform(-0.1, 0.1), rng.drawUniform(-0.1, 0.1)};
         EXPECT_GE(polymap::vertexwiseDistance(a, d) + 1e-12, polymap::boundaryDistance(a, d, 1e-3));
     }
 }

@@ -2,6 +2,7 @@
 #include <mrloc/common/Error.h>
 #include <mrloc/common/IniSection.h>
 #include <mrloc/common/Rawlog.h>
+#include <mrloc/common/Trajectory.h>
 #include <mrpt/core/format.h>
 #include <mrpt/obs/CObservationOdometry.h>
 #include <mrpt/system/datetime.h>
@@ -95,7 +96,7 @@ BeaconTracker& BeaconLocalizer::trackerOf(const std::string& robot) {
 
 void BeaconLocalizer::process(const mrpt::obs::CObservation::Ptr& obs) {
     const std::string robot = common::robotOfLabel(obs->sensorLabel);
-    const double t = mrpt::Clock::toDouble(obs->timestamp);
+    const double t = common::stampSeconds(obs->timestamp);
     if (auto odo = std::dynamic_pointer_cast<mrpt::obs::CObservationOdometry>(obs)) {
         trackerOf(robot).onOdometry(odo->odometry);
         auto& path = odometry_[robot];

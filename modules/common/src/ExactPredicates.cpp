@@ -22,7 +22,6 @@ inline void twoSum(double a, double b, double& x, double& err) {
     err = (a - av) + (b - bv);
 }
 
-/** Adds one double to e exactly (Grow-Expansion with zero elimination). */
 /** d, computed as a - b, is exactly a - b (Two-Sum's error is zero). */
 inline bool exactDifference(double a, double b, double d) {
     double x, err;
@@ -30,17 +29,24 @@ inline bool exactDifference(double a, double b, double d) {
     return x == d && err == 0;
 }
 
-void grow(Expansion& e, double b) {
+/** Adds b to the m terms of e exactly (Grow-Expansion with zero elimination); e has room
+ *  for m + 1 terms. Returns the new number of terms. */
+size_t grow(double* e, size_t m, double b) {
     double q = b;
     size_t out = 0;
-    for (size_t i = 0; i < e.size(); ++i) {
+    for (size_t i = 0; i < m; ++i) {
         double sum, err;
         twoSum(q, e[i], sum, err);
         q = sum;
         if (err != 0) e[out++] = err;
     }
-    e.resize(out);
-    if (q != 0) e.push_back(q);
+    if (q != 0) e[out++] = q;
+    return out;
+}
+
+void grow(Expansion& e, double b) {
+    e.push_back(0);
+    e.resize(grow(e.data(), e.size() - 1, b));
 }
 
 Expansion fromDifference(double a, double b) {
@@ -114,18 +120,7 @@ int orientation(const TPoint2D& a, const TPoint2D& b, const TPoint2D& c) {
                                  -right};
         double e[4];
         size_t m = 0;
-        for (const double t : terms) {
-            double q = t;
-            size_t out = 0;
-            for (size_t i = 0; i < m; ++i) {
-                double sum, err;
-                twoSum(q, e[i], sum, err);
-                q = sum;
-                if (err != 0) e[out++] = err;
-            }
-            m = out;
-            if (q != 0) e[m++] = q;
-        }
+        for (const double t : terms) m = grow(e, m, t);
         return m == 0 ? 0 : (e[m - 1] > 0 ? 1 : -1);
     }
     return orientationExact(a, b, c);
@@ -137,8 +132,8 @@ int inCircle(const TPoint2D& a, const TPoint2D& b, const TPoint2D& c, const TPoi
     const double bdxcdy = bdx * cdy, cdxbdy = cdx * bdy, alift = adx * adx + ady * ady;
     const double cdxady = cdx * ady, adxcdy = adx * cdy, blift = bdx * bdx + bdy * bdy;
     const double adxbdy = adx * bdy, bdxady = bdx * ady, clift = cdx * cdx + cdy * cdy;
-    const double det = alift * (bdxcdy - cdxbdy) + blift * (cdxady - adxcdy) +
-                       clift * (adxbdy - bdxady);
+    const double det =
+        alift * (bdxcdy - cdxbdy) + blift * (cdxady - adxcdy) + clift * (adxbdy - bdxady);
     const double permanent = (std::abs(bdxcdy) + std::abs(cdxbdy)) * alift +
                              (std::abs(cdxady) + std::abs(adxcdy)) * blift +
                              (std::abs(adxbdy) + std::abs(bdxady)) * clift;

@@ -5,7 +5,7 @@
 #include <mrloc/common/Progress.h>
 #include <mrloc/common/Rawlog.h>
 #include <mrloc/common/RunDirectory.h>
-
+#include <mrloc/common/Trajectory.h>
 #include <mrpt/core/format.h>
 
 #include <chrono>
@@ -26,7 +26,7 @@ LocalizationResult runLocalization(Localizer& localizer, const LocalizationRunOp
             throw Error(mrpt::format("rawlog %s: observation %zu ('%s', %s, t = %.3f s): %s",
                                      o.rawlogPath.c_str(), n + 1, obs->sensorLabel.c_str(),
                                      obs->GetRuntimeClass()->className,
-                                     mrpt::Clock::toDouble(obs->timestamp), e.what()));
+                                     common::stampSeconds(obs->timestamp), e.what()));
         }
         progress.update(++n);
     }

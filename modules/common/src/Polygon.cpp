@@ -49,15 +49,13 @@ bool segmentsTouch(const TPoint2D& a, const TPoint2D& b, const TPoint2D& c, cons
            distanceToSegment(a, c, d) <= eps || distanceToSegment(b, c, d) <= eps;
 }
 
-
 /** Two vertices within eps of each other, if any: O(n log n) after sorting by x. */
 std::optional<std::pair<size_t, size_t>> repeatedVertex(const std::vector<TPoint2D>& v,
                                                         double eps) {
     std::vector<size_t> order(v.size());
     for (size_t i = 0; i < v.size(); ++i) order[i] = i;
-    std::sort(order.begin(), order.end(), [&](size_t a, size_t b) {
-        return v[a].x < v[b].x || (v[a].x == v[b].x && a < b);
-    });
+    std::sort(order.begin(), order.end(),
+              [&](size_t a, size_t b) { return v[a].x < v[b].x || (v[a].x == v[b].x && a < b); });
     for (size_t k = 0; k < order.size(); ++k)
         for (size_t m = k + 1; m < order.size() && v[order[m]].x - v[order[k]].x <= eps; ++m)
             if ((v[order[k]] - v[order[m]]).norm() <= eps)
@@ -75,14 +73,15 @@ std::optional<std::pair<size_t, size_t>> everyPair(size_t n, const Touch& touch)
     return std::nullopt;
 }
 
-bool lexLess(const TPoint2D& a, const TPoint2D& b) { return a.x < b.x || (a.x == b.x && a.y < b.y); }
+bool lexLess(const TPoint2D& a, const TPoint2D& b) {
+    return a.x < b.x || (a.x == b.x && a.y < b.y);
+}
 
 /** Two non-adjacent edges that cross or touch (within eps), if any: the Shamos-Hoey sweep
  *  (Shamos and Hoey, "Geometric intersection problems", FOCS 1976), O(n log n), ordering the
  *  sweep's edges with exact orientations. Edges closer than eps without touching are found
  *  where the sweep holds them side by side. */
-std::optional<std::pair<size_t, size_t>> touchingEdges(const std::vector<TPoint2D>& v,
-                                                       double eps) {
+std::optional<std::pair<size_t, size_t>> touchingEdges(const std::vector<TPoint2D>& v, double eps) {
     const size_t n = v.size();
     struct Edge {
         TPoint2D left, right;
@@ -106,9 +105,7 @@ std::optional<std::pair<size_t, size_t>> touchingEdges(const std::vector<TPoint2
         return s < t;
     };
     std::set<size_t, decltype(below)> status(below);
-    const auto adjacent = [n](size_t i, size_t j) {
-        return (i + 1) % n == j || (j + 1) % n == i;
-    };
+    const auto adjacent = [n](size_t i, size_t j) { return (i + 1) % n == j || (j + 1) % n == i; };
     const auto touch = [&](size_t i, size_t j) {
         return !adjacent(i, j) &&
                segmentsTouch(edges[i].left, edges[i].right, edges[j].left, edges[j].right, eps);
@@ -134,7 +131,7 @@ std::optional<std::pair<size_t, size_t>> touchingEdges(const std::vector<TPoint2
     });
     for (const auto& e : events) {
         if (e.insert) {
-            const auto [it, fresh] = status.insert(e.edge);
+            const auto it = status.insert(e.edge).first;
             if (it != status.begin() && touch(*std::prev(it), e.edge))
                 return std::make_pair(*std::prev(it), e.edge);
             if (std::next(it) != status.end() && touch(*std::next(it), e.edge))
@@ -190,7 +187,8 @@ Polygon Polygon::fromVertices(std::vector<TPoint2D> v, const std::string& what) 
                         " is a collinear duplicate: its two edges overlap (a zero-width spike)");
     }
     if (const auto meet = touchingEdges(v, eps)) {
-        const size_t i = std::min(meet->first, meet->second), j = std::max(meet->first, meet->second);
+        const size_t i = std::min(meet->first, meet->second),
+                     j = std::max(meet->first, meet->second);
         throw Error(what + mrpt::format(": the polygon intersects itself: edge %zu-%zu "
                                         "meets edge %zu-%zu",
                                         i + 1, i + 2, j + 1, (j + 1) % n + 1));

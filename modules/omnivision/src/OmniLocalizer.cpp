@@ -3,6 +3,7 @@
 #include <mrloc/common/IniSection.h>
 #include <mrloc/common/Metrics.h>
 #include <mrloc/common/Rawlog.h>
+#include <mrloc/common/Trajectory.h>
 #include <mrloc/omnivision/MarkerDetector.h>
 #include <mrloc/omnivision/OmniFiles.h>
 #include <mrloc/omnivision/OmniLocalizer.h>
@@ -54,7 +55,7 @@ void OmniLocalizer::saveConfig(mrpt::config::CConfigFileBase& target) const {
 void OmniLocalizer::process(const mrpt::obs::CObservation::Ptr& obs) {
     const std::string robot = common::robotOfLabel(obs->sensorLabel);
     const std::string sensor = common::sensorOfLabel(obs->sensorLabel);
-    const double t = mrpt::Clock::toDouble(obs->timestamp);
+    const double t = common::stampSeconds(obs->timestamp);
     if (!firstTime_ || t < *firstTime_) firstTime_ = t;
     if (sensor == "omni") {
         const auto img = expect<mrpt::obs::CObservationImage>(obs, "CObservationImage");

@@ -1,7 +1,7 @@
 #include <mrloc/common/Error.h>
 #include <mrloc/common/ExactPredicates.h>
-#include <mrloc/common/Rawlog.h>
 #include <mrloc/polymap/Elimination.h>
+#include <mrloc/polymap/ScanPolygon.h>
 #include <mrpt/core/format.h>
 
 #include <algorithm>
@@ -39,13 +39,16 @@ namespace {
  *  with the points it repeats (up to rounding) and the zero-width spikes it leaves dropped. */
 common::Polygon polygonOf(const OverlayRegion& oi) {
     if (!oi.holes.empty())
-        throw Error(mrpt::format("elimination: the overlay region has %zu hole(s); paths "
-                                 "around holes are not supported yet",
-                                 oi.holes.size()));
+        throw Error(
+            mrpt::format("elimination: the overlay region has %zu hole(s), which the "
+                         "shortest paths (in a simple polygon) cannot route around",
+                         oi.holes.size()));
     std::vector<TPoint2D> ring = oi.outer;
     TPoint2D lo{INFINITY, INFINITY}, hi{-INFINITY, -INFINITY};
-    for (const auto& p : ring)
-        lo = {std::min(lo.x, p.x), std::min(lo.y, p.y)}, hi = {std::max(hi.x, p.x), std::max(hi.y, p.y)};
+    for (const auto& p : ring) {
+        lo = {std::min(lo.x, p.x), std::min(lo.y, p.y)};
+        hi = {std::max(hi.x, p.x), std::max(hi.y, p.y)};
+    }
     const double tol = 1e-8 * (hi - lo).norm();
     for (bool changed = true; changed && ring.size() > 3;) {
         changed = false;
@@ -81,25 +84,65 @@ bool wellConditioned(const VisibilityPolygon& V, double clearance) {
     return true;
 }
 
-/** Over 2 % of `beams` directions see ranges differing by more than `margin`, a beam's own
- *  direction and half a step either side allowed (a window's end). */
+/** How far `range`, seen along `angle`, is from V's boundary: along the beam itself, or,
+ *  when that is over `tolerance`, the best of it and half a beam step either side (a beam
+ *  next to a window's end sees the wall on its other side). */
+double radialMismatch(const VisibilityPolygon& V, double angle, double range, double step,
+                      double tolerance) {
+    const auto off = [&](double d) {
+        return std::abs(range - V.radius({std::cos(angle + d), std::sin(angle + d)}));
+    };
+    const double e = off(0);
+    return e > tolerance ? std::min({e, off(-0.5 * step), off(0.5 * step)}) : e;
+}
+
+/** Over 2 % of `beams` directions see ranges differing by more than `margin`. */
 bool beamsTellApart(const VisibilityPolygon& a, const VisibilityPolygon& b, int beams,
                     double margin) {
     const double step = 2 * M_PI / beams;
     int differ = 0;
     for (int k = 0; k < beams; ++k) {
         const double t = k * step;
-        const double ra = a.radius({std::cos(t), std::sin(t)});
-        const auto off = [&](double d) {
-            return std::abs(ra - b.radius({std::cos(t + d), std::sin(t + d)}));
-        };
-        differ += off(0) > margin && off(-0.5 * step) > margin && off(0.5 * step) > margin;
+        differ += radialMismatch(b, t, a.radius({std::cos(t), std::sin(t)}), step, margin) > margin;
         if (differ * 50 > beams) return true;
     }
     return false;
 }
 
 }  // namespace
+
+/** OI of the live hypotheses, as a polygon, triangulated, with its shortest paths. */
+struct Eliminator::Region {
+    OverlayRegion oi;
+    common::Polygon polygon;
+    Triangulation triangles;
+    ShortestPaths paths;
+
+    explicit Region(const common::Polygon& P, const std::vector<TPoint2D>& positions)
+        : oi(overlayRegion(P, positions)),  // seed 002 steps 4-6
+          polygon(polygonOf(oi)),
+          triangles(polygon),
+          paths(triangles) {}
+    Region(const Region&) = delete;  // triangles and paths refer to the members above
+    Region& operator=(const Region&) = delete;
+
+    /** Candidate indices, nearest first by travel inside OI from `at`. */
+    std::vector<std::pair<double, size_t>> byTravel(const TPoint2D& at,
+                                                    const std::vector<TPoint2D>& found) const {
+        std::vector<std::pair<double, size_t>> order;
+        order.reserve(found.size());
+        for (size_t c = 0; c < found.size(); ++c)
+            order.push_back({paths.distance(at, found[c]), c});
+        std::sort(order.begin(), order.end());
+        return order;
+    }
+};
+
+std::vector<TPoint2D> Eliminator::positionsOf(const std::vector<size_t>& live) const {
+    std::vector<TPoint2D> out;
+    for (size_t i : live) out.push_back(hypotheses_[i]);
+    return out;
+}
 
 Eliminator::Eliminator(const common::Polygon& P, std::vector<TPoint2D> hypotheses,
                        EliminationOptions options)
@@ -164,8 +207,7 @@ std::vector<TPoint2D> Eliminator::candidates(const std::vector<size_t>& live,
                 for (size_t v = 0; v < m; ++v) {
                     if (v == r || !sees(r, v)) continue;
                     const TVector2D d = (R[r] - R[v]) * (1 / (R[r] - R[v]).norm());
-                    if (!oiPolygon.contains(R[r] + d * (1e3 * eps)) ||
-                        oiPolygon.locate(R[r] + d * (1e3 * eps)) != common::Polygon::Where::Inside)
+                    if (oiPolygon.locate(R[r] + d * (1e3 * eps)) != common::Polygon::Where::Inside)
                         continue;  // the extension leaves OI at once: no chord
                     const auto hit = oiPolygon.rayCast(R[r], d, 1e3 * eps);
                     if (!hit) continue;
@@ -192,8 +234,8 @@ std::vector<TPoint2D> Eliminator::candidates(const std::vector<size_t>& live,
                 if (!tri.inside) continue;
                 const TPoint2D &a = T_.point(tri.v[0]), &b = T_.point(tri.v[1]),
                                &c = T_.point(tri.v[2]);
-                for (const TPoint2D p : {(a + b + c) * (1.0 / 3), (a + b) * 0.5, (b + c) * 0.5,
-                                         (c + a) * 0.5})
+                for (const TPoint2D p :
+                     {(a + b + c) * (1.0 / 3), (a + b) * 0.5, (b + c) * 0.5, (c + a) * 0.5})
                     if (inOI(p - origin)) out.push_back(p - origin);
             }
             std::sort(out.begin(), out.end(), [](const TPoint2D& a, const TPoint2D& b) {
@@ -259,29 +301,18 @@ bool Eliminator::separates(const std::vector<size_t>& live, const TPoint2D& at) 
 std::optional<Probe> Eliminator::chooseProbe(const std::vector<size_t>& live,
                                              const TPoint2D& at) const {
     if (live.size() < 2) return std::nullopt;
-    std::vector<TPoint2D> positions;
-    for (size_t i : live) positions.push_back(hypotheses_[i]);
-    const OverlayRegion oi = overlayRegion(P_, positions);  // seed 002 steps 4-6
-    const common::Polygon oiPolygon = polygonOf(oi);
-    const Triangulation oiTriangles(oiPolygon);
-    const ShortestPaths paths(oiTriangles);
-    const size_t step = hypotheses_.size() - live.size();
-    const auto found = candidates(live, oi, oiPolygon, step, options_.strategy,
-                                  std::max(options_.clearance, 1e-3), 32);
-    // Nearest first by travel inside OI; the first that separates is the probe (step 7).
-    std::vector<std::pair<double, size_t>> order;
-    order.reserve(found.size());
-    for (size_t c = 0; c < found.size(); ++c)
-        order.push_back({paths.distance(at, found[c]), c});
-    std::sort(order.begin(), order.end());
+    const Region region(P_, positionsOf(live));
+    const auto found = candidates(live, region.oi, region.polygon, hypotheses_.size() - live.size(),
+                                  options_.strategy, std::max(options_.clearance, 1e-3), 32);
     Probe probe;
     probe.candidates = found.size();
-    probe.oiArea = oi.area;
-    for (const auto& [distance, c] : order) {
+    probe.oiArea = region.oi.area;
+    // Nearest first by travel inside OI; the first that separates is the probe (step 7).
+    for (const auto& [distance, c] : region.byTravel(at, found)) {
         ++probe.tested;
         if (!separates(live, found[c])) continue;
         probe.at = found[c];
-        probe.path = paths.path(at, found[c]);
+        probe.path = region.paths.path(at, found[c]);
         return probe;
     }
     return std::nullopt;
@@ -289,34 +320,24 @@ std::optional<Probe> Eliminator::chooseProbe(const std::vector<size_t>& live,
 
 std::pair<std::vector<TPoint2D>, OverlayRegion> Eliminator::candidatesAndRegion(
     const std::vector<size_t>& live) const {
-    std::vector<TPoint2D> positions;
-    for (size_t i : live) positions.push_back(hypotheses_[i]);
-    OverlayRegion oi = overlayRegion(P_, positions);
-    const common::Polygon oiPolygon = polygonOf(oi);
-    auto found = candidates(live, oi, oiPolygon, hypotheses_.size() - live.size(),
-                            options_.strategy, std::max(options_.clearance, 1e-3), 32);
-    return {std::move(found), std::move(oi)};
+    const Region region(P_, positionsOf(live));
+    return {candidates(live, region.oi, region.polygon, hypotheses_.size() - live.size(),
+                       options_.strategy, std::max(options_.clearance, 1e-3), 32),
+            region.oi};
 }
 
 std::optional<double> Eliminator::firstSeparation(const std::vector<size_t>& live,
                                                   const TPoint2D& at, double spacing) const {
     if (live.size() < 2) return std::nullopt;
-    std::vector<TPoint2D> positions;
-    for (size_t i : live) positions.push_back(hypotheses_[i]);
-    const OverlayRegion oi = overlayRegion(P_, positions);
-    const common::Polygon oiPolygon = polygonOf(oi);
-    const Triangulation oiTriangles(oiPolygon);
-    const ShortestPaths paths(oiTriangles);
+    const Region region(P_, positionsOf(live));
     std::vector<TPoint2D> found;
     for (const auto strategy : {ProbeStrategy::VisibilityCells, ProbeStrategy::Randomized,
                                 ProbeStrategy::Triangulation, ProbeStrategy::Windows}) {
-        const auto more = candidates(live, oi, oiPolygon, 0, strategy, spacing, 1 << 20);
+        const auto more =
+            candidates(live, region.oi, region.polygon, 0, strategy, spacing, 1 << 20);
         found.insert(found.end(), more.begin(), more.end());
     }
-    std::vector<std::pair<double, size_t>> order;
-    for (size_t c = 0; c < found.size(); ++c) order.push_back({paths.distance(at, found[c]), c});
-    std::sort(order.begin(), order.end());
-    for (const auto& [distance, c] : order)
+    for (const auto& [distance, c] : region.byTravel(at, found))
         if (separates(live, found[c])) return distance;
     return std::nullopt;
 }
@@ -337,20 +358,8 @@ std::vector<size_t> Eliminator::consistentWithScan(const std::vector<size_t>& li
                                                    double heading, double rangeTolerance,
                                                    double searchRadius,
                                                    std::vector<TPoint2D>* refined) const {
-    const size_t n = scan.getScanSize();
-    const std::string what = "elimination: scan '" + scan.sensorLabel + "'";
-    if (n < 8 || std::abs(scan.aperture / double(n - 1) * double(n) - 2 * M_PI) >
-                     0.5 * scan.aperture / double(n - 1))
-        throw Error(what + ": not a full turn of at least 8 beams");
-    const double step = scan.aperture / double(n - 1);
-    const double sign = common::storedFlag(scan.rightToLeft) ? 1 : -1;
-    std::vector<double> range(n), angle(n);
-    for (size_t b = 0; b < n; ++b) {
-        if (!scan.getScanRangeValidity(b))
-            throw Error(what + mrpt::format(": beam %zu has no return", b));
-        range[b] = scan.getScanRange(b);
-        angle[b] = heading + sign * scan.getScanAngle(b);
-    }
+    const ScanBeams beams = beamsOf(scan, heading);
+    const size_t n = beams.range.size();
     // How badly the view at displacement x explains the beams: the beams that disagree, and
     // the sum of their errors capped at 4 tolerances (a score to refine the position by).
     const auto fit = [&](size_t i, const TPoint2D& x) {
@@ -363,13 +372,8 @@ std::vector<size_t> Eliminator::consistentWithScan(const std::vector<size_t>& li
         size_t disagree = 0;
         double score = 0;
         for (size_t b = 0; b < n; ++b) {
-            const auto off = [&](double d) {
-                const double a = angle[b] + d;
-                return std::abs(range[b] - V.radius({std::cos(a), std::sin(a)}));
-            };
-            // Half a step either side only when the beam's own direction disagrees.
-            double e = off(0);
-            if (e > rangeTolerance) e = std::min({e, off(-0.5 * step), off(0.5 * step)});
+            const double e =
+                radialMismatch(V, beams.angle[b], beams.range[b], beams.step, rangeTolerance);
             disagree += e > rangeTolerance;
             score += std::min(e, 4 * rangeTolerance);
         }
@@ -428,8 +432,8 @@ EliminationRun eliminateExactly(const Eliminator& eliminator, size_t truth) {
     while (run.survivors.size() > 1) {
         const auto probe = eliminator.chooseProbe(run.survivors, at);
         if (!probe) break;  // no candidate of the strategy separates what is left
-        run.survivors = eliminator.consistent(run.survivors, probe->at,
-                                              eliminator.viewOf(truth, probe->at));
+        run.survivors =
+            eliminator.consistent(run.survivors, probe->at, eliminator.viewOf(truth, probe->at));
         run.travel += probe->path.length;
         at = probe->at;
         run.probes.push_back(*probe);

@@ -90,9 +90,10 @@ std::optional<size_t> HypothesisGenerator::vertexNear(const TPoint2D& p, const F
 std::vector<Hypothesis> HypothesisGenerator::generate(const VisibilityPolygon& V,
                                                       HypothesisStats* stats) const {
     if (V.size() < 3)
-        throw Error("hypothesis generation: the scan's visibility polygon has fewer than 3 "
-                    "corners (a scan too noisy for [polymap] tolerance and angle_tolerance? "
-                    "see scan_range_sigma)");
+        throw Error(
+            "hypothesis generation: the scan's visibility polygon has fewer than 3 "
+            "corners (a scan too noisy for [polymap] tolerance and angle_tolerance? "
+            "see scan_range_sigma)");
     const std::vector<Feature> features = featuresOf(V);
     if (features.empty())
         throw Error(

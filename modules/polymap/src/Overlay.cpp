@@ -9,9 +9,9 @@
 #pragma GCC diagnostic ignored "-Wmaybe-uninitialized"
 #endif
 #include <boost/geometry.hpp>
+#include <boost/geometry/geometries/multi_polygon.hpp>
 #include <boost/geometry/geometries/point_xy.hpp>
 #include <boost/geometry/geometries/polygon.hpp>
-#include <boost/geometry/geometries/multi_polygon.hpp>
 #include <limits>
 
 namespace mrloc::polymap {
@@ -82,9 +82,10 @@ OverlayRegion overlayRegion(const common::Polygon& P, const std::vector<TPoint2D
     }
     const double tol = 1e3 * P.epsilon();
     if (!best || bestDistance > tol)
-        throw Error(mrpt::format("overlay region: the origin lies in no component of the "
-                                 "intersection (%zu hypotheses, %zu components)",
-                                 positions.size(), region.size()));
+        throw Error(
+            mrpt::format("overlay region: the origin lies in no component of the "
+                         "intersection (%zu hypotheses, %zu components)",
+                         positions.size(), region.size()));
     OverlayRegion out;
     out.outer = ring(best->outer());
     for (const auto& h : best->inners()) out.holes.push_back(ring(h));

@@ -80,8 +80,8 @@ void renderPolygonView(const PolygonViewContent& c, const std::string& pngPath, 
     if (!c.candidates.second.empty())
         legend.push_back({c.candidates.first + ": first candidates", {150, 150, 150}});
     for (size_t k = 0; k < c.routes.size(); ++k)
-        legend.push_back({c.routes[k].label + ": route and probes",
-                          kRouteColours[k % kRouteColours.size()]});
+        legend.push_back(
+            {c.routes[k].label + ": route and probes", kRouteColours[k % kRouteColours.size()]});
     report::saveTopDown(scene, lo.x - m, lo.y - m, hi.x + m, hi.y + m, pngPath, width, height,
                         legend);
 }

@@ -64,7 +64,8 @@ void EliminationFile::write(const std::string& dir) const {
         << "# K column x y: the first step's candidates; O x y: OI at the true start (m)\n"
         << "# bound d: the first-separation distance, a bound on every strategy's travel (m)\n"
         << "true_start " << trueStart << "\nbound " << formatNumber(bound) << "\n";
-    for (const auto& p : overlay) out << "O " << formatNumber(p.x) << " " << formatNumber(p.y) << "\n";
+    for (const auto& p : overlay)
+        out << "O " << formatNumber(p.x) << " " << formatNumber(p.y) << "\n";
     for (size_t c = 0; c < columns.size(); ++c) {
         const auto& col = columns[c];
         out << "C " << c << " " << col.name << "\n";
@@ -112,7 +113,9 @@ EliminationFile EliminationFile::read(const std::string& dir) {
             col.survivors.push_back((int)line.number(5));
         } else if (kind == "P" || kind == "Q" || kind == "K") {
             line.expectFields(4);
-            (kind == "P" ? column().route : kind == "Q" ? column().stops : column().candidates)
+            (kind == "P"   ? column().route
+             : kind == "Q" ? column().stops
+                           : column().candidates)
                 .push_back({line.number(2), line.number(3)});
         } else if (kind == "O") {
             line.expectFields(3);

@@ -1,6 +1,7 @@
 #include <mrloc/common/AtomicFile.h>
 #include <mrloc/common/Error.h>
 #include <mrloc/common/Rawlog.h>
+#include <mrloc/common/Trajectory.h>
 #include <mrloc/polymap/PolymapFiles.h>
 #include <mrloc/polymap/PolymapLocalizer.h>
 #include <mrpt/core/format.h>
@@ -26,7 +27,7 @@ RobotHypotheses hypothesesFromScan(const PolymapOptions& options, const common::
     so.rangeSigma = options.scanRangeSigma;
     so.breakAngle = options.breakAngle * M_PI / 180;
     RobotHypotheses r;
-    r.time = mrpt::Clock::toDouble(scan.timestamp);
+    r.time = common::stampSeconds(scan.timestamp);
     r.sensed = visibilityFromScan(scan, options.heading * M_PI / 180, so);
     double rMax = 0;
     for (const auto& v : r.sensed.vertices) rMax = std::max(rMax, v.norm());
@@ -36,9 +37,9 @@ RobotHypotheses hypothesesFromScan(const PolymapOptions& options, const common::
     if (options.drive && r.hypotheses.size() > 1) {
         std::vector<TPoint2D> positions;
         for (const auto& h : r.hypotheses) positions.push_back(h.point);
-        r.session = std::make_shared<EliminationSession>(
-            map, positions, options.driveOptions(r.tolerance), options.heading * M_PI / 180,
-            kArrivalRadius);
+        r.session =
+            std::make_shared<EliminationSession>(map, positions, options.driveOptions(r.tolerance),
+                                                 options.heading * M_PI / 180, kArrivalRadius);
     }
     return r;
 }
@@ -52,7 +53,7 @@ void PolymapLocalizer::process(const mrpt::obs::CObservation::Ptr& obs) {
         auto& r = it->second;
         if (r.session && r.session->plan()) {
             r.session->observe(*scan);
-            r.probeTimes.push_back(mrpt::Clock::toDouble(scan->timestamp));
+            r.probeTimes.push_back(common::stampSeconds(scan->timestamp));
         }
         return;
     }
@@ -62,20 +63,20 @@ void PolymapLocalizer::process(const mrpt::obs::CObservation::Ptr& obs) {
 std::map<std::string, common::Trajectory> PolymapLocalizer::estimates() const {
     std::map<std::string, common::Trajectory> out;
     const double heading = options_.heading * M_PI / 180;
+    const auto at = [heading](double t, const TPoint2D& p) {
+        return common::StampedPose{t, mrpt::poses::CPose3D(p.x, p.y, 0, heading, 0, 0)};
+    };
     for (const auto& [robot, r] : results_) {
         auto& traj = out[robot];
         if (r.hypotheses.size() == 1) {
-            const auto& p = r.hypotheses[0].point;
-            traj.push_back({r.time, mrpt::poses::CPose3D(p.x, p.y, 0, heading, 0, 0)});
+            traj.push_back(at(r.time, r.hypotheses[0].point));
         } else if (r.session && r.session->live().size() == 1) {
             // Localized by elimination: the start, and every probe the robot scanned at.
             const size_t s = r.session->live().front();
             const TPoint2D p = r.hypotheses[s].point;
-            traj.push_back({r.time, mrpt::poses::CPose3D(p.x, p.y, 0, heading, 0, 0)});
-            for (size_t k = 0; k < r.probeTimes.size(); ++k) {
-                const TPoint2D q = p + r.session->stoppedAt(k, s);
-                traj.push_back({r.probeTimes[k], mrpt::poses::CPose3D(q.x, q.y, 0, heading, 0, 0)});
-            }
+            traj.push_back(at(r.time, p));
+            for (size_t k = 0; k < r.probeTimes.size(); ++k)
+                traj.push_back(at(r.probeTimes[k], p + r.session->stoppedAt(k, s)));
         }
     }
     return out;

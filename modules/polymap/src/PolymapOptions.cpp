@@ -53,7 +53,8 @@ void PolymapOptions::loadFromConfigFile(const mrpt::config::CConfigFileBase& src
     elimination.clear();
     std::istringstream names(s.text("elimination", "none"));
     std::vector<std::string> list{std::istream_iterator<std::string>(names), {}};
-    if (list == std::vector<std::string>{"all"}) list = {"cells", "randomized", "triangulation", "windows"};
+    if (list == std::vector<std::string>{"all"})
+        list = {"cells", "randomized", "triangulation", "windows"};
     if (list != std::vector<std::string>{"none"})
         for (const auto& name : list) try {
                 elimination.push_back(strategyFromName(name));
@@ -151,7 +152,7 @@ EliminationOptions PolymapOptions::driveOptions(double tolerance) const {
     o.seed = (uint32_t)eliminationSeed;
     o.tolerance = tolerance;
     o.clearance = clearance;
-    o.sensorBeams = scanRays;                  // the scanner the probes are for
+    o.sensorBeams = scanRays;                      // the scanner the probes are for
     o.rangeTolerance = 6 * scanRangeSigma + 0.01;  // a beam's error bound
     return o;
 }

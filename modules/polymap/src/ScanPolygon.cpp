@@ -79,17 +79,18 @@ void splitRun(const std::vector<TPoint2D>& pts, size_t a, size_t b, double tol,
 
 }  // namespace
 
-VisibilityPolygon visibilityFromScan(const mrpt::obs::CObservation2DRangeScan& scan, double heading,
-                                     const ScanPolygonOptions& o) {
+ScanBeams beamsOf(const mrpt::obs::CObservation2DRangeScan& scan, double heading) {
     const size_t n = scan.getScanSize();
     const std::string what = "scan '" + scan.sensorLabel + "'";
     if (n < 8) throw Error(what + ": too few beams (" + std::to_string(n) + ")");
-    const double step = scan.aperture / double(n - 1);
-    if (std::abs(step * n - 2 * M_PI) > 0.5 * step)
+    ScanBeams beams;
+    beams.step = scan.aperture / double(n - 1);
+    if (std::abs(beams.step * n - 2 * M_PI) > 0.5 * beams.step)
         throw Error(what + mrpt::format(": not a full turn (%zu beams over %.2f deg)", n,
                                         scan.aperture * 180 / M_PI));
-    std::vector<TPoint2D> pts(n);
-    std::vector<double> angle(n);
+    const double sign = common::storedFlag(scan.rightToLeft) ? 1 : -1;
+    beams.angle.resize(n);
+    beams.range.resize(n);
     for (size_t i = 0; i < n; ++i) {
         if (!scan.getScanRangeValidity(i))
             throw Error(what + mrpt::format(": beam %zu has no return; the visibility polygon "
@@ -98,9 +99,21 @@ VisibilityPolygon visibilityFromScan(const mrpt::obs::CObservation2DRangeScan& s
         const double r = scan.getScanRange(i);
         if (!std::isfinite(r) || r < 0)
             throw Error(what + mrpt::format(": beam %zu range is %g", i, r));
-        angle[i] = heading + scan.getScanAngle(i) * (common::storedFlag(scan.rightToLeft) ? 1 : -1);
-        pts[i] = {r * std::cos(angle[i]), r * std::sin(angle[i])};
+        beams.range[i] = r;
+        beams.angle[i] = heading + sign * scan.getScanAngle(i);
     }
+    return beams;
+}
+
+VisibilityPolygon visibilityFromScan(const mrpt::obs::CObservation2DRangeScan& scan, double heading,
+                                     const ScanPolygonOptions& o) {
+    const ScanBeams beams = beamsOf(scan, heading);
+    const std::vector<double>& angle = beams.angle;
+    const size_t n = angle.size();
+    const double step = beams.step;
+    std::vector<TPoint2D> pts(n);
+    for (size_t i = 0; i < n; ++i)
+        pts[i] = {beams.range[i] * std::cos(angle[i]), beams.range[i] * std::sin(angle[i])};
     // Jumps: the gap to the next beam is larger than a wall at incidence breakAngle gives.
     const double threshold = std::sin(step) / std::sin(o.breakAngle - step);
     std::vector<bool> jumpAfter(n);

@@ -159,9 +159,12 @@ void Triangulation::splitTriangle(int t, int p, std::vector<std::pair<int, int>>
     const Triangle old = tris_[(size_t)t];
     const int a = old.v[0], b = old.v[1], c = old.v[2];
     const int tb = (int)tris_.size(), tc = tb + 1;
-    tris_[(size_t)t] = {{p, b, c}, {old.neighbour[0], tb, tc}, {old.constrained[0], false, false}, false};
-    tris_.push_back({{a, p, c}, {t, old.neighbour[1], tc}, {false, old.constrained[1], false}, false});
-    tris_.push_back({{a, b, p}, {t, tb, old.neighbour[2]}, {false, false, old.constrained[2]}, false});
+    tris_[(size_t)t] = {
+        {p, b, c}, {old.neighbour[0], tb, tc}, {old.constrained[0], false, false}, false};
+    tris_.push_back(
+        {{a, p, c}, {t, old.neighbour[1], tc}, {false, old.constrained[1], false}, false});
+    tris_.push_back(
+        {{a, b, p}, {t, tb, old.neighbour[2]}, {false, false, old.constrained[2]}, false});
     relink(old.neighbour[1], c, a, tb);
     relink(old.neighbour[2], a, b, tc);
     vertexTriangle_[(size_t)a] = tb;
@@ -169,46 +172,49 @@ void Triangulation::splitTriangle(int t, int p, std::vector<std::pair<int, int>>
     toCheck.insert(toCheck.end(), {{t, 0}, {tb, 1}, {tc, 2}});
 }
 
+Triangulation::Quad Triangulation::quadAt(int t, int i) const {
+    const Triangle& T = tris_[(size_t)t];
+    Quad q;
+    q.t = t;
+    q.a = T.v[(size_t)i], q.b = T.v[(size_t)plus1(i)], q.c = T.v[(size_t)plus2(i)];
+    q.u = T.neighbour[(size_t)i];
+    if (q.u == kNone)
+        throw Error("triangulation: an edge of the enclosing triangle (internal error)");
+    const Triangle& U = tris_[(size_t)q.u];
+    const int j = across(q.u, t);
+    q.d = U.v[(size_t)j];
+    q.tab = T.neighbour[(size_t)plus2(i)], q.tca = T.neighbour[(size_t)plus1(i)];
+    q.ubd = U.neighbour[(size_t)plus1(j)], q.udc = U.neighbour[(size_t)plus2(j)];
+    q.cab = T.constrained[(size_t)plus2(i)], q.cca = T.constrained[(size_t)plus1(i)];
+    q.cbd = U.constrained[(size_t)plus1(j)], q.cdc = U.constrained[(size_t)plus2(j)];
+    q.inside = T.inside;
+    return q;
+}
+
 void Triangulation::splitEdge(int t, int e, int p, std::vector<std::pair<int, int>>& toCheck) {
-    const Triangle T = tris_[(size_t)t];
-    const int a = T.v[(size_t)e], b = T.v[(size_t)plus1(e)], c = T.v[(size_t)plus2(e)];
-    const int u = T.neighbour[(size_t)e];
-    if (u == kNone) throw Error("triangulation: point on the enclosing triangle (internal error)");
-    const Triangle U = tris_[(size_t)u];
-    const int j = across(u, t), d = U.v[(size_t)j];
-    const int tab = T.neighbour[(size_t)plus2(e)], tca = T.neighbour[(size_t)plus1(e)];
-    const int ubd = U.neighbour[(size_t)plus1(j)], udc = U.neighbour[(size_t)plus2(j)];
-    const bool cab = T.constrained[(size_t)plus2(e)], cca = T.constrained[(size_t)plus1(e)];
-    const bool cbd = U.constrained[(size_t)plus1(j)], cdc = U.constrained[(size_t)plus2(j)];
-    const int t2 = (int)tris_.size(), t4 = t2 + 1;
-    tris_[(size_t)t] = {{p, a, b}, {tab, t4, t2}, {cab, false, false}, false};
-    tris_[(size_t)u] = {{p, d, c}, {udc, t2, t4}, {cdc, false, false}, false};
-    tris_.push_back({{p, c, a}, {tca, t, u}, {cca, false, false}, false});
-    tris_.push_back({{p, b, d}, {ubd, u, t}, {cbd, false, false}, false});
-    relink(tca, c, a, t2);
-    relink(ubd, b, d, t4);
-    vertexTriangle_[(size_t)p] = vertexTriangle_[(size_t)a] = vertexTriangle_[(size_t)b] = t;
-    vertexTriangle_[(size_t)c] = t2;
-    vertexTriangle_[(size_t)d] = u;
+    const Quad q = quadAt(t, e);
+    const int u = q.u, t2 = (int)tris_.size(), t4 = t2 + 1;
+    tris_[(size_t)t] = {{p, q.a, q.b}, {q.tab, t4, t2}, {q.cab, false, false}, false};
+    tris_[(size_t)u] = {{p, q.d, q.c}, {q.udc, t2, t4}, {q.cdc, false, false}, false};
+    tris_.push_back({{p, q.c, q.a}, {q.tca, t, u}, {q.cca, false, false}, false});
+    tris_.push_back({{p, q.b, q.d}, {q.ubd, u, t}, {q.cbd, false, false}, false});
+    relink(q.tca, q.c, q.a, t2);
+    relink(q.ubd, q.b, q.d, t4);
+    vertexTriangle_[(size_t)p] = vertexTriangle_[(size_t)q.a] = vertexTriangle_[(size_t)q.b] = t;
+    vertexTriangle_[(size_t)q.c] = t2;
+    vertexTriangle_[(size_t)q.d] = u;
     toCheck.insert(toCheck.end(), {{t, 0}, {t2, 0}, {u, 0}, {t4, 0}});
 }
 
 void Triangulation::flip(int t, int i) {
-    const Triangle T = tris_[(size_t)t];
-    const int a = T.v[(size_t)i], b = T.v[(size_t)plus1(i)], c = T.v[(size_t)plus2(i)];
-    const int u = T.neighbour[(size_t)i];
-    const Triangle U = tris_[(size_t)u];
-    const int j = across(u, t), d = U.v[(size_t)j];
-    const int tab = T.neighbour[(size_t)plus2(i)], tca = T.neighbour[(size_t)plus1(i)];
-    const int ubd = U.neighbour[(size_t)plus1(j)], udc = U.neighbour[(size_t)plus2(j)];
-    const bool cab = T.constrained[(size_t)plus2(i)], cca = T.constrained[(size_t)plus1(i)];
-    const bool cbd = U.constrained[(size_t)plus1(j)], cdc = U.constrained[(size_t)plus2(j)];
-    tris_[(size_t)t] = {{a, b, d}, {ubd, u, tab}, {cbd, false, cab}, T.inside};
-    tris_[(size_t)u] = {{a, d, c}, {udc, tca, t}, {cdc, cca, false}, T.inside};
-    relink(ubd, b, d, t);
-    relink(tca, c, a, u);
-    vertexTriangle_[(size_t)a] = vertexTriangle_[(size_t)b] = vertexTriangle_[(size_t)d] = t;
-    vertexTriangle_[(size_t)c] = u;
+    const Quad q = quadAt(t, i);
+    const int u = q.u;
+    tris_[(size_t)t] = {{q.a, q.b, q.d}, {q.ubd, u, q.tab}, {q.cbd, false, q.cab}, q.inside};
+    tris_[(size_t)u] = {{q.a, q.d, q.c}, {q.udc, q.tca, t}, {q.cdc, q.cca, false}, q.inside};
+    relink(q.ubd, q.b, q.d, t);
+    relink(q.tca, q.c, q.a, u);
+    vertexTriangle_[(size_t)q.a] = vertexTriangle_[(size_t)q.b] = vertexTriangle_[(size_t)q.d] = t;
+    vertexTriangle_[(size_t)q.c] = u;
 }
 
 void Triangulation::legalize(std::vector<std::pair<int, int>>& toCheck) {
@@ -262,7 +268,8 @@ void Triangulation::forceEdge(int a, int b) {
     for (size_t guard = 0; guard <= tris_.size(); ++guard) {
         const int ka = indexOf(t, a);
         const auto& T = tris_[(size_t)t];
-        const TPoint2D &X = pts_[(size_t)T.v[(size_t)plus1(ka)]], &Y = pts_[(size_t)T.v[(size_t)plus2(ka)]];
+        const TPoint2D &X = pts_[(size_t)T.v[(size_t)plus1(ka)]],
+                       &Y = pts_[(size_t)T.v[(size_t)plus2(ka)]];
         if (orientation(A, X, B) > 0 && orientation(A, Y, B) < 0) {
             k = ka;
             break;
@@ -284,7 +291,10 @@ void Triangulation::forceEdge(int a, int b) {
         if (side == 0)
             throw Error("triangulation: a vertex lies on edge " + std::to_string(a + 1) + "-" +
                         std::to_string(b + 1) + " (internal error: the polygon was validated)");
-        if (side > 0) y = w; else x = w;
+        if (side > 0)
+            y = w;
+        else
+            x = w;
         t = u;
     }
     // Sloan's recovery: flip crossing edges whose quadrilateral is convex until none is left.
@@ -410,8 +420,8 @@ Triangulation::Location Triangulation::locateInside(const TPoint2D& p,
             stack.pop_back();
             const auto& T = tris_[(size_t)t];
             for (int i = 0; i < 3; ++i) {
-                const double d = common::distanceToSegment(p, pts_[(size_t)T.from(i)],
-                                                           pts_[(size_t)T.to(i)]);
+                const double d =
+                    common::distanceToSegment(p, pts_[(size_t)T.from(i)], pts_[(size_t)T.to(i)]);
                 const int u = T.neighbour[(size_t)i];
                 if (d > eps || u == kNone) continue;
                 if (T.constrained[(size_t)i]) {
@@ -424,8 +434,7 @@ Triangulation::Location Triangulation::locateInside(const TPoint2D& p,
         }
     }
     if (found.triangle == kNone)
-        throw Error(mrpt::format("%s (%.9g %.9g) is outside the map", what.c_str(),
-                                 p.x, p.y));
+        throw Error(mrpt::format("%s (%.9g %.9g) is outside the map", what.c_str(), p.x, p.y));
     return found;
 }
 

@@ -1,7 +1,7 @@
 #include <mrloc/common/Error.h>
 #include <mrloc/common/ExactPredicates.h>
-#include <mrpt/core/format.h>
 #include <mrloc/polymap/Visibility.h>
+#include <mrpt/core/format.h>
 
 #include <algorithm>
 #include <cmath>
@@ -45,9 +45,9 @@ using Tri = Triangulation;
 /** Where the viewpoint sits: the fan of triangle edges around it, counter-clockwise, and
  *  for a viewpoint on P's boundary the P edges it leaves along and comes back along. */
 struct Seat {
-    TPoint2D q;                               ///< the viewpoint (snapped onto a vertex)
-    std::vector<std::pair<int, int>> fan;     ///< (triangle, edge) seen first
-    int firstEdge = -1, lastEdge = -1;        ///< P edges through q (boundary seats only)
+    TPoint2D q;                            ///< the viewpoint (snapped onto a vertex)
+    std::vector<std::pair<int, int>> fan;  ///< (triangle, edge) seen first
+    int firstEdge = -1, lastEdge = -1;     ///< P edges through q (boundary seats only)
 };
 
 /** The P edge, inside triangle t's edge i, that lies on P's boundary: P is

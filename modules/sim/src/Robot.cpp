@@ -70,6 +70,8 @@ void Robot::setWaypoints(std::vector<mrpt::math::TPoint2D> waypoints, bool loop)
     velocity_.reset();
 }
 
+double Robot::arrivalRadius(double dt) const { return std::max(0.02, options_.speed * dt); }
+
 void Robot::drive(double v, double w) {
     velocity_ = std::make_pair(std::clamp(v, -options_.speed, options_.speed),
                                std::clamp(w, -options_.maxTurnRate, options_.maxTurnRate));
@@ -78,7 +80,7 @@ void Robot::drive(double v, double w) {
 std::pair<double, double> Robot::command(double dt) {
     if (velocity_) return {velocity_->first * dt, velocity_->second * dt};
     auto& wps = options_.waypoints;
-    const double reach = std::max(0.02, options_.speed * dt);
+    const double reach = arrivalRadius(dt);
     while (next_ < wps.size() &&
            std::hypot(wps[next_].x - pose_.x(), wps[next_].y - pose_.y()) < reach) {
         ++next_;

@@ -1,6 +1,7 @@
 #include <mrloc/common/AtomicFile.h>
 #include <mrloc/common/Error.h>
 #include <mrloc/common/OdometryPath.h>
+#include <mrloc/common/Trajectory.h>
 #include <mrloc/sim/Sensors.h>
 #include <mrloc/sim/Simulator.h>
 
@@ -74,7 +75,7 @@ SimulationResult Simulator::run(common::RawlogWriter& out, Payload* payload,
             }
             if (k % gtEvery == 0)
                 result.groundTruth[ro.name].push_back(
-                    {mrpt::Clock::toDouble(stamp), mrpt::poses::CPose3D(robot.pose())});
+                    {common::stampSeconds(stamp), mrpt::poses::CPose3D(robot.pose())});
         }
         if (payload) payload->sense(step);
         if (progress) progress->update(size_t(k));

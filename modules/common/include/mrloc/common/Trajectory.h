@@ -1,6 +1,7 @@
 #pragma once
 // Time-stamped poses and their text form: the TUM format, one pose per line,
 // "t x y z qx qy qz qw", '#' comments. Ground truth and estimates share it.
+#include <mrpt/core/Clock.h>
 #include <mrpt/poses/CPose3D.h>
 
 #include <optional>
@@ -9,8 +10,13 @@
 
 namespace mrloc::common {
 
+/** An observation's time stamp as the seconds since 1970 every trajectory uses. */
+inline double stampSeconds(const mrpt::Clock::time_point& stamp) {
+    return mrpt::Clock::toDouble(stamp);
+}
+
 struct StampedPose {
-    double t = 0;  ///< seconds (mrpt::Clock::toDouble of the observation's timestamp)
+    double t = 0;  ///< seconds (stampSeconds of the observation's timestamp)
     mrpt::poses::CPose3D pose;
 };
 

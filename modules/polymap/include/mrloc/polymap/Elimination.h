@@ -61,8 +61,8 @@ struct EliminationOptions {
 
 /** One probe: where, how the robot gets there, and what the choice cost. */
 struct Probe {
-    TPoint2D at;          ///< displacement from the start
-    GeodesicPath path;    ///< from the previous position, inside OI (displacements)
+    TPoint2D at;            ///< displacement from the start
+    GeodesicPath path;      ///< from the previous position, inside OI (displacements)
     size_t candidates = 0;  ///< the strategy's candidates inside OI
     size_t tested = 0;      ///< candidates whose views were computed (nearest first)
     double oiArea = 0;      ///< m^2
@@ -102,8 +102,8 @@ class Eliminator {
      *  pieces but leaves its beams right. With searchRadius > 0 the scan may have been taken
      *  up to that far from `at` (a robot stops near its goal, not on it): the position that
      *  explains the beams best is searched on three nested 7 x 7 grids (to 0.3 mm) and counts;
-     *  `refined` then receives it for each hypothesis kept. Throws mrloc::Error for a scan that is not a full
-     *  turn or has a beam without a return. */
+     *  `refined` then receives it for each hypothesis kept. Throws mrloc::Error for a scan that is
+     * not a full turn or has a beam without a return (ScanPolygon's beamsOf). */
     std::vector<size_t> consistentWithScan(const std::vector<size_t>& live, const TPoint2D& at,
                                            const mrpt::obs::CObservation2DRangeScan& scan,
                                            double heading, double rangeTolerance,
@@ -118,6 +118,8 @@ class Eliminator {
     const EliminationOptions& options() const { return options_; }
 
  private:
+    struct Region;
+    std::vector<TPoint2D> positionsOf(const std::vector<size_t>& live) const;
     std::vector<TPoint2D> candidates(const std::vector<size_t>& live, const OverlayRegion& oi,
                                      const common::Polygon& oiPolygon, size_t step,
                                      ProbeStrategy strategy, double chordSpacing,

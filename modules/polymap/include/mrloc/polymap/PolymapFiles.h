@@ -32,12 +32,12 @@ struct HypothesesFile {
  *  start (H's order, every hypothesis in turn the truth). */
 struct EliminationFile {
     struct Column {
-        std::string name;  ///< cells, randomized:X, triangulation, windows
-        std::vector<double> travel;   ///< m, per start
-        std::vector<int> probes;      ///< per start
-        std::vector<int> survivors;   ///< per start: hypotheses left (1: localized)
-        std::vector<TPoint2D> route;  ///< the run's true start: its path (map frame)
-        std::vector<TPoint2D> stops;  ///< and its probes (map frame)
+        std::string name;                  ///< cells, randomized:X, triangulation, windows
+        std::vector<double> travel;        ///< m, per start
+        std::vector<int> probes;           ///< per start
+        std::vector<int> survivors;        ///< per start: hypotheses left (1: localized)
+        std::vector<TPoint2D> route;       ///< the run's true start: its path (map frame)
+        std::vector<TPoint2D> stops;       ///< and its probes (map frame)
         std::vector<TPoint2D> candidates;  ///< its first step's candidates (map frame)
     };
     size_t trueStart = 0;  ///< index in H of the run's true start
@@ -67,7 +67,7 @@ struct EliminationTimes {
 struct EliminationSweepFile {
     struct Row {
         int n = 0, k = 0, starts = 0;
-        std::string column;   ///< algorithm, as in EliminationFile
+        std::string column;      ///< algorithm, as in EliminationFile
         double meanTravel = 0;   ///< m
         double meanSeconds = 0;  ///< per localization
         int notLocalized = 0;    ///< starts that did not end with one hypothesis

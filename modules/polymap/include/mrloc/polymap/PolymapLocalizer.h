@@ -26,7 +26,7 @@ struct RobotHypotheses {
     std::vector<Hypothesis> hypotheses;
     HypothesisStats stats;
     std::shared_ptr<EliminationSession> session;  ///< with [polymap] drive
-    std::vector<double> probeTimes;                ///< of the scans at the probes
+    std::vector<double> probeTimes;               ///< of the scans at the probes
 };
 
 /** Hypothesis generation from a robot's first scan, as the localizer and the simulated

@@ -35,8 +35,8 @@ struct PolymapOptions : public mrpt::config::CLoadableOptions {
      *  turn the truth, exact views. */
     std::vector<ProbeStrategy> elimination;
     std::vector<int> randomPoints{100, 500};  ///< random_points: X of each randomized run
-    unsigned long eliminationSeed = 1;          ///< elimination_seed
-    double clearance = 0.1;                     ///< clearance (m), see EliminationOptions
+    unsigned long eliminationSeed = 1;        ///< elimination_seed
+    double clearance = 0.1;                   ///< clearance (m), see EliminationOptions
     /** sweep_steps: steps maps of these step counts for seed 002's Figs. 6-7 (mean path and
      *  time against n), with the run's other steps options; empty: no sweep. */
     std::vector<int> sweepSteps;

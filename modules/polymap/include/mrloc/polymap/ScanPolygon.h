@@ -18,6 +18,18 @@ struct ScanPolygonOptions {
     double mergeAngle = 2 * M_PI / 180;   ///< neighbouring walls closer in direction are one
 };
 
+/** A full turn's beams in the map's axes: direction (rad) and range (m) of each, and the
+ *  angle between neighbours. */
+struct ScanBeams {
+    std::vector<double> angle, range;
+    double step = 0;
+};
+
+/** Throws mrloc::Error naming the scan if it is not a full turn of at least 8 beams or a
+ *  beam has no return or no finite range (V must be closed: set the scanner's max range above
+ *  the map's size). */
+ScanBeams beamsOf(const mrpt::obs::CObservation2DRangeScan& scan, double heading);
+
 /** Throws mrloc::Error naming the scan if a beam has no return (V must be closed: set the
  *  scanner's max range above the map's size) or the scan is not a full turn. */
 VisibilityPolygon visibilityFromScan(const mrpt::obs::CObservation2DRangeScan& scan, double heading,

@@ -27,10 +27,10 @@ class Triangulation {
     static constexpr int kNone = -1;
 
     struct Triangle {
-        std::array<int, 3> v;           ///< vertices, counter-clockwise
-        std::array<int, 3> neighbour;   ///< across the edge opposite v[i] (kNone: none)
+        std::array<int, 3> v;             ///< vertices, counter-clockwise
+        std::array<int, 3> neighbour;     ///< across the edge opposite v[i] (kNone: none)
         std::array<bool, 3> constrained;  ///< that edge is an edge of P
-        bool inside = false;            ///< the triangle lies in P
+        bool inside = false;              ///< the triangle lies in P
         /** Edge i runs from v[i+1] to v[i+2] (indices mod 3). */
         int from(int i) const { return v[(i + 1) % 3]; }
         int to(int i) const { return v[(i + 2) % 3]; }
@@ -68,6 +68,16 @@ class Triangulation {
     int edgeTowards(int t, int u) const;
 
  private:
+    /** Triangle t = (a, b, c) and its neighbour u = (d, c, b) across the edge b-c opposite
+     *  a = t.v[i]: the four outer neighbours (t_ab across a-b, ...) and their flags. Splitting
+     *  the edge and flipping it both rebuild the two triangles from this. */
+    struct Quad {
+        int t = kNone, u = kNone, a = 0, b = 0, c = 0, d = 0;
+        int tab = kNone, tca = kNone, ubd = kNone, udc = kNone;
+        bool cab = false, cca = false, cbd = false, cdc = false, inside = false;
+    };
+    Quad quadAt(int t, int i) const;
+
     void insertPoint(int p, int& hint);
     void splitTriangle(int t, int p, std::vector<std::pair<int, int>>& toCheck);
     void splitEdge(int t, int e, int p, std::vector<std::pair<int, int>>& toCheck);

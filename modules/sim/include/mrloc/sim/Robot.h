@@ -51,6 +51,8 @@ class Robot {
      *  rng only when the options ask for actuation noise. */
     mrpt::poses::CPose2D step(double dt, mrpt::random::CRandomGenerator& rng);
 
+    /** How near a waypoint counts as reached at step length dt (m). */
+    double arrivalRadius(double dt) const;
     /** Replaces the route and follows it (ends a drive() command). */
     void setWaypoints(std::vector<mrpt::math::TPoint2D> waypoints, bool loop);
     /** Stands still until go(); the simulator then neither moves it nor reads its wheels. */

@@ -1,0 +1,286 @@
+#include <mrloc/common/Error.h>
+#include <mrloc/polymap/Elimination.h>
+#include <mrloc/polymap/EliminationExperiment.h>
+#include <mrloc/polymap/PaperTables.h>
+#include <mrloc/polymap/PolymapLocalizer.h>
+#include <mrloc/report/Plots.h>
+#include <mrloc/report/Report.h>
+#include <mrpt/core/format.h>
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <filesystem>
+
+namespace mrloc::polymap {
+
+namespace {
+
+/** The algorithms of `elimination`, randomized once per X, as experiment columns. */
+std::vector<std::pair<std::string, EliminationOptions>> experimentColumns(const PolymapOptions& o,
+                                                                          double tolerance) {
+    std::vector<std::pair<std::string, EliminationOptions>> out;
+    for (const ProbeStrategy strategy : o.elimination) {
+        const std::vector<int> xs =
+            strategy == ProbeStrategy::Randomized ? o.randomPoints : std::vector<int>{0};
+        for (const int x : xs) {
+            EliminationOptions eo;
+            eo.strategy = strategy;
+            if (x > 0) eo.randomPoints = x;
+            eo.seed = (uint32_t)o.eliminationSeed;
+            eo.tolerance = tolerance;  // the generation's: see doc/polymap.md
+            eo.clearance = o.clearance;
+            out.push_back({strategyName(strategy) + (x > 0 ? ":" + std::to_string(x) : ""), eo});
+        }
+    }
+    return out;
+}
+
+/** One localization from `start`, timed. */
+std::pair<EliminationRun, double> timedElimination(const Eliminator& eliminator, size_t start) {
+    const auto t0 = std::chrono::steady_clock::now();
+    auto run = eliminateExactly(eliminator, start);
+    return {std::move(run),
+            std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count()};
+}
+
+/** Seed 002 Figs. 6-7: steps maps of each `sweep_steps`, their sites the hypotheses, at most
+ *  `sweep_starts` starts each, evenly spread. */
+EliminationSweepFile eliminationSweep(const PolymapOptions& o, double tolerance) {
+    EliminationSweepFile sweep;
+    for (const int steps : o.sweepSteps) {
+        StepsMapOptions so = o.steps;
+        so.steps = steps;
+        const auto map = stepsMap(so);
+        const size_t k = map.sites.size();
+        const size_t count = std::min(k, (size_t)o.sweepStarts);
+        for (const auto& [name, eo] : experimentColumns(o, tolerance)) {
+            const Eliminator eliminator(map.polygon, map.sites, eo);
+            EliminationSweepFile::Row row{(int)map.polygon.size(), (int)k, (int)count, name};
+            for (size_t s = 0; s < count; ++s) {
+                const auto [run, seconds] = timedElimination(eliminator, s * k / count);
+                row.meanTravel += run.travel / double(count);
+                row.meanSeconds += seconds / double(count);
+                row.notLocalized += run.survivors.size() != 1;
+            }
+            sweep.rows.push_back(row);
+        }
+    }
+    return sweep;
+}
+
+/** Figs. 6-7: mean path and mean time against n, one line per algorithm. */
+void plotSweep(const EliminationSweepFile& sweep, const std::string& dir) {
+    std::vector<std::string> columns;
+    for (const auto& r : sweep.rows)
+        if (std::find(columns.begin(), columns.end(), r.column) == columns.end())
+            columns.push_back(r.column);
+    for (const bool travel : {true, false}) {
+        std::string body, plot;
+        for (size_t c = 0; c < columns.size(); ++c) {
+            std::vector<std::pair<double, double>> xy;
+            for (const auto& r : sweep.rows)
+                if (r.column == columns[c])
+                    xy.emplace_back(r.n, travel ? r.meanTravel : 1e3 * r.meanSeconds);
+            body += report::dataBlock("c" + std::to_string(c), xy);
+            plot += std::string(plot.empty() ? "plot " : ", ") + "$c" + std::to_string(c) +
+                    " using 1:2 with linespoints lw 2 title '" + columns[c] + "'";
+        }
+        body += std::string("set xlabel 'map vertices n'\n") +
+                (travel ? "set ylabel 'mean path d (m)'\nset key bottom right\n"
+                        : "set ylabel 'mean time t per localization (ms)'\nset logscale y\n") +
+                plot + "\n";
+        report::runGnuplot(body,
+                           dir + (travel ? "/elimination.fig6.png" : "/elimination.fig7.png"));
+    }
+}
+
+/** The experiment's tables, ours beside the paper's where the run is the paper's case. */
+std::string eliminationTables(const EliminationFile& file, const EliminationTimes& times) {
+    const size_t starts = file.columns.front().travel.size();
+    std::vector<int> paperColumn;  // ours -> the paper's, -1 if it has none
+    for (const auto& c : file.columns) {
+        int match = -1;
+        for (int k = 0; k < paper::kColumns; ++k)
+            if (c.name == paper::kColumnNames[k]) match = k;
+        paperColumn.push_back(starts == (size_t)paper::kStarts ? match : -1);
+    }
+    const auto mean = [](const std::vector<double>& v) {
+        double s = 0;
+        for (double x : v) s += x;
+        return v.empty() ? 0.0 : s / double(v.size());
+    };
+    const auto table = [&](bool travel) {
+        std::string out = "<table><tr><th>start</th>";
+        for (size_t c = 0; c < file.columns.size(); ++c)
+            out += "<th>" + report::html(file.columns[c].name) + (travel ? " d (m)" : " t (ms)") +
+                   "</th>" +
+                   (paperColumn[c] >= 0
+                        ? std::string(travel ? "<th>paper d</th>" : "<th>paper t (s)</th>")
+                        : std::string());
+        out += "</tr>\n";
+        for (size_t i = 0; i < starts; ++i) {
+            out += "<tr><td>" + std::to_string(i + 1) + (i == file.trueStart ? " (run)" : "") +
+                   "</td>";
+            for (size_t c = 0; c < file.columns.size(); ++c) {
+                const auto& col = file.columns[c];
+                const std::string ok = col.survivors[i] == 1 ? "" : " (not localized)";
+                out += travel ? mrpt::format("<td>%.2f%s</td>", col.travel[i], ok.c_str())
+                              : mrpt::format("<td>%.2f</td>", 1e3 * times.seconds.at(c).at(i));
+                if (paperColumn[c] >= 0)
+                    out += mrpt::format(
+                        "<td>%.1f</td>",
+                        (travel ? paper::kTravel : paper::kSeconds)[i][paperColumn[c]]);
+            }
+            out += "</tr>\n";
+        }
+        // Averages, and each average over the first column's (the paper's d_i/d_1, t_i/t_1).
+        std::string avg = "<tr><td>mean</td>", ratio = "<tr><td>ratio to column 1</td>";
+        const auto paperMean = [travel](int column) {
+            double sum = 0;
+            for (int i = 0; i < paper::kStarts; ++i)
+                sum += (travel ? paper::kTravel : paper::kSeconds)[i][column];
+            return sum / paper::kStarts;
+        };
+        const double first = travel ? mean(file.columns[0].travel) : mean(times.seconds.at(0));
+        const double paperFirst = paperColumn[0] >= 0 ? paperMean(paperColumn[0]) : 0;
+        for (size_t c = 0; c < file.columns.size(); ++c) {
+            const double m = travel ? mean(file.columns[c].travel) : mean(times.seconds.at(c));
+            avg += mrpt::format("<td>%.2f</td>", travel ? m : 1e3 * m);
+            ratio += mrpt::format("<td>%.3f</td>", first > 0 ? m / first : 0.0);
+            if (paperColumn[c] >= 0) {
+                const double pm = paperMean(paperColumn[c]);
+                avg += mrpt::format("<td>%.2f</td>", pm);
+                ratio += paperFirst > 0 ? mrpt::format("<td>%.3f</td>", pm / paperFirst)
+                                        : std::string("<td></td>");
+            }
+        }
+        std::string toBound;
+        if (travel && std::isfinite(file.bound) && file.bound > 0) {
+            toBound = "<tr><td>mean d / bound</td>";
+            for (size_t c = 0; c < file.columns.size(); ++c)
+                toBound +=
+                    mrpt::format("<td>%.2f</td>", mean(file.columns[c].travel) / file.bound) +
+                    (paperColumn[c] >= 0 ? "<td></td>" : "");
+            toBound += "</tr>\n";
+        }
+        return out + avg + "</tr>\n" + ratio + "</tr>\n" + toBound + "</table>\n";
+    };
+    return "<h3>Elimination: path length per start (seed 002 Table 1)</h3>\n"
+           "<p>Every hypothesis in turn the truth; closed loop with exact views; d is the "
+           "robot's travel in metres. The paper's map units are not stated: compare the "
+           "ratios. Bound: the first-separation distance, " +
+           (std::isfinite(file.bound) ? mrpt::format("%.2f m", file.bound)
+                                      : std::string("none found")) +
+           ", the shortest travel to any point where the hypotheses' views differ (see "
+           "doc/polymap.md); no strategy travels less.</p>\n" +
+           table(true) +
+           "<h3>Elimination: run time per start (seed 002 Table 2)</h3>\n"
+           "<p>One whole localization, this machine, one core, milliseconds; the paper's in "
+           "seconds (Visual C++ 2010).</p>\n" +
+           table(false);
+}
+
+/** Figs. 6-7 and their table, if the run swept. */
+std::string sweepSection(const std::string& dir) {
+    if (!std::filesystem::exists(EliminationSweepFile::path(dir))) return "";
+    std::string out;
+    const auto sweep = EliminationSweepFile::read(dir);
+    plotSweep(sweep, dir);
+    out +=
+        "<h3>Elimination against map size (seed 002 Figs. 6-7)</h3>\n<p>Steps maps "
+        "of the run's shape, n vertices, their sites the hypotheses; mean over up "
+        "to " +
+        std::to_string(sweep.rows.empty() ? 0 : sweep.rows.front().starts) +
+        " starts per map, evenly spread.</p>\n<img src='elimination.fig6.png' "
+        "alt='mean path against n'>\n<img src='elimination.fig7.png' alt='mean "
+        "time against n'>\n<table><tr><th>n</th><th>k</th><th>algorithm</th><th>mean "
+        "d (m)</th><th>mean t (ms)</th><th>not localized</th></tr>\n";
+    for (const auto& r : sweep.rows)
+        out += mrpt::format(
+            "<tr><td>%d</td><td>%d</td><td>%s</td><td>%.2f</td><td>%.2f</td>"
+            "<td>%d</td></tr>\n",
+            r.n, r.k, report::html(r.column).c_str(), r.meanTravel, 1e3 * r.meanSeconds,
+            r.notLocalized);
+    out += "</table>\n";
+    return out;
+}
+
+}  // namespace
+
+/** Seed 002's experiment (Tables 1-2) on the run's hypotheses: every hypothesis in turn the
+ *  truth, every configured algorithm, closed loop with exact views, deciding with the
+ *  tolerance the hypotheses were generated with; then the sweep over n, if asked. */
+std::vector<std::string> eliminationExperiment(const method::ExperimentInput& in) {
+    const auto& loc = dynamic_cast<const PolymapLocalizer&>(in.localizer);
+    const PolymapOptions& o = loc.options();
+    if (o.elimination.empty()) return {};
+    if (loc.results().empty())
+        throw Error("[polymap] elimination: the rawlog gave no scan to generate hypotheses from");
+    const auto& [robot, r] = *loc.results().begin();
+    std::vector<TPoint2D> positions;
+    for (const auto& h : r.hypotheses) positions.push_back(h.point);
+    if (positions.empty()) throw Error("[polymap] elimination: no hypotheses to eliminate");
+    // The run's true start: the hypothesis nearest the truth (or the configured start).
+    TPoint2D truth = o.startIn(loc.generatedMap());
+    if (const auto gt = in.truth.find(robot); gt != in.truth.end())
+        if (const auto p = common::interpolate(gt->second, r.time)) truth = {p->x(), p->y()};
+    EliminationFile file;
+    for (size_t i = 1; i < positions.size(); ++i)
+        if ((positions[i] - truth).norm() < (positions[file.trueStart] - truth).norm())
+            file.trueStart = i;
+    EliminationTimes times;
+    const auto& P = loc.generatedMap().polygon;
+    const auto columns = experimentColumns(o, r.tolerance);
+    std::vector<size_t> all(positions.size());  // every hypothesis live
+    for (size_t i = 0; i < all.size(); ++i) all[i] = i;
+    if (all.size() > 1)  // the same for every start
+        if (const auto d =
+                Eliminator(P, positions, columns.front().second).firstSeparation(all, {0, 0}))
+            file.bound = *d;
+    const TPoint2D at = positions[file.trueStart];
+    for (const auto& [name, eo] : columns) {
+        const Eliminator eliminator(P, positions, eo);
+        EliminationFile::Column col;
+        col.name = name;
+        if (all.size() > 1) {  // what the first step chose from, for the picture
+            const auto [candidates, oi] = eliminator.candidatesAndRegion(all);
+            for (const auto& c : candidates) col.candidates.push_back(at + c);
+            if (file.overlay.empty())
+                for (const auto& v : oi.outer) file.overlay.push_back(at + v);
+        }
+        times.seconds.emplace_back();
+        for (size_t start = 0; start < positions.size(); ++start) {
+            const auto [run, seconds] = timedElimination(eliminator, start);
+            times.seconds.back().push_back(seconds);
+            col.travel.push_back(run.travel);
+            col.probes.push_back((int)run.probes.size());
+            col.survivors.push_back((int)run.survivors.size());
+            if (start != file.trueStart) continue;
+            col.route.push_back(positions[start]);
+            for (const auto& probe : run.probes) {
+                for (size_t k = 1; k < probe.path.points.size(); ++k)
+                    col.route.push_back(positions[start] + probe.path.points[k]);
+                col.stops.push_back(positions[start] + probe.at);
+            }
+        }
+        file.columns.push_back(std::move(col));
+    }
+    file.write(in.outDir);
+    times.write(in.outDir);
+    std::vector<std::string> written{EliminationFile::path(in.outDir),
+                                     EliminationTimes::path(in.outDir)};
+    if (!o.sweepSteps.empty()) {
+        eliminationSweep(o, r.tolerance).write(in.outDir);
+        written.push_back(EliminationSweepFile::path(in.outDir));
+    }
+    return written;
+}
+
+std::string eliminationSection(const std::string& dir, const EliminationFile& file) {
+    std::string out;
+    if (!file.columns.empty()) out += eliminationTables(file, EliminationTimes::read(dir));
+    return out + sweepSection(dir);
+}
+
+}  // namespace mrloc::polymap
