@@ -7,6 +7,9 @@
 #include <benchmark/benchmark.h>
 #include <mrloc/polymap/Elimination.h>
 #include <mrloc/polymap/MapGenerators.h>
+#include <mrloc/polymap/VerificationTour.h>
+
+#include <cmath>
 
 using namespace mrloc;
 
@@ -46,7 +49,40 @@ void BM_Elimination(benchmark::State& state) {
     state.SetLabel(names[kind]);
 }
 
+/** The bound the report divides by: the verification tour from every start (k = 12) over the
+ *  first step's candidates of every algorithm, searched exactly. One iteration: all starts. */
+void BM_VerificationTours(benchmark::State& state) {
+    polymap::StepsMapOptions s;
+    s.steps = ((int)state.range(0) - 4) / 24;
+    const auto map = polymap::stepsMap(s);
+    std::vector<size_t> all(map.sites.size());
+    for (size_t i = 0; i < all.size(); ++i) all[i] = i;
+    std::vector<polymap::TPoint2D> sites;
+    polymap::EliminationOptions o;
+    for (const auto strategy :
+         {polymap::ProbeStrategy::VisibilityCells, polymap::ProbeStrategy::Randomized,
+          polymap::ProbeStrategy::Triangulation, polymap::ProbeStrategy::Windows}) {
+        o.strategy = strategy;
+        const auto c =
+            polymap::Eliminator(map.polygon, map.sites, o).candidatesAndRegion(all).first;
+        sites.insert(sites.end(), c.begin(), c.end());
+    }
+    const polymap::Eliminator eliminator(map.polygon, map.sites, {});
+    double length = 0;
+    for (auto _ : state) {
+        length = 0;
+        for (const auto& tour : polymap::verificationTours(eliminator, sites, {}))
+            length += tour ? tour->length / double(map.sites.size()) : NAN;
+    }
+    state.counters["n"] = double(map.polygon.size());
+    state.counters["k"] = double(map.sites.size());
+    state.counters["sites"] = double(sites.size());
+    state.counters["mean tour m"] = length;
+}
+
 }  // namespace
+
+BENCHMARK(BM_VerificationTours)->Arg(76)->Arg(148)->Unit(benchmark::kMillisecond);
 
 BENCHMARK(BM_Elimination)
     ->ArgsProduct({{76, 148, 292, 508, 1012}, {0, 1, 2, 3, 4}})

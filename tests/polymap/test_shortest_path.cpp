@@ -84,9 +84,12 @@ double check(const Polygon& P, const polymap::ShortestPaths& paths, const TPoint
     const auto g = paths.path(a, b);
     EXPECT_EQ(g.points.front(), a);
     EXPECT_EQ(g.points.back(), b);
-    for (size_t k = 0; k + 1 < g.points.size(); ++k)
+    for (size_t k = 0; k + 1 < g.points.size(); ++k) {
         EXPECT_TRUE(segmentInside(P, g.points[k], g.points[k + 1]))
             << "leg " << k << " of " << a.asString() << " -> " << b.asString();
+        EXPECT_NE(g.points[k], g.points[k + 1])  // every corner once
+            << "leg " << k << " of " << a.asString() << " -> " << b.asString();
+    }
     const double truth = bruteForceDistance(P, a, b);
     return std::abs(g.length - truth) / std::max(truth, 1e-12);
 }

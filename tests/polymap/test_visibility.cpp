@@ -247,3 +247,36 @@ TEST(Visibility, VertexwiseDistanceBoundsTheBoundaryDistance) {
         EXPECT_GE(polymap::vertexwiseDistance(a, d) + 1e-12, polymap::boundaryDistance(a, d, 1e-3));
     }
 }
+
+TEST(Visibility, RadialProfileIsTheRadiusInEveryDirection) {
+    // The profile's lookup must give exactly the brute-force radius (the same crossings):
+    // in random directions and in each vertex's own direction (where edges meet, radial
+    // edges included), from inside, on an edge and on a vertex, on random polygons and on the
+    // steps map's collinear walls.
+    mrpt::random::CRandomGenerator rng(17);
+    std::vector<Polygon> maps{polymap::stepsMap({}).polygon};
+    for (int poly = 0; poly < 10; ++poly)
+        maps.push_back(polymap::randomStarPolygon(10 + 7 * poly, 0.2, 1.0, rng));
+    size_t checked = 0;
+    for (const auto& P : maps) {
+        std::vector<TPoint2D> viewpoints;
+        for (int k = 0; k < 5; ++k) viewpoints.push_back(randomInside(P, rng));
+        const size_t e = (size_t)rng.drawUniform32bit() % P.size();
+        viewpoints.push_back(P[e] + (P[P.next(e)] - P[e]) * 0.37);
+        viewpoints.push_back(P[e]);
+        for (const auto& q : viewpoints) {
+            const auto V = visibilityPolygon(P, q);
+            const polymap::RadialProfile profile(V);
+            std::vector<double> angles;
+            for (int i = 0; i < 500; ++i) angles.push_back(rng.drawUniform(-4.0, 4.0));
+            for (const auto& v : V.vertices)
+                if (v.norm() > 0) angles.push_back(std::atan2(v.y, v.x));
+            for (const double a : angles) {
+                ASSERT_EQ(profile.radius(a), V.radius({std::cos(a), std::sin(a)}))
+                    << "at " << q.asString() << ", angle " << a;
+                ++checked;
+            }
+        }
+    }
+    EXPECT_GT(checked, 30000u);
+}

@@ -7,6 +7,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <queue>
 #include <random>
 
 namespace mrloc::polymap {
@@ -67,6 +68,29 @@ common::Polygon polygonOf(const OverlayRegion& oi) {
     return common::Polygon::fromVertices(ring, "elimination: the overlay region");
 }
 
+/** p lies in T's polygon at least `radius` from its boundary: no edge of the polygon within
+ *  `radius`, found by a walk over the triangles that the disk of that radius reaches (the
+ *  segment to the nearest boundary point crosses only such triangles), so the cost is local. */
+bool clearInside(const Triangulation& T, const TPoint2D& p, double radius) {
+    const auto at = T.locate(p);
+    if (at.triangle == Triangulation::kNone || !T[at.triangle].inside) return false;
+    thread_local std::vector<int> reached;  // the disk is small: a few triangles
+    reached.assign(1, at.triangle);
+    for (size_t next = 0; next < reached.size(); ++next) {
+        const auto& tri = T[reached[next]];
+        for (int i = 0; i < 3; ++i) {
+            if (common::distanceToSegment(p, T.point(tri.from(i)), T.point(tri.to(i))) >= radius)
+                continue;
+            if (tri.constrained[i]) return false;
+            const int u = tri.neighbour[i];
+            if (u != Triangulation::kNone && T[u].inside &&
+                std::find(reached.begin(), reached.end(), u) == reached.end())
+                reached.push_back(u);
+        }
+    }
+    return true;
+}
+
 /** No wall of V is seen edge-on: its line passing nearer than `clearance` to the viewpoint
  *  beside the wall (not facing it), where a scanner's beams graze it and the sensed V is not
  *  worth comparing. */
@@ -87,11 +111,9 @@ bool wellConditioned(const VisibilityPolygon& V, double clearance) {
 /** How far `range`, seen along `angle`, is from V's boundary: along the beam itself, or,
  *  when that is over `tolerance`, the best of it and half a beam step either side (a beam
  *  next to a window's end sees the wall on its other side). */
-double radialMismatch(const VisibilityPolygon& V, double angle, double range, double step,
+double radialMismatch(const RadialProfile& V, double angle, double range, double step,
                       double tolerance) {
-    const auto off = [&](double d) {
-        return std::abs(range - V.radius({std::cos(angle + d), std::sin(angle + d)}));
-    };
+    const auto off = [&](double d) { return std::abs(range - V.radius(angle + d)); };
     const double e = off(0);
     return e > tolerance ? std::min({e, off(-0.5 * step), off(0.5 * step)}) : e;
 }
@@ -100,10 +122,11 @@ double radialMismatch(const VisibilityPolygon& V, double angle, double range, do
 bool beamsTellApart(const VisibilityPolygon& a, const VisibilityPolygon& b, int beams,
                     double margin) {
     const double step = 2 * M_PI / beams;
+    const RadialProfile pa(a), pb(b);
     int differ = 0;
     for (int k = 0; k < beams; ++k) {
         const double t = k * step;
-        differ += radialMismatch(b, t, a.radius({std::cos(t), std::sin(t)}), step, margin) > margin;
+        differ += radialMismatch(pb, t, pa.radius(t), step, margin) > margin;
         if (differ * 50 > beams) return true;
     }
     return false;
@@ -126,15 +149,43 @@ struct Eliminator::Region {
     Region(const Region&) = delete;  // triangles and paths refer to the members above
     Region& operator=(const Region&) = delete;
 
-    /** Candidate indices, nearest first by travel inside OI from `at`. */
-    std::vector<std::pair<double, size_t>> byTravel(const TPoint2D& at,
-                                                    const std::vector<TPoint2D>& found) const {
-        std::vector<std::pair<double, size_t>> order;
-        order.reserve(found.size());
-        for (size_t c = 0; c < found.size(); ++c)
-            order.push_back({paths.distance(at, found[c]), c});
-        std::sort(order.begin(), order.end());
-        return order;
+    /** p lies inside OI, `clearance` from its boundary (up to rounding: window probes sit
+     *  at it). */
+    bool clear(const TPoint2D& p, double clearance) const {
+        return clearInside(triangles, p, std::max(clearance * (1 - 1e-9), polygon.epsilon()));
+    }
+
+    /** The candidate nearest to `at` by travel inside OI, `clearance` from its boundary,
+     *  that passes `test`, with that travel; candidates are tested nearest first (ties:
+     *  lower index first), and `tested` counts them. The straight line bounds the travel from
+     * below, so geodesics are computed only for the candidates whose straight distance is below the
+     * answer's travel. */
+    template <typename Test>
+    std::optional<std::pair<double, size_t>> nearest(const TPoint2D& at,
+                                                     const std::vector<TPoint2D>& found,
+                                                     double clearance, Test test,
+                                                     size_t* tested = nullptr) const {
+        using Entry = std::pair<double, size_t>;
+        std::vector<Entry> straight;  // a min-heap: only the near ones are ever taken off
+        straight.reserve(found.size());
+        for (size_t c = 0; c < found.size(); ++c) straight.push_back({(found[c] - at).norm(), c});
+        std::make_heap(straight.begin(), straight.end(), std::greater<>());
+        std::priority_queue<Entry, std::vector<Entry>, std::greater<>> byTravel;
+        while (!straight.empty() || !byTravel.empty()) {
+            if (!straight.empty() &&
+                (byTravel.empty() || straight.front().first <= byTravel.top().first)) {
+                const size_t c = straight.front().second;
+                std::pop_heap(straight.begin(), straight.end(), std::greater<>());
+                straight.pop_back();
+                if (clear(found[c], clearance)) byTravel.push({paths.distance(at, found[c]), c});
+                continue;
+            }
+            const auto [travel, c] = byTravel.top();
+            byTravel.pop();
+            if (tested) ++*tested;
+            if (test(found[c])) return std::make_pair(travel, c);
+        }
+        return std::nullopt;
     }
 };
 
@@ -162,21 +213,18 @@ bool Eliminator::sameView(const VisibilityPolygon& a, const VisibilityPolygon& b
     if (vertexwiseDistance(a, b) <= tolerance) return true;
     double extent = 0;
     for (const auto& v : a.vertices) extent = std::max(extent, v.norm());
-    return boundaryDistance(a, b, std::max(tolerance / 4, extent / 250)) <= tolerance;
+    return boundaryDistance(a, b, std::max(tolerance / 4, extent / 250), tolerance) <= tolerance;
 }
 
-std::vector<TPoint2D> Eliminator::candidates(const std::vector<size_t>& live,
-                                             const OverlayRegion& oi,
-                                             const common::Polygon& oiPolygon, size_t step,
+std::vector<TPoint2D> Eliminator::candidates(const std::vector<size_t>& live, const Region& region,
+                                             const TPoint2D& from, size_t step,
                                              ProbeStrategy strategy, double chordSpacing,
                                              int perChord) const {
     std::vector<TPoint2D> out;
     const double clearance = options_.clearance;
     // Inside OI, `clearance` from its boundary (up to rounding: window probes sit at it).
-    const auto inOI = [&oiPolygon, clearance](const TPoint2D& c) {
-        return oiPolygon.locate(c) == common::Polygon::Where::Inside &&
-               (clearance == 0 ||
-                (oiPolygon.closestBoundaryPoint(c).first - c).norm() >= clearance * (1 - 1e-9));
+    const auto inOI = [&region, clearance](const TPoint2D& c) {
+        return region.clear(c, clearance);
     };
     switch (strategy) {
         case ProbeStrategy::VisibilityCells: {
@@ -186,39 +234,29 @@ std::vector<TPoint2D> Eliminator::candidates(const std::vector<size_t>& live,
             // decomposition's cells are bounded by these chords and OI's edges, and the
             // nearest point of a cell lies on its boundary: candidates are points along
             // every chord (every chordSpacing, at most perChord), on both sides of it.
-            const auto& R = oiPolygon.vertices();
+            const auto& R = region.polygon.vertices();
             const size_t m = R.size();
-            const double eps = oiPolygon.epsilon();
-            const auto sees = [&](size_t a, size_t b) {  // segment R[a]-R[b] inside OI
-                for (size_t e = 0; e < m; ++e) {
-                    const size_t f = (e + 1) % m;
-                    if (e == a || e == b || f == a || f == b) continue;
-                    if (common::distanceToSegment(R[e], R[a], R[b]) <= eps) return false;
-                    const int o1 = common::orientation(R[a], R[b], R[e]);
-                    const int o2 = common::orientation(R[a], R[b], R[f]);
-                    const int o3 = common::orientation(R[e], R[f], R[a]);
-                    const int o4 = common::orientation(R[e], R[f], R[b]);
-                    if (o1 * o2 < 0 && o3 * o4 < 0) return false;
-                }
-                return oiPolygon.locate((R[a] + R[b]) * 0.5) != common::Polygon::Where::Outside;
-            };
+            const double eps = region.polygon.epsilon();
             for (size_t r = 0; r < m; ++r) {
-                if (!oiPolygon.isReflex(r)) continue;
+                if (!region.polygon.isReflex(r)) continue;
+                // What r sees: the vertices v it sees and, past r, where each chord ends.
+                const VisibilityPolygon Vr = visibilityPolygon(region.triangles, R[r]);
                 for (size_t v = 0; v < m; ++v) {
-                    if (v == r || !sees(r, v)) continue;
-                    const TVector2D d = (R[r] - R[v]) * (1 / (R[r] - R[v]).norm());
-                    if (oiPolygon.locate(R[r] + d * (1e3 * eps)) != common::Polygon::Where::Inside)
-                        continue;  // the extension leaves OI at once: no chord
-                    const auto hit = oiPolygon.rayCast(R[r], d, 1e3 * eps);
-                    if (!hit) continue;
+                    if (v == r) continue;
+                    const TVector2D toV = R[v] - R[r];
+                    const bool adjacent = v == (r + 1) % m || r == (v + 1) % m;
+                    if (!adjacent && Vr.radius(toV * (1 / toV.norm())) < toV.norm() - eps)
+                        continue;  // v hidden from r
+                    const TVector2D d = toV * (-1 / toV.norm());
+                    const double hit = Vr.radius(d);
+                    if (hit <= 1e3 * eps) continue;  // the extension leaves OI at once
                     const TVector2D normal{-d.y, d.x};
-                    const int samples =
-                        std::clamp((int)std::ceil(*hit / chordSpacing), 1, perChord);
+                    const int samples = std::clamp((int)std::ceil(hit / chordSpacing), 1, perChord);
                     for (int k = 0; k < samples; ++k) {
-                        const TPoint2D on = R[r] + d * (*hit * (k + 0.5) / samples);
+                        const TPoint2D on = R[r] + d * (hit * (k + 0.5) / samples);
                         for (const double side : {-1.0, 1.0}) {
                             const TPoint2D c = on + normal * (side * std::max(clearance, 1e-6));
-                            if (inOI(c)) out.push_back(c);
+                            out.push_back(c);  // cleared when reached: see nearest()
                         }
                     }
                 }
@@ -247,8 +285,10 @@ std::vector<TPoint2D> Eliminator::candidates(const std::vector<size_t>& live,
         case ProbeStrategy::Randomized: {
             // Algorithm 2 (Rao-Dudek-Whitesides): X uniform points of OI, seeded per step.
             std::mt19937 rng(options_.seed * 2654435761u + (uint32_t)step);
-            std::uniform_real_distribution<double> ux(oiPolygon.min().x, oiPolygon.max().x);
-            std::uniform_real_distribution<double> uy(oiPolygon.min().y, oiPolygon.max().y);
+            std::uniform_real_distribution<double> ux(region.polygon.min().x,
+                                                      region.polygon.max().x);
+            std::uniform_real_distribution<double> uy(region.polygon.min().y,
+                                                      region.polygon.max().y);
             const size_t want = (size_t)options_.randomPoints;
             for (size_t tries = 0; out.size() < want && tries < 1000 * want; ++tries) {
                 const TPoint2D p{ux(rng), uy(rng)};
@@ -257,23 +297,81 @@ std::vector<TPoint2D> Eliminator::candidates(const std::vector<size_t>& live,
             break;
         }
         case ProbeStrategy::Windows: {
-            // Algorithm 4, step 6: midpoints of OI's windows, edges that are a wall of some
-            // live copies but not of all (a wall of all tells nothing).
-            const double onWall = 1e-7 * (P_.max() - P_.min()).norm();
+            // Algorithm 4, step 6: midpoints of OI's windows, the stretches of its boundary
+            // that are a wall of some live copies but not of all (a wall of all tells
+            // nothing). An edge of OI is cut where a copy's wall along it starts or ends;
+            // a window the robot sees in part gives the midpoint of each part it sees.
+            const double extent = (P_.max() - P_.min()).norm();
+            // Walls closer than the sensing tolerance are one wall: it cannot tell them apart.
+            const double onLine = std::max(1e-7 * extent, options_.tolerance);
+            const auto& oi = region.oi;
             const size_t m = oi.outer.size();
+            std::optional<VisibilityPolygon> seen;
+            try {
+                seen = visibilityPolygon(region.triangles, from);
+            } catch (const Error&) {  // the robot off OI (by rounding): whole windows only
+            }
+            const auto& Pv = P_.vertices();
             for (size_t e = 0; e < m; ++e) {
-                const TPoint2D mid = (oi.outer[e] + oi.outer[(e + 1) % m]) * 0.5;
-                size_t walls = 0;
-                for (size_t i : live)
-                    walls += (P_.closestBoundaryPoint(hypotheses_[i] + mid).first -
-                              (hypotheses_[i] + mid))
-                                 .norm() <= onWall;
-                if (walls == 0 || walls == live.size()) continue;
+                const TPoint2D &a = oi.outer[e], &b = oi.outer[(e + 1) % m];
+                const double length = (b - a).norm();
+                if (length <= onLine) continue;
+                const TVector2D u = (b - a) * (1 / length);
+                // Where along a-b (0 to 1) a segment lying on its line runs, if it does.
+                const auto along =
+                    [&](const TPoint2D& p,
+                        const TPoint2D& q) -> std::optional<std::pair<double, double>> {
+                    if (std::abs(common::cross(u, p - a)) > onLine ||
+                        std::abs(common::cross(u, q - a)) > onLine)
+                        return std::nullopt;
+                    double t0 = common::dot(u, p - a) / length, t1 = common::dot(u, q - a) / length;
+                    if (t0 > t1) std::swap(t0, t1);
+                    t0 = std::max(t0, 0.0), t1 = std::min(t1, 1.0);
+                    if (t1 - t0 <= onLine / length) return std::nullopt;
+                    return std::make_pair(t0, t1);
+                };
+                std::vector<std::vector<std::pair<double, double>>> walls(live.size());
+                std::vector<double> cuts{0, 1};
+                for (size_t l = 0; l < live.size(); ++l) {
+                    const TPoint2D h = hypotheses_[live[l]];
+                    for (size_t v = 0; v < Pv.size(); ++v)
+                        if (const auto w = along(Pv[v] - h, Pv[(v + 1) % Pv.size()] - h)) {
+                            walls[l].push_back(*w);
+                            cuts.push_back(w->first), cuts.push_back(w->second);
+                        }
+                }
+                std::sort(cuts.begin(), cuts.end());
+                std::vector<std::pair<double, double>> parts;  // what the robot sees of a-b
+                if (seen)
+                    for (size_t v = 0; v < seen->size(); ++v)
+                        if (!seen->isRadial(v))
+                            if (const auto w = along(from + seen->vertices[v],
+                                                     from + seen->vertices[(v + 1) % seen->size()]))
+                                parts.push_back(*w);
                 // Stand off the window, inwards (OI is counter-clockwise: its inside is left).
-                const TVector2D along = oi.outer[(e + 1) % m] - oi.outer[e];
-                const TVector2D inwards = TVector2D{-along.y, along.x} * (1 / along.norm());
-                const TPoint2D probe = mid + inwards * std::max(clearance, 1e-6 * along.norm());
-                if (inOI(probe)) out.push_back(probe);
+                const TVector2D inwards{-u.y, u.x};
+                const auto candidate = [&](double t) {
+                    const TPoint2D probe =
+                        a + (b - a) * t + inwards * std::max(clearance, 1e-6 * length);
+                    if (inOI(probe)) out.push_back(probe);
+                };
+                for (size_t c = 0; c + 1 < cuts.size(); ++c) {
+                    const double t0 = cuts[c], t1 = cuts[c + 1], tm = 0.5 * (t0 + t1);
+                    if (t1 - t0 <= onLine / length) continue;
+                    size_t walled = 0;
+                    for (const auto& w : walls)
+                        walled += std::any_of(w.begin(), w.end(), [tm](const auto& i) {
+                            return i.first <= tm && tm <= i.second;
+                        });
+                    if (walled == 0 || walled == live.size()) continue;
+                    bool sawPart = false;
+                    for (const auto& [s0, s1] : parts)
+                        if (std::min(s1, t1) - std::max(s0, t0) > onLine / length) {
+                            candidate(0.5 * (std::max(s0, t0) + std::min(s1, t1)));
+                            sawPart = true;
+                        }
+                    if (!sawPart) candidate(tm);
+                }
             }
             break;
         }
@@ -284,46 +382,51 @@ std::vector<TPoint2D> Eliminator::candidates(const std::vector<size_t>& live,
 bool Eliminator::separates(const std::vector<size_t>& live, const TPoint2D& at) const {
     const double extent = (P_.max() - P_.min()).norm();
     std::vector<VisibilityPolygon> views;
-    for (size_t i : live) views.push_back(viewOf(i, at));
-    bool differ = false;
-    for (size_t k = 1; k < views.size() && !differ; ++k)
-        differ = options_.sensorBeams > 0
-                     // identical views first (cheap), then the beams
-                     ? vertexwiseDistance(views.front(), views[k]) > 1e-9 * extent &&
-                           beamsTellApart(views.front(), views[k], options_.sensorBeams,
-                                          2 * options_.rangeTolerance)
-                     : !sameView(views.front(), views[k], 2 * options_.tolerance);
-    return differ && std::all_of(views.begin(), views.end(), [this](const auto& V) {
-               return wellConditioned(V, options_.clearance);
-           });
+    views.reserve(live.size());
+    for (size_t i : live) {
+        views.push_back(viewOf(i, at));
+        if (!wellConditioned(views.back(), options_.clearance)) return false;
+    }
+    for (size_t k = 1; k < views.size(); ++k)
+        if (options_.sensorBeams > 0
+                // identical views first (cheap), then the beams
+                ? vertexwiseDistance(views.front(), views[k]) > 1e-9 * extent &&
+                      beamsTellApart(views.front(), views[k], options_.sensorBeams,
+                                     2 * options_.rangeTolerance)
+                : !sameView(views.front(), views[k], 2 * options_.tolerance))
+            return true;
+    return false;
 }
 
 std::optional<Probe> Eliminator::chooseProbe(const std::vector<size_t>& live,
                                              const TPoint2D& at) const {
     if (live.size() < 2) return std::nullopt;
     const Region region(P_, positionsOf(live));
-    const auto found = candidates(live, region.oi, region.polygon, hypotheses_.size() - live.size(),
+    const auto found = candidates(live, region, at, hypotheses_.size() - live.size(),
                                   options_.strategy, std::max(options_.clearance, 1e-3), 32);
     Probe probe;
     probe.candidates = found.size();
     probe.oiArea = region.oi.area;
     // Nearest first by travel inside OI; the first that separates is the probe (step 7).
-    for (const auto& [distance, c] : region.byTravel(at, found)) {
-        ++probe.tested;
-        if (!separates(live, found[c])) continue;
-        probe.at = found[c];
-        probe.path = region.paths.path(at, found[c]);
-        return probe;
-    }
-    return std::nullopt;
+    const auto best = region.nearest(
+        at, found, options_.clearance, [&](const TPoint2D& c) { return separates(live, c); },
+        &probe.tested);
+    if (!best) return std::nullopt;
+    probe.at = found[best->second];
+    probe.path = region.paths.path(at, probe.at);
+    return probe;
 }
 
 std::pair<std::vector<TPoint2D>, OverlayRegion> Eliminator::candidatesAndRegion(
     const std::vector<size_t>& live) const {
     const Region region(P_, positionsOf(live));
-    return {candidates(live, region.oi, region.polygon, hypotheses_.size() - live.size(),
-                       options_.strategy, std::max(options_.clearance, 1e-3), 32),
-            region.oi};
+    auto found = candidates(live, region, {0, 0}, hypotheses_.size() - live.size(),
+                            options_.strategy, std::max(options_.clearance, 1e-3), 32);
+    found.erase(
+        std::remove_if(found.begin(), found.end(),
+                       [&](const TPoint2D& c) { return !region.clear(c, options_.clearance); }),
+        found.end());
+    return {std::move(found), region.oi};
 }
 
 std::optional<double> Eliminator::firstSeparation(const std::vector<size_t>& live,
@@ -333,13 +436,42 @@ std::optional<double> Eliminator::firstSeparation(const std::vector<size_t>& liv
     std::vector<TPoint2D> found;
     for (const auto strategy : {ProbeStrategy::VisibilityCells, ProbeStrategy::Randomized,
                                 ProbeStrategy::Triangulation, ProbeStrategy::Windows}) {
-        const auto more =
-            candidates(live, region.oi, region.polygon, 0, strategy, spacing, 1 << 20);
+        const auto more = candidates(live, region, at, 0, strategy, spacing, 1 << 20);
         found.insert(found.end(), more.begin(), more.end());
     }
-    for (const auto& [distance, c] : region.byTravel(at, found))
-        if (separates(live, found[c])) return distance;
-    return std::nullopt;
+    const auto best = region.nearest(at, found, options_.clearance,
+                                     [&](const TPoint2D& c) { return separates(live, c); });
+    if (!best) return std::nullopt;
+    return best->first;
+}
+
+std::vector<std::optional<VisibilityPolygon>> Eliminator::viewsAt(const TPoint2D& at) const {
+    std::vector<std::optional<VisibilityPolygon>> views(hypotheses_.size());
+    for (size_t i = 0; i < hypotheses_.size(); ++i)
+        if (P_.locate(hypotheses_[i] + at) == common::Polygon::Where::Inside)
+            views[i] = viewOf(i, at);
+    return views;
+}
+
+std::vector<std::optional<std::vector<size_t>>> Eliminator::ruledOutByEach(
+    const std::vector<std::optional<VisibilityPolygon>>& views) const {
+    const size_t k = views.size();
+    std::vector<std::optional<std::vector<size_t>>> out(k);
+    for (size_t truth = 0; truth < k; ++truth)
+        if (views[truth] && wellConditioned(*views[truth], options_.clearance))
+            out[truth].emplace();
+    for (size_t i = 0; i < k; ++i)
+        for (size_t j = i + 1; j < k; ++j) {
+            if (!out[i] && !out[j]) continue;
+            // Consistent()'s rule: a view outside P, or one beyond the tolerance, differs.
+            const bool differ =
+                !views[i] || !views[j] || !sameView(*views[j], *views[i], options_.tolerance);
+            if (differ && out[i]) out[i]->push_back(j);
+            if (differ && out[j]) out[j]->push_back(i);
+        }
+    for (auto& o : out)
+        if (o) std::sort(o->begin(), o->end());
+    return out;
 }
 
 std::vector<size_t> Eliminator::consistent(const std::vector<size_t>& live, const TPoint2D& at,
@@ -369,11 +501,12 @@ std::vector<size_t> Eliminator::consistentWithScan(const std::vector<size_t>& li
         } catch (const Error&) {
             return std::make_pair(n, double(INFINITY));  // x outside P under this hypothesis
         }
+        const RadialProfile profile(V);
         size_t disagree = 0;
         double score = 0;
         for (size_t b = 0; b < n; ++b) {
             const double e =
-                radialMismatch(V, beams.angle[b], beams.range[b], beams.step, rangeTolerance);
+                radialMismatch(profile, beams.angle[b], beams.range[b], beams.step, rangeTolerance);
             disagree += e > rangeTolerance;
             score += std::min(e, 4 * rangeTolerance);
         }

@@ -3,6 +3,8 @@
 #include <mrloc/polymap/EliminationExperiment.h>
 #include <mrloc/polymap/PaperTables.h>
 #include <mrloc/polymap/PolymapLocalizer.h>
+#include <mrloc/polymap/ShortestPath.h>
+#include <mrloc/polymap/VerificationTour.h>
 #include <mrloc/report/Plots.h>
 #include <mrloc/report/Report.h>
 #include <mrpt/core/format.h>
@@ -110,8 +112,14 @@ std::string eliminationTables(const EliminationFile& file, const EliminationTime
         for (double x : v) s += x;
         return v.empty() ? 0.0 : s / double(v.size());
     };
+    // The verification tours, when every start has one.
+    const bool tours =
+        file.tour.size() == starts &&
+        std::all_of(file.tour.begin(), file.tour.end(), [](double d) { return std::isfinite(d); });
     const auto table = [&](bool travel) {
+        const bool tourColumn = travel && tours;
         std::string out = "<table><tr><th>start</th>";
+        if (tourColumn) out += "<th>tour d (m)</th>";
         for (size_t c = 0; c < file.columns.size(); ++c)
             out += "<th>" + report::html(file.columns[c].name) + (travel ? " d (m)" : " t (ms)") +
                    "</th>" +
@@ -122,6 +130,7 @@ std::string eliminationTables(const EliminationFile& file, const EliminationTime
         for (size_t i = 0; i < starts; ++i) {
             out += "<tr><td>" + std::to_string(i + 1) + (i == file.trueStart ? " (run)" : "") +
                    "</td>";
+            if (tourColumn) out += mrpt::format("<td>%.2f</td>", file.tour[i]);
             for (size_t c = 0; c < file.columns.size(); ++c) {
                 const auto& col = file.columns[c];
                 const std::string ok = col.survivors[i] == 1 ? "" : " (not localized)";
@@ -136,6 +145,10 @@ std::string eliminationTables(const EliminationFile& file, const EliminationTime
         }
         // Averages, and each average over the first column's (the paper's d_i/d_1, t_i/t_1).
         std::string avg = "<tr><td>mean</td>", ratio = "<tr><td>ratio to column 1</td>";
+        if (tourColumn) {
+            avg += mrpt::format("<td>%.2f</td>", mean(file.tour));
+            ratio += "<td></td>";
+        }
         const auto paperMean = [travel](int column) {
             double sum = 0;
             for (int i = 0; i < paper::kStarts; ++i)
@@ -155,26 +168,45 @@ std::string eliminationTables(const EliminationFile& file, const EliminationTime
                                         : std::string("<td></td>");
             }
         }
+        // Each algorithm's mean path over the bounds: the first-separation distance, and,
+        // start by start, the verification tour.
         std::string toBound;
-        if (travel && std::isfinite(file.bound) && file.bound > 0) {
-            toBound = "<tr><td>mean d / bound</td>";
+        const auto boundRow = [&](const std::string& label, auto value) {
+            std::string row = "<tr><td>" + label + "</td>" + (tourColumn ? "<td></td>" : "");
             for (size_t c = 0; c < file.columns.size(); ++c)
-                toBound +=
-                    mrpt::format("<td>%.2f</td>", mean(file.columns[c].travel) / file.bound) +
-                    (paperColumn[c] >= 0 ? "<td></td>" : "");
-            toBound += "</tr>\n";
+                row += mrpt::format("<td>%.2f</td>", value(file.columns[c])) +
+                       (paperColumn[c] >= 0 ? "<td></td>" : "");
+            return row + "</tr>\n";
+        };
+        if (travel && std::isfinite(file.bound) && file.bound > 0)
+            toBound += boundRow("mean d / first-separation bound",
+                                [&](const auto& col) { return mean(col.travel) / file.bound; });
+        if (tourColumn) {
+            toBound += boundRow("mean d / mean tour", [&](const auto& col) {
+                return mean(col.travel) / mean(file.tour);
+            });
+            toBound += boundRow("worst d / tour", [&](const auto& col) {
+                double worst = 0;
+                for (size_t i = 0; i < starts; ++i)
+                    worst = std::max(worst, col.travel[i] / file.tour[i]);
+                return worst;
+            });
         }
         return out + avg + "</tr>\n" + ratio + "</tr>\n" + toBound + "</table>\n";
     };
     return "<h3>Elimination: path length per start (seed 002 Table 1)</h3>\n"
            "<p>Every hypothesis in turn the truth; closed loop with exact views; d is the "
            "robot's travel in metres. The paper's map units are not stated: compare the "
-           "ratios. Bound: the first-separation distance, " +
+           "ratios. Two bounds (doc/polymap.md): the first-separation distance, " +
            (std::isfinite(file.bound) ? mrpt::format("%.2f m", file.bound)
                                       : std::string("none found")) +
-           ", the shortest travel to any point where the hypotheses' views differ (see "
-           "doc/polymap.md); no strategy travels less.</p>\n" +
-           table(true) +
+           ", the shortest travel to any point where the hypotheses' views differ, which no "
+           "strategy beats from any start; and, start by start, the verification tour "
+           "(Dudek, Romanik and Whitesides 1998): the least travel that rules out every other "
+           "hypothesis with the truth known, found exactly by search over every algorithm's "
+           "candidates and probes" +
+           (tours ? std::string() : std::string(" (not computed: more than 16 hypotheses)")) +
+           ". Seed 002 reports no bound.</p>\n" + table(true) +
            "<h3>Elimination: run time per start (seed 002 Table 2)</h3>\n"
            "<p>One whole localization, this machine, one core, milliseconds; the paper's in "
            "seconds (Visual C++ 2010).</p>\n" +
@@ -239,6 +271,9 @@ std::vector<std::string> eliminationExperiment(const method::ExperimentInput& in
                 Eliminator(P, positions, columns.front().second).firstSeparation(all, {0, 0}))
             file.bound = *d;
     const TPoint2D at = positions[file.trueStart];
+    // The verification tours' sites: every column's first candidates and its probes.
+    std::vector<TPoint2D> firstCandidates;
+    std::vector<std::vector<TPoint2D>> probesFrom(positions.size());
     for (const auto& [name, eo] : columns) {
         const Eliminator eliminator(P, positions, eo);
         EliminationFile::Column col;
@@ -246,6 +281,7 @@ std::vector<std::string> eliminationExperiment(const method::ExperimentInput& in
         if (all.size() > 1) {  // what the first step chose from, for the picture
             const auto [candidates, oi] = eliminator.candidatesAndRegion(all);
             for (const auto& c : candidates) col.candidates.push_back(at + c);
+            firstCandidates.insert(firstCandidates.end(), candidates.begin(), candidates.end());
             if (file.overlay.empty())
                 for (const auto& v : oi.outer) file.overlay.push_back(at + v);
         }
@@ -256,6 +292,7 @@ std::vector<std::string> eliminationExperiment(const method::ExperimentInput& in
             col.travel.push_back(run.travel);
             col.probes.push_back((int)run.probes.size());
             col.survivors.push_back((int)run.survivors.size());
+            for (const auto& probe : run.probes) probesFrom[start].push_back(probe.at);
             if (start != file.trueStart) continue;
             col.route.push_back(positions[start]);
             for (const auto& probe : run.probes) {
@@ -265,6 +302,24 @@ std::vector<std::string> eliminationExperiment(const method::ExperimentInput& in
             }
         }
         file.columns.push_back(std::move(col));
+    }
+    if (all.size() > 1 && all.size() <= kMaxTourHypotheses) {
+        const Eliminator eliminator(P, positions, columns.front().second);
+        const auto tours = verificationTours(eliminator, firstCandidates, probesFrom);
+        for (size_t start = 0; start < tours.size(); ++start) {
+            const auto& tour = tours[start];
+            file.tour.push_back(tour ? tour->length : std::nan(""));
+            file.tourProbes.push_back(tour ? (int)tour->probes.size() : 0);
+            if (!tour || start != file.trueStart) continue;
+            const ShortestPaths paths(eliminator.triangulation());
+            file.trueTourRoute.push_back(at);
+            for (size_t k = 0; k < tour->probes.size(); ++k) {
+                const TPoint2D from = k == 0 ? at : at + tour->probes[k - 1];
+                const auto leg = paths.path(from, at + tour->probes[k]).points;
+                file.trueTourRoute.insert(file.trueTourRoute.end(), leg.begin() + 1, leg.end());
+                file.trueTour.push_back(at + tour->probes[k]);
+            }
+        }
     }
     file.write(in.outDir);
     times.write(in.outDir);

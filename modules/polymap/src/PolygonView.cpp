@@ -14,8 +14,12 @@ using common::TPoint2D;
 
 namespace {
 
-const std::array<mrpt::img::TColor, 5> kRouteColours = {
-    mrpt::img::TColor{40, 90, 220}, {160, 40, 200}, {0, 170, 190}, {120, 120, 0}, {230, 60, 140}};
+const std::array<mrpt::img::TColor, 6> kRouteColours = {mrpt::img::TColor{40, 90, 220},
+                                                        {160, 40, 200},
+                                                        {0, 170, 190},
+                                                        {120, 120, 0},
+                                                        {230, 60, 140},
+                                                        {110, 70, 30}};
 
 CSetOfLines::Ptr outline(const std::vector<TPoint2D>& v, const TPoint2D& at,
                          mrpt::img::TColor color, float width, float z) {

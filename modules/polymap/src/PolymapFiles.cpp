@@ -63,7 +63,15 @@ void EliminationFile::write(const std::string& dir) const {
         << "# P column x y: the route from the true start; Q column x y: its probes (m)\n"
         << "# K column x y: the first step's candidates; O x y: OI at the true start (m)\n"
         << "# bound d: the first-separation distance, a bound on every strategy's travel (m)\n"
+        << "# tour start d probes: the verification tour from that start (m; nan: none)\n"
+        << "# tour_probe x y, tour_path x y: the true start's tour, its probes and path (m)\n"
         << "true_start " << trueStart << "\nbound " << formatNumber(bound) << "\n";
+    for (size_t i = 0; i < tour.size(); ++i)
+        out << "tour " << i << " " << formatNumber(tour[i]) << " " << tourProbes.at(i) << "\n";
+    for (const auto& p : trueTour)
+        out << "tour_probe " << formatNumber(p.x) << " " << formatNumber(p.y) << "\n";
+    for (const auto& p : trueTourRoute)
+        out << "tour_path " << formatNumber(p.x) << " " << formatNumber(p.y) << "\n";
     for (const auto& p : overlay)
         out << "O " << formatNumber(p.x) << " " << formatNumber(p.y) << "\n";
     for (size_t c = 0; c < columns.size(); ++c) {
@@ -120,9 +128,20 @@ EliminationFile EliminationFile::read(const std::string& dir) {
         } else if (kind == "O") {
             line.expectFields(3);
             f.overlay.push_back({line.number(1), line.number(2)});
+        } else if (kind == "tour") {
+            line.expectFields(4);
+            if (line.number(1) != (double)f.tour.size())
+                throw Error(line.where + ": tours must be numbered 0, 1, ... in order");
+            f.tour.push_back(line.number(2));
+            f.tourProbes.push_back((int)line.number(3));
+        } else if (kind == "tour_probe" || kind == "tour_path") {
+            line.expectFields(3);
+            (kind == "tour_probe" ? f.trueTour : f.trueTourRoute)
+                .push_back({line.number(1), line.number(2)});
         } else {
             throw Error(line.where +
-                        ": expected a line starting with true_start, bound, O, C, R, P, Q or K");
+                        ": expected a line starting with true_start, bound, tour, tour_probe, "
+                        "tour_path, O, C, R, P, Q or K");
         }
     }
     return f;

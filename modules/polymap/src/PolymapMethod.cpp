@@ -146,6 +146,9 @@ std::string polymapSection(const report::RunView& run) {
             elimination = EliminationFile::read(run.dir);
             for (const auto& col : elimination->columns)
                 view.routes.push_back({col.name, col.route, col.stops});
+            if (!elimination->trueTour.empty())
+                view.routes.push_back({"verification tour (least travel)",
+                                       elimination->trueTourRoute, elimination->trueTour});
             view.overlay = elimination->overlay;
             if (!elimination->columns.empty())
                 view.candidates = {elimination->columns.front().name,

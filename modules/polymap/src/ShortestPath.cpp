@@ -61,6 +61,10 @@ GeodesicPath ShortestPaths::path(const TPoint2D& a, const TPoint2D& b) const {
     // point a corner of the path and the new apex.
     GeodesicPath out;
     out.points.push_back(a);
+    // A restart from a corner can meet it again (portals sharing that vertex): once is enough.
+    const auto corner = [&out](const TPoint2D& p) {
+        if (out.points.back() != p) out.points.push_back(p);
+    };
     TPoint2D apex = a, left = a, right = a;
     size_t apexAt = 0, leftAt = 0, rightAt = 0;
     for (size_t i = 1; i < portals.size(); ++i) {
@@ -69,7 +73,7 @@ GeodesicPath ShortestPaths::path(const TPoint2D& a, const TPoint2D& b) const {
             if (apex == right || orientation(apex, left, r) < 0) {
                 right = r, rightAt = i;
             } else {
-                out.points.push_back(left);
+                corner(left);
                 apex = right = left, apexAt = rightAt = leftAt;
                 i = apexAt;
                 continue;
@@ -79,7 +83,7 @@ GeodesicPath ShortestPaths::path(const TPoint2D& a, const TPoint2D& b) const {
             if (apex == left || orientation(apex, right, l) > 0) {
                 left = l, leftAt = i;
             } else {
-                out.points.push_back(right);
+                corner(right);
                 apex = left = right, apexAt = leftAt = rightAt;
                 i = apexAt;
                 continue;

@@ -30,6 +30,47 @@ double VisibilityPolygon::radius(const TVector2D& dir) const {
     return best;
 }
 
+RadialProfile::RadialProfile(const VisibilityPolygon& V) : V_(V) {
+    const size_t n = V.size();
+    std::vector<double> a(n);
+    for (size_t i = 0; i < n; ++i) {
+        if (V.vertices[i].norm() == 0) direct_ = true;
+        a[i] = std::atan2(V.vertices[i].y, V.vertices[i].x);
+    }
+    if (direct_ || n < 3) {
+        direct_ = true;
+        return;
+    }
+    first_ = size_t(std::min_element(a.begin(), a.end()) - a.begin());
+    angles_.reserve(n);
+    for (size_t j = 0; j < n; ++j) {
+        double t = a[(first_ + j) % n];
+        // Counter-clockwise: never more than a rounding behind the last (radial edges).
+        while (!angles_.empty() && t < angles_.back() - 1e-9) t += 2 * M_PI;
+        angles_.push_back(t);
+    }
+}
+
+double RadialProfile::radius(double angle) const {
+    const TVector2D dir{std::cos(angle), std::sin(angle)};
+    if (direct_) return V_.radius(dir);
+    const size_t n = angles_.size();
+    double t = angle;
+    while (t < angles_.front()) t += 2 * M_PI;
+    while (t >= angles_.front() + 2 * M_PI) t -= 2 * M_PI;
+    // The edge from sorted vertex j - 1 to j spans t; its neighbours cover equal angles
+    // (radial edges) and rounding in the sort.
+    const size_t j = size_t(std::upper_bound(angles_.begin(), angles_.end(), t) - angles_.begin());
+    double best = 0;
+    for (long d = -3; d <= 2; ++d) {
+        const size_t i = (first_ + size_t(long(j + n) + d)) % n;
+        if (const auto hit =
+                common::raySegmentHit(V_.vertices[i], V_.vertices[(i + 1) % n], {0, 0}, dir, 0))
+            best = std::max(best, *hit);
+    }
+    return best;
+}
+
 std::vector<TPoint2D> VisibilityPolygon::placedAt(const TPoint2D& p) const {
     std::vector<TPoint2D> out;
     out.reserve(vertices.size());
@@ -202,30 +243,39 @@ VisibilityPolygon visibilityPolygon(const common::Polygon& P, const TPoint2D& q)
 
 namespace {
 
-double directedDistance(const VisibilityPolygon& a, const VisibilityPolygon& b, double step) {
+double directedDistance(const VisibilityPolygon& a, const VisibilityPolygon& b, double step,
+                        double stopAbove) {
     double worst = 0;
     const size_t na = a.size(), nb = b.size();
+    const auto sample = [&](const TPoint2D& p) {
+        double nearest = std::numeric_limits<double>::infinity();
+        for (size_t j = 0; j < nb && nearest > worst; ++j)
+            nearest = std::min(
+                nearest, common::distanceToSegment(p, b.vertices[j], b.vertices[(j + 1) % nb]));
+        worst = std::max(worst, nearest);
+        return worst > stopAbove;
+    };
+    // The vertices first: two views that differ mostly differ at a corner, so a caller that
+    // only asks "within stopAbove?" rarely needs the samples between.
+    for (size_t i = 0; i < na; ++i)
+        if (sample(a.vertices[i])) return worst;
     for (size_t i = 0; i < na; ++i) {
         const TPoint2D& p0 = a.vertices[i];
         const TPoint2D& p1 = a.vertices[(i + 1) % na];
         const int samples = std::max(1, (int)std::ceil((p1 - p0).norm() / step));
-        for (int s = 0; s < samples; ++s) {
-            const TPoint2D p = p0 + (p1 - p0) * ((double)s / samples);
-            double nearest = std::numeric_limits<double>::infinity();
-            for (size_t j = 0; j < nb && nearest > worst; ++j)
-                nearest = std::min(
-                    nearest, common::distanceToSegment(p, b.vertices[j], b.vertices[(j + 1) % nb]));
-            worst = std::max(worst, nearest);
-        }
+        for (int s = 1; s < samples; ++s)
+            if (sample(p0 + (p1 - p0) * ((double)s / samples))) return worst;
     }
     return worst;
 }
 
 }  // namespace
 
-double boundaryDistance(const VisibilityPolygon& a, const VisibilityPolygon& b, double step) {
+double boundaryDistance(const VisibilityPolygon& a, const VisibilityPolygon& b, double step,
+                        double stopAbove) {
     if (a.size() < 3 || b.size() < 3) return std::numeric_limits<double>::infinity();
-    return std::max(directedDistance(a, b, step), directedDistance(b, a, step));
+    const double ab = directedDistance(a, b, step, stopAbove);
+    return ab > stopAbove ? ab : std::max(ab, directedDistance(b, a, step, stopAbove));
 }
 
 double vertexwiseDistance(const VisibilityPolygon& a, const VisibilityPolygon& b) {

@@ -63,7 +63,7 @@ struct EliminationOptions {
 struct Probe {
     TPoint2D at;            ///< displacement from the start
     GeodesicPath path;      ///< from the previous position, inside OI (displacements)
-    size_t candidates = 0;  ///< the strategy's candidates inside OI
+    size_t candidates = 0;  ///< the strategy's candidates (cells': chord points, cleared lazily)
     size_t tested = 0;      ///< candidates whose views were computed (nearest first)
     double oiArea = 0;      ///< m^2
 };
@@ -109,6 +109,19 @@ class Eliminator {
                                            double heading, double rangeTolerance,
                                            double searchRadius = 0,
                                            std::vector<TPoint2D>* refined = nullptr) const;
+    /** What a view taken at displacement `at` rules out when `truth` is the truth: the
+     *  hypotheses whose predicted view there differs from the truth's beyond the tolerance
+     *  (consistent()'s rule), or under which `at` is outside P. Nothing if `at` is no probe
+     *  under the truth: outside P, or a wall seen edge-on (see clearance). */
+    std::optional<std::vector<size_t>> ruledOut(size_t truth, const TPoint2D& at) const {
+        return ruledOutByEach(viewsAt(at)).at(truth);
+    }
+    /** The same for every truth in turn ([truth]), from every hypothesis' view there
+     *  (viewsAt), each pair of views compared once. */
+    std::vector<std::optional<std::vector<size_t>>> ruledOutByEach(
+        const std::vector<std::optional<VisibilityPolygon>>& views) const;
+    /** Every hypothesis' view at displacement `at`; nothing where `at` is outside P under it. */
+    std::vector<std::optional<VisibilityPolygon>> viewsAt(const TPoint2D& at) const;
     /** The view hypothesis i predicts at displacement `at`: V(p_i + at). */
     VisibilityPolygon viewOf(size_t i, const TPoint2D& at) const;
     /** Same view within `tolerance` (vertex by vertex, else the sampled boundary distance). */
@@ -116,14 +129,16 @@ class Eliminator {
 
     const std::vector<TPoint2D>& hypotheses() const { return hypotheses_; }
     const EliminationOptions& options() const { return options_; }
+    const common::Polygon& map() const { return P_; }
+    const Triangulation& triangulation() const { return T_; }
 
  private:
     struct Region;
     std::vector<TPoint2D> positionsOf(const std::vector<size_t>& live) const;
-    std::vector<TPoint2D> candidates(const std::vector<size_t>& live, const OverlayRegion& oi,
-                                     const common::Polygon& oiPolygon, size_t step,
-                                     ProbeStrategy strategy, double chordSpacing,
-                                     int perChord) const;
+    /** The strategy's candidates in OI (displacements), the robot at `from`. */
+    std::vector<TPoint2D> candidates(const std::vector<size_t>& live, const Region& region,
+                                     const TPoint2D& from, size_t step, ProbeStrategy strategy,
+                                     double chordSpacing, int perChord) const;
     /** The live hypotheses' views at displacement `at` differ (and none sees a wall
      *  edge-on). */
     bool separates(const std::vector<size_t>& live, const TPoint2D& at) const;

@@ -46,6 +46,13 @@ struct EliminationFile {
     double bound = std::numeric_limits<double>::quiet_NaN();
     std::vector<TPoint2D> overlay;  ///< OI of all hypotheses, placed at the true start
     std::vector<Column> columns;
+    /** Per start, the verification tour (m; NaN: not computed, k too large) and its probes'
+     *  count: the least travel from that start over the experiment's sites
+     *  (polymap/VerificationTour.h). */
+    std::vector<double> tour;
+    std::vector<int> tourProbes;
+    std::vector<TPoint2D> trueTour;       ///< the true start's tour: its probes (map frame)
+    std::vector<TPoint2D> trueTourRoute;  ///< and its path (map frame)
 
     static std::string path(const std::string& dir) { return dir + "/elimination.txt"; }
     void write(const std::string& dir) const;

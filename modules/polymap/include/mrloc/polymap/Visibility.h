@@ -6,6 +6,7 @@
 #include <mrloc/common/Polygon.h>
 #include <mrloc/polymap/Triangulation.h>
 
+#include <limits>
 #include <vector>
 
 namespace mrloc::polymap {
@@ -30,6 +31,21 @@ struct VisibilityPolygon {
     std::vector<TPoint2D> placedAt(const TPoint2D& p) const;
 };
 
+/** V's radius in many directions (a scan's beams): the vertices' angles sorted once, then
+ *  each direction looks up its edge in O(log |V|) and gives VisibilityPolygon::radius's
+ *  value (the same crossings, of the few edges around that angle). V must outlive this. */
+class RadialProfile {
+ public:
+    explicit RadialProfile(const VisibilityPolygon& V);
+    double radius(double angle) const;
+
+ private:
+    const VisibilityPolygon& V_;
+    std::vector<double> angles_;  ///< unwrapped, from vertex first_ on, counter-clockwise
+    size_t first_ = 0;
+    bool direct_ = false;  ///< a vertex on the viewpoint: no angle order; every edge is tried
+};
+
 /** Exact V(q) by triangular expansion over P's triangulation (Bungiu et al., EuroCG 2014):
  *  the cost is the triangles the view passes through, not n. Exact topology (every decision
  *  is an exact orientation); the only rounding is where a window's ray meets a wall. Works
@@ -42,8 +58,11 @@ VisibilityPolygon visibilityPolygon(const Triangulation& T, const TPoint2D& q);
 VisibilityPolygon visibilityPolygon(const common::Polygon& P, const TPoint2D& q);
 
 /** Symmetric Hausdorff distance between the boundaries of two visibility polygons placed at
- *  the same viewpoint, sampled every `step` along the edges (error at most step / 2). */
-double boundaryDistance(const VisibilityPolygon& a, const VisibilityPolygon& b, double step);
+ *  the same viewpoint, sampled every `step` along the edges (error at most step / 2). Stops
+ *  at the first sample farther than `stopAbove` and returns that sample's distance: enough
+ *  to decide "within stopAbove or not". */
+double boundaryDistance(const VisibilityPolygon& a, const VisibilityPolygon& b, double step,
+                        double stopAbove = std::numeric_limits<double>::infinity());
 
 /** If a and b have the same number of vertices, the largest distance between corresponding
  *  ones (the best cyclic pairing), else infinity: an upper bound on the boundary distance
