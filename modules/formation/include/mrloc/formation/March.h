@@ -1,0 +1,99 @@
+#pragma once
+// The formation marching along a route, and the dead-reckoning robot it is compared with
+// (seed 003 sec. 5), in the error-model mode: each move ends where the paper's measured
+// per-step errors put it (seed 003 fig. 11), for fast Monte Carlo.
+#include <mrloc/formation/Formation.h>
+#include <mrpt/random/RandomGenerators.h>
+
+#include <vector>
+
+namespace mrloc::formation {
+
+/** Where a move really ends, around the vertex that the real beacons define (seed 003
+ *  fig. 11): lateral (along the new triangle's base) and longitudinal (across it) errors.
+ *  The paper gives each axis's mean absolute error and its standard deviation; the
+ *  magnitude is drawn from the gamma distribution with that mean and deviation (positive,
+ *  skewed like the paper's CDFs), its sign fair. */
+struct VertexErrorModel {
+    double lateralMean = 0.036, lateralSd = 0.021;            ///< m
+    double longitudinalMean = 0.013, longitudinalSd = 0.009;  ///< m
+};
+
+/** A magnitude from gamma(mean, sd) (Marsaglia-Tsang on MRPT's generator), signed fairly. */
+double drawAxisError(double mean, double sd, mrpt::random::CRandomGenerator& rng);
+
+struct MarchOptions {
+    FormationOptions formation;
+    double wheelRadius = 0.035;  ///< m: speed = wheelRadius x wheelSpeed (the paper's R was lost)
+    double wheelSpeed = 5.8;   ///< rad/s, the intended wheel rotational speed (seed 003: 5.8, 2.9)
+    size_t maxMoves = 100000;  ///< a route that needs more is refused
+    /** How a move's error carries on to the next (doc/formation.md). The paper says only that
+     *  the per-step errors "accumulate with each successive movement". */
+    enum class Carry {
+        /** The new vertex moves with the mean offset of its two base beacons (the robot
+         *  sets itself against them), plus its own error: the default. */
+        Base,
+        /** The real anchor reflected across the real base, plus the error. */
+        Reflection,
+        /** Where Algorithm 1 converges among the real beacons, plus the error. */
+        AlgorithmOne
+    } carry = Carry::Base;
+};
+
+/** Where seed 003 Algorithm 1 leaves the moving robot, given the real beacons: the anchor on
+ *  the rear camera's axis, base beacons b1 and b2 at +-d_t pixels from it (d_t set for a
+ *  perfect triangle of `side`). For a perfect triangle, the reflection b1 + b2 - anchor. */
+TPoint2D algorithmOneVertex(const TPoint2D& b1, const TPoint2D& b2, const TPoint2D& anchor,
+                            double side);
+
+/** One move of the march. */
+struct MoveRecord {
+    double time = 0;  ///< s, when the move ended
+    size_t robot = 0;
+    TPoint2D ideal;   ///< where the robot believes it is: the perfect vertex
+    TPoint2D actual;  ///< where it is
+    double error() const { return (actual - ideal).norm(); }
+};
+
+struct MarchResult {
+    std::vector<MoveRecord> moves;
+    std::vector<TPoint2D> ideal, actual;  ///< every robot at the end
+    bool arrived = false;                 ///< every waypoint reached
+    /** Seed 003's error at the destination: the last mover's actual against ideal vertex. */
+    double finalError() const { return moves.empty() ? 0 : moves.back().error(); }
+};
+
+/** N robots from initialStrip march through `route` (waypoints; each counts as reached
+ *  when a robot's vertex is within side / sqrt(3) of it: every point is that near a lattice
+ *  vertex). Each move's real end is the reflection of the real anchor across the real base,
+ *  plus the error model's draw. Time: each move's path at the robot's speed. */
+MarchResult march(size_t robots, const std::vector<TPoint2D>& route,
+                  const std::vector<Obstacle>& obstacles, const MarchOptions& options,
+                  const VertexErrorModel& errors, mrpt::random::CRandomGenerator& rng);
+
+/** The dead-reckoning baseline (seed 003 sec. 4.2): heading from a sensor whose error is a
+ *  Gauss-Markov process (correlation time, deviation; zero at the start, where the heading
+ *  is aligned) plus white noise; speed from a wheel speed sensor (seed 003 eq. 3):
+ *  v = (R + dR)(1 + s) w + n. */
+struct DeadReckoningOptions {
+    double headingTau = 120;                 ///< s
+    double headingSigma = 2.5 * M_PI / 180;  ///< rad, the process's deviation
+    double headingWhite = 0.8 * M_PI / 180;  ///< rad
+    double radiusBias = 0;                   ///< m (seed 003: negligible, rigid wheels)
+    double scaleFactor = 0.01;               ///< (the paper's value was lost)
+    double speedNoise = 0.045;               ///< m/s
+    double dt = 0.1;                         ///< s, the sensors' period
+};
+
+struct ErrorSample {
+    double time = 0;   ///< s
+    double error = 0;  ///< m
+};
+
+/** A robot driving `route` at wheelRadius x wheelSpeed, its position dead-reckoned; the
+ *  error every dt (the last sample: at the destination). */
+std::vector<ErrorSample> deadReckon(const std::vector<TPoint2D>& route, double wheelRadius,
+                                    double wheelSpeed, const DeadReckoningOptions& options,
+                                    mrpt::random::CRandomGenerator& rng);
+
+}  // namespace mrloc::formation
