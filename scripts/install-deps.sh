@@ -6,7 +6,9 @@ set -euo pipefail
 packages=(
   build-essential cmake pkg-config
   libmrpt-dev            # MRPT 2.5: poses, observations, rawlogs, config, opengl (CFBORender)
-  libeigen3-dev liboctomap-dev libopencv-dev zlib1g-dev
+  libeigen3-dev liboctomap-dev zlib1g-dev
+  libopencv-dev          # imgproc (omnivision's bands); with libopencv-contrib-dev, which it pulls
+  libopencv-contrib-dev  # in: aruco, the AprilTag 36h11 detector of formation (seed 003)
   nlohmann-json3-dev     # metrics.json writing and reading
   libboost-dev           # Boost.Geometry: the overlay region of polymap (polygon booleans)
   libgtest-dev libbenchmark-dev

@@ -4,7 +4,11 @@
 //      --benchmark_report_aggregates_only=true   (report the medians)
 #include <benchmark/benchmark.h>
 #include <mrloc/formation/March.h>
+#include <mrloc/formation/Markers.h>
 #include <mrloc/formation/Routes.h>
+#include <mrloc/sim/PinholeCamera.h>
+
+#include <cmath>
 
 using namespace mrloc;
 
@@ -31,8 +35,37 @@ void BM_TableOneMonteCarlo(benchmark::State& state) {
     state.counters["moves per march"] = double(moves) / (400.0 * double(state.iterations()));
 }
 
+/** The camera path's perception per frame: the rear camera (1280 x 720) renders three beacon
+ *  robots with their tags, and ArUco finds them (seed 003 fig. 3g). */
+void BM_RenderAndDetect(benchmark::State& state) {
+    const double h = 1.5 * std::sqrt(3.0) / 2;
+    formation::MarkerOptions o;
+    sim::WorldOptions world;
+    world.sizeX = world.sizeY = 20;
+    auto scene = sim::makeWorldScene(world, false);
+    const mrpt::poses::CPose2D beacons[] = {{0, 0, 0}, {1.5, 0, 0}, {0.75, h, 0}};
+    for (size_t r = 0; r < 3; ++r) formation::addRobot(*scene, beacons[r], r, o);
+    mrpt::img::TCamera k;
+    k.ncols = 1280;
+    k.nrows = 720;
+    k.setIntrinsicParamsFromValues(485, 485, 640, 360);
+    sim::PinholeCamera camera(k);
+    const auto pose = sim::cameraPoseLooking({0.75, -h, o.tagHeight}, M_PI / 2);
+    const bool detect = state.range(0) == 1;
+    size_t tags = 0;
+    for (auto _ : state) {
+        const auto picture = camera.render(*scene, pose);
+        if (detect) tags += formation::detectMarkers(picture).size();
+    }
+    state.counters["frames/s"] =
+        benchmark::Counter(double(state.iterations()), benchmark::Counter::kIsRate);
+    state.counters["tags per frame"] = double(tags) / double(state.iterations());
+    state.SetLabel(detect ? "render + detect" : "render only");
+}
+
 }  // namespace
 
+BENCHMARK(BM_RenderAndDetect)->Arg(0)->Arg(1)->Unit(benchmark::kMillisecond)->UseRealTime();
 BENCHMARK(BM_TableOneMonteCarlo)->Unit(benchmark::kMillisecond);
 
 BENCHMARK_MAIN();

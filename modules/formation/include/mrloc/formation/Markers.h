@@ -1,0 +1,55 @@
+#pragma once
+// Seed 003's camera path, first half: each robot carries an AprilTag (family 36h11) on each
+// of its four sides; a camera renders the scene off screen (sim::PinholeCamera) and OpenCV's
+// ArUco module (DICT_APRILTAG_36h11) finds the tags and their centres. Algorithm 1 then
+// works on the centres' lateral pixel distances.
+#include <mrpt/img/CImage.h>
+#include <mrpt/img/TCamera.h>
+#include <mrpt/math/TPoint3D.h>
+#include <mrpt/opengl/COpenGLScene.h>
+#include <mrpt/poses/CPose2D.h>
+#include <mrpt/poses/CPose3D.h>
+
+#include <optional>
+#include <vector>
+
+namespace mrloc::formation {
+
+struct MarkerOptions {
+    double bodySize = 0.20;    ///< m, between opposite tags (the body is 4 cm narrower)
+    double bodyHeight = 0.25;  ///< m
+    double tagSize = 0.16;     ///< m, the tag's black square (its white margin is drawn around it)
+    double tagHeight = 0.13;   ///< m, the tag's centre above the floor
+};
+
+/** Sides of a robot, counter-clockwise from its front. */
+enum class Side { Front = 0, Left = 1, Back = 2, Right = 3 };
+
+/** The tag id of robot r's side: 4 r + side (36h11 has 587 ids: up to 146 robots). */
+int markerId(size_t robot, Side side);
+
+/** The centre of a side's tag in the world (m). */
+mrpt::math::TPoint3D markerCentre(const mrpt::poses::CPose2D& robot, Side side,
+                                  const MarkerOptions& options);
+
+/** Adds robot r at `pose` to the scene: its body and its four tags, each facing outwards. */
+void addRobot(mrpt::opengl::COpenGLScene& scene, const mrpt::poses::CPose2D& pose, size_t robot,
+              const MarkerOptions& options);
+
+/** A tag found in a picture: its id and its centre (the crossing of its diagonals, pixels). */
+struct MarkerSighting {
+    int id = -1;
+    double u = 0, v = 0;
+};
+
+/** The AprilTag 36h11 tags in a picture, by OpenCV's ArUco detector, ordered by id. */
+std::vector<MarkerSighting> detectMarkers(const mrpt::img::CImage& picture);
+
+/** Where a world point falls in a picture from a camera at `cameraPose`
+ *  (sim::cameraPoseLooking) with intrinsics k (no distortion); nothing if behind it or
+ *  outside the picture. */
+std::optional<MarkerSighting> project(const mrpt::img::TCamera& k,
+                                      const mrpt::poses::CPose3D& cameraPose,
+                                      const mrpt::math::TPoint3D& point);
+
+}  // namespace mrloc::formation

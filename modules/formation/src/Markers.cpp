@@ -1,0 +1,114 @@
+#include <mrloc/common/Error.h>
+#include <mrloc/formation/Markers.h>
+#include <mrpt/opengl/CBox.h>
+#include <mrpt/opengl/CTexturedPlane.h>
+
+#include <algorithm>
+#include <cmath>
+#include <opencv2/aruco.hpp>
+#include <opencv2/imgproc.hpp>
+
+namespace mrloc::formation {
+
+namespace {
+
+const cv::Ptr<cv::aruco::Dictionary>& dictionary() {
+    static const auto d = cv::aruco::getPredefinedDictionary(cv::aruco::DICT_APRILTAG_36h11);
+    return d;
+}
+
+/** The tag as printed: its 8 x 8 cells (6 x 6 data and a black border) of 24 px on a white
+ *  margin of 32 px, 256 px in all (a power of two: the renderer's texture sampling needs it,
+ *  a 160 px tag came out black when small). Rows flipped: the textured plane shows the
+ *  image's first row at its bottom. */
+constexpr int kTagPixels = 192, kPrintedPixels = 256;
+mrpt::img::CImage tagTexture(int id) {
+    cv::Mat tag;
+    cv::aruco::drawMarker(dictionary(), id, kTagPixels, tag, 1);
+    cv::Mat printed(kPrintedPixels, kPrintedPixels, CV_8UC1, cv::Scalar(255));
+    const int margin = (kPrintedPixels - kTagPixels) / 2;
+    tag.copyTo(printed(cv::Rect(margin, margin, kTagPixels, kTagPixels)));
+    cv::Mat rgb;
+    cv::cvtColor(printed, rgb, cv::COLOR_GRAY2BGR);
+    cv::flip(rgb, rgb, 0);
+    return mrpt::img::CImage(rgb, mrpt::img::DEEP_COPY);
+}
+
+}  // namespace
+
+int markerId(size_t robot, Side side) {
+    const size_t id = 4 * robot + size_t(side);
+    if (id >= 587) throw Error("formation: AprilTag 36h11 has ids for 146 robots at most");
+    return int(id);
+}
+
+mrpt::math::TPoint3D markerCentre(const mrpt::poses::CPose2D& robot, Side side,
+                                  const MarkerOptions& o) {
+    const double a = robot.phi() + double(int(side)) * M_PI / 2;
+    const double r = o.bodySize / 2;
+    return {robot.x() + r * std::cos(a), robot.y() + r * std::sin(a), o.tagHeight};
+}
+
+void addRobot(mrpt::opengl::COpenGLScene& scene, const mrpt::poses::CPose2D& pose, size_t robot,
+              const MarkerOptions& o) {
+    // The body stands 2 cm inside its tags: the renderer's depth buffer cannot tell a tag from
+    // a face 1 mm behind it beyond about 2 m (a tag there came out black).
+    const double h = o.bodySize / 2 - 0.02;
+    auto body = mrpt::opengl::CBox::Create(mrpt::math::TPoint3D{-h, -h, 0},
+                                           mrpt::math::TPoint3D{h, h, o.bodyHeight});
+    body->setColor_u8(60, 60, 70);
+    body->setPose(mrpt::poses::CPose3D(pose.x(), pose.y(), 0, pose.phi(), 0, 0));
+    scene.insert(body);
+    const double half = o.tagSize / 2 * kPrintedPixels / kTagPixels;  // with its margin
+    for (const Side side : {Side::Front, Side::Left, Side::Back, Side::Right}) {
+        auto plane = mrpt::opengl::CTexturedPlane::Create(-half, half, -half, half);
+        plane->assignImage(tagTexture(markerId(robot, side)));
+        plane->enableTextureLinearInterpolation(true);  // smooth edges: sub-pixel corners
+        // printed paper: the detector needs contrast, not shading
+        plane->mrpt::opengl::CRenderizableShaderTexturedTriangles::enableLight(false);
+        const auto c = markerCentre(pose, side, o);
+        const double facing = pose.phi() + double(int(side)) * M_PI / 2;
+        // The plane's +Z (its normal) outwards, its +X to the viewer's right, +Y up.
+        plane->setPose(mrpt::poses::CPose3D(c.x, c.y, c.z, facing + M_PI / 2, 0, M_PI / 2));
+        scene.insert(plane);
+    }
+}
+
+std::vector<MarkerSighting> detectMarkers(const mrpt::img::CImage& picture) {
+    cv::Mat gray;
+    const cv::Mat image = picture.asCvMat<cv::Mat>(mrpt::img::SHALLOW_COPY);
+    if (image.channels() == 3)
+        cv::cvtColor(image, gray, cv::COLOR_BGR2GRAY);
+    else
+        gray = image;
+    std::vector<std::vector<cv::Point2f>> corners;
+    std::vector<int> ids;
+    const auto parameters = cv::aruco::DetectorParameters::create();
+    parameters->cornerRefinementMethod = cv::aruco::CORNER_REFINE_SUBPIX;
+    cv::aruco::detectMarkers(gray, dictionary(), corners, ids, parameters);
+    std::vector<MarkerSighting> out;
+    for (size_t i = 0; i < ids.size(); ++i) {
+        // The centre: where the diagonals cross (perspective keeps straight lines straight).
+        const auto& c = corners[i];
+        const cv::Point2f d1 = c[2] - c[0], d2 = c[3] - c[1], w = c[1] - c[0];
+        const double den = d1.x * d2.y - d1.y * d2.x;
+        const double t = (w.x * d2.y - w.y * d2.x) / den;
+        out.push_back({ids[i], c[0].x + t * d1.x, c[0].y + t * d1.y});
+    }
+    std::sort(out.begin(), out.end(),
+              [](const MarkerSighting& a, const MarkerSighting& b) { return a.id < b.id; });
+    return out;
+}
+
+std::optional<MarkerSighting> project(const mrpt::img::TCamera& k,
+                                      const mrpt::poses::CPose3D& cameraPose,
+                                      const mrpt::math::TPoint3D& point) {
+    const auto local = cameraPose.inverseComposePoint(point);  // +Z forward, +X right, +Y down
+    if (local.z <= 0) return std::nullopt;
+    const double u = k.cx() + k.fx() * local.x / local.z;
+    const double v = k.cy() + k.fy() * local.y / local.z;
+    if (u < 0 || v < 0 || u >= double(k.ncols) || v >= double(k.nrows)) return std::nullopt;
+    return MarkerSighting{-1, u, v};
+}
+
+}  // namespace mrloc::formation
