@@ -3,6 +3,7 @@
 // Run: build/tests/bench/bench_formation --benchmark_repetitions=5
 //      --benchmark_report_aggregates_only=true   (report the medians)
 #include <benchmark/benchmark.h>
+#include <mrloc/formation/AlgorithmOne.h>
 #include <mrloc/formation/March.h>
 #include <mrloc/formation/Markers.h>
 #include <mrloc/formation/Routes.h>
@@ -63,8 +64,36 @@ void BM_RenderAndDetect(benchmark::State& state) {
     state.SetLabel(detect ? "render + detect" : "render only");
 }
 
+/** The camera path's control loop: Algorithm 1 from 0.15 m aside, 0.2 m short and 10 degrees
+ *  off, each frame rendered, searched and acted on (render + detect + control). */
+void BM_AlgorithmOne(benchmark::State& state) {
+    const double h = 1.5 * std::sqrt(3.0) / 2;
+    formation::MarkerOptions markers;
+    sim::WorldOptions world;
+    world.sizeX = world.sizeY = 20;
+    auto scene = sim::makeWorldScene(world, false);
+    formation::BeaconTriangle beacons;
+    beacons.pose = {mrpt::poses::CPose2D(0, 0, 0), mrpt::poses::CPose2D(1.5, 0, 0),
+                    mrpt::poses::CPose2D(0.75, h, 0)};
+    for (size_t r = 0; r < 3; ++r) formation::addRobot(*scene, beacons.pose[r], r, markers);
+    mrpt::img::TCamera k;
+    k.ncols = 1280;
+    k.nrows = 720;
+    k.setIntrinsicParamsFromValues(485, 485, 640, 360);
+    sim::PinholeCamera camera(k);
+    mrpt::random::CRandomGenerator rng(1);
+    const mrpt::poses::CPose2D start(0.9, -h + 0.2, -M_PI / 2 + 10 * M_PI / 180);
+    int frames = 0;
+    for (auto _ : state)
+        frames +=
+            formation::runAlgorithmOne(*scene, beacons, start, camera, markers, {}, rng).frames;
+    state.counters["frames/s"] = benchmark::Counter(double(frames), benchmark::Counter::kIsRate);
+    state.counters["frames per run"] = double(frames) / double(state.iterations());
+}
+
 }  // namespace
 
+BENCHMARK(BM_AlgorithmOne)->Unit(benchmark::kMillisecond)->UseRealTime();
 BENCHMARK(BM_RenderAndDetect)->Arg(0)->Arg(1)->Unit(benchmark::kMillisecond)->UseRealTime();
 BENCHMARK(BM_TableOneMonteCarlo)->Unit(benchmark::kMillisecond);
 

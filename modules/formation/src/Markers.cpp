@@ -93,7 +93,8 @@ std::vector<MarkerSighting> detectMarkers(const mrpt::img::CImage& picture) {
         const cv::Point2f d1 = c[2] - c[0], d2 = c[3] - c[1], w = c[1] - c[0];
         const double den = d1.x * d2.y - d1.y * d2.x;
         const double t = (w.x * d2.y - w.y * d2.x) / den;
-        out.push_back({ids[i], c[0].x + t * d1.x, c[0].y + t * d1.y});
+        const double area = 0.5 * std::abs(d1.x * d2.y - d1.y * d2.x);  // a quad's, by diagonals
+        out.push_back({ids[i], c[0].x + t * d1.x, c[0].y + t * d1.y, std::sqrt(area)});
     }
     std::sort(out.begin(), out.end(),
               [](const MarkerSighting& a, const MarkerSighting& b) { return a.id < b.id; });
@@ -108,7 +109,7 @@ std::optional<MarkerSighting> project(const mrpt::img::TCamera& k,
     const double u = k.cx() + k.fx() * local.x / local.z;
     const double v = k.cy() + k.fy() * local.y / local.z;
     if (u < 0 || v < 0 || u >= double(k.ncols) || v >= double(k.nrows)) return std::nullopt;
-    return MarkerSighting{-1, u, v};
+    return MarkerSighting{-1, u, v, 0};
 }
 
 }  // namespace mrloc::formation

@@ -36,10 +36,12 @@ mrpt::math::TPoint3D markerCentre(const mrpt::poses::CPose2D& robot, Side side,
 void addRobot(mrpt::opengl::COpenGLScene& scene, const mrpt::poses::CPose2D& pose, size_t robot,
               const MarkerOptions& options);
 
-/** A tag found in a picture: its id and its centre (the crossing of its diagonals, pixels). */
+/** A tag found in a picture: its id, its centre (the crossing of its diagonals) and its
+ *  size (the square root of its area), in pixels. */
 struct MarkerSighting {
     int id = -1;
     double u = 0, v = 0;
+    double size = 0;
 };
 
 /** The AprilTag 36h11 tags in a picture, by OpenCV's ArUco detector, ordered by id. */
