@@ -39,23 +39,15 @@ void BM_TableOneMonteCarlo(benchmark::State& state) {
 /** The camera path's perception per frame: the rear camera (1280 x 720) renders three beacon
  *  robots with their tags, and ArUco finds them (seed 003 fig. 3g). */
 void BM_RenderAndDetect(benchmark::State& state) {
-    const double h = 1.5 * std::sqrt(3.0) / 2;
     formation::MarkerOptions o;
-    sim::WorldOptions world;
-    world.sizeX = world.sizeY = 20;
-    auto scene = sim::makeWorldScene(world, false);
-    const mrpt::poses::CPose2D beacons[] = {{0, 0, 0}, {1.5, 0, 0}, {0.75, h, 0}};
-    for (size_t r = 0; r < 3; ++r) formation::addRobot(*scene, beacons[r], r, o);
-    mrpt::img::TCamera k;
-    k.ncols = 1280;
-    k.nrows = 720;
-    k.setIntrinsicParamsFromValues(485, 485, 640, 360);
-    sim::PinholeCamera camera(k);
-    const auto pose = sim::cameraPoseLooking({0.75, -h, o.tagHeight}, M_PI / 2);
+    const auto step = formation::buildingStep(1.5, o);
+    sim::PinholeCamera camera(formation::cameraIntrinsics(485));
+    const auto pose =
+        sim::cameraPoseLooking({step.vertex.x(), step.vertex.y(), o.tagHeight}, M_PI / 2);
     const bool detect = state.range(0) == 1;
     size_t tags = 0;
     for (auto _ : state) {
-        const auto picture = camera.render(*scene, pose);
+        const auto picture = camera.render(*step.scene, pose);
         if (detect) tags += formation::detectMarkers(picture).size();
     }
     state.counters["frames/s"] =
@@ -67,26 +59,17 @@ void BM_RenderAndDetect(benchmark::State& state) {
 /** The camera path's control loop: Algorithm 1 from 0.15 m aside, 0.2 m short and 10 degrees
  *  off, each frame rendered, searched and acted on (render + detect + control). */
 void BM_AlgorithmOne(benchmark::State& state) {
-    const double h = 1.5 * std::sqrt(3.0) / 2;
     formation::MarkerOptions markers;
-    sim::WorldOptions world;
-    world.sizeX = world.sizeY = 20;
-    auto scene = sim::makeWorldScene(world, false);
-    formation::BeaconTriangle beacons;
-    beacons.pose = {mrpt::poses::CPose2D(0, 0, 0), mrpt::poses::CPose2D(1.5, 0, 0),
-                    mrpt::poses::CPose2D(0.75, h, 0)};
-    for (size_t r = 0; r < 3; ++r) formation::addRobot(*scene, beacons.pose[r], r, markers);
-    mrpt::img::TCamera k;
-    k.ncols = 1280;
-    k.nrows = 720;
-    k.setIntrinsicParamsFromValues(485, 485, 640, 360);
-    sim::PinholeCamera camera(k);
+    const auto step = formation::buildingStep(1.5, markers);
+    sim::PinholeCamera camera(formation::cameraIntrinsics(485));
     mrpt::random::CRandomGenerator rng(1);
-    const mrpt::poses::CPose2D start(0.9, -h + 0.2, -M_PI / 2 + 10 * M_PI / 180);
+    const mrpt::poses::CPose2D start(step.vertex.x() + 0.15, step.vertex.y() + 0.2,
+                                     step.vertex.phi() + 10 * M_PI / 180);
     int frames = 0;
     for (auto _ : state)
         frames +=
-            formation::runAlgorithmOne(*scene, beacons, start, camera, markers, {}, rng).frames;
+            formation::runAlgorithmOne(*step.scene, step.beacons, start, camera, markers, {}, rng)
+                .frames;
     state.counters["frames/s"] = benchmark::Counter(double(frames), benchmark::Counter::kIsRate);
     state.counters["frames per run"] = double(frames) / double(state.iterations());
 }

@@ -12,31 +12,20 @@ TEST(FormationAlgorithmOne, ConvergesFromEveryStartOfAGrid) {
     // The building-triangle step of seed 003 fig. 3g: beacons 0 and 1 on the base, 2 the
     // anchor, the moving robot near the new vertex facing away, its rear camera 1280 x 720
     // with f = 485 px; 2 % actuation noise on every turn and drive.
-    const double h = 1.5 * std::sqrt(3.0) / 2;
-    formation::BeaconTriangle beacons;
-    beacons.pose = {mrpt::poses::CPose2D(0, 0, 0), mrpt::poses::CPose2D(1.5, 0, 0),
-                    mrpt::poses::CPose2D(0.75, h, 0)};
     formation::MarkerOptions markers;
-    sim::WorldOptions world;
-    world.sizeX = world.sizeY = 20;
-    auto scene = sim::makeWorldScene(world, false);
-    for (size_t r = 0; r < 3; ++r) formation::addRobot(*scene, beacons.pose[r], r, markers);
-    mrpt::img::TCamera k;
-    k.ncols = 1280;
-    k.nrows = 720;
-    k.setIntrinsicParamsFromValues(485, 485, 640, 360);
-    sim::PinholeCamera camera(k);
+    const auto step = formation::buildingStep(1.5, markers);
+    sim::PinholeCamera camera(formation::cameraIntrinsics(485));
     mrpt::random::CRandomGenerator rng(4);
-    const mrpt::poses::CPose2D ideal(0.75, -h, -M_PI / 2);  // facing away from the beacons
+    const auto& ideal = step.vertex;  // facing away from the beacons
     double sumLat = 0, sumLon = 0, worst = 0;
     int runs = 0, frames = 0;
     for (const double lateral : {-0.15, 0.0, 0.15})
         for (const double depth : {-0.2, 0.0, 0.2})
             for (const double heading : {-10.0, 0.0, 10.0}) {
-                const mrpt::poses::CPose2D start(0.75 + lateral, -h - depth,
-                                                 -M_PI / 2 + heading * M_PI / 180);
-                const auto r =
-                    formation::runAlgorithmOne(*scene, beacons, start, camera, markers, {}, rng);
+                const mrpt::poses::CPose2D start(ideal.x() + lateral, ideal.y() - depth,
+                                                 ideal.phi() + heading * M_PI / 180);
+                const auto r = formation::runAlgorithmOne(*step.scene, step.beacons, start, camera,
+                                                          markers, {}, rng);
                 EXPECT_TRUE(r.converged) << lateral << " " << depth << " " << heading;
                 const double lat = r.end.x() - ideal.x(), lon = r.end.y() - ideal.y();
                 sumLat += std::abs(lat), sumLon += std::abs(lon);

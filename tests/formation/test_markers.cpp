@@ -2,6 +2,7 @@
 // rendered off screen, found by OpenCV's ArUco detector at the centres the camera model
 // predicts.
 #include <gtest/gtest.h>
+#include <mrloc/formation/AlgorithmOne.h>
 #include <mrloc/formation/Markers.h>
 #include <mrloc/sim/PinholeCamera.h>
 
@@ -11,35 +12,19 @@
 
 using namespace mrloc;
 
-namespace {
-
-/** 1280 x 720, focal length set so that the ideal vertex sees the base beacons d_t = 280 px
- *  from the anchor (seed 003: 280 px for 1.5 m): f = 280 x 1.299 / 0.75 = 485 px. */
-mrpt::img::TCamera rearCamera() {
-    mrpt::img::TCamera k;
-    k.ncols = 1280;
-    k.nrows = 720;
-    const double f = 280 * (1.5 * std::sqrt(3.0) / 2) / 0.75;
-    k.setIntrinsicParamsFromValues(f, f, 640, 360);
-    return k;
-}
-
-}  // namespace
-
 TEST(FormationMarkers, EveryTagFacingTheCameraIsFoundAtItsProjectedCentre) {
     // The building-triangle step (seed 003 fig. 3g): beacons 0 and 1 on the base, 2 the
     // anchor, the moving robot at the new vertex looking back at them with its rear camera.
+    // The camera: 1280 x 720, f = 485 px, so that the ideal vertex sees the base robots'
+    // centres d_t = 280 px from the anchor's (seed 003: 280 px for 1.5 m): 280 x 1.299 / 0.75.
     const double h = 1.5 * std::sqrt(3.0) / 2;
-    const std::vector<mrpt::poses::CPose2D> beacons{{0, 0, 0}, {1.5, 0, 0}, {0.75, h, 0}};
     formation::MarkerOptions o;
-    sim::WorldOptions world;
-    world.sizeX = world.sizeY = 20;
-    auto scene = sim::makeWorldScene(world, false);
-    for (size_t r = 0; r < beacons.size(); ++r) formation::addRobot(*scene, beacons[r], r, o);
-    const auto k = rearCamera();
+    const auto step = formation::buildingStep(1.5, o);
+    const auto& beacons = step.beacons.pose;
+    const auto k = formation::cameraIntrinsics(280 * h / 0.75);
     sim::PinholeCamera camera(k);
     const auto pose = sim::cameraPoseLooking({0.75, -h, o.tagHeight}, M_PI / 2);
-    const auto picture = camera.render(*scene, pose);
+    const auto picture = camera.render(*step.scene, pose);
     if (const char* dir = std::getenv("MRLOC_KEEP_PICTURES"))
         picture.saveToFile(std::string(dir) + "/formation_rear_camera.png");
     const auto found = formation::detectMarkers(picture);

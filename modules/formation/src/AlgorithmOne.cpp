@@ -35,6 +35,27 @@ std::optional<Reading> read(const std::vector<MarkerSighting>& tags, const Beaco
 
 }  // namespace
 
+BuildingStep buildingStep(double side, const MarkerOptions& markers) {
+    const double h = side * std::sqrt(3.0) / 2;
+    BuildingStep b;
+    sim::WorldOptions world;
+    world.sizeX = world.sizeY = 20;
+    b.scene = sim::makeWorldScene(world, false);
+    b.beacons.pose = {mrpt::poses::CPose2D(0, 0, 0), mrpt::poses::CPose2D(side, 0, 0),
+                      mrpt::poses::CPose2D(side / 2, h, 0)};
+    for (size_t r = 0; r < 3; ++r) addRobot(*b.scene, b.beacons.pose[r], r, markers);
+    b.vertex = mrpt::poses::CPose2D(side / 2, -h, -M_PI / 2);
+    return b;
+}
+
+mrpt::img::TCamera cameraIntrinsics(double f) {
+    mrpt::img::TCamera k;
+    k.ncols = 1280;
+    k.nrows = 720;
+    k.setIntrinsicParamsFromValues(f, f, 640, 360);
+    return k;
+}
+
 double targetDisparity(const mrpt::img::TCamera& k, const MarkerOptions& m, double side) {
     // The base tags are bodySize / 2 in front of their robots, the camera bodySize / 2 behind
     // the moving robot's centre: depth h - bodySize, lateral offset side / 2.

@@ -38,6 +38,18 @@ struct AlgorithmOneResult {
     double dm1 = 0, dm2 = 0;   ///< the last lateral distances (px)
 };
 
+/** Seed 003 fig. 3g in an open world: base beacons 0 and 1 at (0, 0) and (side, 0), anchor 2
+ *  at (side / 2, h), all facing east; the perfect vertex (side / 2, -h), facing away. */
+struct BuildingStep {
+    mrpt::opengl::COpenGLScene::Ptr scene;
+    BeaconTriangle beacons;
+    mrpt::poses::CPose2D vertex;
+};
+BuildingStep buildingStep(double side, const MarkerOptions& markers);
+
+/** A 1280 x 720 camera of focal length f px, centred. */
+mrpt::img::TCamera cameraIntrinsics(double f);
+
 /** The lateral distance d_t (px) between the anchor's tag and a base beacon's tag in the rear
  *  camera of a robot at the perfect vertex: the tags face the camera, bodySize / 2 in front
  *  of their robots' centres. */
