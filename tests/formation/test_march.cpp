@@ -116,3 +116,36 @@ TEST(FormationMarch, DeadReckoningWithoutNoiseIsExact) {
     const auto scaled = formation::deadReckon({{0, 0}, {20, 0}}, 0.035, 5.8, o, rng);
     EXPECT_NEAR(scaled.back().error, 0.2, 1e-6);
 }
+
+TEST(FormationMarch, BadInputIsAClearError) {
+    mrpt::random::CRandomGenerator rng(1);
+    const auto route = formation::route("patrol");
+    auto broken = route;
+    broken[2].y = NAN;
+    const auto message = [&](auto&& call) {
+        try {
+            call();
+        } catch (const Error& e) {
+            return std::string(e.what());
+        }
+        return std::string("no error");
+    };
+    EXPECT_EQ(message([&] { formation::march(4, broken, {}, {}, {}, rng); }),
+              "formation: route point 3 is not finite");
+    EXPECT_EQ(message([&] { formation::deadReckon(broken, 0.035, 5.8, {}, rng); }),
+              "formation: route point 3 is not finite");
+    EXPECT_EQ(message([&] { formation::deadReckon({route[0]}, 0.035, 5.8, {}, rng); }),
+              "formation: a route needs at least 2 points");
+    formation::MarchOptions o;
+    o.wheelSpeed = 0;
+    EXPECT_EQ(message([&] { formation::march(4, route, {}, o, {}, rng); }),
+              "formation: the robots' speed must be positive");
+    o = {};
+    o.maxMoves = 10;
+    EXPECT_EQ(message([&] { formation::march(4, route, {}, o, {}, rng); }),
+              "formation: the route needs more than 10 moves");
+    EXPECT_EQ(message([&] { formation::march(3, route, {}, {}, {}, rng); }),
+              "formation: at least 4 robots, got 3");
+    EXPECT_EQ(message([&] { formation::drawAxisError(NAN, 0.01, rng); }),
+              "formation: vertex error mean and sd must be positive");
+}

@@ -74,6 +74,13 @@ std::optional<Move> nextMove(const std::vector<TPoint2D>& believed, const TPoint
     const size_t n = believed.size();
     const double s = options.side;
     if (n < 4) throw Error("formation: at least 4 robots, got " + std::to_string(n));
+    if (!(s > 0) || !std::isfinite(s))
+        throw Error("formation: the triangles' side must be a positive length");
+    if (!std::isfinite(destination.x) || !std::isfinite(destination.y))
+        throw Error("formation: the destination is not a finite point");
+    for (size_t i = 0; i < n; ++i)
+        if (!std::isfinite(believed[i].x) || !std::isfinite(believed[i].y))
+            throw Error("formation: robot " + std::to_string(i) + "'s position is not finite");
     // Movers, farthest from the destination first (seed 003 sec. 3, "snake-like" marching).
     std::vector<size_t> movers(n);
     for (size_t i = 0; i < n; ++i) movers[i] = i;

@@ -81,7 +81,11 @@ MarchResult march(size_t robots, const std::vector<TPoint2D>& route,
                   const VertexErrorModel& errors, mrpt::random::CRandomGenerator& rng) {
     const double s = options.formation.side;
     const double speed = options.wheelRadius * options.wheelSpeed;
-    if (!(speed > 0)) throw Error("formation: the robots' speed must be positive");
+    if (!(speed > 0) || !std::isfinite(speed))
+        throw Error("formation: the robots' speed must be positive");
+    for (size_t w = 0; w < route.size(); ++w)
+        if (!std::isfinite(route[w].x) || !std::isfinite(route[w].y))
+            throw Error("formation: route point " + std::to_string(w + 1) + " is not finite");
     MarchResult r;
     r.ideal = r.actual = initialStrip(robots, s);
     const double reach = s / std::sqrt(3.0) + 1e-9 * s;
@@ -142,6 +146,9 @@ std::vector<ErrorSample> deadReckon(const std::vector<TPoint2D>& route, double w
         throw Error(
             "formation: dead reckoning needs a positive speed, period and correlation time");
     if (route.size() < 2) throw Error("formation: a route needs at least 2 points");
+    for (size_t w = 0; w < route.size(); ++w)
+        if (!std::isfinite(route[w].x) || !std::isfinite(route[w].y))
+            throw Error("formation: route point " + std::to_string(w + 1) + " is not finite");
     const double phi = std::exp(-o.dt / o.headingTau);
     const double drive = o.headingSigma * std::sqrt(1 - phi * phi);
     double gm = 0;  // the heading is aligned at the start
