@@ -37,9 +37,9 @@ TEST(FormationAlgorithmOne, ConvergesFromEveryStartOfAGrid) {
               << sumLon / runs * 1000 << " mm, worst " << worst * 1000 << " mm, frames "
               << double(frames) / runs << "\n";
     // Measured (27 starts: 0.15 m either side, 0.2 m short or long, 10 degrees off): mean
-    // absolute error 9.7 mm lateral, 2.6 mm longitudinal, worst 24.6 mm, 10.4 frames a run.
-    // The paper's lab: 36 and 13 mm. Bounds about 50 % above ours, for other noise draws.
+    // absolute error 11.0 mm lateral, 1.5 mm longitudinal, worst 19.6 mm, 15.9 frames a run.
+    // The paper's lab: 36 and 13 mm. Bounds about 40 % above ours, for other noise draws.
     EXPECT_LT(sumLat / runs, 0.015);
-    EXPECT_LT(sumLon / runs, 0.004);
-    EXPECT_LT(worst, 0.037);
+    EXPECT_LT(sumLon / runs, 0.0025);
+    EXPECT_LT(worst, 0.03);
 }

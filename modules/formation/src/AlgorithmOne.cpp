@@ -18,19 +18,23 @@ mrpt::poses::CPose3D rearCameraPose(const mrpt::poses::CPose2D& robot, double bo
                                   robot.phi() + M_PI);
 }
 
-/** What Algorithm 1 reads from a frame: the anchor's and the base beacons' tag centres
- *  (each beacon's largest tag in view: the side that faces the camera). */
+/** What Algorithm 1 reads from a frame: the anchor's and the base beacons' centres (px),
+ *  each from the beacon's largest tag in view (the side facing the camera), moved from the
+ *  tag to the robot's centre by `shift` (the believed offset of that side's tag). */
 struct Reading {
     double ua = 0, u1 = 0, u2 = 0;
 };
 
-std::optional<Reading> read(const std::vector<MarkerSighting>& tags, const BeaconTriangle& b) {
+template <typename Shift>
+std::optional<Reading> read(const std::vector<MarkerSighting>& tags, const BeaconTriangle& b,
+                            Shift shift) {
     std::array<std::optional<MarkerSighting>, 3> best;
     for (const auto& t : tags)
         for (int i = 0; i < 3; ++i)
             if (size_t(t.id / 4) == b.robot[i] && (!best[i] || t.size > best[i]->size)) best[i] = t;
     if (!best[0] || !best[1] || !best[2]) return std::nullopt;
-    return Reading{best[2]->u, best[0]->u, best[1]->u};
+    const auto centre = [&](int i) { return best[i]->u - shift(i, Side(best[i]->id % 4)); };
+    return Reading{centre(2), centre(0), centre(1)};
 }
 
 }  // namespace
@@ -57,10 +61,8 @@ mrpt::img::TCamera cameraIntrinsics(double f) {
 }
 
 double targetDisparity(const mrpt::img::TCamera& k, const MarkerOptions& m, double side) {
-    // The base tags are bodySize / 2 in front of their robots, the camera bodySize / 2 behind
-    // the moving robot's centre: depth h - bodySize, lateral offset side / 2.
     const double h = side * std::sqrt(3.0) / 2;
-    return k.fx() * (side / 2) / (h - m.bodySize);
+    return k.fx() * (side / 2) / (h - m.bodySize / 2);
 }
 
 AlgorithmOneResult runAlgorithmOne(const mrpt::opengl::COpenGLScene& scene,
@@ -71,10 +73,27 @@ AlgorithmOneResult runAlgorithmOne(const mrpt::opengl::COpenGLScene& scene,
     const auto& k = camera.intrinsics();
     const double f = k.fx(), h = o.side * std::sqrt(3.0) / 2;
     const double dt = targetDisparity(k, markers, o.side);
-    // How the asymmetry d_m1 - d_m2 answers a lateral offset (px per m toward b1), to first
-    // order about the perfect vertex: the base tags at depth Db, the anchor's at Da.
+    // How the readings answer the robot's motion, to first order about the perfect vertex: the
+    // pictures move with the tags (the shift to the centres is a constant), the base tags at
+    // depth Db and the anchor's at Da from the camera. Asymmetry d_m1 - d_m2 per metre of
+    // lateral offset towards b1: -gain; d_m per metre of depth: -slope.
     const double Db = h - markers.bodySize, Da = 2 * h - markers.bodySize;
+    // Where each tag shows beside its robot's centre, seen from the perfect vertex (seed 003's
+    // robots carry tags on their sides, not on their centres).
+    const auto& bp = beacons.pose;
+    const mrpt::math::TPoint2D vertex{bp[0].x() + bp[1].x() - bp[2].x(),
+                                      bp[0].y() + bp[1].y() - bp[2].y()};
+    const auto idealCamera =
+        rearCameraPose({vertex.x, vertex.y, std::atan2(vertex.y - bp[2].y(), vertex.x - bp[2].x())},
+                       markers.bodySize, o.cameraHeight);
+    const auto shift = [&](int beacon, Side side) {
+        const auto tag = project(k, idealCamera, markerCentre(bp[beacon], side, markers));
+        const auto centre =
+            project(k, idealCamera, {bp[beacon].x(), bp[beacon].y(), markers.tagHeight});
+        return tag && centre ? tag->u - centre->u : 0.0;
+    };
     const double gain = 2 * f * (1 / Db - 1 / Da);
+    const double slope = f * (o.side / 2) / (Db * Db);
     AlgorithmOneResult r;
     auto pose = start;
     const auto turn = [&](double angle) {  // in place, with its relative error
@@ -92,7 +111,7 @@ AlgorithmOneResult runAlgorithmOne(const mrpt::opengl::COpenGLScene& scene,
         const auto cameraPose = rearCameraPose(pose, markers.bodySize, o.cameraHeight);
         const auto frame = camera.render(scene, cameraPose);
         ++r.frames;
-        const auto reading = read(detectMarkers(frame), beacons);
+        const auto reading = read(detectMarkers(frame), beacons, shift);
         if (!reading) break;  // a beacon out of view: Algorithm 1 cannot go on
         const double ec = reading->ua - k.cx();
         r.dm1 = std::abs(reading->u1 - reading->ua);
@@ -118,8 +137,7 @@ AlgorithmOneResult runAlgorithmOne(const mrpt::opengl::COpenGLScene& scene,
         // Steps 10-17: forward (away) while d_m1 > d_t, back while d_m1 < d_t.
         const double dm = 0.5 * (r.dm1 + r.dm2);
         if (std::abs(dm - dt) > o.pixelTolerance) {
-            const double depth = f * (o.side / 2) / dm, target = f * (o.side / 2) / dt;
-            drive(target - depth);
+            drive((dm - dt) / slope);
             continue;
         }
         r.converged = true;

@@ -24,7 +24,10 @@ struct AlgorithmOneOptions {
     double cameraHeight = 0.13;  ///< m, the rear camera's height (the tags' centre)
 };
 
-/** The beacons: base b1, base b2 and the anchor, with their robot indices (tag ids). */
+/** The beacons: base b1, base b2 and the anchor as the formation believes them (the perfect
+ *  triangle, their headings), with their robot indices (tag ids). A tag sits on a face, up to
+ *  bodySize / 2 beside its robot's centre in the picture; the belief says by how much, so
+ *  Algorithm 1 works on the robots' centres. */
 struct BeaconTriangle {
     std::array<mrpt::poses::CPose2D, 3> pose;  ///< b1, b2, anchor
     std::array<size_t, 3> robot{0, 1, 2};
@@ -50,9 +53,9 @@ BuildingStep buildingStep(double side, const MarkerOptions& markers);
 /** A 1280 x 720 camera of focal length f px, centred. */
 mrpt::img::TCamera cameraIntrinsics(double f);
 
-/** The lateral distance d_t (px) between the anchor's tag and a base beacon's tag in the rear
- *  camera of a robot at the perfect vertex: the tags face the camera, bodySize / 2 in front
- *  of their robots' centres. */
+/** The lateral distance d_t (px) between the anchor's and a base beacon's centres in the rear
+ *  camera of a robot at the perfect vertex (the camera on its back face, bodySize / 2 behind
+ *  its centre): f (side / 2) / (h - bodySize / 2). */
 double targetDisparity(const mrpt::img::TCamera& k, const MarkerOptions& markers, double side);
 
 /** Runs Algorithm 1 from `start` (the robot's centre and heading) among `beacons` in
