@@ -8,7 +8,8 @@ packages=(
   libmrpt-dev            # MRPT 2.5: poses, observations, rawlogs, config, opengl (CFBORender)
   libeigen3-dev liboctomap-dev zlib1g-dev
   libopencv-dev          # imgproc (omnivision's bands); with libopencv-contrib-dev, which it pulls
-  libopencv-contrib-dev  # in: aruco, the AprilTag 36h11 detector of formation (seed 003)
+  libopencv-contrib-dev  # in: aruco, the detector formation measures AprilTag 3 against
+  libapriltag-dev        # AprilTag 3 (BSD-2): formation's tag detector (seed 003), the better one
   nlohmann-json3-dev     # metrics.json writing and reading
   libboost-dev           # Boost.Geometry: the overlay region of polymap (polygon booleans)
   libgtest-dev libbenchmark-dev

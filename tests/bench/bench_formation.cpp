@@ -44,16 +44,18 @@ void BM_RenderAndDetect(benchmark::State& state) {
     sim::PinholeCamera camera(formation::cameraIntrinsics(485));
     const auto pose =
         sim::cameraPoseLooking({step.vertex.x(), step.vertex.y(), o.tagHeight}, M_PI / 2);
-    const bool detect = state.range(0) == 1;
+    const int detector = int(state.range(0));  // 0: none, 1: ArUco, 2: AprilTag 3
     size_t tags = 0;
     for (auto _ : state) {
         const auto picture = camera.render(*step.scene, pose);
-        if (detect) tags += formation::detectMarkers(picture).size();
+        if (detector == 1) tags += formation::detectMarkersArUco(picture).size();
+        if (detector == 2) tags += formation::detectMarkers(picture).size();
     }
     state.counters["frames/s"] =
         benchmark::Counter(double(state.iterations()), benchmark::Counter::kIsRate);
     state.counters["tags per frame"] = double(tags) / double(state.iterations());
-    state.SetLabel(detect ? "render + detect" : "render only");
+    const char* labels[] = {"render only", "render + ArUco", "render + AprilTag 3"};
+    state.SetLabel(labels[detector]);
 }
 
 /** The camera path's control loop: Algorithm 1 from 0.15 m aside, 0.2 m short and 10 degrees
@@ -77,7 +79,7 @@ void BM_AlgorithmOne(benchmark::State& state) {
 }  // namespace
 
 BENCHMARK(BM_AlgorithmOne)->Unit(benchmark::kMillisecond)->UseRealTime();
-BENCHMARK(BM_RenderAndDetect)->Arg(0)->Arg(1)->Unit(benchmark::kMillisecond)->UseRealTime();
+BENCHMARK(BM_RenderAndDetect)->Arg(0)->Arg(1)->Arg(2)->Unit(benchmark::kMillisecond)->UseRealTime();
 BENCHMARK(BM_TableOneMonteCarlo)->Unit(benchmark::kMillisecond);
 
 BENCHMARK_MAIN();

@@ -37,9 +37,10 @@ TEST(FormationAlgorithmOne, ConvergesFromEveryStartOfAGrid) {
               << sumLon / runs * 1000 << " mm, worst " << worst * 1000 << " mm, frames "
               << double(frames) / runs << "\n";
     // Measured (27 starts: 0.15 m either side, 0.2 m short or long, 10 degrees off): mean
-    // absolute error 11.0 mm lateral, 1.5 mm longitudinal, worst 19.6 mm, 15.9 frames a run.
-    // The paper's lab: 36 and 13 mm. Bounds about 40 % above ours, for other noise draws.
-    EXPECT_LT(sumLat / runs, 0.015);
-    EXPECT_LT(sumLon / runs, 0.0025);
-    EXPECT_LT(worst, 0.03);
+    // absolute error 3.0 mm lateral, 1.5 mm longitudinal, worst 10.2 mm, 9.1 frames a run
+    // (with ArUco's centres: 11.0, 1.5 and 19.6 mm). The paper's lab: 36 and 13 mm. Bounds
+    // about 50 % above ours, for other noise draws.
+    EXPECT_LT(sumLat / runs, 0.0045);
+    EXPECT_LT(sumLon / runs, 0.0023);
+    EXPECT_LT(worst, 0.015);
 }

@@ -6,6 +6,11 @@
 #include <algorithm>
 #include <cmath>
 #include <opencv2/aruco.hpp>
+
+extern "C" {
+#include <apriltag/apriltag.h>
+#include <apriltag/tag36h11.h>
+}
 #include <opencv2/imgproc.hpp>
 
 namespace mrloc::formation {
@@ -32,6 +37,17 @@ mrpt::img::CImage tagTexture(int id) {
     cv::cvtColor(printed, rgb, cv::COLOR_GRAY2BGR);
     cv::flip(rgb, rgb, 0);
     return mrpt::img::CImage(rgb, mrpt::img::DEEP_COPY);
+}
+
+/** The picture in grey levels, its own copy. */
+cv::Mat grayOf(const mrpt::img::CImage& picture) {
+    const cv::Mat image = picture.asCvMat<cv::Mat>(mrpt::img::SHALLOW_COPY);
+    cv::Mat gray;
+    if (image.channels() == 3)
+        cv::cvtColor(image, gray, cv::COLOR_BGR2GRAY);
+    else
+        gray = image.clone();
+    return gray;
 }
 
 }  // namespace
@@ -74,13 +90,8 @@ void addRobot(mrpt::opengl::COpenGLScene& scene, const mrpt::poses::CPose2D& pos
     }
 }
 
-std::vector<MarkerSighting> detectMarkers(const mrpt::img::CImage& picture) {
-    cv::Mat gray;
-    const cv::Mat image = picture.asCvMat<cv::Mat>(mrpt::img::SHALLOW_COPY);
-    if (image.channels() == 3)
-        cv::cvtColor(image, gray, cv::COLOR_BGR2GRAY);
-    else
-        gray = image;
+std::vector<MarkerSighting> detectMarkersArUco(const mrpt::img::CImage& picture) {
+    const cv::Mat gray = grayOf(picture);
     std::vector<std::vector<cv::Point2f>> corners;
     std::vector<int> ids;
     const auto parameters = cv::aruco::DetectorParameters::create();
@@ -96,6 +107,41 @@ std::vector<MarkerSighting> detectMarkers(const mrpt::img::CImage& picture) {
         const double area = 0.5 * std::abs(d1.x * d2.y - d1.y * d2.x);  // a quad's, by diagonals
         out.push_back({ids[i], c[0].x + t * d1.x, c[0].y + t * d1.y, std::sqrt(area)});
     }
+    std::sort(out.begin(), out.end(),
+              [](const MarkerSighting& a, const MarkerSighting& b) { return a.id < b.id; });
+    return out;
+}
+
+std::vector<MarkerSighting> detectMarkers(const mrpt::img::CImage& picture) {
+    const cv::Mat gray = grayOf(picture);
+    // One detector per thread, built once: the library's detector may not be shared across
+    // threads, and building the family's decoding table costs more than a detection.
+    struct AprilTag3 {
+        apriltag_family_t* family = tag36h11_create();
+        apriltag_detector_t* detector = apriltag_detector_create();
+        AprilTag3() {
+            apriltag_detector_add_family(detector, family);
+            detector->quad_decimate = 2.0f;
+            detector->nthreads = 1;
+        }
+        ~AprilTag3() {
+            apriltag_detector_destroy(detector);
+            tag36h11_destroy(family);
+        }
+    };
+    thread_local AprilTag3 tags;
+    apriltag_detector_t* detector = tags.detector;
+    image_u8_t im{gray.cols, gray.rows, int(gray.step), gray.data};
+    zarray_t* detections = apriltag_detector_detect(detector, &im);
+    std::vector<MarkerSighting> out;
+    for (int i = 0; i < zarray_size(detections); ++i) {
+        apriltag_detection_t* d = nullptr;
+        zarray_get(detections, i, &d);
+        const double e1x = d->p[2][0] - d->p[0][0], e1y = d->p[2][1] - d->p[0][1];
+        const double e2x = d->p[3][0] - d->p[1][0], e2y = d->p[3][1] - d->p[1][1];
+        out.push_back({d->id, d->c[0], d->c[1], std::sqrt(0.5 * std::abs(e1x * e2y - e1y * e2x))});
+    }
+    apriltag_detections_destroy(detections);
     std::sort(out.begin(), out.end(),
               [](const MarkerSighting& a, const MarkerSighting& b) { return a.id < b.id; });
     return out;
