@@ -30,7 +30,7 @@ int info(int argc, char** argv) {
     common::RawlogReader reader(path.getValue());
     size_t total = 0;
     for (mrpt::obs::CObservation::Ptr obs; reader.next(obs); ++total) {
-        const double t = common::stampSeconds(obs->timestamp);
+        const double t = mrpt::Clock::toDouble(obs->timestamp);
         auto& s = streams[{common::robotOfLabel(obs->sensorLabel), obs->sensorLabel}];
         if (s.count == 0) {
             s.cls = obs->GetRuntimeClass()->className;

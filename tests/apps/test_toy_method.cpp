@@ -88,7 +88,7 @@ class ToyLocalizer : public common::Localizer {
         const auto r = std::dynamic_pointer_cast<mrpt::obs::CObservationRange>(obs);
         if (!r || r->sensedData.size() != 2) return;
         traj_[common::robotOfLabel(r->sensorLabel)].push_back(
-            {common::stampSeconds(r->timestamp),
+            {mrpt::Clock::toDouble(r->timestamp),
              mrpt::poses::CPose3D(r->sensedData[0].sensedDistance, r->sensedData[1].sensedDistance,
                                   0, 0, 0, 0)});
     }

@@ -103,7 +103,7 @@ TEST(Simulator, NoiseFreeRangesAreTheGeometricDistancesAndNlosIsDropped) {
         auto r = std::dynamic_pointer_cast<mrpt::obs::CObservationBeaconRanges>(obs);
         if (!r) continue;
         ++epochs;
-        const auto pose = common::interpolate(gt, common::stampSeconds(r->timestamp));
+        const auto pose = common::interpolate(gt, mrpt::Clock::toDouble(r->timestamp));
         ASSERT_TRUE(pose);
         const mrpt::math::TPoint3D rx(pose->x(), pose->y(), 0.5);
         for (const auto& [beaconId, b] : beaconMap) {

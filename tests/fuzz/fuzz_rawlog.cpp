@@ -4,7 +4,7 @@
 // beyond the memory cap in this process is a finding.
 #include <mrloc/common/Error.h>
 #include <mrloc/common/Rawlog.h>
-#include <mrloc/common/Trajectory.h>
+#include <mrpt/core/Clock.h>
 
 #include "FuzzInput.h"
 
@@ -14,7 +14,7 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
         mrloc::common::RawlogReader reader(path);
         for (mrpt::obs::CObservation::Ptr obs; reader.next(obs);) {
             (void)obs->sensorLabel.size();
-            (void)mrloc::common::stampSeconds(obs->timestamp);
+            (void)mrpt::Clock::toDouble(obs->timestamp);
         }
     } catch (const mrloc::Error&) {
     }

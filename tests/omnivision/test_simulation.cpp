@@ -65,7 +65,7 @@ TEST(OmniSimulation, SnapshotsStopsAndLidarGoToTheRawlog) {
         if (obs->sensorLabel == "A.lidar.B") {
             const auto r = std::dynamic_pointer_cast<mrpt::obs::CObservationRange>(obs);
             ASSERT_TRUE(r);
-            const double t = common::stampSeconds(obs->timestamp);
+            const double t = mrpt::Clock::toDouble(obs->timestamp);
             const auto a =
                 common::interpolate(common::loadTum(common::groundTruthPath(path, "A")), t);
             const auto b =

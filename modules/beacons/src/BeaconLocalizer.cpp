@@ -96,7 +96,7 @@ BeaconTracker& BeaconLocalizer::trackerOf(const std::string& robot) {
 
 void BeaconLocalizer::process(const mrpt::obs::CObservation::Ptr& obs) {
     const std::string robot = common::robotOfLabel(obs->sensorLabel);
-    const double t = common::stampSeconds(obs->timestamp);
+    const double t = mrpt::Clock::toDouble(obs->timestamp);
     if (auto odo = std::dynamic_pointer_cast<mrpt::obs::CObservationOdometry>(obs)) {
         trackerOf(robot).onOdometry(odo->odometry);
         auto& path = odometry_[robot];

@@ -26,7 +26,7 @@ LocalizationResult runLocalization(Localizer& localizer, const LocalizationRunOp
             throw Error(mrpt::format("rawlog %s: observation %zu ('%s', %s, t = %.3f s): %s",
                                      o.rawlogPath.c_str(), n + 1, obs->sensorLabel.c_str(),
                                      obs->GetRuntimeClass()->className,
-                                     common::stampSeconds(obs->timestamp), e.what()));
+                                     mrpt::Clock::toDouble(obs->timestamp), e.what()));
         }
         progress.update(++n);
     }

@@ -90,6 +90,8 @@ AlgorithmOneResult runAlgorithmOne(const mrpt::opengl::COpenGLScene& scene,
         const auto tag = project(k, idealCamera, markerCentre(bp[beacon], side, markers));
         const auto centre =
             project(k, idealCamera, {bp[beacon].x(), bp[beacon].y(), markers.tagHeight});
+        // Out of the perfect vertex's picture, the beacon is out of the real one too and is
+        // never read: its shift is not used.
         return tag && centre ? tag->u - centre->u : 0.0;
     };
     const double gain = 2 * f * (1 / Db - 1 / Da);

@@ -55,7 +55,7 @@ void OmniLocalizer::saveConfig(mrpt::config::CConfigFileBase& target) const {
 void OmniLocalizer::process(const mrpt::obs::CObservation::Ptr& obs) {
     const std::string robot = common::robotOfLabel(obs->sensorLabel);
     const std::string sensor = common::sensorOfLabel(obs->sensorLabel);
-    const double t = common::stampSeconds(obs->timestamp);
+    const double t = mrpt::Clock::toDouble(obs->timestamp);
     if (!firstTime_ || t < *firstTime_) firstTime_ = t;
     if (sensor == "omni") {
         const auto img = expect<mrpt::obs::CObservationImage>(obs, "CObservationImage");

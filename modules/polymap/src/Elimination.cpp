@@ -216,53 +216,139 @@ bool Eliminator::sameView(const VisibilityPolygon& a, const VisibilityPolygon& b
     return boundaryDistance(a, b, std::max(tolerance / 4, extent / 250), tolerance) <= tolerance;
 }
 
+std::vector<TPoint2D> Eliminator::chordCandidates(const Region& region, double chordSpacing,
+                                                  int perChord) const {
+    std::vector<TPoint2D> out;
+    const double clearance = options_.clearance;
+    // Algorithm 1 (Dudek-Romanik-Whitesides): what a point of OI sees changes only
+    // where its sight line to a vertex grazes a reflex vertex, i.e. across the chord
+    // that extends the line from vertex v through reflex vertex r into OI. The
+    // decomposition's cells are bounded by these chords and OI's edges, and the
+    // nearest point of a cell lies on its boundary: candidates are points along
+    // every chord (every chordSpacing, at most perChord), on both sides of it.
+    const auto& R = region.polygon.vertices();
+    const size_t m = R.size();
+    const double eps = region.polygon.epsilon();
+    for (size_t r = 0; r < m; ++r) {
+        if (!region.polygon.isReflex(r)) continue;
+        // What r sees: the vertices v it sees and, past r, where each chord ends.
+        const VisibilityPolygon Vr = visibilityPolygon(region.triangles, R[r]);
+        for (size_t v = 0; v < m; ++v) {
+            if (v == r) continue;
+            const TVector2D toV = R[v] - R[r];
+            const bool adjacent = v == (r + 1) % m || r == (v + 1) % m;
+            if (!adjacent && Vr.radius(toV * (1 / toV.norm())) < toV.norm() - eps)
+                continue;  // v hidden from r
+            const TVector2D d = toV * (-1 / toV.norm());
+            const double hit = Vr.radius(d);
+            if (hit <= 1e3 * eps) continue;  // the extension leaves OI at once
+            const TVector2D normal{-d.y, d.x};
+            const int samples = std::clamp((int)std::ceil(hit / chordSpacing), 1, perChord);
+            for (int k = 0; k < samples; ++k) {
+                const TPoint2D on = R[r] + d * (hit * (k + 0.5) / samples);
+                for (const double side : {-1.0, 1.0}) {
+                    const TPoint2D c = on + normal * (side * std::max(clearance, 1e-6));
+                    out.push_back(c);  // cleared when reached: see nearest()
+                }
+            }
+        }
+    }
+    return out;
+}
+
+std::vector<TPoint2D> Eliminator::windowCandidates(const std::vector<size_t>& live,
+                                                   const Region& region,
+                                                   const TPoint2D& from) const {
+    std::vector<TPoint2D> out;
+    const double clearance = options_.clearance;
+    // Algorithm 4, step 6: midpoints of OI's windows, the stretches of its boundary
+    // that are a wall of some live copies but not of all (a wall of all tells
+    // nothing). An edge of OI is cut where a copy's wall along it starts or ends;
+    // a window the robot sees in part gives the midpoint of each part it sees.
+    const double extent = (P_.max() - P_.min()).norm();
+    // Walls closer than the sensing tolerance are one wall: it cannot tell them apart.
+    const double onLine = std::max(1e-7 * extent, options_.tolerance);
+    const auto& oi = region.oi;
+    const size_t m = oi.outer.size();
+    std::optional<VisibilityPolygon> seen;
+    try {
+        seen = visibilityPolygon(region.triangles, from);
+    } catch (const Error&) {  // the robot off OI (by rounding): whole windows only
+    }
+    const auto& Pv = P_.vertices();
+    for (size_t e = 0; e < m; ++e) {
+        const TPoint2D &a = oi.outer[e], &b = oi.outer[(e + 1) % m];
+        const double length = (b - a).norm();
+        if (length <= onLine) continue;
+        const TVector2D u = (b - a) * (1 / length);
+        // Where along a-b (0 to 1) a segment lying on its line runs, if it does.
+        const auto along = [&](const TPoint2D& p,
+                               const TPoint2D& q) -> std::optional<std::pair<double, double>> {
+            if (std::abs(common::cross(u, p - a)) > onLine ||
+                std::abs(common::cross(u, q - a)) > onLine)
+                return std::nullopt;
+            double t0 = common::dot(u, p - a) / length, t1 = common::dot(u, q - a) / length;
+            if (t0 > t1) std::swap(t0, t1);
+            t0 = std::max(t0, 0.0), t1 = std::min(t1, 1.0);
+            if (t1 - t0 <= onLine / length) return std::nullopt;
+            return std::make_pair(t0, t1);
+        };
+        std::vector<std::vector<std::pair<double, double>>> walls(live.size());
+        std::vector<double> cuts{0, 1};
+        for (size_t l = 0; l < live.size(); ++l) {
+            const TPoint2D h = hypotheses_[live[l]];
+            for (size_t v = 0; v < Pv.size(); ++v)
+                if (const auto w = along(Pv[v] - h, Pv[(v + 1) % Pv.size()] - h)) {
+                    walls[l].push_back(*w);
+                    cuts.push_back(w->first), cuts.push_back(w->second);
+                }
+        }
+        std::sort(cuts.begin(), cuts.end());
+        std::vector<std::pair<double, double>> parts;  // what the robot sees of a-b
+        if (seen)
+            for (size_t v = 0; v < seen->size(); ++v)
+                if (!seen->isRadial(v))
+                    if (const auto w = along(from + seen->vertices[v],
+                                             from + seen->vertices[(v + 1) % seen->size()]))
+                        parts.push_back(*w);
+        // Stand off the window, inwards (OI is counter-clockwise: its inside is left).
+        const TVector2D inwards{-u.y, u.x};
+        const auto candidate = [&](double t) {
+            const TPoint2D probe = a + (b - a) * t + inwards * std::max(clearance, 1e-6 * length);
+            if (region.clear(probe, clearance)) out.push_back(probe);
+        };
+        for (size_t c = 0; c + 1 < cuts.size(); ++c) {
+            const double t0 = cuts[c], t1 = cuts[c + 1], tm = 0.5 * (t0 + t1);
+            if (t1 - t0 <= onLine / length) continue;
+            size_t walled = 0;
+            for (const auto& w : walls)
+                walled += std::any_of(w.begin(), w.end(), [tm](const auto& i) {
+                    return i.first <= tm && tm <= i.second;
+                });
+            if (walled == 0 || walled == live.size()) continue;
+            bool sawPart = false;
+            for (const auto& [s0, s1] : parts)
+                if (std::min(s1, t1) - std::max(s0, t0) > onLine / length) {
+                    candidate(0.5 * (std::max(s0, t0) + std::min(s1, t1)));
+                    sawPart = true;
+                }
+            if (!sawPart) candidate(tm);
+        }
+    }
+    return out;
+}
+
 std::vector<TPoint2D> Eliminator::candidates(const std::vector<size_t>& live, const Region& region,
                                              const TPoint2D& from, size_t step,
                                              ProbeStrategy strategy, double chordSpacing,
                                              int perChord) const {
     std::vector<TPoint2D> out;
     const double clearance = options_.clearance;
-    // Inside OI, `clearance` from its boundary (up to rounding: window probes sit at it).
-    const auto inOI = [&region, clearance](const TPoint2D& c) {
-        return region.clear(c, clearance);
-    };
     switch (strategy) {
-        case ProbeStrategy::VisibilityCells: {
-            // Algorithm 1 (Dudek-Romanik-Whitesides): what a point of OI sees changes only
-            // where its sight line to a vertex grazes a reflex vertex, i.e. across the chord
-            // that extends the line from vertex v through reflex vertex r into OI. The
-            // decomposition's cells are bounded by these chords and OI's edges, and the
-            // nearest point of a cell lies on its boundary: candidates are points along
-            // every chord (every chordSpacing, at most perChord), on both sides of it.
-            const auto& R = region.polygon.vertices();
-            const size_t m = R.size();
-            const double eps = region.polygon.epsilon();
-            for (size_t r = 0; r < m; ++r) {
-                if (!region.polygon.isReflex(r)) continue;
-                // What r sees: the vertices v it sees and, past r, where each chord ends.
-                const VisibilityPolygon Vr = visibilityPolygon(region.triangles, R[r]);
-                for (size_t v = 0; v < m; ++v) {
-                    if (v == r) continue;
-                    const TVector2D toV = R[v] - R[r];
-                    const bool adjacent = v == (r + 1) % m || r == (v + 1) % m;
-                    if (!adjacent && Vr.radius(toV * (1 / toV.norm())) < toV.norm() - eps)
-                        continue;  // v hidden from r
-                    const TVector2D d = toV * (-1 / toV.norm());
-                    const double hit = Vr.radius(d);
-                    if (hit <= 1e3 * eps) continue;  // the extension leaves OI at once
-                    const TVector2D normal{-d.y, d.x};
-                    const int samples = std::clamp((int)std::ceil(hit / chordSpacing), 1, perChord);
-                    for (int k = 0; k < samples; ++k) {
-                        const TPoint2D on = R[r] + d * (hit * (k + 0.5) / samples);
-                        for (const double side : {-1.0, 1.0}) {
-                            const TPoint2D c = on + normal * (side * std::max(clearance, 1e-6));
-                            out.push_back(c);  // cleared when reached: see nearest()
-                        }
-                    }
-                }
-            }
-            break;
-        }
+        case ProbeStrategy::VisibilityCells:
+            return chordCandidates(region, chordSpacing, perChord);
+        case ProbeStrategy::Windows:
+            return windowCandidates(live, region, from);
         case ProbeStrategy::Triangulation: {
             // seed 002 algorithm 3, step 7: edge midpoints and centroids of the map's
             // triangles, placed at the origin hypothesis.
@@ -274,7 +360,7 @@ std::vector<TPoint2D> Eliminator::candidates(const std::vector<size_t>& live, co
                                &c = T_.point(tri.v[2]);
                 for (const TPoint2D p :
                      {(a + b + c) * (1.0 / 3), (a + b) * 0.5, (b + c) * 0.5, (c + a) * 0.5})
-                    if (inOI(p - origin)) out.push_back(p - origin);
+                    if (region.clear(p - origin, clearance)) out.push_back(p - origin);
             }
             std::sort(out.begin(), out.end(), [](const TPoint2D& a, const TPoint2D& b) {
                 return a.x < b.x || (a.x == b.x && a.y < b.y);
@@ -292,86 +378,7 @@ std::vector<TPoint2D> Eliminator::candidates(const std::vector<size_t>& live, co
             const size_t want = (size_t)options_.randomPoints;
             for (size_t tries = 0; out.size() < want && tries < 1000 * want; ++tries) {
                 const TPoint2D p{ux(rng), uy(rng)};
-                if (inOI(p)) out.push_back(p);
-            }
-            break;
-        }
-        case ProbeStrategy::Windows: {
-            // Algorithm 4, step 6: midpoints of OI's windows, the stretches of its boundary
-            // that are a wall of some live copies but not of all (a wall of all tells
-            // nothing). An edge of OI is cut where a copy's wall along it starts or ends;
-            // a window the robot sees in part gives the midpoint of each part it sees.
-            const double extent = (P_.max() - P_.min()).norm();
-            // Walls closer than the sensing tolerance are one wall: it cannot tell them apart.
-            const double onLine = std::max(1e-7 * extent, options_.tolerance);
-            const auto& oi = region.oi;
-            const size_t m = oi.outer.size();
-            std::optional<VisibilityPolygon> seen;
-            try {
-                seen = visibilityPolygon(region.triangles, from);
-            } catch (const Error&) {  // the robot off OI (by rounding): whole windows only
-            }
-            const auto& Pv = P_.vertices();
-            for (size_t e = 0; e < m; ++e) {
-                const TPoint2D &a = oi.outer[e], &b = oi.outer[(e + 1) % m];
-                const double length = (b - a).norm();
-                if (length <= onLine) continue;
-                const TVector2D u = (b - a) * (1 / length);
-                // Where along a-b (0 to 1) a segment lying on its line runs, if it does.
-                const auto along =
-                    [&](const TPoint2D& p,
-                        const TPoint2D& q) -> std::optional<std::pair<double, double>> {
-                    if (std::abs(common::cross(u, p - a)) > onLine ||
-                        std::abs(common::cross(u, q - a)) > onLine)
-                        return std::nullopt;
-                    double t0 = common::dot(u, p - a) / length, t1 = common::dot(u, q - a) / length;
-                    if (t0 > t1) std::swap(t0, t1);
-                    t0 = std::max(t0, 0.0), t1 = std::min(t1, 1.0);
-                    if (t1 - t0 <= onLine / length) return std::nullopt;
-                    return std::make_pair(t0, t1);
-                };
-                std::vector<std::vector<std::pair<double, double>>> walls(live.size());
-                std::vector<double> cuts{0, 1};
-                for (size_t l = 0; l < live.size(); ++l) {
-                    const TPoint2D h = hypotheses_[live[l]];
-                    for (size_t v = 0; v < Pv.size(); ++v)
-                        if (const auto w = along(Pv[v] - h, Pv[(v + 1) % Pv.size()] - h)) {
-                            walls[l].push_back(*w);
-                            cuts.push_back(w->first), cuts.push_back(w->second);
-                        }
-                }
-                std::sort(cuts.begin(), cuts.end());
-                std::vector<std::pair<double, double>> parts;  // what the robot sees of a-b
-                if (seen)
-                    for (size_t v = 0; v < seen->size(); ++v)
-                        if (!seen->isRadial(v))
-                            if (const auto w = along(from + seen->vertices[v],
-                                                     from + seen->vertices[(v + 1) % seen->size()]))
-                                parts.push_back(*w);
-                // Stand off the window, inwards (OI is counter-clockwise: its inside is left).
-                const TVector2D inwards{-u.y, u.x};
-                const auto candidate = [&](double t) {
-                    const TPoint2D probe =
-                        a + (b - a) * t + inwards * std::max(clearance, 1e-6 * length);
-                    if (inOI(probe)) out.push_back(probe);
-                };
-                for (size_t c = 0; c + 1 < cuts.size(); ++c) {
-                    const double t0 = cuts[c], t1 = cuts[c + 1], tm = 0.5 * (t0 + t1);
-                    if (t1 - t0 <= onLine / length) continue;
-                    size_t walled = 0;
-                    for (const auto& w : walls)
-                        walled += std::any_of(w.begin(), w.end(), [tm](const auto& i) {
-                            return i.first <= tm && tm <= i.second;
-                        });
-                    if (walled == 0 || walled == live.size()) continue;
-                    bool sawPart = false;
-                    for (const auto& [s0, s1] : parts)
-                        if (std::min(s1, t1) - std::max(s0, t0) > onLine / length) {
-                            candidate(0.5 * (std::max(s0, t0) + std::min(s1, t1)));
-                            sawPart = true;
-                        }
-                    if (!sawPart) candidate(tm);
-                }
+                if (region.clear(p, clearance)) out.push_back(p);
             }
             break;
         }

@@ -27,7 +27,7 @@ RobotHypotheses hypothesesFromScan(const PolymapOptions& options, const common::
     so.rangeSigma = options.scanRangeSigma;
     so.breakAngle = options.breakAngle * M_PI / 180;
     RobotHypotheses r;
-    r.time = common::stampSeconds(scan.timestamp);
+    r.time = mrpt::Clock::toDouble(scan.timestamp);
     r.sensed = visibilityFromScan(scan, options.heading * M_PI / 180, so);
     double rMax = 0;
     for (const auto& v : r.sensed.vertices) rMax = std::max(rMax, v.norm());
@@ -53,7 +53,7 @@ void PolymapLocalizer::process(const mrpt::obs::CObservation::Ptr& obs) {
         auto& r = it->second;
         if (r.session && r.session->plan()) {
             r.session->observe(*scan);
-            r.probeTimes.push_back(common::stampSeconds(scan->timestamp));
+            r.probeTimes.push_back(mrpt::Clock::toDouble(scan->timestamp));
         }
         return;
     }

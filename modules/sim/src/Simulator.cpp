@@ -75,7 +75,7 @@ SimulationResult Simulator::run(common::RawlogWriter& out, Payload* payload,
             }
             if (k % gtEvery == 0)
                 result.groundTruth[ro.name].push_back(
-                    {common::stampSeconds(stamp), mrpt::poses::CPose3D(robot.pose())});
+                    {mrpt::Clock::toDouble(stamp), mrpt::poses::CPose3D(robot.pose())});
         }
         if (payload) payload->sense(step);
         if (progress) progress->update(size_t(k));

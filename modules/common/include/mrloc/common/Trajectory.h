@@ -10,13 +10,8 @@
 
 namespace mrloc::common {
 
-/** An observation's time stamp as the seconds since 1970 every trajectory uses. */
-inline double stampSeconds(const mrpt::Clock::time_point& stamp) {
-    return mrpt::Clock::toDouble(stamp);
-}
-
 struct StampedPose {
-    double t = 0;  ///< seconds (stampSeconds of the observation's timestamp)
+    double t = 0;  ///< seconds since 1970 (mrpt::Clock::toDouble of the observation's stamp)
     mrpt::poses::CPose3D pose;
 };
 

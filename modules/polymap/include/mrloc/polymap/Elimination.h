@@ -139,6 +139,13 @@ class Eliminator {
     std::vector<TPoint2D> candidates(const std::vector<size_t>& live, const Region& region,
                                      const TPoint2D& from, size_t step, ProbeStrategy strategy,
                                      double chordSpacing, int perChord) const;
+    /** Algorithm 1's candidates: points along OI's critical chords, both sides, not yet
+     *  checked for clearance (Region::nearest does that for the few it reaches). */
+    std::vector<TPoint2D> chordCandidates(const Region& region, double chordSpacing,
+                                          int perChord) const;
+    /** Algorithm 4's candidates: midpoints of OI's windows, of the parts seen from `from`. */
+    std::vector<TPoint2D> windowCandidates(const std::vector<size_t>& live, const Region& region,
+                                           const TPoint2D& from) const;
     /** The live hypotheses' views at displacement `at` differ (and none sees a wall
      *  edge-on). */
     bool separates(const std::vector<size_t>& live, const TPoint2D& at) const;
