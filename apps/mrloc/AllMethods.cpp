@@ -2,6 +2,7 @@
 #include "AllMethods.h"
 
 #include <mrloc/beacons/BeaconsMethod.h>
+#include <mrloc/formation/FormationMethod.h>
 #include <mrloc/omnivision/OmniMethod.h>
 #include <mrloc/polymap/PolymapMethod.h>
 
@@ -11,6 +12,7 @@ void registerAllMethods(method::Registry& registry) {
     beacons::registerMethod(registry);
     polymap::registerMethod(registry);
     omnivision::registerMethod(registry);
+    formation::registerMethod(registry);
 }
 
 }  // namespace mrloc::app

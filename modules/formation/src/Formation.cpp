@@ -88,6 +88,7 @@ std::optional<Move> nextMove(const std::vector<TPoint2D>& believed, const TPoint
         return (believed[a] - destination).norm() > (believed[b] - destination).norm();
     });
     for (const size_t m : movers) {
+        const double now = (believed[m] - destination).norm();
         // The candidate vertices: a beacon reflected across the side of two others.
         std::vector<std::tuple<double, size_t, Move>> candidates;  // distance, order, move
         for (size_t i = 0; i < n; ++i)
@@ -103,7 +104,9 @@ std::optional<Move> nextMove(const std::vector<TPoint2D>& believed, const TPoint
                     const bool free = std::none_of(
                         believed.begin(), believed.end(),
                         [&](const TPoint2D& p) { return (p - move.target).norm() < s / 2; });
-                    if (!free) continue;
+                    // a move must bring its robot nearer: without it, a robot blocked by an
+                    // obstacle and the next one can swap places for ever (doc/formation.md)
+                    if (!free || (move.target - destination).norm() >= now - 1e-9 * s) continue;
                     auto after = believed;
                     after[m] = move.target;
                     if (!onePiece(after, s)) continue;

@@ -76,6 +76,32 @@ TPoint2D algorithmOneVertex(const TPoint2D& b1, const TPoint2D& b2, const TPoint
     return R;
 }
 
+TPoint2D moveEnd(const Move& move, const std::vector<TPoint2D>& ideal,
+                 const std::vector<TPoint2D>& actual, const MarchOptions& options,
+                 const VertexErrorModel& errors, mrpt::random::CRandomGenerator& rng) {
+    const auto& [i, j] = move.base;
+    const size_t k = move.anchor;
+    // seed 003 Algorithm 1 puts the robot at the vertex the real beacons make, up to the
+    // per-step error along and across the base (seed 003 fig. 10-11)
+    TPoint2D vertex;
+    switch (options.carry) {
+        case MarchOptions::Carry::Base:
+            vertex = move.target + ((actual[i] - ideal[i]) + (actual[j] - ideal[j])) * 0.5;
+            break;
+        case MarchOptions::Carry::Reflection:
+            vertex = actual[i] + actual[j] - actual[k];
+            break;
+        case MarchOptions::Carry::AlgorithmOne:
+            vertex = algorithmOneVertex(actual[i], actual[j], actual[k], options.formation.side);
+            break;
+    }
+    const TPoint2D along = (actual[j] - actual[i]) * (1 / (actual[j] - actual[i]).norm());
+    const TPoint2D across{-along.y, along.x};
+    const double lateral = drawAxisError(errors.lateralMean, errors.lateralSd, rng);
+    const double longitudinal = drawAxisError(errors.longitudinalMean, errors.longitudinalSd, rng);
+    return vertex + along * lateral + across * longitudinal;
+}
+
 MarchResult march(size_t robots, const std::vector<TPoint2D>& route,
                   const std::vector<Obstacle>& obstacles, const MarchOptions& options,
                   const VertexErrorModel& errors, mrpt::random::CRandomGenerator& rng) {
@@ -106,77 +132,15 @@ MarchResult march(size_t robots, const std::vector<TPoint2D>& route,
                         " moves");
         const auto move = nextMove(r.ideal, route[next], obstacles, options.formation);
         if (!move) return r;  // stuck: arrived stays false
-        const auto& [i, j] = move->base;
-        const size_t k = move->anchor, m = move->robot;
-        // seed 003 Algorithm 1 puts the robot at the vertex the real beacons make, up to the
-        // per-step error along and across the base (seed 003 fig. 10-11)
-        TPoint2D vertex;
-        switch (options.carry) {
-            case MarchOptions::Carry::Base:
-                vertex =
-                    move->target + ((r.actual[i] - r.ideal[i]) + (r.actual[j] - r.ideal[j])) * 0.5;
-                break;
-            case MarchOptions::Carry::Reflection:
-                vertex = r.actual[i] + r.actual[j] - r.actual[k];
-                break;
-            case MarchOptions::Carry::AlgorithmOne:
-                vertex = algorithmOneVertex(r.actual[i], r.actual[j], r.actual[k], s);
-                break;
-        }
-        const TPoint2D along =
-            (r.actual[j] - r.actual[i]) * (1 / (r.actual[j] - r.actual[i]).norm());
-        const TPoint2D across{-along.y, along.x};
-        const double lateral = drawAxisError(errors.lateralMean, errors.lateralSd, rng);
-        const double longitudinal =
-            drawAxisError(errors.longitudinalMean, errors.longitudinalSd, rng);
+        const size_t m = move->robot;
+        const TPoint2D end = moveEnd(*move, r.ideal, r.actual, options, errors, rng);
         time += pathLength(r.ideal[m], move->path) / speed;
         r.ideal[m] = move->target;
-        r.actual[m] = vertex + along * lateral + across * longitudinal;
+        r.actual[m] = end;
         r.moves.push_back({time, m, r.ideal[m], r.actual[m]});
     }
     r.arrived = true;
     return r;
-}
-
-std::vector<ErrorSample> deadReckon(const std::vector<TPoint2D>& route, double wheelRadius,
-                                    double wheelSpeed, const DeadReckoningOptions& o,
-                                    mrpt::random::CRandomGenerator& rng) {
-    const double v = wheelRadius * wheelSpeed;
-    if (!(v > 0) || !(o.dt > 0) || !(o.headingTau > 0))
-        throw Error(
-            "formation: dead reckoning needs a positive speed, period and correlation time");
-    if (route.size() < 2) throw Error("formation: a route needs at least 2 points");
-    for (size_t w = 0; w < route.size(); ++w)
-        if (!std::isfinite(route[w].x) || !std::isfinite(route[w].y))
-            throw Error("formation: route point " + std::to_string(w + 1) + " is not finite");
-    const double phi = std::exp(-o.dt / o.headingTau);
-    const double drive = o.headingSigma * std::sqrt(1 - phi * phi);
-    double gm = 0;  // the heading is aligned at the start
-    TPoint2D estimate = route.front();
-    std::vector<ErrorSample> out{{0, 0}};
-    double t = 0;
-    for (size_t leg = 0; leg + 1 < route.size(); ++leg) {
-        const TPoint2D a = route[leg], b = route[leg + 1];
-        const double length = (b - a).norm();
-        const double heading = std::atan2(b.y - a.y, b.x - a.x);
-        const long steps = std::max(1L, std::lround(length / (v * o.dt)));
-        const double step = length / double(steps);  // the true advance per period
-        for (long k = 1; k <= steps; ++k) {
-            gm = phi * gm + drive * rng.drawGaussian1D_normalized();
-            const double sensedHeading =
-                heading + gm + o.headingWhite * rng.drawGaussian1D_normalized();
-            // seed 003 eq. 3: what the wheel speed sensor reads while the robot does `step`
-            const double wheel = step / o.dt / wheelRadius;
-            const double sensedSpeed = (wheelRadius + o.radiusBias) * (1 + o.scaleFactor) * wheel +
-                                       o.speedNoise * rng.drawGaussian1D_normalized();
-            estimate = estimate + TPoint2D{std::cos(sensedHeading), std::sin(sensedHeading)} *
-                                      (sensedSpeed * o.dt);
-            t += o.dt;
-            const TPoint2D truth = a + (b - a) * (double(k) / double(steps));
-            out.push_back({t, (estimate - truth).norm()});
-        }
-    }
-    return out;
 }
 
 }  // namespace mrloc::formation

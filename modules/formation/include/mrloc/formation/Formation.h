@@ -55,7 +55,9 @@ bool clearOf(const TPoint2D& from, const std::vector<TPoint2D>& path,
 
 /** The next move toward `destination` (seed 003 sec. 3): the robot farthest from it moves,
  *  to the candidate vertex nearest it whose path stays out of every safety zone, else the
- *  next nearest; if none is clear the next farthest robot tries, and so on. A candidate is
+ *  next nearest; if none is clear the next farthest robot tries, and so on. A candidate must
+ *  be nearer the destination than its robot (else a blocked robot and the next could swap
+ *  places for ever: a choice of ours, doc/formation.md). A candidate is
  *  the reflection of a beacon across the side of two others, three robots standing on an
  *  equilateral triangle of side s (within 1 % of s); it must be free (no robot within s / 2)
  *  and leave every robot on at least one triangle (the formation stays one piece). Nothing

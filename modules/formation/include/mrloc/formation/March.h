@@ -2,6 +2,7 @@
 // The formation marching along a route, and the dead-reckoning robot it is compared with
 // (seed 003 sec. 5), in the error-model mode: each move ends where the paper's measured
 // per-step errors put it (seed 003 fig. 11), for fast Monte Carlo.
+#include <mrloc/formation/DeadReckoning.h>
 #include <mrloc/formation/Formation.h>
 #include <mrpt/random/RandomGenerators.h>
 
@@ -46,6 +47,13 @@ struct MarchOptions {
 TPoint2D algorithmOneVertex(const TPoint2D& b1, const TPoint2D& b2, const TPoint2D& anchor,
                             double side);
 
+/** Where a move really ends (the error-model mode): the vertex the carry model gives among
+ *  the real beacons, plus the per-step error drawn along and across the real base.
+ *  `ideal` and `actual`: every robot's believed and real position. */
+TPoint2D moveEnd(const Move& move, const std::vector<TPoint2D>& ideal,
+                 const std::vector<TPoint2D>& actual, const MarchOptions& options,
+                 const VertexErrorModel& errors, mrpt::random::CRandomGenerator& rng);
+
 /** One move of the march. */
 struct MoveRecord {
     double time = 0;  ///< s, when the move ended
@@ -70,30 +78,5 @@ struct MarchResult {
 MarchResult march(size_t robots, const std::vector<TPoint2D>& route,
                   const std::vector<Obstacle>& obstacles, const MarchOptions& options,
                   const VertexErrorModel& errors, mrpt::random::CRandomGenerator& rng);
-
-/** The dead-reckoning baseline (seed 003 sec. 4.2): heading from a sensor whose error is a
- *  Gauss-Markov process (correlation time, deviation; zero at the start, where the heading
- *  is aligned) plus white noise; speed from a wheel speed sensor (seed 003 eq. 3):
- *  v = (R + dR)(1 + s) w + n. */
-struct DeadReckoningOptions {
-    double headingTau = 120;                 ///< s
-    double headingSigma = 2.5 * M_PI / 180;  ///< rad, the process's deviation
-    double headingWhite = 0.8 * M_PI / 180;  ///< rad
-    double radiusBias = 0;                   ///< m (seed 003: negligible, rigid wheels)
-    double scaleFactor = 0.01;               ///< (the paper's value was lost)
-    double speedNoise = 0.045;               ///< m/s
-    double dt = 0.1;                         ///< s, the sensors' period
-};
-
-struct ErrorSample {
-    double time = 0;   ///< s
-    double error = 0;  ///< m
-};
-
-/** A robot driving `route` at wheelRadius x wheelSpeed, its position dead-reckoned; the
- *  error every dt (the last sample: at the destination). */
-std::vector<ErrorSample> deadReckon(const std::vector<TPoint2D>& route, double wheelRadius,
-                                    double wheelSpeed, const DeadReckoningOptions& options,
-                                    mrpt::random::CRandomGenerator& rng);
 
 }  // namespace mrloc::formation

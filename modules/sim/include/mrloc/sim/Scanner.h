@@ -1,8 +1,10 @@
 #pragma once
 // A 360-degree range scanner in a floor plan (a polygon map): each beam is a ray cast
 // against the polygon's edges, with Gaussian range noise. This is what the polygon-map
-// method senses its visibility polygon with.
+// method senses its visibility polygon with. The same scanner in the world's OctoMap: what
+// the formation robots find obstacles with.
 #include <mrloc/common/Polygon.h>
+#include <mrloc/sim/World.h>
 #include <mrpt/obs/CObservation2DRangeScan.h>
 #include <mrpt/poses/CPose2D.h>
 #include <mrpt/random/RandomGenerators.h>
@@ -29,5 +31,13 @@ mrpt::obs::CObservation2DRangeScan::Ptr scanFloorPlan(const common::Polygon& pla
                                                       const mrpt::poses::CPose2D& pose,
                                                       const ScannerOptions& options,
                                                       mrpt::random::CRandomGenerator& rng);
+
+/** One horizontal scan in the world's OctoMap from `pose` at `height` above the floor, the
+ *  same beams and noise; a beam's range is the distance to the first occupied voxel's
+ *  centre. Draws N normals from rng. */
+mrpt::obs::CObservation2DRangeScan::Ptr scanWorld(const World& world,
+                                                  const mrpt::poses::CPose2D& pose, double height,
+                                                  const ScannerOptions& options,
+                                                  mrpt::random::CRandomGenerator& rng);
 
 }  // namespace mrloc::sim

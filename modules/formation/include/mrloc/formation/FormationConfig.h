@@ -1,0 +1,58 @@
+#pragma once
+// Section [formation]: the formation method's options (keys and defaults in doc/ini.md).
+// The team, its route and its sensors for the simulator and the localizer, and the Monte
+// Carlo experiment of seed 003 sec. 5 (Table 1, figs. 14-15).
+#include <mrloc/formation/DeadReckoning.h>
+#include <mrloc/formation/March.h>
+#include <mrloc/sim/Scanner.h>
+#include <mrpt/config/CLoadableOptions.h>
+
+#include <string>
+#include <vector>
+
+namespace mrloc::formation {
+
+struct FormationConfig : public mrpt::config::CLoadableOptions {
+    /** Upper bounds (doc/errors.md): robots by the 36h11 family's ids (4 tags per robot),
+     *  moves and Monte Carlo runs by time. */
+    static constexpr long kMaxRobots = 146, kMaxMoves = 100000, kMaxRuns = 100000;
+
+    size_t robots = 4;                     ///< N >= 4, on initialStrip
+    FormationOptions formation;            ///< side, safety margin
+    TPoint2D origin{3, 3};                 ///< world position of the paper's (0, 0)
+    std::string routeName = "many_turns";  ///< many_turns | patrol | custom (waypoints)
+    std::vector<TPoint2D> waypoints;       ///< the route, paper frame (from routeName or the INI)
+    double wheelRadius = 0.035, wheelSpeed = 5.8;  ///< m, rad/s
+    double maxTurnRate = 1.5;                      ///< rad/s
+    MarchOptions::Carry carry = MarchOptions::Carry::Base;
+    VertexErrorModel vertexErrors;
+    DeadReckoningOptions deadReckoning;
+    sim::ScannerOptions obstacleSensor{72, 0.01, 4.0, 0};  ///< rays, sigma, range (rate unused)
+    double obstacleSensorHeight = 0.1;                     ///< m
+    double obstacleCell = 0.1;  ///< m: detections are shared one per cell
+    size_t maxMoves = 10000;
+    // The experiment (seed 003 Table 1, figs. 14-15): 0 runs, none.
+    size_t runs = 100;
+    std::vector<double> experimentSpeeds{5.8, 2.9};  ///< rad/s
+    std::vector<std::string> experimentRoutes{"many_turns", "patrol"};
+    size_t experimentRobotsMax = 10;  ///< fig. 15: N = 4 .. this
+    size_t cameraStarts = 27;         ///< Algorithm 1 from pixels: a 3 x 3 x 3 grid, or 0
+    unsigned long experimentSeed = 1;
+
+    /** The route in the world frame (waypoints + origin), starting at the strip's centre. */
+    std::vector<TPoint2D> worldRoute() const;
+    /** The robots' starts in the world frame (initialStrip + origin). */
+    std::vector<TPoint2D> worldStrip() const;
+    double speed() const { return wheelRadius * wheelSpeed; }  ///< m/s
+
+    void loadFromConfigFile(const mrpt::config::CConfigFileBase& source,
+                            const std::string& section) override;
+    void saveToConfigFile(mrpt::config::CConfigFileBase& target,
+                          const std::string& section) const override;
+};
+
+/** The formation robots' names, f1 .. fN, and the dead-reckoning robot's. */
+std::vector<std::string> formationRobotNames(size_t robots);
+inline const std::string kDeadReckoningRobot = "dr";
+
+}  // namespace mrloc::formation

@@ -1,0 +1,20 @@
+#pragma once
+// Seed 003 sec. 5 in error-model mode: Table 1 (the error at the destination, formation
+// against dead reckoning, both routes, both wheel speeds, mean of the runs), fig. 14 (the
+// mean error against time), fig. 15 (against the number of robots), and fig. 11's per-step
+// errors: the paper's, the error model's draws, and Algorithm 1 from rendered frames.
+#include <mrloc/formation/FormationConfig.h>
+#include <mrloc/formation/FormationFiles.h>
+#include <mrloc/method/Registry.h>
+
+namespace mrloc::formation {
+
+/** The whole experiment from [formation]'s keys (runs, experiment_*, camera_starts); the
+ *  same seed gives the same file. */
+FormationExperimentFile runFormationExperiment(const FormationConfig& config);
+
+/** The registered experiment step: runs it when runs > 0 and writes
+ *  formation.experiment.txt. */
+std::vector<std::string> formationExperiment(const method::ExperimentInput& in);
+
+}  // namespace mrloc::formation

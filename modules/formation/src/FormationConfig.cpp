@@ -1,0 +1,157 @@
+#include <mrloc/common/Error.h>
+#include <mrloc/common/IniSection.h>
+#include <mrloc/formation/FormationConfig.h>
+#include <mrloc/formation/Routes.h>
+#include <mrpt/core/bits_math.h>
+#include <mrpt/core/format.h>
+
+#include <cmath>
+#include <iterator>
+#include <sstream>
+
+namespace mrloc::formation {
+
+namespace {
+
+const std::vector<std::string> kCarryNames{"base", "reflection", "algorithm_one"};
+
+std::string join(const std::vector<double>& xs) {
+    std::string out;
+    for (const double x : xs) out += (out.empty() ? "" : " ") + mrpt::format("%.17g", x);
+    return out;
+}
+
+}  // namespace
+
+std::vector<std::string> formationRobotNames(size_t robots) {
+    std::vector<std::string> names;
+    for (size_t i = 0; i < robots; ++i) names.push_back("f" + std::to_string(i + 1));
+    return names;
+}
+
+std::vector<TPoint2D> FormationConfig::worldRoute() const {
+    std::vector<TPoint2D> out;
+    for (const auto& p : waypoints) out.push_back(p + origin);
+    return out;
+}
+
+std::vector<TPoint2D> FormationConfig::worldStrip() const {
+    auto strip = initialStrip(robots, formation.side);
+    for (auto& p : strip) p = p + origin;
+    return strip;
+}
+
+void FormationConfig::loadFromConfigFile(const mrpt::config::CConfigFileBase& src,
+                                         const std::string& section) {
+    common::IniSection s(src, section);
+    robots = size_t(s.integer("robots", 4, 4, kMaxRobots));
+    formation.side = s.real("side", 1.5, 0.1, 100);
+    formation.safetyMargin = s.real("safety_margin", 0.3, 0, 100);
+    const auto o = s.reals("origin", {3, 3}, 2);
+    origin = {o[0], o[1]};
+    routeName = s.choice("route", "many_turns", {"many_turns", "patrol", "custom"});
+    if (routeName == "custom") {
+        const auto xy = s.requireReals("waypoints");
+        if (xy.size() < 2 || xy.size() % 2 != 0)
+            s.fail("waypoints", "give x y pairs: the first is where the formation starts");
+        waypoints.clear();
+        for (size_t i = 0; i < xy.size(); i += 2) waypoints.push_back({xy[i], xy[i + 1]});
+        if (waypoints.size() < 2) s.fail("waypoints", "give at least a start and a destination");
+    } else {
+        if (s.has("waypoints")) s.fail("waypoints", "only with route = custom");
+        waypoints = route(routeName);
+    }
+    wheelRadius = s.real("wheel_radius", 0.035, 1e-3, 10);
+    wheelSpeed = s.real("wheel_speed", 5.8, 1e-2, 1000);
+    maxTurnRate = s.real("max_turn_rate", 1.5, 1e-2, 100);
+    const std::string c = s.choice("carry", "base", kCarryNames);
+    carry = MarchOptions::Carry(std::find(kCarryNames.begin(), kCarryNames.end(), c) -
+                                kCarryNames.begin());
+    vertexErrors.lateralMean = s.real("lateral_error_mean", 0.036, 1e-6, 10);
+    vertexErrors.lateralSd = s.real("lateral_error_sd", 0.021, 1e-6, 10);
+    vertexErrors.longitudinalMean = s.real("longitudinal_error_mean", 0.013, 1e-6, 10);
+    vertexErrors.longitudinalSd = s.real("longitudinal_error_sd", 0.009, 1e-6, 10);
+    auto& dr = deadReckoning;
+    dr.headingModel = s.choice("heading_model", "gyro", {"gyro", "heading"}) == "gyro"
+                          ? DeadReckoningOptions::HeadingModel::Gyro
+                          : DeadReckoningOptions::HeadingModel::Heading;
+    dr.headingTau = s.real("heading_tau", 120, 1e-3, 1e6);
+    dr.headingSigma = mrpt::DEG2RAD(s.real("heading_sigma", 2.5, 0, 90));
+    dr.headingWhite = mrpt::DEG2RAD(s.real("heading_white", 0.8, 0, 90));
+    dr.radiusBias = s.real("radius_bias", 0, -0.5, 0.5);
+    dr.scaleFactor = s.real("scale_factor", 0.01, -0.5, 0.5);
+    dr.speedNoise = s.real("speed_noise", 0.045, 0, 10);
+    dr.dt = s.real("dr_period", 0.1, 1e-3, 10);
+    obstacleSensor.rays = int(s.integer("obstacle_rays", 72, 8, 3600));
+    obstacleSensor.maxRange = s.real("obstacle_range", 4, 0.1, 100);
+    obstacleSensor.rangeSigma = s.real("obstacle_sigma", 0.01, 0, 1);
+    obstacleSensorHeight = s.real("obstacle_height", 0.1, 0, 10);
+    obstacleCell = s.real("obstacle_cell", 0.1, 0.01, 10);
+    maxMoves = size_t(s.integer("max_moves", 10000, 1, kMaxMoves));
+    runs = size_t(s.integer("runs", 100, 0, kMaxRuns));
+    experimentSpeeds = s.reals("experiment_speeds", {5.8, 2.9});
+    if (experimentSpeeds.empty()) s.fail("experiment_speeds", "give at least one wheel speed");
+    for (const double w : experimentSpeeds)
+        if (!(w >= 1e-2 && w <= 1000)) s.fail("experiment_speeds", "each from 0.01 to 1000 rad/s");
+    std::istringstream names(s.text("experiment_routes", "many_turns patrol"));
+    experimentRoutes = {std::istream_iterator<std::string>(names), {}};
+    if (experimentRoutes.empty()) s.fail("experiment_routes", "give many_turns, patrol or both");
+    for (const auto& r : experimentRoutes)
+        if (r != "many_turns" && r != "patrol")
+            s.fail("experiment_routes", "'" + r + "': expected many_turns or patrol");
+    experimentRobotsMax = size_t(s.integer("experiment_robots_max", 10, 4, 50));
+    cameraStarts = size_t(s.integer("camera_starts", 27, 0, 27));
+    if (cameraStarts != 0 && cameraStarts != 27)
+        s.fail("camera_starts", "0 (none) or 27 (the 3 x 3 x 3 grid of starts)");
+    experimentSeed = (unsigned long)s.integer("experiment_seed", 1, 0, 4294967295L);
+    s.finish();
+}
+
+void FormationConfig::saveToConfigFile(mrpt::config::CConfigFileBase& t,
+                                       const std::string& section) const {
+    t.write(section, "robots", int(robots));
+    t.write(section, "side", formation.side);
+    t.write(section, "safety_margin", formation.safetyMargin);
+    t.write(section, "origin", join({origin.x, origin.y}));
+    t.write(section, "route", routeName);
+    if (routeName == "custom") {
+        std::vector<double> xy;
+        for (const auto& p : waypoints) xy.push_back(p.x), xy.push_back(p.y);
+        t.write(section, "waypoints", join(xy));
+    }
+    t.write(section, "wheel_radius", wheelRadius);
+    t.write(section, "wheel_speed", wheelSpeed);
+    t.write(section, "max_turn_rate", maxTurnRate);
+    t.write(section, "carry", kCarryNames[size_t(carry)]);
+    t.write(section, "lateral_error_mean", vertexErrors.lateralMean);
+    t.write(section, "lateral_error_sd", vertexErrors.lateralSd);
+    t.write(section, "longitudinal_error_mean", vertexErrors.longitudinalMean);
+    t.write(section, "longitudinal_error_sd", vertexErrors.longitudinalSd);
+    const auto& dr = deadReckoning;
+    t.write(section, "heading_model",
+            std::string(dr.headingModel == DeadReckoningOptions::HeadingModel::Gyro ? "gyro"
+                                                                                    : "heading"));
+    t.write(section, "heading_tau", dr.headingTau);
+    t.write(section, "heading_sigma", mrpt::RAD2DEG(dr.headingSigma));
+    t.write(section, "heading_white", mrpt::RAD2DEG(dr.headingWhite));
+    t.write(section, "radius_bias", dr.radiusBias);
+    t.write(section, "scale_factor", dr.scaleFactor);
+    t.write(section, "speed_noise", dr.speedNoise);
+    t.write(section, "dr_period", dr.dt);
+    t.write(section, "obstacle_rays", obstacleSensor.rays);
+    t.write(section, "obstacle_range", obstacleSensor.maxRange);
+    t.write(section, "obstacle_sigma", obstacleSensor.rangeSigma);
+    t.write(section, "obstacle_height", obstacleSensorHeight);
+    t.write(section, "obstacle_cell", obstacleCell);
+    t.write(section, "max_moves", int(maxMoves));
+    t.write(section, "runs", int(runs));
+    t.write(section, "experiment_speeds", join(experimentSpeeds));
+    std::string routes;
+    for (const auto& r : experimentRoutes) routes += (routes.empty() ? "" : " ") + r;
+    t.write(section, "experiment_routes", routes);
+    t.write(section, "experiment_robots_max", int(experimentRobotsMax));
+    t.write(section, "camera_starts", int(cameraStarts));
+    t.write(section, "experiment_seed", std::to_string(experimentSeed));
+}
+
+}  // namespace mrloc::formation

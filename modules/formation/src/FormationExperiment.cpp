@@ -1,0 +1,119 @@
+#include <mrloc/formation/AlgorithmOne.h>
+#include <mrloc/formation/FormationExperiment.h>
+#include <mrloc/formation/FormationLocalizer.h>
+#include <mrloc/formation/Routes.h>
+
+#include <cmath>
+
+namespace mrloc::formation {
+
+namespace {
+
+/** Mean and sd of |x| over the samples. */
+std::pair<double, double> absMoments(const std::vector<double>& xs) {
+    double sum = 0, sq = 0;
+    for (const double x : xs) sum += std::abs(x), sq += x * x;
+    const double n = double(xs.size()), mean = sum / n;
+    return {mean, std::sqrt(std::max(0.0, sq / n - mean * mean))};
+}
+
+/** A dead-reckoning curve point every this many seconds (fig. 14). */
+constexpr double kCurveStep = 5;
+
+}  // namespace
+
+FormationExperimentFile runFormationExperiment(const FormationConfig& c) {
+    FormationExperimentFile f;
+    if (c.runs == 0) return f;
+    mrpt::random::CRandomGenerator rng(uint32_t(c.experimentSeed));
+    MarchOptions o;
+    o.formation = c.formation;
+    o.wheelRadius = c.wheelRadius;
+    o.maxMoves = c.maxMoves;
+    o.carry = c.carry;
+    std::vector<double> lateral, longitudinal;  // the model's per-step errors, as drawn
+    for (const auto& name : c.experimentRoutes) {
+        const auto waypoints = route(name);
+        for (const double w : c.experimentSpeeds) {
+            o.wheelSpeed = w;
+            FormationExperimentFile::TableRow row{name, w, c.runs};
+            std::vector<double> moveError, drError;
+            std::vector<double> moveTime;
+            for (size_t run = 0; run < c.runs; ++run) {
+                const auto m = march(c.robots, waypoints, {}, o, c.vertexErrors, rng);
+                const auto d = deadReckon(waypoints, c.wheelRadius, w, c.deadReckoning, rng);
+                row.formation += m.finalError() / double(c.runs);
+                row.deadReckoning += d.back().error / double(c.runs);
+                row.moves = m.moves.size();
+                row.formationTime = m.moves.empty() ? 0 : m.moves.back().time;
+                row.deadReckoningTime = d.back().time;
+                moveError.resize(m.moves.size()), moveTime.resize(m.moves.size());
+                for (size_t k = 0; k < m.moves.size(); ++k) {
+                    moveError[k] += m.moves[k].error() / double(c.runs);
+                    moveTime[k] = m.moves[k].time;
+                }
+                const size_t every = size_t(std::lround(kCurveStep / c.deadReckoning.dt));
+                drError.resize((d.size() - 1) / every + 1);
+                for (size_t k = 0; k * every < d.size(); ++k)
+                    drError[k] += d[k * every].error / double(c.runs);
+            }
+            f.table.push_back(row);
+            for (size_t k = 0; k < moveError.size(); ++k)
+                f.curves.push_back({name, "formation", w, moveTime[k], moveError[k]});
+            for (size_t k = 0; k < drError.size(); ++k)
+                f.curves.push_back({name, "dr", w, double(k) * kCurveStep, drError[k]});
+        }
+    }
+    // fig. 15: the first route at the first speed, N = 4 .. max
+    o.wheelSpeed = c.experimentSpeeds.front();
+    const auto waypoints = route(c.experimentRoutes.front());
+    for (size_t n = 4; n <= c.experimentRobotsMax; ++n) {
+        FormationExperimentFile::RobotsRow row{n, c.runs};
+        for (size_t run = 0; run < c.runs; ++run)
+            row.error +=
+                march(n, waypoints, {}, o, c.vertexErrors, rng).finalError() / double(c.runs);
+        f.robots.push_back(row);
+    }
+    // fig. 11: the paper's moments (60 lab runs), the model's draws, and the camera path
+    f.steps.push_back({"paper", 0.036, 0.021, 0.013, 0.009, 60});
+    for (size_t k = 0; k < 100 * c.runs; ++k) {
+        lateral.push_back(drawAxisError(c.vertexErrors.lateralMean, c.vertexErrors.lateralSd, rng));
+        longitudinal.push_back(
+            drawAxisError(c.vertexErrors.longitudinalMean, c.vertexErrors.longitudinalSd, rng));
+    }
+    const auto [lm, ls] = absMoments(lateral);
+    const auto [om, os] = absMoments(longitudinal);
+    f.steps.push_back({"model", lm, ls, om, os, lateral.size()});
+    if (c.cameraStarts > 0) {  // the building step of fig. 3g from a 3 x 3 x 3 grid of starts
+        MarkerOptions markers;
+        const auto step = buildingStep(c.formation.side, markers);
+        sim::PinholeCamera camera(cameraIntrinsics(485));
+        AlgorithmOneOptions ao;
+        ao.side = c.formation.side;
+        std::vector<double> lat, lon;
+        const auto& ideal = step.vertex;
+        for (const double dx : {-0.15, 0.0, 0.15})
+            for (const double depth : {-0.2, 0.0, 0.2})
+                for (const double heading : {-10.0, 0.0, 10.0}) {
+                    const mrpt::poses::CPose2D start(ideal.x() + dx, ideal.y() - depth,
+                                                     ideal.phi() + heading * M_PI / 180);
+                    const auto r =
+                        runAlgorithmOne(*step.scene, step.beacons, start, camera, markers, ao, rng);
+                    lat.push_back(r.end.x() - ideal.x());  // along the base
+                    lon.push_back(r.end.y() - ideal.y());  // across it
+                }
+        const auto [cm, cs] = absMoments(lat);
+        const auto [cn, cns] = absMoments(lon);
+        f.steps.push_back({"camera", cm, cs, cn, cns, lat.size()});
+    }
+    return f;
+}
+
+std::vector<std::string> formationExperiment(const method::ExperimentInput& in) {
+    const auto& loc = dynamic_cast<const FormationLocalizer&>(in.localizer);
+    if (loc.config().runs == 0) return {};
+    runFormationExperiment(loc.config()).write(in.outDir);
+    return {FormationExperimentFile::path(in.outDir)};
+}
+
+}  // namespace mrloc::formation

@@ -1,0 +1,247 @@
+#include <mrloc/common/Error.h>
+#include <mrloc/common/IniSection.h>
+#include <mrloc/formation/FormationExperiment.h>
+#include <mrloc/formation/FormationFiles.h>
+#include <mrloc/formation/FormationLocalizer.h>
+#include <mrloc/formation/FormationMethod.h>
+#include <mrloc/formation/FormationPayload.h>
+#include <mrloc/report/Plots.h>
+#include <mrloc/sim/World.h>
+#include <mrpt/core/format.h>
+
+#include <algorithm>
+#include <cmath>
+#include <filesystem>
+#include <set>
+
+namespace mrloc::formation {
+
+namespace {
+
+/** Robots f1 .. fN on the strip facing east, and dr at the route's start, from [formation];
+ *  [scenario] robots must not name any. */
+method::Scenario loadScenario(const mrpt::config::CConfigFileBase& ini,
+                              const common::Localizer& localizer) {
+    const FormationConfig& c = dynamic_cast<const FormationLocalizer&>(localizer).config();
+    method::Scenario s;
+    s.config = sim::ScenarioConfig::loadWithoutRobots(ini);
+    std::vector<sim::RobotOptions> robots;
+    const auto names = formationRobotNames(c.robots);
+    const auto strip = c.worldStrip();
+    const auto route = c.worldRoute();
+    for (size_t i = 0; i <= names.size(); ++i) {
+        sim::RobotOptions r;
+        r.name = i < names.size() ? names[i] : kDeadReckoningRobot;
+        const TPoint2D p = i < names.size() ? strip[i] : route.front();
+        r.start = mrpt::poses::CPose2D(p.x, p.y, 0);  // seed 003 sec. 5: all face east
+        r.speed = c.speed();
+        r.maxTurnRate = c.maxTurnRate;
+        r.odometryRate = 10;
+        r.startInSection = false;
+        robots.push_back(r);
+    }
+    for (const auto& p : route)
+        if (!s.config.world.contains({p.x, p.y, 0.1}, c.formation.side))
+            throw Error(common::configOrigin(ini) +
+                        mrpt::format(": [formation] the route point (%g %g) (world frame: "
+                                     "origin + waypoint) is not %g m inside [world]'s room",
+                                     p.x, p.y, c.formation.side));
+    s.config.addGeneratedRobots(ini, robots);
+    s.payload = std::make_unique<FormationPayload>(c, s.config.scenario.dt);
+    return s;
+}
+
+std::string mm(double metres) { return mrpt::format("%.1f", 1e3 * metres); }
+
+/** The run's picture (seed 003 figs. 12-13): the route, the formation's vertices (believed
+ *  and true), the dead-reckoning robot's estimate and truth, the obstacles found. */
+std::string runPicture(const report::RunView& run, const FormationRunFile& f) {
+    std::vector<std::pair<double, double>> route, believed, truth, obstacles, drEst, drTrue, start;
+    for (const auto& p : f.route) route.emplace_back(p.x, p.y);
+    for (const auto& p : f.start) start.emplace_back(p.x, p.y);
+    for (const auto& m : f.moves) {
+        believed.emplace_back(m.believed.x, m.believed.y);
+        if (std::isfinite(m.truth.x)) truth.emplace_back(m.truth.x, m.truth.y);
+    }
+    for (const auto& o : f.obstacles) obstacles.emplace_back(o.centre.x, o.centre.y);
+    if (const auto e = run.estimates.find(kDeadReckoningRobot); e != run.estimates.end())
+        for (const auto& p : e->second) drEst.emplace_back(p.pose.x(), p.pose.y());
+    if (const auto t = run.truth.find(kDeadReckoningRobot); t != run.truth.end())
+        for (const auto& p : t->second) drTrue.emplace_back(p.pose.x(), p.pose.y());
+    std::string body = report::dataBlock("route", route) + report::dataBlock("believed", believed) +
+                       report::dataBlock("truth", truth) + report::dataBlock("obst", obstacles) +
+                       report::dataBlock("drEst", drEst) + report::dataBlock("drTrue", drTrue) +
+                       report::dataBlock("start", start);
+    body +=
+        "set xlabel 'x (m)'\nset ylabel 'y (m)'\nset size ratio -1\nset key outside right top\n"
+        "plot $route using 1:2 with linespoints lw 2 lc rgb '#2ca02c' pt 7 ps 0.6 title 'route', "
+        "$believed using 1:2 with points pt 1 ps 0.8 lc rgb 'black' title 'vertices (believed)', "
+        "$truth using 1:2 with points pt 6 ps 0.6 lc rgb '#1f77b4' title 'vertices (true)', "
+        "$start using 1:2 with points pt 5 ps 0.8 lc rgb 'black' title 'strip (start)', "
+        "$drTrue using 1:2 with lines lw 1 lc rgb '#999999' title 'dead-reckoning robot (true)', "
+        "$drEst using 1:2 with lines lw 2 lc rgb '#d62728' title 'dead reckoning (estimate)'";
+    if (!obstacles.empty())
+        body +=
+            ", $obst using 1:2 with points pt 7 ps 0.3 lc rgb '#ff7f0e' title 'obstacles found'";
+    body += "\n";
+    // the world's obstacles (effective.ini [world]) as boxes under everything else
+    if (run.effective && run.effective->sectionExists("world")) {
+        sim::WorldOptions world;
+        world.loadFromConfigFile(*run.effective, "world");
+        std::string boxes;
+        int id = 1;
+        for (const auto& b : world.obstacles)
+            boxes += mrpt::format(
+                "set object %d rect from %.17g,%.17g to %.17g,%.17g back fc rgb '#bbbbbb' "
+                "fs solid 0.6 noborder\n",
+                id++, b.min.x, b.min.y, b.max.x, b.max.y);
+        body = boxes + body;
+    }
+    // a picture as tall as the route's extent asks for (the legend takes the right 30 %)
+    double x0 = INFINITY, x1 = -INFINITY, y0 = INFINITY, y1 = -INFINITY;
+    for (const auto* set : {&route, &believed, &start, &drEst})
+        for (const auto& [x, y] : *set)
+            x0 = std::min(x0, x), x1 = std::max(x1, x), y0 = std::min(y0, y), y1 = std::max(y1, y);
+    const double aspect = (y1 - y0 + 2) / std::max(x1 - x0 + 2, 1.0);
+    const int height = std::clamp(int(std::lround(700 * aspect)) + 120, 320, 900);
+    report::runGnuplot(body, run.dir + "/formation.run.png", mrpt::format("1000,%d", height));
+    return "<img src='formation.run.png' alt='route, vertices and dead reckoning'>\n";
+}
+
+/** Seed 003 fig. 14 for one route: the mean error against time, both speeds. */
+std::string figureFourteen(const std::string& dir, const FormationExperimentFile& e,
+                           const std::string& route) {
+    std::set<double> speeds;
+    for (const auto& c : e.curves)
+        if (c.route == route) speeds.insert(c.wheelSpeed);
+    std::string body, plot;
+    int k = 0;
+    const char* colours[] = {"#d62728", "#1f77b4", "#9467bd", "#8c564b"};
+    for (auto it = speeds.rbegin(); it != speeds.rend(); ++it, ++k) {
+        std::vector<std::pair<double, double>> dr, f;
+        for (const auto& c : e.curves)
+            if (c.route == route && c.wheelSpeed == *it)
+                (c.kind == "dr" ? dr : f).emplace_back(c.time, c.error);
+        const std::string n = std::to_string(k), colour = colours[k % 4];
+        body += report::dataBlock("dr" + n, dr) + report::dataBlock("f" + n, f);
+        plot += std::string(plot.empty() ? "plot " : ", ") + "$dr" + n +
+                " using 1:2 with lines lw 2 dt " + std::to_string(k + 1) + " lc rgb '" + colour +
+                "' title 'dead reckoning, " + mrpt::format("%g", *it) + " rad/s', $f" + n +
+                " using 1:2 with points pt " + std::to_string(7 + 2 * k) + " ps 0.5 lc rgb '" +
+                colour + "' title 'formation, " + mrpt::format("%g", *it) + " rad/s'";
+    }
+    const std::string png = "formation.fig14." + route + ".png";
+    report::runGnuplot(body +
+                           "set xlabel 'time (s)'\nset ylabel 'mean position error (m)'\n"
+                           "set key top right\nset yrange [0:*]\nset offsets 0, 0, graph 0.1, 0\n" +
+                           plot + "\n",
+                       dir + "/" + png);
+    return "<img src='" + png + "' alt='error against time, " + route + "'>\n";
+}
+
+std::string experimentSection(const std::string& dir) {
+    const auto e = FormationExperimentFile::read(dir);
+    std::string out =
+        "<h3>Seed 003 Table 1: error at the destination</h3>\n<p>Mean over the runs, in the "
+        "error-model mode. The formation's error is the last moving robot's, against the "
+        "vertex that perfect triangles give; dead reckoning's is its estimate's at the "
+        "destination. The paper's table was lost in extraction; its text: dead reckoning's "
+        "error \"increased significantly\" (about twice, fig. 14) when the wheel speed "
+        "halved, the formation's \"did not change meaningfully\".</p>\n<table><tr><th>route"
+        "</th><th>wheel speed (rad/s)</th><th>runs</th><th>moves</th><th>formation (m)</th>"
+        "<th>dead reckoning (m)</th><th>time, formation (s)</th><th>time, dead reckoning "
+        "(s)</th></tr>\n";
+    for (const auto& r : e.table)
+        out += mrpt::format(
+            "<tr><td>%s</td><td>%g</td><td>%zu</td><td>%zu</td><td>%.3f</td><td>%.3f</td>"
+            "<td>%.0f</td><td>%.0f</td></tr>\n",
+            report::html(r.route).c_str(), r.wheelSpeed, r.runs, r.moves, r.formation,
+            r.deadReckoning, r.formationTime, r.deadReckoningTime);
+    out += "</table>\n";
+    // the speed ratios, the paper's finding
+    for (const auto& a : e.table)
+        for (const auto& b : e.table)
+            if (a.route == b.route && b.wheelSpeed < a.wheelSpeed)
+                out += mrpt::format(
+                    "<p>%s, %g rad/s against %g rad/s: dead reckoning's error x %.2f (the "
+                    "paper: about x 2), the formation's x %.2f (the paper: unchanged).</p>\n",
+                    report::html(a.route).c_str(), b.wheelSpeed, a.wheelSpeed,
+                    b.deadReckoning / a.deadReckoning, b.formation / a.formation);
+    std::set<std::string> routes;
+    for (const auto& r : e.table) routes.insert(r.route);
+    out +=
+        "<h3>Seed 003 fig. 14: error against time</h3>\n<p>Dead reckoning's mean error "
+        "grows with time; the formation's is known only when a triangle is built (dots), "
+        "and depends on the number of triangles, not on the speed.</p>\n";
+    for (const auto& r : routes) out += figureFourteen(dir, e, r);
+    if (!e.robots.empty()) {
+        std::vector<std::pair<double, double>> xy;
+        for (const auto& r : e.robots) xy.emplace_back(double(r.robots), r.error);
+        report::runGnuplot(report::dataBlock("n", xy) +
+                               "set xlabel 'number of robots N'\nset ylabel 'mean error at the "
+                               "destination (m)'\nset yrange [0:*]\nset xtics 1\nset key bottom "
+                               "right\nplot $n using 1:2 with linespoints lw 2 pt 7 lc rgb "
+                               "'#1f77b4' title 'formation, " +
+                               e.table.front().route + "'\n",
+                           dir + "/formation.fig15.png", "700,400");
+        out +=
+            "<h3>Seed 003 fig. 15: error against the number of robots</h3>\n<p>The paper: "
+            "\"the localization error remains consistent despite an increase in the "
+            "number of robots\".</p>\n<img src='formation.fig15.png' alt='error against "
+            "N'>\n<table><tr><th>N</th>";
+        for (const auto& r : e.robots) out += "<td>" + std::to_string(r.robots) + "</td>";
+        out += "</tr><tr><th>error (m)</th>";
+        for (const auto& r : e.robots) out += mrpt::format("<td>%.3f</td>", r.error);
+        out += "</tr></table>\n";
+    }
+    out +=
+        "<h3>Seed 003 fig. 11: per-step vertex errors</h3>\n<p>Mean absolute error and "
+        "standard deviation along the new triangle's base (lateral) and across it "
+        "(longitudinal). <em>model</em>: the error model's draws, which the marches above "
+        "use; <em>camera</em>: Algorithm 1 from rendered frames (AprilTag 3), from a grid "
+        "of starts around the vertex.</p>\n<table><tr><th>source</th><th>steps</th><th>"
+        "lateral mean (mm)</th><th>lateral sd (mm)</th><th>longitudinal mean (mm)</th><th>"
+        "longitudinal sd (mm)</th></tr>\n";
+    for (const auto& s : e.steps)
+        out += "<tr><td>" + report::html(s.source) + "</td><td>" + std::to_string(s.count) +
+               "</td><td>" + mm(s.lateralMean) + "</td><td>" + mm(s.lateralSd) + "</td><td>" +
+               mm(s.longitudinalMean) + "</td><td>" + mm(s.longitudinalSd) + "</td></tr>\n";
+    return out + "</table>\n";
+}
+
+std::string formationSection(const report::RunView& run) {
+    std::string out = "<h2>Formation (seed 003)</h2>\n";
+    const auto f = FormationRunFile::read(run.dir);
+    const auto m = run.metrics.value("formation", nlohmann::json::object());
+    const double last = f.moves.empty() ? NAN : f.moves.back().error();
+    out += mrpt::format(
+        "<p>%zu moves; the team %s. The last moving robot's error at the destination: %s m "
+        "(seed 003 Table 1's measure); the dead-reckoning robot's: %s m.</p>\n",
+        f.moves.size(),
+        m.value("state", std::string("?")) == "arrived"
+            ? "reached the destination"
+            : ("ended " + m.value("state", std::string("?"))).c_str(),
+        std::isfinite(last) ? mrpt::format("%.3f", last).c_str() : "none",
+        std::isfinite(f.deadReckoningFinalError)
+            ? mrpt::format("%.3f", f.deadReckoningFinalError).c_str()
+            : "none");
+    out += runPicture(run, f);
+    if (std::filesystem::exists(FormationExperimentFile::path(run.dir)))
+        out += experimentSection(run.dir);
+    return out;
+}
+
+}  // namespace
+
+void registerMethod(method::Registry& registry) {
+    method::Method m;
+    m.name = "formation";
+    m.sections = {"formation"};
+    m.localizer = [] { return std::make_unique<FormationLocalizer>(); };
+    m.scenario = loadScenario;
+    m.experiment = formationExperiment;  // seed 003 Table 1, figs. 11, 14, 15
+    m.report.html = formationSection;    // its own picture: no world top view
+    registry.add(std::move(m));
+}
+
+}  // namespace mrloc::formation

@@ -1,0 +1,169 @@
+// End-to-end formation runs (seed 003): the obstacle scenario (safety zones, what the
+// obstacle sensor found), the replay of its rawlog by `mrloc localize`, determinism, the
+// Monte Carlo experiment's file and report, and bad [formation] input.
+#include <gtest/gtest.h>
+#include <mrloc/common/Metrics.h>
+#include <mrloc/common/Trajectory.h>
+#include <mrloc/formation/FormationFiles.h>
+#include <mrpt/img/CImage.h>
+
+#include <cmath>
+
+#include "MrlocCli.h"
+
+namespace fs = std::filesystem;
+using namespace mrloc;
+using namespace mrloc::testing_cli;
+
+namespace {
+
+/** The pillars of config/formation_obstacles.ini: xmin ymin xmax ymax. */
+const std::vector<std::array<double, 4>> kPillars{{9.7, 5.35, 10.3, 5.95}, {13.7, 6.1, 14.3, 6.7}};
+
+double distanceToBox(double x, double y, const std::array<double, 4>& b) {
+    const double dx = std::max({b[0] - x, 0.0, x - b[2]}), dy = std::max({b[1] - y, 0.0, y - b[3]});
+    return std::hypot(dx, dy);
+}
+
+}  // namespace
+
+TEST(MrlocFormation, ObstacleRunKeepsEveryRobotOutOfTheSafetyZonesAndArrives) {
+    const std::string out = tmp("formation_obstacles");
+    const auto r = mrlocCmd("run " + config("formation_obstacles") + " -q --out " + out);
+    ASSERT_EQ(r.code, 0) << r.output;
+    const auto m = common::loadJson(out + "/metrics.json");
+    const auto& f = m["formation"];
+    EXPECT_EQ(f["state"], "arrived") << f.dump(2);
+    // Measured: 18 moves (12 on the same route without the pillars: the detour costs 6).
+    EXPECT_EQ(f["moves"], 18) << f.dump(2);
+    // Every true position of every formation robot, at every step (20 Hz), stays out of each
+    // pillar's safety zone (0.3 m). Measured: 0.52 m at the nearest; the vertex errors
+    // (up to 0.1 m here) are what may eat into the margin.
+    double nearest = INFINITY;
+    for (const char* robot : {"f1", "f2", "f3", "f4"})
+        for (const auto& p : common::loadTum(out + "/groundtruth." + std::string(robot) + ".txt"))
+            for (const auto& b : kPillars)
+                nearest = std::min(nearest, distanceToBox(p.pose.x(), p.pose.y(), b));
+    std::cout << "nearest approach to a pillar " << nearest << " m\n";
+    EXPECT_GT(nearest, 0.3);
+    // What the obstacle sensor found is real: every shared detection lies near a pillar or a
+    // wall of the 22 x 12 m room, and both pillars were found.
+    const auto run = formation::FormationRunFile::read(out);
+    ASSERT_GT(run.obstacles.size(), 20u);
+    std::array<int, 2> onPillar{0, 0};
+    double worst = 0;
+    for (const auto& o : run.obstacles) {
+        const double x = o.centre.x, y = o.centre.y;
+        double d = std::min({x, 22 - x, y, 12 - y});  // to the walls
+        for (size_t k = 0; k < kPillars.size(); ++k) {
+            const double toPillar = distanceToBox(x, y, kPillars[k]);
+            if (toPillar < 0.25) ++onPillar[k];
+            d = std::min(d, toPillar);
+        }
+        worst = std::max(worst, d);
+    }
+    std::cout << "farthest detection from a pillar or wall " << worst << " m\n";
+    // Measured 0.20 m: a detection is placed from where its robot believes it stands (off by
+    // up to 0.18 m here) at the heading its anchor gives it; bound 25 % above.
+    EXPECT_LT(worst, 0.25);
+    EXPECT_GT(onPillar[0], 5);
+    EXPECT_GT(onPillar[1], 5);
+    // The believed vertices against the truth: the error model's per-step errors, carried.
+    ASSERT_EQ(run.moves.size(), 18u);
+    for (const auto& mv : run.moves) EXPECT_LT(mv.error(), 0.3) << mv.robot;
+    mrpt::img::CImage png;
+    ASSERT_TRUE(png.loadFromFile(out + "/formation.run.png"));
+    EXPECT_EQ(png.getWidth(), 1000u);
+    const std::string page = slurp(out + "/report.html");
+    EXPECT_NE(page.find("18 moves; the team reached the destination"), std::string::npos);
+
+    // `mrloc localize` on the rawlog reaches the same moves and estimates.
+    const std::string again = tmp("formation_obstacles_replay");
+    const auto r2 = mrlocCmd("localize " + config("formation_obstacles") + " " + out +
+                             "/formation_obstacles.rawlog --out " + again + " -q");
+    ASSERT_EQ(r2.code, 0) << r2.output;
+    for (const char* file :
+         {"estimates.f1.txt", "estimates.f3.txt", "estimates.dr.txt", "formation.run.txt"})
+        EXPECT_EQ(slurp(out + "/" + file), slurp(again + "/" + file)) << file;
+    EXPECT_EQ(common::loadTum(again + "/estimates.dr.txt").size(), 616u);
+
+    // A rawlog recorded under other [formation] keys is refused, naming the conflict.
+    const std::string other = writeIniFrom(config("formation_obstacles"), "formation_other",
+                                           "safety_margin = 0.3", "safety_margin = 0");
+    const std::string third = tmp("formation_obstacles_other");
+    const auto r3 = mrlocCmd("localize " + other + " " + out +
+                             "/formation_obstacles.rawlog --out " + third + " -q");
+    EXPECT_EQ(r3.code, 1) << r3.output;
+    EXPECT_NE(r3.output.find("was the rawlog recorded with another [formation] section?"),
+              std::string::npos)
+        << r3.output;
+    EXPECT_FALSE(fs::exists(third));
+}
+
+TEST(MrlocFormation, SameIniAndSeedGiveByteIdenticalRawlogs) {
+    const std::string ini = writeIniFrom(config("formation_obstacles"), "formation_det",
+                                         "duration          = 600", "duration = 120");
+    const std::string a = tmp("formation_det_a"), b = tmp("formation_det_b");
+    ASSERT_EQ(mrlocCmd("run " + ini + " -q --out " + a).code, 0);
+    ASSERT_EQ(mrlocCmd("run " + ini + " -q --out " + b).code, 0);
+    EXPECT_EQ(slurp(a + "/formation_obstacles.rawlog"), slurp(b + "/formation_obstacles.rawlog"));
+    EXPECT_EQ(slurp(a + "/formation.run.txt"), slurp(b + "/formation.run.txt"));
+}
+
+TEST(MrlocFormation, ExperimentWritesTableOneAndFiguresIntoTheReport) {
+    // A small experiment: 20 runs, N = 4 .. 5, no camera grid.
+    std::string ini =
+        writeIniFrom(config("formation_obstacles"), "formation_exp", "runs          = 0",
+                     "runs = 20\nexperiment_robots_max = 5\n"
+                     "camera_starts = 0");
+    ini = writeIniFrom(ini, "formation_exp", "duration          = 600", "duration = 30");
+    const std::string out = tmp("formation_exp");
+    const auto r = mrlocCmd("run " + ini + " -q --out " + out);
+    ASSERT_EQ(r.code, 0) << r.output;
+    const auto e = formation::FormationExperimentFile::read(out);
+    ASSERT_EQ(e.table.size(), 4u);  // 2 routes x 2 speeds
+    for (const auto& row : e.table) {
+        EXPECT_EQ(row.runs, 20u);
+        EXPECT_LT(row.formation * 3, row.deadReckoning) << row.route << " " << row.wheelSpeed;
+    }
+    EXPECT_EQ(e.table[0].moves, 153u);  // many_turns: the march of the library tests
+    EXPECT_EQ(e.table[2].moves, 126u);  // patrol
+    ASSERT_EQ(e.robots.size(), 2u);
+    ASSERT_EQ(e.steps.size(), 2u);  // the paper's and the model's
+    EXPECT_NEAR(e.steps[1].lateralMean, 0.036, 0.002);
+    EXPECT_NEAR(e.steps[1].longitudinalMean, 0.013, 0.001);
+    const std::string page = slurp(out + "/report.html");
+    for (const char* s : {"Seed 003 Table 1", "formation.fig14.many_turns.png",
+                          "formation.fig15.png", "fig. 11: per-step vertex errors"})
+        EXPECT_NE(page.find(s), std::string::npos) << s;
+    mrpt::img::CImage png;
+    EXPECT_TRUE(png.loadFromFile(out + "/formation.fig14.patrol.png"));
+    EXPECT_TRUE(png.loadFromFile(out + "/formation.fig15.png"));
+}
+
+TEST(MrlocFormation, BadFormationInputIsAClearErrorAndWritesNothing) {
+    struct Case {
+        std::string from, to, expected;
+    };
+    const std::vector<Case> cases = {
+        {"robots        = 4", "robtos = 4", "[formation] robtos: unknown key"},
+        {"robots        = 4", "robots = 3", "[formation] robots"},
+        {"waypoints     = 1.5 0.65   14 0.65", "waypoints = 1.5 0.65 14",
+         "[formation] waypoints: give x y pairs"},
+        {"route         = custom", "route = zigzag", "[formation] route"},
+        {"waypoints     = 1.5 0.65   14 0.65", "waypoints = 1.5 0.65 40 0.65",
+         "the route point (43 5.65)"},
+        {"runs          = 0", "runs = 0\ndr_period = 0.07",
+         "dr_period = 0.07 s must be a whole number"},
+        {"safety_margin = 0.3", "safety_margin = nan", "[formation] safety_margin"},
+    };
+    for (const auto& c : cases) {
+        const std::string ini =
+            writeIniFrom(config("formation_obstacles"), "badformation", c.from, c.to);
+        const std::string out = tmp("badformation");
+        const auto r = mrlocCmd("run " + ini + " -q --out " + out);
+        EXPECT_EQ(r.code, 1) << c.to << "\n" << r.output;
+        EXPECT_NE(r.output.find(c.expected), std::string::npos) << c.to << "\n" << r.output;
+        EXPECT_FALSE(fs::exists(out)) << c.to;
+    }
+}
