@@ -7,9 +7,6 @@
 
 namespace mrloc::formation {
 
-namespace {
-
-/** The rear camera sits on the robot's back face, looking backwards. */
 mrpt::poses::CPose3D rearCameraPose(const mrpt::poses::CPose2D& robot, double bodySize,
                                     double height) {
     const double back = bodySize / 2;
@@ -18,23 +15,57 @@ mrpt::poses::CPose3D rearCameraPose(const mrpt::poses::CPose2D& robot, double bo
                                   robot.phi() + M_PI);
 }
 
+mrpt::poses::CPose3D frontCameraPose(const mrpt::poses::CPose2D& robot, double bodySize,
+                                     double height) {
+    const double ahead = bodySize / 2;
+    return sim::cameraPoseLooking({robot.x() + ahead * std::cos(robot.phi()),
+                                   robot.y() + ahead * std::sin(robot.phi()), height},
+                                  robot.phi());
+}
+
+namespace {
+
 /** What Algorithm 1 reads from a frame: the anchor's and the base beacons' centres (px),
  *  each from the beacon's largest tag in view (the side facing the camera), moved from the
- *  tag to the robot's centre by `shift` (the believed offset of that side's tag). */
+ *  tag to the robot's centre by `shift` (the believed offset of that side's tag); and the
+ *  base tags' sizes over the sizes predicted at the vertex (`size`): inverse depth ratios. */
 struct Reading {
     double ua = 0, u1 = 0, u2 = 0;
+    double near1 = 1, near2 = 1;
 };
 
-template <typename Shift>
+template <typename Shift, typename Size>
 std::optional<Reading> read(const std::vector<MarkerSighting>& tags, const BeaconTriangle& b,
-                            Shift shift) {
+                            Shift shift, Size size) {
     std::array<std::optional<MarkerSighting>, 3> best;
     for (const auto& t : tags)
         for (int i = 0; i < 3; ++i)
             if (size_t(t.id / 4) == b.robot[i] && (!best[i] || t.size > best[i]->size)) best[i] = t;
     if (!best[0] || !best[1] || !best[2]) return std::nullopt;
     const auto centre = [&](int i) { return best[i]->u - shift(i, Side(best[i]->id % 4)); };
-    return Reading{centre(2), centre(0), centre(1)};
+    const auto near = [&](int i) {
+        const double predicted = size(i, Side(best[i]->id % 4));
+        return predicted > 0 ? best[i]->height / predicted : 1.0;
+    };
+    return Reading{centre(2), centre(0), centre(1), near(0), near(1)};
+}
+
+/** A tag's height in the picture (verticalEdgeHeight, as the detector measures it). */
+double projectedHeight(const mrpt::img::TCamera& k, const mrpt::poses::CPose3D& camera,
+                       const mrpt::poses::CPose2D& robot, Side side, const MarkerOptions& m) {
+    const auto c = markerCentre(robot, side, m);
+    const double facing = robot.phi() + double(int(side)) * M_PI / 2;
+    const double a = m.tagSize / 2;
+    const mrpt::math::TPoint3D across{-std::sin(facing) * a, std::cos(facing) * a, 0}, up{0, 0, a};
+    std::array<std::optional<MarkerSighting>, 4> p{
+        project(k, camera, c - across - up), project(k, camera, c + across - up),
+        project(k, camera, c + across + up), project(k, camera, c - across + up)};
+    for (const auto& q : p)
+        if (!q) return 0;
+    return verticalEdgeHeight({mrpt::math::TPoint2D{p[0]->u, p[0]->v},
+                               {p[1]->u, p[1]->v},
+                               {p[2]->u, p[2]->v},
+                               {p[3]->u, p[3]->v}});
 }
 
 }  // namespace
@@ -65,19 +96,20 @@ double targetDisparity(const mrpt::img::TCamera& k, const MarkerOptions& m, doub
     return k.fx() * (side / 2) / (h - m.bodySize / 2);
 }
 
-AlgorithmOneResult runAlgorithmOne(const mrpt::opengl::COpenGLScene& scene,
-                                   const BeaconTriangle& beacons, mrpt::poses::CPose2D start,
-                                   sim::PinholeCamera& camera, const MarkerOptions& markers,
-                                   const AlgorithmOneOptions& o,
-                                   mrpt::random::CRandomGenerator& rng) {
-    const auto& k = camera.intrinsics();
+AlgorithmOneController::AlgorithmOneController(const BeaconTriangle& beacons,
+                                               const mrpt::img::TCamera& k,
+                                               const MarkerOptions& markers,
+                                               const AlgorithmOneOptions& o)
+    : beacons_(beacons), k_(k), o_(o) {
     const double f = k.fx(), h = o.side * std::sqrt(3.0) / 2;
-    const double dt = targetDisparity(k, markers, o.side);
+    dt_ = targetDisparity(k, markers, o.side);
     // How the readings answer the robot's motion, to first order about the perfect vertex: the
     // pictures move with the tags (the shift to the centres is a constant), the base tags at
     // depth Db and the anchor's at Da from the camera. Asymmetry d_m1 - d_m2 per metre of
     // lateral offset towards b1: -gain; d_m per metre of depth: -slope.
     const double Db = h - markers.bodySize, Da = 2 * h - markers.bodySize;
+    gain_ = 2 * f * (1 / Db - 1 / Da);
+    slope_ = f * (o.side / 2) / (Db * Db);
     // Where each tag shows beside its robot's centre, seen from the perfect vertex (seed 003's
     // robots carry tags on their sides, not on their centres).
     const auto& bp = beacons.pose;
@@ -86,64 +118,85 @@ AlgorithmOneResult runAlgorithmOne(const mrpt::opengl::COpenGLScene& scene,
     const auto idealCamera =
         rearCameraPose({vertex.x, vertex.y, std::atan2(vertex.y - bp[2].y(), vertex.x - bp[2].x())},
                        markers.bodySize, o.cameraHeight);
-    const auto shift = [&](int beacon, Side side) {
-        const auto tag = project(k, idealCamera, markerCentre(bp[beacon], side, markers));
-        const auto centre =
-            project(k, idealCamera, {bp[beacon].x(), bp[beacon].y(), markers.tagHeight});
-        // Out of the perfect vertex's picture, the beacon is out of the real one too and is
-        // never read: its shift is not used.
-        return tag && centre ? tag->u - centre->u : 0.0;
-    };
-    const double gain = 2 * f * (1 / Db - 1 / Da);
-    const double slope = f * (o.side / 2) / (Db * Db);
+    for (int b = 0; b < 3; ++b)
+        for (int side = 0; side < 4; ++side) {
+            const auto tag = project(k, idealCamera, markerCentre(bp[b], Side(side), markers));
+            const auto centre = project(k, idealCamera, {bp[b].x(), bp[b].y(), markers.tagHeight});
+            // Out of the perfect vertex's picture, the beacon is out of the real one too and is
+            // never read: its shift is not used.
+            shift_[b][side] = tag && centre ? tag->u - centre->u : 0.0;
+            size_[b][side] = projectedHeight(k, idealCamera, bp[b], Side(side), markers);
+        }
+}
+
+std::optional<std::vector<Maneuver>> AlgorithmOneController::decide(
+    const std::vector<MarkerSighting>& tags) {
+    const auto reading = read(
+        tags, beacons_, [&](int b, Side side) { return shift_[b][int(side)]; },
+        [&](int b, Side side) { return size_[b][int(side)]; });
+    if (!reading) return std::nullopt;  // a beacon out of view: Algorithm 1 cannot go on
+    const double f = k_.fx();
+    const double ec = reading->ua - k_.cx();
+    dm1_ = std::abs(reading->u1 - reading->ua);
+    dm2_ = std::abs(reading->u2 - reading->ua);
+    // seed 003 Algorithm 1, step 1: the anchor at the centre of the rear image. A point
+    // right of centre lies right of the camera, left of the robot: turn towards it.
+    if (std::abs(ec) > o_.pixelTolerance) return std::vector{Maneuver::turn(-std::atan2(ec, f))};
+    // Steps 3-9: while d_m1 != d_m2, turn towards the beacon that looks farther and move
+    // sideways (the robot is a unicycle: turn a right angle, drive, turn back).
+    double es = dm1_ - dm2_;
+    if (o_.lateral == AlgorithmOneOptions::Lateral::Midpoint) {
+        // the base midpoint's image: the base tags' weighted by depth (1 / nearness)
+        const double z1 = 1 / reading->near1, z2 = 1 / reading->near2;
+        const double uM = (reading->u1 * z1 + reading->u2 * z2) / (z1 + z2);
+        // in the paper's terms, es = 2 (midpoint of the images - anchor), signed by b1's side
+        es = 2 * (uM - reading->ua) * (reading->u1 > reading->u2 ? 1 : -1);
+    }
+    if (std::abs(es) > o_.pixelTolerance) {
+        const double offset = -es / gain_;  // m, the robot's offset towards b1
+        // b1 right of the anchor in the image: on the camera's right, the robot's left.
+        const double towardsB1 = reading->u1 > reading->ua ? M_PI / 2 : -M_PI / 2;
+        return std::vector{Maneuver::turn(towardsB1), Maneuver::drive(-offset),
+                           Maneuver::turn(-towardsB1)};
+    }
+    // Steps 10-17: forward (away) while d_m1 > d_t, back while d_m1 < d_t.
+    const double dm = 0.5 * (dm1_ + dm2_);
+    if (std::abs(dm - dt_) > o_.pixelTolerance)
+        return std::vector{Maneuver::drive((dm - dt_) / slope_)};
+    return std::vector<Maneuver>{};
+}
+
+AlgorithmOneResult runAlgorithmOne(const mrpt::opengl::COpenGLScene& scene,
+                                   const BeaconTriangle& beacons, mrpt::poses::CPose2D start,
+                                   sim::PinholeCamera& camera, const MarkerOptions& markers,
+                                   const AlgorithmOneOptions& o,
+                                   mrpt::random::CRandomGenerator& rng) {
+    AlgorithmOneController controller(beacons, camera.intrinsics(), markers, o);
     AlgorithmOneResult r;
     auto pose = start;
-    const auto turn = [&](double angle) {  // in place, with its relative error
-        pose.phi(mrpt::math::wrapToPi(pose.phi() +
-                                      angle * (1 + o.turnNoise * rng.drawGaussian1D_normalized())));
-        ++r.maneuvers;
-    };
-    const auto drive = [&](double distance) {  // along the heading (negative: backwards)
-        const double d = distance * (1 + o.driveNoise * rng.drawGaussian1D_normalized());
-        pose.x(pose.x() + d * std::cos(pose.phi()));
-        pose.y(pose.y() + d * std::sin(pose.phi()));
+    const auto execute = [&](const Maneuver& m) {  // with its relative error
+        if (m.kind == Maneuver::Kind::Turn) {
+            pose.phi(mrpt::math::wrapToPi(
+                pose.phi() + m.amount * (1 + o.turnNoise * rng.drawGaussian1D_normalized())));
+        } else {
+            const double d = m.amount * (1 + o.driveNoise * rng.drawGaussian1D_normalized());
+            pose.x(pose.x() + d * std::cos(pose.phi()));
+            pose.y(pose.y() + d * std::sin(pose.phi()));
+        }
         ++r.maneuvers;
     };
     while (r.maneuvers < o.maxManeuvers) {
-        const auto cameraPose = rearCameraPose(pose, markers.bodySize, o.cameraHeight);
-        const auto frame = camera.render(scene, cameraPose);
+        const auto frame =
+            camera.render(scene, rearCameraPose(pose, markers.bodySize, o.cameraHeight));
         ++r.frames;
-        const auto reading = read(detectMarkers(frame), beacons, shift);
-        if (!reading) break;  // a beacon out of view: Algorithm 1 cannot go on
-        const double ec = reading->ua - k.cx();
-        r.dm1 = std::abs(reading->u1 - reading->ua);
-        r.dm2 = std::abs(reading->u2 - reading->ua);
-        // seed 003 Algorithm 1, step 1: the anchor at the centre of the rear image. A point
-        // right of centre lies right of the camera, left of the robot: turn towards it.
-        if (std::abs(ec) > o.pixelTolerance) {
-            turn(-std::atan2(ec, f));
-            continue;
+        const auto maneuvers = controller.decide(detectMarkers(frame));
+        r.dm1 = controller.dm1(), r.dm2 = controller.dm2();
+        if (!maneuvers) break;
+        if (maneuvers->empty()) {
+            r.converged = true;
+            break;
         }
-        // Steps 3-9: while d_m1 != d_m2, turn towards the beacon that looks farther and move
-        // sideways (the robot is a unicycle: turn a right angle, drive, turn back).
-        const double es = r.dm1 - r.dm2;
-        if (std::abs(es) > o.pixelTolerance) {
-            const double offset = -es / gain;  // m, the robot's offset towards b1
-            // b1 right of the anchor in the image: on the camera's right, the robot's left.
-            const double towardsB1 = reading->u1 > reading->ua ? M_PI / 2 : -M_PI / 2;
-            turn(towardsB1);
-            drive(-offset);
-            turn(-towardsB1);
-            continue;
-        }
-        // Steps 10-17: forward (away) while d_m1 > d_t, back while d_m1 < d_t.
-        const double dm = 0.5 * (r.dm1 + r.dm2);
-        if (std::abs(dm - dt) > o.pixelTolerance) {
-            drive((dm - dt) / slope);
-            continue;
-        }
-        r.converged = true;
-        break;
+        for (const auto& m : *maneuvers) execute(m);
     }
     r.end = pose;
     return r;

@@ -44,6 +44,7 @@ std::vector<TPoint2D> FormationConfig::worldStrip() const {
 void FormationConfig::loadFromConfigFile(const mrpt::config::CConfigFileBase& src,
                                          const std::string& section) {
     common::IniSection s(src, section);
+    mode = s.choice("mode", "model", {"model", "pixel"}) == "model" ? Mode::Model : Mode::Pixel;
     robots = size_t(s.integer("robots", 4, 4, kMaxRobots));
     formation.side = s.real("side", 1.5, 0.1, 100);
     formation.safetyMargin = s.real("safety_margin", 0.3, 0, 100);
@@ -82,6 +83,14 @@ void FormationConfig::loadFromConfigFile(const mrpt::config::CConfigFileBase& sr
     dr.scaleFactor = s.real("scale_factor", 0.01, -0.5, 0.5);
     dr.speedNoise = s.real("speed_noise", 0.045, 0, 10);
     dr.dt = s.real("dr_period", 0.1, 1e-3, 10);
+    cameraFocal = s.real("camera_focal", 485, 100, 5000);
+    pixelTolerance = s.real("pixel_tolerance", 2, 0.1, 50);
+    lateral = s.choice("algorithm_one", "midpoint", {"paper", "midpoint"}) == "paper"
+                  ? AlgorithmOneOptions::Lateral::Paper
+                  : AlgorithmOneOptions::Lateral::Midpoint;
+    gateStop = s.real("gate_stop", 0.8, 0.3, 10);
+    turnNoise = s.real("turn_noise", 0.02, 0, 0.5);
+    driveNoise = s.real("drive_noise", 0.02, 0, 0.5);
     obstacleSensor.rays = int(s.integer("obstacle_rays", 72, 8, 3600));
     obstacleSensor.maxRange = s.real("obstacle_range", 4, 0.1, 100);
     obstacleSensor.rangeSigma = s.real("obstacle_sigma", 0.01, 0, 1);
@@ -109,6 +118,7 @@ void FormationConfig::loadFromConfigFile(const mrpt::config::CConfigFileBase& sr
 
 void FormationConfig::saveToConfigFile(mrpt::config::CConfigFileBase& t,
                                        const std::string& section) const {
+    t.write(section, "mode", std::string(mode == Mode::Model ? "model" : "pixel"));
     t.write(section, "robots", int(robots));
     t.write(section, "side", formation.side);
     t.write(section, "safety_margin", formation.safetyMargin);
@@ -138,6 +148,13 @@ void FormationConfig::saveToConfigFile(mrpt::config::CConfigFileBase& t,
     t.write(section, "scale_factor", dr.scaleFactor);
     t.write(section, "speed_noise", dr.speedNoise);
     t.write(section, "dr_period", dr.dt);
+    t.write(section, "camera_focal", cameraFocal);
+    t.write(section, "pixel_tolerance", pixelTolerance);
+    t.write(section, "algorithm_one",
+            std::string(lateral == AlgorithmOneOptions::Lateral::Paper ? "paper" : "midpoint"));
+    t.write(section, "gate_stop", gateStop);
+    t.write(section, "turn_noise", turnNoise);
+    t.write(section, "drive_noise", driveNoise);
     t.write(section, "obstacle_rays", obstacleSensor.rays);
     t.write(section, "obstacle_range", obstacleSensor.maxRange);
     t.write(section, "obstacle_sigma", obstacleSensor.rangeSigma);

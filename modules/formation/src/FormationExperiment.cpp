@@ -87,9 +87,13 @@ FormationExperimentFile runFormationExperiment(const FormationConfig& c) {
     if (c.cameraStarts > 0) {  // the building step of fig. 3g from a 3 x 3 x 3 grid of starts
         MarkerOptions markers;
         const auto step = buildingStep(c.formation.side, markers);
-        sim::PinholeCamera camera(cameraIntrinsics(485));
+        sim::PinholeCamera camera(cameraIntrinsics(c.cameraFocal));
         AlgorithmOneOptions ao;
         ao.side = c.formation.side;
+        ao.pixelTolerance = c.pixelTolerance;
+        ao.lateral = c.lateral;
+        ao.turnNoise = c.turnNoise;
+        ao.driveNoise = c.driveNoise;
         std::vector<double> lat, lon;
         const auto& ideal = step.vertex;
         for (const double dx : {-0.15, 0.0, 0.15})

@@ -4,6 +4,7 @@
 #include <mrloc/formation/FormationFiles.h>
 #include <mrloc/formation/FormationPayload.h>
 
+#include <optional>
 #include <sstream>
 
 namespace mrloc::formation {
@@ -16,11 +17,27 @@ FormationRunFile FormationRunFile::fromRun(const Team& team, const common::Traje
     f.route = team.options().route;
     f.start = team.options().start;
     f.obstacles = team.obstacles();
+    const auto truthAt = [&](size_t robot, double t) -> std::optional<TPoint2D> {
+        const auto gt = truth.find(team.options().names[robot]);
+        if (gt == truth.end()) return std::nullopt;
+        const auto p = common::interpolate(gt->second, t);
+        if (!p) return std::nullopt;
+        return TPoint2D{p->x(), p->y()};
+    };
     for (const auto& e : team.moves()) {
-        MoveRow row{e.time, team.options().names[e.move.robot], e.move.target};
-        if (const auto gt = truth.find(row.robot); gt != truth.end())
-            if (const auto p = common::interpolate(gt->second, e.time))
-                row.truth = {p->x(), p->y()};
+        const Move& m = e.move;
+        MoveRow row{e.time, team.options().names[m.robot], m.target};
+        const auto end = truthAt(m.robot, e.time);
+        if (end) row.truth = *end;
+        const auto b1 = truthAt(m.base[0], e.time), b2 = truthAt(m.base[1], e.time),
+                   anchor = truthAt(m.anchor, e.time);
+        if (end && b1 && b2 && anchor) {
+            const TPoint2D vertex = *b1 + *b2 - *anchor;  // the real anchor reflected
+            const TPoint2D along = (*b2 - *b1) * (1 / (*b2 - *b1).norm());
+            const TPoint2D d = *end - vertex;
+            row.lateral = d.x * along.x + d.y * along.y;
+            row.longitudinal = -d.x * along.y + d.y * along.x;
+        }
         f.moves.push_back(row);
     }
     const auto dr = estimates.find(kDeadReckoningRobot);
@@ -38,7 +55,8 @@ FormationRunFile FormationRunFile::fromRun(const Team& team, const common::Traje
 void FormationRunFile::write(const std::string& dir) const {
     std::ostringstream out;
     out << "# formation run (seed 003): route, strip, moves, shared obstacles, world frame (m)\n"
-        << "# route x y | start x y | move t robot believed_x believed_y true_x true_y\n"
+        << "# route x y | start x y | move t robot believed_x believed_y true_x true_y lateral "
+           "longitudinal\n"
         << "# obstacle x y radius | dead_reckoning t final_error\n";
     for (const auto& p : route)
         out << "route " << formatNumber(p.x) << " " << formatNumber(p.y) << "\n";
@@ -47,7 +65,8 @@ void FormationRunFile::write(const std::string& dir) const {
     for (const auto& m : moves)
         out << "move " << formatNumber(m.time) << " " << m.robot << " "
             << formatNumber(m.believed.x) << " " << formatNumber(m.believed.y) << " "
-            << formatNumber(m.truth.x) << " " << formatNumber(m.truth.y) << "\n";
+            << formatNumber(m.truth.x) << " " << formatNumber(m.truth.y) << " "
+            << formatNumber(m.lateral) << " " << formatNumber(m.longitudinal) << "\n";
     for (const auto& o : obstacles)
         out << "obstacle " << formatNumber(o.centre.x) << " " << formatNumber(o.centre.y) << " "
             << formatNumber(o.radius) << "\n";
@@ -64,11 +83,13 @@ FormationRunFile FormationRunFile::read(const std::string& dir) {
             line.expectFields(3);
             (tag == "route" ? f.route : f.start).push_back({line.number(1), line.number(2)});
         } else if (tag == "move") {
-            line.expectFields(7);
+            line.expectFields(9);
             f.moves.push_back({line.number(1),
                                line.fields[2],
                                {line.number(3), line.number(4)},
-                               {line.number(5), line.number(6)}});
+                               {line.number(5), line.number(6)},
+                               line.number(7),
+                               line.number(8)});
         } else if (tag == "obstacle") {
             line.expectFields(4);
             f.obstacles.push_back({{line.number(1), line.number(2)}, line.number(3)});

@@ -3,6 +3,7 @@
 #include <mrloc/formation/FormationFiles.h>
 #include <mrloc/formation/FormationLocalizer.h>
 #include <mrloc/formation/FormationPayload.h>
+#include <mrpt/obs/CObservationComment.h>
 #include <mrpt/obs/CObservationOdometry.h>
 
 #include <cmath>
@@ -36,6 +37,7 @@ void FormationLocalizer::configure(const mrpt::config::CConfigFileBase& ini) {
     team_.emplace(teamOptions(config_));
     estimates_.clear();
     deadReckoned_.reset();
+    cameraLostMoves_ = 0;
 }
 
 void FormationLocalizer::saveConfig(mrpt::config::CConfigFileBase& target) const {
@@ -44,6 +46,10 @@ void FormationLocalizer::saveConfig(mrpt::config::CConfigFileBase& target) const
 
 void FormationLocalizer::process(const mrpt::obs::CObservation::Ptr& obs) {
     const double t = mrpt::Clock::toDouble(obs->timestamp);
+    if (const auto c = std::dynamic_pointer_cast<mrpt::obs::CObservationComment>(obs);
+        c && c->text.size() > 19 &&
+        c->text.compare(c->text.size() - 17, 17, " lost the beacons") == 0)
+        ++cameraLostMoves_;
     if (obs->sensorLabel == kDeadReckoningLabel) {
         const auto odo = std::dynamic_pointer_cast<mrpt::obs::CObservationOdometry>(obs);
         if (!odo || !odo->hasVelocities)
@@ -83,6 +89,7 @@ nlohmann::json FormationLocalizer::methodMetrics() const {
     j["moves"] = team_->moves().size();
     j["state"] = stateName(team_->state());
     j["obstacle_cells"] = team_->obstacles().size();
+    j["camera_lost_moves"] = cameraLostMoves_;  // pixel mode: finished by the belief
     j["dead_reckoning_readings"] =
         estimates_.count(kDeadReckoningRobot) ? estimates_.at(kDeadReckoningRobot).size() : 0;
     return j;

@@ -51,6 +51,12 @@ method::Scenario loadScenario(const mrpt::config::CConfigFileBase& ini,
     return s;
 }
 
+/** A route's name for a picture: "many_turns" -> "many turns". */
+std::string routeTitle(std::string name) {
+    std::replace(name.begin(), name.end(), '_', ' ');
+    return name;
+}
+
 std::string mm(double metres) { return mrpt::format("%.1f", 1e3 * metres); }
 
 /** The run's picture (seed 003 figs. 12-13): the route, the formation's vertices (believed
@@ -182,7 +188,7 @@ std::string experimentSection(const std::string& dir) {
                                "destination (m)'\nset yrange [0:*]\nset xtics 1\nset key bottom "
                                "right\nplot $n using 1:2 with linespoints lw 2 pt 7 lc rgb "
                                "'#1f77b4' title 'formation, " +
-                               e.table.front().route + "'\n",
+                               routeTitle(e.table.front().route) + " route' noenhanced\n",
                            dir + "/formation.fig15.png", "700,400");
         out +=
             "<h3>Seed 003 fig. 15: error against the number of robots</h3>\n<p>The paper: "
@@ -226,6 +232,35 @@ std::string formationSection(const report::RunView& run) {
             ? mrpt::format("%.3f", f.deadReckoningFinalError).c_str()
             : "none");
     out += runPicture(run, f);
+    // the run's own per-step errors (seed 003 fig. 11's measure), beside the paper's
+    std::vector<double> lat, lon;
+    for (const auto& mv : f.moves)
+        if (std::isfinite(mv.lateral)) lat.push_back(mv.lateral), lon.push_back(mv.longitudinal);
+    if (!lat.empty()) {
+        const auto moments = [](const std::vector<double>& xs) {
+            double sum = 0, sq = 0;
+            for (const double x : xs) sum += std::abs(x), sq += x * x;
+            const double mean = sum / double(xs.size());
+            return std::make_pair(mean,
+                                  std::sqrt(std::max(0.0, sq / double(xs.size()) - mean * mean)));
+        };
+        const auto [lm, ls] = moments(lat);
+        const auto [om, os] = moments(lon);
+        const std::string mode =
+            run.effective && run.effective->read_string("formation", "mode", "") == "pixel"
+                ? "this run's moves, steered by the cameras (pixel mode)"
+                : "this run's moves (error-model mode)";
+        out +=
+            "<p>Per-step errors: each move's true end against the true anchor reflected "
+            "across the true base (a perfect triangle on the real beacons), along the base "
+            "(lateral) and across it (longitudinal); mean absolute value and standard "
+            "deviation.</p>\n<table><tr><th>source</th><th>steps</th><th>lateral mean (mm)"
+            "</th><th>lateral sd (mm)</th><th>longitudinal mean (mm)</th><th>longitudinal sd "
+            "(mm)</th></tr>\n<tr><td>seed 003 fig. 11 (60 lab runs)</td><td>60</td><td>36.0"
+            "</td><td>21.0</td><td>13.0</td><td>9.0</td></tr>\n<tr><td>" +
+            mode + "</td><td>" + std::to_string(lat.size()) + "</td><td>" + mm(lm) + "</td><td>" +
+            mm(ls) + "</td><td>" + mm(om) + "</td><td>" + mm(os) + "</td></tr>\n</table>\n";
+    }
     if (std::filesystem::exists(FormationExperimentFile::path(run.dir)))
         out += experimentSection(run.dir);
     return out;

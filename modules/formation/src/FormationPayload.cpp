@@ -3,6 +3,7 @@
 #include <mrloc/sim/Scanner.h>
 #include <mrpt/core/format.h>
 #include <mrpt/math/wrap2pi.h>
+#include <mrpt/obs/CObservationBearingRange.h>
 #include <mrpt/obs/CObservationComment.h>
 #include <mrpt/obs/CObservationOdometry.h>
 
@@ -96,6 +97,117 @@ double FormationPayload::headingError(const sim::Step& step) const {
                                 step.fleet.robot(m.robot).pose().phi());
 }
 
+CameraMoveOptions cameraMoveOptions(const FormationConfig& c) {
+    CameraMoveOptions o;
+    o.side = c.formation.side;
+    o.intrinsics = cameraIntrinsics(c.cameraFocal);
+    o.algorithmOne.side = c.formation.side;
+    o.algorithmOne.pixelTolerance = c.pixelTolerance;
+    o.algorithmOne.lateral = c.lateral;
+    o.algorithmOne.turnNoise = c.turnNoise;
+    o.algorithmOne.driveNoise = c.driveNoise;
+    o.gateStop = c.gateStop;
+    return o;
+}
+
+void FormationPayload::startCameraMove(sim::Step& step) {
+    const Move& m = *team_.current();
+    if (!camera_)
+        camera_ = std::make_unique<sim::PinholeCamera>(cameraIntrinsics(config_.cameraFocal));
+    const MarkerOptions markers;
+    scene_ = sim::makeWorldScene(step.world.options(), false);
+    for (size_t i = 0; i < robots_; ++i)
+        if (i != m.robot) addRobot(*scene_, step.fleet.robot(i).pose(), i, markers);
+    std::vector<double> headings;
+    for (size_t i = 0; i < robots_; ++i) headings.push_back(team_.believedHeading(i));
+    cameraMove_.emplace(m, team_.believed(), headings, cameraMoveOptions(config_));
+    maneuvers_.clear();
+    enqueue(cameraMove_->start(), step.rng);
+    driving_ = true;
+}
+
+void FormationPayload::enqueue(const std::vector<Maneuver>& maneuvers,
+                               mrpt::random::CRandomGenerator& rng) {
+    for (auto m : maneuvers) {  // each maneuver is done with its relative error
+        const double noise =
+            m.kind == Maneuver::Kind::Turn ? config_.turnNoise : config_.driveNoise;
+        m.amount *= 1 + noise * rng.drawGaussian1D_normalized();
+        maneuvers_.push_back(m);
+    }
+}
+
+void FormationPayload::executeManeuver(sim::Step& step) {
+    auto& robot = step.fleet.robot(team_.current()->robot);
+    while (!maneuvers_.empty() && std::abs(maneuvers_.front().amount) < 1e-12)
+        maneuvers_.pop_front();
+    if (maneuvers_.empty()) {
+        robot.stop();  // waits for the next frame's decision
+        return;
+    }
+    auto& m = maneuvers_.front();
+    const bool turn = m.kind == Maneuver::Kind::Turn;
+    const double cap = (turn ? config_.maxTurnRate : config_.speed()) * step.dt;
+    const double now = std::clamp(m.amount, -cap, cap);
+    robot.go();
+    if (turn)
+        robot.drive(0, now / step.dt);
+    else
+        robot.drive(now / step.dt, 0);
+    m.amount -= now;
+    if (std::abs(m.amount) < 1e-12) maneuvers_.pop_front();
+}
+
+void FormationPayload::cameraFrame(sim::Step& step) {
+    const auto& robot = step.fleet.robot(team_.current()->robot);
+    const bool front = cameraMove_->camera() == CameraMove::Camera::Front;
+    const MarkerOptions markers;
+    const auto pose = front ? frontCameraPose(robot.pose(), markers.bodySize, markers.tagHeight)
+                            : rearCameraPose(robot.pose(), markers.bodySize, markers.tagHeight);
+    const auto picture = camera_->render(*scene_, pose);
+    // full resolution: a far anchor seen edge-on shows two tags of about 25 px
+    const auto tags = detectMarkers(picture, 1);
+    // the frame's tags as bearings from the camera (MRPT's class for landmark sightings)
+    const auto& k = camera_->intrinsics();
+    auto obs = mrpt::obs::CObservationBearingRange::Create();
+    obs->sensorLabel = robot.options().name + (front ? ".front" : ".rear");
+    obs->timestamp = step.stamp;
+    obs->sensorLocationOnRobot =
+        mrpt::poses::CPose3D(front ? markers.bodySize / 2 : -markers.bodySize / 2, 0,
+                             markers.tagHeight, front ? 0 : M_PI, 0, 0);
+    obs->fieldOfView_yaw = float(2 * std::atan2(k.cx(), k.fx()));
+    obs->fieldOfView_pitch = float(2 * std::atan2(k.cy(), k.fy()));
+    for (const auto& t : tags) {
+        mrpt::obs::CObservationBearingRange::TMeasurement m;
+        m.range = 0;  // a monocular camera: no range
+        m.yaw = float(std::atan2(k.cx() - t.u, k.fx()));
+        m.pitch = float(std::atan2(k.cy() - t.v, k.fy()));
+        m.landmarkID = t.id;
+        obs->sensedData.push_back(m);
+    }
+    step.emit(obs);
+    enqueue(cameraMove_->decide(tags), step.rng);
+}
+
+void FormationPayload::arrive(sim::Step& step) {
+    const size_t mover = team_.current()->robot;
+    auto& robot = step.fleet.robot(mover);
+    robot.stop();
+    driving_ = false;
+    if (cameraMove_ && cameraMove_->lost()) {
+        auto lost = mrpt::obs::CObservationComment::Create();
+        lost->text = "formation: " + robot.options().name + " lost the beacons";
+        lost->timestamp = step.stamp;
+        step.emit(lost);
+    }
+    cameraMove_.reset();
+    emitScan(step, mover);  // from the new vertex, before the arrival: the next plan sees it
+    auto arrived = mrpt::obs::CObservationComment::Create();
+    arrived->sensorLabel = robot.options().name + ".arrived";
+    arrived->timestamp = step.stamp;
+    arrived->text = arrivalText(robot.options().name);
+    step.emit(arrived);  // the team plans the next move (onObservation)
+}
+
 void FormationPayload::command(sim::Step& step) {
     if (step.index == 0) {
         for (size_t i = 0; i < robots_; ++i) step.fleet.robot(i).stop();
@@ -107,6 +219,11 @@ void FormationPayload::command(sim::Step& step) {
         drLast_ = position(dr);
     }
     if (team_.state() != Team::State::Moving) return;
+    if (config_.mode == FormationConfig::Mode::Pixel) {
+        if (!driving_) startCameraMove(step);
+        executeManeuver(step);
+        return;
+    }
     if (!driving_) startMove(step);
     steer(step);
 }
@@ -135,6 +252,12 @@ void FormationPayload::sense(sim::Step& step) {
         for (size_t i = 0; i < robots_; ++i) emitScan(step, i);
     readDeadReckoning(step);
     if (!driving_) return;
+    if (config_.mode == FormationConfig::Mode::Pixel) {
+        if (!maneuvers_.empty()) return;  // still executing
+        if (cameraMove_->camera()) cameraFrame(step);
+        if (!cameraMove_->camera() && maneuvers_.empty()) arrive(step);
+        return;
+    }
     const size_t mover = team_.current()->robot;
     auto& robot = step.fleet.robot(mover);
     if (leg_ < path_.size()) {
@@ -142,14 +265,7 @@ void FormationPayload::sense(sim::Step& step) {
         ++leg_;
     }
     if (leg_ < path_.size() || std::abs(headingError(step)) > 1e-9) return;
-    robot.stop();
-    driving_ = false;
-    emitScan(step, mover);  // from the new vertex, before the arrival: the next plan sees it
-    auto arrived = mrpt::obs::CObservationComment::Create();
-    arrived->sensorLabel = robot.options().name + ".arrived";
-    arrived->timestamp = step.stamp;
-    arrived->text = arrivalText(robot.options().name);
-    step.emit(arrived);  // the team plans the next move (onObservation)
+    arrive(step);
 }
 
 }  // namespace mrloc::formation

@@ -82,6 +82,9 @@ void addRobot(mrpt::opengl::COpenGLScene& scene, const mrpt::poses::CPose2D& pos
         plane->enableTextureLinearInterpolation(true);  // smooth edges: sub-pixel corners
         // printed paper: the detector needs contrast, not shading
         plane->mrpt::opengl::CRenderizableShaderTexturedTriangles::enableLight(false);
+        // a tag is printed on one side: from behind, at a robot's corner, its back would cut
+        // into the white margin of the next side's tag and hide it from the detector
+        plane->cullFaces(mrpt::opengl::TCullFace::BACK);
         const auto c = markerCentre(pose, side, o);
         const double facing = pose.phi() + double(int(side)) * M_PI / 2;
         // The plane's +Z (its normal) outwards, its +X to the viewer's right, +Y up.
@@ -105,14 +108,18 @@ std::vector<MarkerSighting> detectMarkersArUco(const mrpt::img::CImage& picture)
         const double den = d1.x * d2.y - d1.y * d2.x;
         const double t = (w.x * d2.y - w.y * d2.x) / den;
         const double area = 0.5 * std::abs(d1.x * d2.y - d1.y * d2.x);  // a quad's, by diagonals
-        out.push_back({ids[i], c[0].x + t * d1.x, c[0].y + t * d1.y, std::sqrt(area)});
+        out.push_back({ids[i], c[0].x + t * d1.x, c[0].y + t * d1.y, std::sqrt(area),
+                       verticalEdgeHeight({mrpt::math::TPoint2D{c[0].x, c[0].y},
+                                           {c[1].x, c[1].y},
+                                           {c[2].x, c[2].y},
+                                           {c[3].x, c[3].y}})});
     }
     std::sort(out.begin(), out.end(),
               [](const MarkerSighting& a, const MarkerSighting& b) { return a.id < b.id; });
     return out;
 }
 
-std::vector<MarkerSighting> detectMarkers(const mrpt::img::CImage& picture) {
+std::vector<MarkerSighting> detectMarkers(const mrpt::img::CImage& picture, float decimate) {
     const cv::Mat gray = grayOf(picture);
     // One detector per thread, built once: the library's detector may not be shared across
     // threads, and building the family's decoding table costs more than a detection.
@@ -131,6 +138,7 @@ std::vector<MarkerSighting> detectMarkers(const mrpt::img::CImage& picture) {
     };
     thread_local AprilTag3 tags;
     apriltag_detector_t* detector = tags.detector;
+    detector->quad_decimate = decimate;
     image_u8_t im{gray.cols, gray.rows, int(gray.step), gray.data};
     zarray_t* detections = apriltag_detector_detect(detector, &im);
     std::vector<MarkerSighting> out;
@@ -139,12 +147,24 @@ std::vector<MarkerSighting> detectMarkers(const mrpt::img::CImage& picture) {
         zarray_get(detections, i, &d);
         const double e1x = d->p[2][0] - d->p[0][0], e1y = d->p[2][1] - d->p[0][1];
         const double e2x = d->p[3][0] - d->p[1][0], e2y = d->p[3][1] - d->p[1][1];
-        out.push_back({d->id, d->c[0], d->c[1], std::sqrt(0.5 * std::abs(e1x * e2y - e1y * e2x))});
+        out.push_back({d->id, d->c[0], d->c[1], std::sqrt(0.5 * std::abs(e1x * e2y - e1y * e2x)),
+                       verticalEdgeHeight({mrpt::math::TPoint2D{d->p[0][0], d->p[0][1]},
+                                           {d->p[1][0], d->p[1][1]},
+                                           {d->p[2][0], d->p[2][1]},
+                                           {d->p[3][0], d->p[3][1]}})});
     }
     apriltag_detections_destroy(detections);
     std::sort(out.begin(), out.end(),
               [](const MarkerSighting& a, const MarkerSighting& b) { return a.id < b.id; });
     return out;
+}
+
+double verticalEdgeHeight(const std::array<mrpt::math::TPoint2D, 4>& c) {
+    std::array<double, 4> rise;
+    for (size_t i = 0; i < 4; ++i) rise[i] = std::abs(c[(i + 1) % 4].y - c[i].y);
+    // opposite edges: (0, 2) and (1, 3); the pair that rises more is the vertical one
+    return rise[0] + rise[2] > rise[1] + rise[3] ? 0.5 * (rise[0] + rise[2])
+                                                 : 0.5 * (rise[1] + rise[3]);
 }
 
 std::optional<MarkerSighting> project(const mrpt::img::TCamera& k,
@@ -155,7 +175,7 @@ std::optional<MarkerSighting> project(const mrpt::img::TCamera& k,
     const double u = k.cx() + k.fx() * local.x / local.z;
     const double v = k.cy() + k.fy() * local.y / local.z;
     if (u < 0 || v < 0 || u >= double(k.ncols) || v >= double(k.nrows)) return std::nullopt;
-    return MarkerSighting{-1, u, v, 0};
+    return MarkerSighting{-1, u, v, 0, 0};
 }
 
 }  // namespace mrloc::formation

@@ -10,6 +10,7 @@
 #include <mrpt/random/RandomGenerators.h>
 
 #include <array>
+#include <optional>
 #include <vector>
 
 namespace mrloc::formation {
@@ -22,6 +23,16 @@ struct AlgorithmOneOptions {
     double turnNoise = 0.02;     ///< relative error of each turn (sd)
     double driveNoise = 0.02;    ///< relative error of each drive (sd)
     double cameraHeight = 0.13;  ///< m, the rear camera's height (the tags' centre)
+    /** The lateral condition (doc/formation.md):
+     *  - Paper: d_m1 = d_m2, the base beacons symmetric about the anchor in the image (seed
+     *    003 Algorithm 1). The camera axis then bisects the angle between the base beacons,
+     *    which meets the base beside its midpoint: an anchor off by d puts the vertex 2 d
+     *    the other way, and chained moves amplify the errors.
+     *  - Midpoint: the anchor in line with the base's midpoint M, whose image lies between
+     *    the base tags' at their depths' ratio (read from the tags' sizes against the sizes
+     *    the belief predicts). The vertex is then the reflection of the real anchor across
+     *    the real base: an anchor off by d puts it d the other way. */
+    enum class Lateral { Paper, Midpoint } lateral = Lateral::Paper;
 };
 
 /** The beacons: base b1, base b2 and the anchor as the formation believes them (the perfect
@@ -57,6 +68,43 @@ mrpt::img::TCamera cameraIntrinsics(double f);
  *  camera of a robot at the perfect vertex (the camera on its back face, bodySize / 2 behind
  *  its centre): f (side / 2) / (h - bodySize / 2). */
 double targetDisparity(const mrpt::img::TCamera& k, const MarkerOptions& markers, double side);
+
+/** One motion of a unicycle: a turn on the spot (rad, positive counter-clockwise) or a drive
+ *  along its heading (m, negative backwards). */
+struct Maneuver {
+    enum class Kind { Turn, Drive } kind = Kind::Turn;
+    double amount = 0;
+    static Maneuver turn(double angle) { return {Kind::Turn, angle}; }
+    static Maneuver drive(double distance) { return {Kind::Drive, distance}; }
+};
+
+/** The rear camera on the robot's back face, looking backwards, at `height`. */
+mrpt::poses::CPose3D rearCameraPose(const mrpt::poses::CPose2D& robot, double bodySize,
+                                    double height);
+/** The front camera on the robot's front face, looking ahead, at `height`. */
+mrpt::poses::CPose3D frontCameraPose(const mrpt::poses::CPose2D& robot, double bodySize,
+                                     double height);
+
+/** Seed 003 Algorithm 1's decisions, frame by frame: given the tags of the rear camera's
+ *  frame, the maneuvers to execute before the next frame. */
+class AlgorithmOneController {
+ public:
+    AlgorithmOneController(const BeaconTriangle& beacons, const mrpt::img::TCamera& k,
+                           const MarkerOptions& markers, const AlgorithmOneOptions& options);
+    /** Empty: every condition holds (converged). Nothing: a beacon is out of view. */
+    std::optional<std::vector<Maneuver>> decide(const std::vector<MarkerSighting>& tags);
+    double dm1() const { return dm1_; }  ///< px, the last lateral distances
+    double dm2() const { return dm2_; }
+
+ private:
+    BeaconTriangle beacons_;
+    mrpt::img::TCamera k_;
+    AlgorithmOneOptions o_;
+    double dt_ = 0, gain_ = 0, slope_ = 0;
+    std::array<std::array<double, 4>, 3> shift_{};  ///< px per beacon and side, tag -> centre
+    std::array<std::array<double, 4>, 3> size_{};   ///< px per beacon and side at the vertex
+    double dm1_ = 0, dm2_ = 0;
+};
 
 /** Runs Algorithm 1 from `start` (the robot's centre and heading) among `beacons` in
  *  `scene` (the beacons already added; the moving robot is not in its own view). */

@@ -2,6 +2,7 @@
 // Section [formation]: the formation method's options (keys and defaults in doc/ini.md).
 // The team, its route and its sensors for the simulator and the localizer, and the Monte
 // Carlo experiment of seed 003 sec. 5 (Table 1, figs. 14-15).
+#include <mrloc/formation/AlgorithmOne.h>
 #include <mrloc/formation/DeadReckoning.h>
 #include <mrloc/formation/March.h>
 #include <mrloc/sim/Scanner.h>
@@ -17,6 +18,9 @@ struct FormationConfig : public mrpt::config::CLoadableOptions {
      *  moves and Monte Carlo runs by time. */
     static constexpr long kMaxRobots = 146, kMaxMoves = 100000, kMaxRuns = 100000;
 
+    /** Where a move ends: drawn from the paper's per-step errors (Model), or where the
+     *  robot's cameras steer it, frame by frame (Pixel: CameraMove). */
+    enum class Mode { Model, Pixel } mode = Mode::Model;
     size_t robots = 4;                     ///< N >= 4, on initialStrip
     FormationOptions formation;            ///< side, safety margin
     TPoint2D origin{3, 3};                 ///< world position of the paper's (0, 0)
@@ -27,6 +31,14 @@ struct FormationConfig : public mrpt::config::CLoadableOptions {
     MarchOptions::Carry carry = MarchOptions::Carry::Base;
     VertexErrorModel vertexErrors;
     DeadReckoningOptions deadReckoning;
+    // The pixel mode's cameras and control (CameraMove, AlgorithmOne)
+    double cameraFocal = 485;   ///< px, 1280 x 720 front and rear cameras
+    double pixelTolerance = 2;  ///< px, Algorithm 1's conditions
+    /** Algorithm 1's lateral condition: ours by default (the paper's amplifies errors when
+     *  moves are chained; doc/formation.md). */
+    AlgorithmOneOptions::Lateral lateral = AlgorithmOneOptions::Lateral::Midpoint;
+    double gateStop = 0.8;                                 ///< m before a gate to centre again
+    double turnNoise = 0.02, driveNoise = 0.02;            ///< relative sd of each maneuver
     sim::ScannerOptions obstacleSensor{72, 0.01, 4.0, 0};  ///< rays, sigma, range (rate unused)
     double obstacleSensorHeight = 0.1;                     ///< m
     double obstacleCell = 0.1;  ///< m: detections are shared one per cell

@@ -20,6 +20,11 @@ struct FormationRunFile {
         TPoint2D believed;
         TPoint2D truth{std::numeric_limits<double>::quiet_NaN(),
                        std::numeric_limits<double>::quiet_NaN()};  ///< NaN: no ground truth
+        /** The step's own error (seed 003 fig. 11): the true end against the true anchor
+         *  reflected across the true base (the vertex of a perfect triangle on them), along
+         *  the true base (lateral) and across it (longitudinal); NaN without ground truth. */
+        double lateral = std::numeric_limits<double>::quiet_NaN();
+        double longitudinal = std::numeric_limits<double>::quiet_NaN();
         double error() const { return (truth - believed).norm(); }
     };
     std::vector<TPoint2D> route;  ///< world frame

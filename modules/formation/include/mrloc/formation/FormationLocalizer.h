@@ -31,6 +31,7 @@ class FormationLocalizer : public common::Localizer {
     std::optional<Team> team_;
     common::Trajectories estimates_;
     std::optional<TPoint2D> deadReckoned_;  ///< the dead-reckoning robot's estimate
+    size_t cameraLostMoves_ = 0;            ///< "formation: <robot> lost the beacons"
 };
 
 }  // namespace mrloc::formation

@@ -11,12 +11,20 @@
 //             estimate (dr.deadreckoning, a CObservationOdometry);
 //   onObservation  the team's on-board logic (Team) plans the next move.
 // Error-model mode: a move ends where the carry model and the paper's per-step errors put it
-// (moveEnd), among the real beacons.
+// (moveEnd), among the real beacons. Pixel mode: the moving robot's front and rear cameras
+// render the others (their tags) at every decision, AprilTag 3 finds the tags
+// (<robot>.front, <robot>.rear: CObservationBearingRange, one bearing per tag), and
+// CameraMove decides the next maneuvers, executed with their relative errors; a move whose
+// beacons left the view ends where the robot stands, with the message
+// "formation: <robot> lost the beacons".
+#include <mrloc/formation/CameraMove.h>
 #include <mrloc/formation/DeadReckoning.h>
 #include <mrloc/formation/FormationConfig.h>
 #include <mrloc/formation/Team.h>
 #include <mrloc/sim/Payload.h>
 
+#include <deque>
+#include <memory>
 #include <optional>
 
 namespace mrloc::formation {
@@ -45,6 +53,13 @@ class FormationPayload : public sim::Payload {
     /** How far the moving robot must turn to face away from the real anchor (rad). */
     double headingError(const sim::Step& step) const;
     void emitScan(sim::Step& step, size_t robot);
+    void arrive(sim::Step& step);
+    void startCameraMove(sim::Step& step);
+    /** The front maneuver's share of this step, ordered to the moving robot. */
+    void executeManeuver(sim::Step& step);
+    /** A frame of the moving robot's camera, its tags written and decided on. */
+    void cameraFrame(sim::Step& step);
+    void enqueue(const std::vector<Maneuver>& maneuvers, mrpt::random::CRandomGenerator& rng);
 
     FormationConfig config_;
     Team team_;
@@ -56,6 +71,11 @@ class FormationPayload : public sim::Payload {
     std::optional<DeadReckoner> deadReckoner_;
     TPoint2D drLast_;      ///< where the dead-reckoning robot was at its last reading
     bool drDone_ = false;  ///< it reached the destination: its run ended
+    // pixel mode
+    std::unique_ptr<sim::PinholeCamera> camera_;
+    mrpt::opengl::COpenGLScene::Ptr scene_;  ///< every robot but the mover, with its tags
+    std::optional<CameraMove> cameraMove_;
+    std::deque<Maneuver> maneuvers_;  ///< to execute, real amounts (errors drawn)
 };
 
 }  // namespace mrloc::formation

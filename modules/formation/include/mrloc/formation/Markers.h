@@ -5,11 +5,13 @@
 // Algorithm 1 then works on the centres' lateral pixel distances.
 #include <mrpt/img/CImage.h>
 #include <mrpt/img/TCamera.h>
+#include <mrpt/math/TPoint2D.h>
 #include <mrpt/math/TPoint3D.h>
 #include <mrpt/opengl/COpenGLScene.h>
 #include <mrpt/poses/CPose2D.h>
 #include <mrpt/poses/CPose3D.h>
 
+#include <array>
 #include <optional>
 #include <vector>
 
@@ -42,15 +44,24 @@ struct MarkerSighting {
     int id = -1;
     double u = 0, v = 0;
     double size = 0;
+    /** The mean of its two most vertical edges' heights (px): f tagSize / depth for an
+     *  upright tag, whatever the angle it is seen at (a turn foreshortens its width, not its
+     *  height). */
+    double height = 0;
 };
 
-/** The AprilTag 36h11 tags in a picture, ordered by id, by the AprilTag 3 library (the
+/** `decimate`: the detector's quad decimation (2: its quads found on a half-size picture,
+ *  faster; 1: small tags too, such as a far robot seen edge-on).
+ *  The AprilTag 36h11 tags in a picture, ordered by id, by the AprilTag 3 library (the
  *  centre: the tag's homography at its origin). It measured better than ArUco on our frames:
  *  5x smaller centre errors, more tags found, faster (doc/formation.md). */
-std::vector<MarkerSighting> detectMarkers(const mrpt::img::CImage& picture);
+std::vector<MarkerSighting> detectMarkers(const mrpt::img::CImage& picture, float decimate = 2);
 /** The same by OpenCV's ArUco module (DICT_APRILTAG_36h11; the centre: the crossing of the
  *  diagonals), kept to measure the two against each other. */
 std::vector<MarkerSighting> detectMarkersArUco(const mrpt::img::CImage& picture);
+
+/** The mean height (px) of the two edges of a quad (corners in order) that rise most. */
+double verticalEdgeHeight(const std::array<mrpt::math::TPoint2D, 4>& corners);
 
 /** Where a world point falls in a picture from a camera at `cameraPose`
  *  (sim::cameraPoseLooking) with intrinsics k (no distortion); nothing if behind it or

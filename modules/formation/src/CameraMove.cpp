@@ -1,0 +1,161 @@
+#include <mrloc/common/Error.h>
+#include <mrloc/formation/CameraMove.h>
+#include <mrpt/math/wrap2pi.h>
+
+#include <array>
+#include <cmath>
+
+namespace mrloc::formation {
+
+namespace {
+/** When Algorithm 1 misses a beacon, steps along the heading (m) that look from nearby
+ *  viewpoints in turn and come back to where it started. */
+constexpr std::array<double, 5> kRecovery{0.03, -0.06, 0.09, -0.12, 0.06};
+}  // namespace
+
+CameraMove::CameraMove(const Move& move, const std::vector<TPoint2D>& believed,
+                       const std::vector<double>& headings, const CameraMoveOptions& o)
+    : move_(move), o_(o), anchor_(believed.at(move.anchor)) {
+    at_ = believed.at(move.robot);
+    heading_ = headings.at(move.robot);
+    // Algorithm 2's midpoints: which two beacons each lies between
+    const std::array<size_t, 3> b{move.base[0], move.base[1], move.anchor};
+    for (size_t p = 0; p + 1 < move.path.size(); ++p) {
+        double best = INFINITY;
+        std::array<size_t, 2> pair{};
+        for (size_t i = 0; i < 3; ++i)
+            for (size_t j = i + 1; j < 3; ++j) {
+                const double d = ((believed[b[i]] + believed[b[j]]) * 0.5 - move.path[p]).norm();
+                if (d < best) best = d, pair = {b[i], b[j]};
+            }
+        gates_.push_back(pair);
+        gatePoints_.push_back(move.path[p]);
+    }
+    if (gates_.empty()) throw Error("formation: a move's path has no gate between beacons");
+    BeaconTriangle triangle;
+    for (size_t i = 0; i < 3; ++i) {
+        triangle.pose[i] = mrpt::poses::CPose2D(believed[b[i]].x, believed[b[i]].y, headings[b[i]]);
+        triangle.robot[i] = b[i];
+    }
+    algorithmOne_.emplace(triangle, o.intrinsics, o.markers, o.algorithmOne);
+}
+
+std::vector<Maneuver> CameraMove::order(std::vector<Maneuver> maneuvers) {
+    for (const auto& m : maneuvers) {
+        if (m.kind == Maneuver::Kind::Turn)
+            heading_ = mrpt::math::wrapToPi(heading_ + m.amount);
+        else
+            at_ = at_ + TPoint2D{std::cos(heading_), std::sin(heading_)} * m.amount;
+    }
+    return maneuvers;
+}
+
+std::vector<Maneuver> CameraMove::towards(const TPoint2D& p) {
+    return order(
+        {Maneuver::turn(mrpt::math::wrapToPi(std::atan2(p.y - at_.y, p.x - at_.x) - heading_))});
+}
+
+std::vector<Maneuver> CameraMove::start() { return towards(gatePoints_[0]); }
+
+std::optional<CameraMove::Camera> CameraMove::camera() const {
+    switch (phase_) {
+        case Phase::Gate:
+            return Camera::Front;
+        case Phase::FaceAway:
+        case Phase::AlgorithmOne:
+            return Camera::Rear;
+        default:
+            return std::nullopt;
+    }
+}
+
+std::optional<MarkerSighting> CameraMove::largestTag(
+    size_t robot, const std::vector<MarkerSighting>& tags) const {
+    std::optional<MarkerSighting> best;
+    for (const auto& t : tags)
+        if (size_t(t.id / 4) == robot && (!best || t.size > best->size)) best = t;
+    return best;
+}
+
+std::vector<Maneuver> CameraMove::gatePassed() {
+    at_ = gatePoints_[gate_];  // the camera put it there
+    if (++gate_ < gates_.size()) return towards(gatePoints_[gate_]);
+    // building the triangle: the rear camera onto the anchor, the believed way first
+    phase_ = Phase::FaceAway;
+    const TPoint2D away = at_ * 2 - anchor_;
+    return towards(away);
+}
+
+std::vector<Maneuver> CameraMove::finishBlind() {
+    phase_ = Phase::Lost;
+    std::vector<Maneuver> m;
+    if ((move_.target - at_).norm() > 0.01) {
+        m = towards(move_.target);
+        auto drive = order({Maneuver::drive((move_.target - at_).norm())});
+        m.insert(m.end(), drive.begin(), drive.end());
+    }
+    auto face = towards(at_ * 2 - anchor_);  // away from the anchor, as Algorithm 1 leaves it
+    m.insert(m.end(), face.begin(), face.end());
+    return m;
+}
+
+std::vector<Maneuver> CameraMove::decide(const std::vector<MarkerSighting>& tags) {
+    if (!camera()) return {};
+    if (++frames_ > o_.maxFrames) return finishBlind();
+    const double f = o_.intrinsics.fx(), cx = o_.intrinsics.cx();
+    switch (phase_) {
+        case Phase::Gate: {
+            const auto a = largestTag(gates_[gate_][0], tags),
+                       b = largestTag(gates_[gate_][1], tags);
+            const double believed = (gatePoints_[gate_] - at_).norm();
+            if (!a || !b) {  // not both in view: the believed geometry
+                ++blindGates_;
+                auto m = order({Maneuver::drive(believed)});
+                auto next = gatePassed();
+                m.insert(m.end(), next.begin(), next.end());
+                return m;
+            }
+            const double centre = 0.5 * (a->u + b->u) - cx;
+            if (std::abs(centre) > o_.gateTolerance)  // a point right of centre: turn right
+                return order({Maneuver::turn(-std::atan2(centre, f))});
+            // beacons s apart at depth D show f s / D apart; the tags face the robot, half a
+            // body nearer than the robots' centres
+            const double D = f * o_.side / std::abs(a->u - b->u) + o_.markers.bodySize / 2;
+            if (D > o_.gateStop + 0.15) return order({Maneuver::drive(D - o_.gateStop)});
+            auto m = order({Maneuver::drive(D)});
+            auto next = gatePassed();
+            m.insert(m.end(), next.begin(), next.end());
+            return m;
+        }
+        case Phase::FaceAway: {
+            const auto anchor = largestTag(move_.anchor, tags);
+            if (!anchor) return finishBlind();
+            const double e = anchor->u - cx;
+            if (std::abs(e) > o_.algorithmOne.pixelTolerance)
+                return order({Maneuver::turn(-std::atan2(e, f))});
+            phase_ = Phase::AlgorithmOne;  // out to the vertex, then Algorithm 1
+            return order({Maneuver::drive((move_.target - at_).norm())});
+        }
+        case Phase::AlgorithmOne: {
+            const auto m = algorithmOne_->decide(tags);
+            if (!m && recoveries_ < int(kRecovery.size()) - 1) {
+                // a beacon's tag was not found (seen edge-on, or its margin cut by the next
+                // side's tag at a robot's corner): look again from a step away
+                return order({Maneuver::drive(kRecovery[size_t(recoveries_++)])});
+            }
+            if (!m) {  // back where the search started, and on by the belief
+                auto back = order({Maneuver::drive(kRecovery.back())});
+                auto rest = finishBlind();
+                back.insert(back.end(), rest.begin(), rest.end());
+                return back;
+            }
+            recoveries_ = 0;
+            if (m->empty()) phase_ = Phase::Done;
+            return order(*m);
+        }
+        default:
+            return {};
+    }
+}
+
+}  // namespace mrloc::formation
