@@ -179,9 +179,9 @@ TEST(MrlocFormation, PixelModeMarchIsSteeredByTheCamerasAndTheMidpointRuleBeatsT
     EXPECT_EQ(m["formation"]["camera_lost_moves"], 0);
     const auto run = formation::FormationRunFile::read(out);
     ASSERT_EQ(run.moves.size(), 11u);
-    // Measured: each step within 5.6 mm laterally and 10.8 mm longitudinally of the vertex a
-    // perfect triangle on the real beacons gives; the last mover 48 mm off. Bounds about 40 %
-    // above (the maneuvers' 2 % errors change with the seed).
+    // Measured: each step within 5.8 mm laterally and 7.2 mm longitudinally of the vertex a
+    // perfect triangle on the real beacons gives; the last mover 42 mm off. Bounds with a
+    // margin of about 2 (15 mm, 0.07 m): the maneuvers' 2 % errors change with the seed.
     for (const auto& mv : run.moves) {
         EXPECT_LT(std::abs(mv.lateral), 0.015) << mv.robot << " " << mv.time;
         EXPECT_LT(std::abs(mv.longitudinal), 0.015) << mv.robot << " " << mv.time;
@@ -193,6 +193,19 @@ TEST(MrlocFormation, PixelModeMarchIsSteeredByTheCamerasAndTheMidpointRuleBeatsT
     EXPECT_NE(info.output.find("f1.front"), std::string::npos) << info.output;
     EXPECT_NE(info.output.find("f2.rear"), std::string::npos) << info.output;
     EXPECT_NE(info.output.find("CObservationBearingRange"), std::string::npos);
+    // The same march 30 m from the world's origin: each frame is drawn about the moving robot
+    // (the renderer's single precision let a robot's body show through its tags that far out:
+    // without it, moves lost their beacons).
+    {
+        std::string ini = writeIniFrom(config("formation_pixel"), "formation_pixel_far",
+                                       "origin          = 3 3", "origin = 30 30");
+        ini = writeIniFrom(ini, "formation_pixel_far", "size       = 17 8 1", "size = 44 35 1");
+        const std::string far = tmp("formation_pixel_far");
+        ASSERT_EQ(mrlocCmd("run " + ini + " -q --out " + far).code, 0);
+        const auto j = common::loadJson(far + "/metrics.json")["formation"];
+        EXPECT_EQ(j["camera_lost_moves"], 0) << j.dump(2);
+        EXPECT_LT(j["final_error_m"].get<double>(), 0.07);
+    }
     // ... and `mrloc localize` on it reaches the same moves.
     const std::string again = tmp("formation_pixel_replay");
     ASSERT_EQ(mrlocCmd("localize " + config("formation_pixel") + " " + out +
@@ -202,27 +215,27 @@ TEST(MrlocFormation, PixelModeMarchIsSteeredByTheCamerasAndTheMidpointRuleBeatsT
     EXPECT_EQ(slurp(out + "/formation.run.txt"), slurp(again + "/formation.run.txt"));
 
     // The paper's lateral condition (d_m1 = d_m2) puts the vertex twice the anchor's error
-    // the other way; chained, the errors grow at every move. On a 13.5 m route (17 moves)
-    // measured: the last mover 0.58 m off with the paper's rule, 0.093 m with the midpoint
-    // rule.
+    // the other way; chained, the errors grow faster at every move. On a 19.5 m route (25
+    // moves) measured: the last mover 0.93 m off with the paper's rule (1.34 m at worst on the
+    // way), 0.146 m with the midpoint rule.
     const auto longer = [&](const std::string& rule) {
         std::string ini =
             writeIniFrom(config("formation_pixel"), "formation_pixel_" + rule,
                          "mode            = pixel", "mode = pixel\nalgorithm_one = " + rule);
         ini = writeIniFrom(ini, "formation_pixel_" + rule, "1.5 0.65   10.5 0.65",
-                           "1.5 0.65 15 0.65");
+                           "1.5 0.65 21 0.65");
         ini = writeIniFrom(ini, "formation_pixel_" + rule, "duration          = 300",
-                           "duration = 600");
-        ini = writeIniFrom(ini, "formation_pixel_" + rule, "size       = 17 8 1", "size = 23 8 1");
+                           "duration = 900");
+        ini = writeIniFrom(ini, "formation_pixel_" + rule, "size       = 17 8 1", "size = 29 8 1");
         const std::string dir = tmp("formation_pixel_" + rule);
         EXPECT_EQ(mrlocCmd("run " + ini + " -q --out " + dir).code, 0);
         const auto j = common::loadJson(dir + "/metrics.json")["formation"];
-        EXPECT_EQ(j["moves"], 17) << rule;
+        EXPECT_EQ(j["moves"], 25) << rule;
         return j["final_error_m"].get<double>();
     };
     const double ours = longer("midpoint"), paper = longer("paper");
-    std::cout << "pixel mode, 17 moves, the last mover's error: midpoint rule " << ours
+    std::cout << "pixel mode, 25 moves, the last mover's error: midpoint rule " << ours
               << " m, the paper's " << paper << " m\n";
-    EXPECT_LT(ours, 0.14);
+    EXPECT_LT(ours, 0.2);
     EXPECT_GT(paper, 3 * ours);
 }

@@ -115,9 +115,13 @@ void FormationPayload::startCameraMove(sim::Step& step) {
     if (!camera_)
         camera_ = std::make_unique<sim::PinholeCamera>(cameraIntrinsics(config_.cameraFocal));
     const MarkerOptions markers;
+    // The scene is drawn about the moving robot: the renderer works in single precision, and
+    // 30 m from the origin a robot's body (2 cm behind its tags) showed through them.
+    sceneOrigin_ = mrpt::poses::CPose2D(step.fleet.robot(m.robot).pose().x(),
+                                        step.fleet.robot(m.robot).pose().y(), 0);
     scene_ = sim::makeWorldScene(step.world.options(), false);
     for (size_t i = 0; i < robots_; ++i)
-        if (i != m.robot) addRobot(*scene_, step.fleet.robot(i).pose(), i, markers);
+        if (i != m.robot) addRobot(*scene_, step.fleet.robot(i).pose() - sceneOrigin_, i, markers);
     std::vector<double> headings;
     for (size_t i = 0; i < robots_; ++i) headings.push_back(team_.believedHeading(i));
     cameraMove_.emplace(m, team_.believed(), headings, cameraMoveOptions(config_));
@@ -161,8 +165,9 @@ void FormationPayload::cameraFrame(sim::Step& step) {
     const auto& robot = step.fleet.robot(team_.current()->robot);
     const bool front = cameraMove_->camera() == CameraMove::Camera::Front;
     const MarkerOptions markers;
-    const auto pose = front ? frontCameraPose(robot.pose(), markers.bodySize, markers.tagHeight)
-                            : rearCameraPose(robot.pose(), markers.bodySize, markers.tagHeight);
+    const auto local = robot.pose() - sceneOrigin_;  // in the scene's frame
+    const auto pose = front ? frontCameraPose(local, markers.bodySize, markers.tagHeight)
+                            : rearCameraPose(local, markers.bodySize, markers.tagHeight);
     const auto picture = camera_->render(*scene_, pose);
     // full resolution: a far anchor seen edge-on shows two tags of about 25 px
     const auto tags = detectMarkers(picture, 1);

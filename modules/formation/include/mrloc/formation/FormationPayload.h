@@ -74,6 +74,7 @@ class FormationPayload : public sim::Payload {
     // pixel mode
     std::unique_ptr<sim::PinholeCamera> camera_;
     mrpt::opengl::COpenGLScene::Ptr scene_;  ///< every robot but the mover, with its tags
+    mrpt::poses::CPose2D sceneOrigin_;       ///< the scene's origin in the world: the mover
     std::optional<CameraMove> cameraMove_;
     std::deque<Maneuver> maneuvers_;  ///< to execute, real amounts (errors drawn)
 };
