@@ -221,6 +221,9 @@ void FormationPayload::command(sim::Step& step) {
         route.erase(route.begin());
         dr.setWaypoints(route, false);
         deadReckoner_.emplace(config_.deadReckoning, config_.wheelRadius, position(dr));
+        drRouteLength_ = 0;
+        for (size_t k = 0; k < route.size(); ++k)
+            drRouteLength_ += (route[k] - (k == 0 ? position(dr) : route[k - 1])).norm();
         drLast_ = position(dr);
     }
     if (team_.state() != Team::State::Moving) return;
@@ -238,6 +241,7 @@ void FormationPayload::readDeadReckoning(sim::Step& step) {
     const auto& robot = step.fleet.robot(robots_);
     const TPoint2D at = position(robot);
     if (step.index > 0) deadReckoner_->update(robot.pose().phi(), (at - drLast_).norm(), step.rng);
+    drTravelled_ += (at - drLast_).norm();
     drLast_ = at;
     auto odo = mrpt::obs::CObservationOdometry::Create();
     odo->sensorLabel = kDeadReckoningLabel;
@@ -249,7 +253,9 @@ void FormationPayload::readDeadReckoning(sim::Step& step) {
     odo->velocityLocal = {step.index > 0 ? deadReckoner_->sensedSpeed() : 0.0, 0, 0};
     step.emit(odo);
     const auto& goal = robot.options().waypoints.back();
-    drDone_ = std::hypot(goal.x - at.x, goal.y - at.y) < robot.arrivalRadius(step.dt);
+    // at the destination, once it has driven most of the way (a patrol ends where it starts)
+    drDone_ = std::hypot(goal.x - at.x, goal.y - at.y) < robot.arrivalRadius(step.dt) &&
+              drTravelled_ > 0.5 * drRouteLength_;
 }
 
 void FormationPayload::sense(sim::Step& step) {

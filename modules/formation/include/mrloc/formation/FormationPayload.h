@@ -71,6 +71,7 @@ class FormationPayload : public sim::Payload {
     std::optional<DeadReckoner> deadReckoner_;
     TPoint2D drLast_;      ///< where the dead-reckoning robot was at its last reading
     bool drDone_ = false;  ///< it reached the destination: its run ended
+    double drTravelled_ = 0, drRouteLength_ = 0;  ///< m, truly driven and the route's length
     // pixel mode
     std::unique_ptr<sim::PinholeCamera> camera_;
     mrpt::opengl::COpenGLScene::Ptr scene_;  ///< every robot but the mover, with its tags
