@@ -9,14 +9,6 @@ namespace mrloc::formation {
 
 namespace {
 
-/** Mean and sd of |x| over the samples. */
-std::pair<double, double> absMoments(const std::vector<double>& xs) {
-    double sum = 0, sq = 0;
-    for (const double x : xs) sum += std::abs(x), sq += x * x;
-    const double n = double(xs.size()), mean = sum / n;
-    return {mean, std::sqrt(std::max(0.0, sq / n - mean * mean))};
-}
-
 /** A dead-reckoning curve point every this many seconds (fig. 14). */
 constexpr double kCurveStep = 5;
 

@@ -11,6 +11,13 @@ namespace mrloc::formation {
 
 using common::formatNumber;
 
+std::pair<double, double> absMoments(const std::vector<double>& xs) {
+    double sum = 0, sq = 0;
+    for (const double x : xs) sum += std::abs(x), sq += x * x;
+    const double n = double(xs.size()), mean = sum / n;
+    return {mean, std::sqrt(std::max(0.0, sq / n - mean * mean))};
+}
+
 FormationRunFile FormationRunFile::fromRun(const Team& team, const common::Trajectories& estimates,
                                            const common::Trajectories& truth) {
     FormationRunFile f;

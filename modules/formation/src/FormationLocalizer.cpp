@@ -47,8 +47,7 @@ void FormationLocalizer::saveConfig(mrpt::config::CConfigFileBase& target) const
 void FormationLocalizer::process(const mrpt::obs::CObservation::Ptr& obs) {
     const double t = mrpt::Clock::toDouble(obs->timestamp);
     if (const auto c = std::dynamic_pointer_cast<mrpt::obs::CObservationComment>(obs);
-        c && c->text.size() > 19 &&
-        c->text.compare(c->text.size() - 17, 17, " lost the beacons") == 0)
+        c && isLostBeaconsText(c->text))
         ++cameraLostMoves_;
     if (obs->sensorLabel == kDeadReckoningLabel) {
         const auto odo = std::dynamic_pointer_cast<mrpt::obs::CObservationOdometry>(obs);

@@ -237,15 +237,8 @@ std::string formationSection(const report::RunView& run) {
     for (const auto& mv : f.moves)
         if (std::isfinite(mv.lateral)) lat.push_back(mv.lateral), lon.push_back(mv.longitudinal);
     if (!lat.empty()) {
-        const auto moments = [](const std::vector<double>& xs) {
-            double sum = 0, sq = 0;
-            for (const double x : xs) sum += std::abs(x), sq += x * x;
-            const double mean = sum / double(xs.size());
-            return std::make_pair(mean,
-                                  std::sqrt(std::max(0.0, sq / double(xs.size()) - mean * mean)));
-        };
-        const auto [lm, ls] = moments(lat);
-        const auto [om, os] = moments(lon);
+        const auto [lm, ls] = absMoments(lat);
+        const auto [om, os] = absMoments(lon);
         const std::string mode =
             run.effective && run.effective->read_string("formation", "mode", "") == "pixel"
                 ? "this run's moves, steered by the cameras (pixel mode)"

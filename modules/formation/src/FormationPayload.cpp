@@ -200,7 +200,7 @@ void FormationPayload::arrive(sim::Step& step) {
     driving_ = false;
     if (cameraMove_ && cameraMove_->lost()) {
         auto lost = mrpt::obs::CObservationComment::Create();
-        lost->text = "formation: " + robot.options().name + " lost the beacons";
+        lost->text = lostBeaconsText(robot.options().name);
         lost->timestamp = step.stamp;
         step.emit(lost);
     }

@@ -7,18 +7,25 @@
 
 #include <algorithm>
 #include <cmath>
+#include <optional>
 
 namespace mrloc::formation {
 
 namespace {
 
-/** "formation: <robot> arrived" -> "<robot>.arrived"; anything else -> "". */
-std::string arrivedLabel(const std::string& text) {
-    const std::string head = "formation: ", tail = " arrived";
+/** "formation: <robot><tail>" -> "<robot>"; anything else -> nothing. */
+std::optional<std::string> messageRobot(const std::string& text, const std::string& tail) {
+    const std::string head = "formation: ";
     if (text.size() <= head.size() + tail.size() || text.compare(0, head.size(), head) != 0 ||
         text.compare(text.size() - tail.size(), tail.size(), tail) != 0)
-        return "";
-    return text.substr(head.size(), text.size() - head.size() - tail.size()) + ".arrived";
+        return std::nullopt;
+    return text.substr(head.size(), text.size() - head.size() - tail.size());
+}
+
+/** "formation: <robot> arrived" -> "<robot>.arrived"; anything else -> "". */
+std::string arrivedLabel(const std::string& text) {
+    const auto robot = messageRobot(text, " arrived");
+    return robot ? *robot + ".arrived" : "";
 }
 
 /** The heading a move leaves its robot with: facing away from the anchor, its rear camera
@@ -53,9 +60,15 @@ std::optional<size_t> Team::indexOf(const std::string& name) const {
     return size_t(it - options_.names.begin());
 }
 
-std::vector<Obstacle> Team::obstacles() const { return obstacles_; }
-
 std::string arrivalText(const std::string& robot) { return "formation: " + robot + " arrived"; }
+
+std::string lostBeaconsText(const std::string& robot) {
+    return "formation: " + robot + " lost the beacons";
+}
+
+bool isLostBeaconsText(const std::string& text) {
+    return messageRobot(text, " lost the beacons").has_value();
+}
 
 bool Team::observe(const mrpt::obs::CObservation::Ptr& obs) {
     // MRPT stores a comment's text and time, not its label: the text names the robot

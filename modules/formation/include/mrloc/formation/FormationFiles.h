@@ -9,6 +9,7 @@
 
 #include <limits>
 #include <string>
+#include <utility>
 #include <vector>
 
 namespace mrloc::formation {
@@ -42,6 +43,9 @@ struct FormationRunFile {
     /** Throws mrloc::Error naming the file and line on a malformed line. */
     static FormationRunFile read(const std::string& dir);
 };
+
+/** Mean and standard deviation of |x| over the samples (seed 003 fig. 11's measures). */
+std::pair<double, double> absMoments(const std::vector<double>& xs);
 
 struct FormationExperimentFile {
     /** Seed 003 Table 1: the mean error at the destination over the runs. */

@@ -39,6 +39,10 @@ struct MoveEvent {
 
 /** The arrival message's text. */
 std::string arrivalText(const std::string& robot);
+/** The text of the message a moving robot sends when its cameras lost the beacons and it
+ *  finished the move by the belief (pixel mode), and its test. */
+std::string lostBeaconsText(const std::string& robot);
+bool isLostBeaconsText(const std::string& text);
 
 class Team {
  public:
@@ -57,7 +61,7 @@ class Team {
     double believedHeading(size_t robot) const { return heading_.at(robot); }
     const std::vector<MoveEvent>& moves() const { return moves_; }
     /** Every shared detection, one per cell, in the order first seen. */
-    std::vector<Obstacle> obstacles() const;
+    const std::vector<Obstacle>& obstacles() const { return obstacles_; }
     /** Index of a robot's name, if it is one of the team's. */
     std::optional<size_t> indexOf(const std::string& name) const;
     const TeamOptions& options() const { return options_; }
