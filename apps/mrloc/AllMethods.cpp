@@ -3,6 +3,7 @@
 
 #include <mrloc/beacons/BeaconsMethod.h>
 #include <mrloc/formation/FormationMethod.h>
+#include <mrloc/framesync/FramesyncMethod.h>
 #include <mrloc/omnivision/OmniMethod.h>
 #include <mrloc/polymap/PolymapMethod.h>
 
@@ -13,6 +14,7 @@ void registerAllMethods(method::Registry& registry) {
     polymap::registerMethod(registry);
     omnivision::registerMethod(registry);
     formation::registerMethod(registry);
+    framesync::registerMethod(registry);
 }
 
 }  // namespace mrloc::app

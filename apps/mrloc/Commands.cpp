@@ -46,8 +46,7 @@ std::string readIniText(const std::string& path) {
 /** Opens an INI and rejects lower-case sections that no registered method nor the
  *  framework owns (a misspelt section would otherwise be ignored). Sections of MRPT's apps
  *  start with upper case and are left alone. */
-std::unique_ptr<mrpt::config::CConfigFile> openIni(const std::string& path,
-                                                   const std::string& text,
+std::unique_ptr<mrpt::config::CConfigFile> openIni(const std::string& path, const std::string& text,
                                                    const method::Registry& registry) {
     // mrloc's sections are checked line by line; MRPT's are left as MRPT reads them.
     common::lintIni(text, path, [](const std::string& section) {
@@ -108,6 +107,17 @@ Setup loadSetupUnguarded(const method::Registry& registry, const std::string& in
     if (seed) {
         if (*seed < 0) throw Error("--seed must be non-negative");
         s.scenario.seed = (unsigned long)*seed;
+    }
+    if (!s.ini->keyExists("scenario", "method")) {
+        // no [scenario] method: the one method whose section the INI holds, if exactly one
+        std::vector<std::string> owners;
+        for (const auto& name : registry.names())
+            for (const auto& section : registry.get(name).sections)
+                if (s.ini->sectionExists(section)) {
+                    owners.push_back(name);
+                    break;
+                }
+        if (owners.size() == 1) s.scenario.method = owners.front();
     }
     s.method = &registry.get(s.scenario.method);
     s.localizer = s.method->localizer();
@@ -288,8 +298,9 @@ int simulate(const method::Registry& registry, int argc, char** argv) {
 
 int localize(const method::Registry& registry, int argc, char** argv) {
     TCLAP::CmdLine cmd(
-        "mrloc localize: run the INI's method ([scenario] method, default "
-        "'beacons') on any MRPT rawlog, in either rawlog format. Ground truth "
+        "mrloc localize: run the INI's method ([scenario] method; without it, the "
+        "method whose section the INI holds, else 'beacons') on any MRPT rawlog, in "
+        "either rawlog format. Ground truth "
         "is taken from <rawlog stem>.<robot>.gt.txt when present.",
         ' ', kVersion);
     TCLAP::UnlabeledValueArg<std::string> iniArg("ini", "INI file", true, "", "INI", cmd);

@@ -191,7 +191,8 @@ TEST(MrlocErrors, BadValuesSectionsAndFiles) {
         {"[sensors]", "[sensor]", "[sensor]: unknown section"},
         {"beacon_4 = 0.0 3.0 2.5", "beacon_4 = 0.0 9.0 2.5", "[beacons] beacon_4: position"},
         {"method   = beacons", "method = magic",
-         "unknown localization method 'magic' (known: beacons, formation, omnivision, polymap)"},
+         "unknown localization method 'magic' (known: beacons, formation, framesync, omnivision, "
+         "polymap)"},
         {"robots   = r1", "robots   = r1 r2", "robot 'r2' has no section [robot.r2]"},
         {"start     = 0.5 0.5 0", "start = 0.5 nan 0",
          "[robot.r1] start: expected a finite number"},

@@ -2,6 +2,7 @@
 #include <gtest/gtest.h>
 #include <mrloc/common/Error.h>
 #include <mrloc/common/Rawlog.h>
+#include <mrloc/sim/Sensors.h>
 #include <mrloc/sim/Simulator.h>
 #include <mrpt/config/CConfigFileMemory.h>
 
@@ -92,4 +93,68 @@ TEST(Robot, ActuationNoiseIsDrawnOnlyWhenAskedFor) {
     const double mean = sum / n, sd = std::sqrt(sum2 / n - mean * mean);
     EXPECT_NEAR(mean, 1.0, 0.01);  // 4.5 standard errors of 0.1 / sqrt(2000)
     EXPECT_NEAR(sd, 0.1, 0.01);
+}
+
+TEST(Odometry, SystematicErrorsScaleDistancesAndDriftTheHeading) {
+    auto cfg = config();
+    auto& o = cfg.robots[0];
+    o.start = mrpt::poses::CPose2D(0, 0, 0);
+    o.odometrySigmaXY = o.odometrySigmaPhi = o.odometrySigmaPhiPerMetre = 0;
+    o.odometryScaleError = 0.01;          // wheels 1 % larger than believed
+    o.odometryHeadingDrift = M_PI / 180;  // 1 deg per metre
+    mrpt::random::CRandomGenerator rng(1), untouched(1);
+    sim::OdometrySensor odometer(o, rng);
+    EXPECT_EQ(rng.drawUniform32bit(), untouched.drawUniform32bit());  // no sigma: no draw
+    // 2 m straight in 1 cm steps: 2.02 m read, the heading 2 deg off
+    for (int k = 0; k < 200; ++k) odometer.accumulate(mrpt::poses::CPose2D(0.01, 0, 0), rng);
+    const auto read = odometer.read("r.odom", mrpt::Clock::now())->odometry;
+    EXPECT_NEAR(read.phi(), 2 * M_PI / 180, 1e-12);
+    // the path bends by the drift: its length is 2.02 m, its chord a little less
+    EXPECT_NEAR(std::hypot(read.x(), read.y()), 2.02 * (1 - std::pow(M_PI / 90, 2) / 24), 1e-5);
+    // with sigmas the errors are drawn once, in order: scale, then drift
+    o.odometryScaleErrorSigma = 0.005;
+    o.odometryHeadingDriftSigma = 0.001;
+    mrpt::random::CRandomGenerator g(9), h(9);
+    sim::OdometrySensor drawn(o, g);
+    const double scale = 0.01 + h.drawGaussian1D(0, 0.005);
+    const double drift = M_PI / 180 + h.drawGaussian1D(0, 0.001);
+    EXPECT_DOUBLE_EQ(drawn.scaleError(), scale);
+    EXPECT_DOUBLE_EQ(drawn.headingDrift(), drift);
+}
+
+TEST(World, PillarsFillTheirCircleOnly) {
+    auto cfg = config();
+    cfg.world.pillars.push_back({"p", 1.0, 3.0, 0.2, 1.0});
+    const sim::World world(cfg.world);
+    const auto occupied = [&](double x, double y, double z) {
+        const auto* n = world.octree().search(x, y, z);
+        return n && world.octree().isNodeOccupied(n);
+    };
+    EXPECT_TRUE(occupied(1.0, 3.0, 0.5));
+    EXPECT_TRUE(occupied(1.12, 3.0, 0.9));
+    EXPECT_FALSE(occupied(1.3, 3.0, 0.5));    // beyond the radius
+    EXPECT_FALSE(occupied(1.16, 3.16, 0.5));  // the square's corner, outside the circle
+    EXPECT_FALSE(occupied(1.0, 3.0, 1.2));    // above it
+    EXPECT_FALSE(world.lineOfSight({0.5, 3.0, 0.5}, {1.5, 3.0, 0.5}));
+}
+
+TEST(Simulator, AnObservationSinkSeesWhatTheRawlogGets) {
+    const auto cfg = config();
+    sim::Simulator a(cfg), b(cfg, std::make_shared<const sim::World>(cfg.world));
+    const std::string path = testing::TempDir() + "/sink.rawlog";
+    {
+        common::RawlogWriter w(path);
+        a.run(w);
+        w.commit();
+    }
+    std::vector<double> sunk;
+    b.run([&](const mrpt::obs::CObservation& o) {
+        sunk.push_back(mrpt::Clock::toDouble(o.timestamp));
+    });
+    common::RawlogReader r(path);
+    size_t n = 0;
+    for (mrpt::obs::CObservation::Ptr obs; r.next(obs); ++n)
+        ASSERT_EQ(mrpt::Clock::toDouble(obs->timestamp), sunk.at(n));
+    EXPECT_EQ(n, sunk.size());
+    EXPECT_GT(n, 10u);
 }

@@ -35,6 +35,10 @@ void RobotOptions::loadFromConfigFile(const mrpt::config::CConfigFileBase& src,
     odometrySigmaXY = s.real("odometry_sigma_xy", 0.02, 0, 1);
     odometrySigmaPhi = s.real("odometry_sigma_phi", 0.01, 0, 1);
     odometrySigmaPhiPerMetre = s.real("odometry_sigma_phi_per_m", 0.005, 0, 1);
+    odometryScaleError = s.real("odometry_scale_error", 0, -0.5, 0.5);
+    odometryScaleErrorSigma = s.real("odometry_scale_error_sigma", 0, 0, 0.5);
+    odometryHeadingDrift = mrpt::DEG2RAD(s.real("odometry_heading_drift", 0, -90, 90));
+    odometryHeadingDriftSigma = mrpt::DEG2RAD(s.real("odometry_heading_drift_sigma", 0, 0, 90));
     actuationSigmaV = s.real("actuation_sigma_v", 0, 0, 1);
     actuationSigmaW = s.real("actuation_sigma_w", 0, 0, 10);
     for (const auto& k : methodKeys) s.allowKey(k);
@@ -57,6 +61,10 @@ void RobotOptions::saveToConfigFile(mrpt::config::CConfigFileBase& t,
     t.write(section, "odometry_sigma_xy", odometrySigmaXY);
     t.write(section, "odometry_sigma_phi", odometrySigmaPhi);
     t.write(section, "odometry_sigma_phi_per_m", odometrySigmaPhiPerMetre);
+    t.write(section, "odometry_scale_error", odometryScaleError);
+    t.write(section, "odometry_scale_error_sigma", odometryScaleErrorSigma);
+    t.write(section, "odometry_heading_drift", mrpt::RAD2DEG(odometryHeadingDrift));
+    t.write(section, "odometry_heading_drift_sigma", mrpt::RAD2DEG(odometryHeadingDriftSigma));
     t.write(section, "actuation_sigma_v", actuationSigmaV);
     t.write(section, "actuation_sigma_w", actuationSigmaW);
 }

@@ -4,7 +4,16 @@
 
 namespace mrloc::sim {
 
-OdometrySensor::OdometrySensor(const RobotOptions& robot) : robot_(robot), odometry_(robot.start) {}
+OdometrySensor::OdometrySensor(const RobotOptions& robot, mrpt::random::CRandomGenerator& rng)
+    : robot_(robot),
+      odometry_(robot.start),
+      scaleError_(robot.odometryScaleError),
+      headingDrift_(robot.odometryHeadingDrift) {
+    if (robot.odometryScaleErrorSigma > 0)
+        scaleError_ += rng.drawGaussian1D(0, robot.odometryScaleErrorSigma);
+    if (robot.odometryHeadingDriftSigma > 0)
+        headingDrift_ += rng.drawGaussian1D(0, robot.odometryHeadingDriftSigma);
+}
 
 void OdometrySensor::accumulate(const mrpt::poses::CPose2D& d,
                                 mrpt::random::CRandomGenerator& rng) {
@@ -14,7 +23,9 @@ void OdometrySensor::accumulate(const mrpt::poses::CPose2D& d,
         robot_.odometrySigmaPhi * std::abs(d.phi()) + robot_.odometrySigmaPhiPerMetre * dist;
     const double ex = rng.drawGaussian1D(0, sxy), ey = rng.drawGaussian1D(0, sxy);
     const double ephi = rng.drawGaussian1D(0, sphi);
-    odometry_ = odometry_ + mrpt::poses::CPose2D(d.x() + ex, d.y() + ey, d.phi() + ephi);
+    const double scale = 1 + scaleError_;
+    odometry_ = odometry_ + mrpt::poses::CPose2D(scale * d.x() + ex, scale * d.y() + ey,
+                                                 d.phi() + headingDrift_ * dist + ephi);
 }
 
 mrpt::obs::CObservationOdometry::Ptr OdometrySensor::read(const std::string& label,

@@ -29,10 +29,19 @@ std::vector<mrpt::poses::CPose2D> Fleet::poses() const {
     return out;
 }
 
-Simulator::Simulator(ScenarioConfig config) : config_(std::move(config)), world_(config_.world) {}
+Simulator::Simulator(ScenarioConfig config)
+    : config_(std::move(config)), world_(std::make_shared<const World>(config_.world)) {}
+
+Simulator::Simulator(ScenarioConfig config, std::shared_ptr<const World> world)
+    : config_(std::move(config)), world_(std::move(world)) {}
 
 SimulationResult Simulator::run(common::RawlogWriter& out, Payload* payload,
                                 common::Progress* progress) {
+    return run([&out](const mrpt::obs::CObservation& obs) { out.write(obs); }, payload, progress);
+}
+
+SimulationResult Simulator::run(const std::function<void(const mrpt::obs::CObservation&)>& write,
+                                Payload* payload, common::Progress* progress) {
     const auto& sc = config_.scenario;
     mrpt::random::CRandomGenerator rng(uint32_t(sc.seed));
     Fleet fleet(config_.robots);
@@ -44,7 +53,7 @@ SimulationResult Simulator::run(common::RawlogWriter& out, Payload* payload,
         return std::max<long>(1, std::lround(1.0 / (rate * sc.dt)));
     };
     for (size_t i = 0; i < fleet.size(); ++i) {
-        odometers.emplace_back(fleet.robot(i).options());
+        odometers.emplace_back(fleet.robot(i).options(), rng);
         odometryEvery.push_back(every(config_.robots[i].odometryRate));
     }
     const long steps = std::lround(sc.duration / sc.dt);
@@ -53,14 +62,14 @@ SimulationResult Simulator::run(common::RawlogWriter& out, Payload* payload,
     SimulationResult result;
     const std::function<void(const mrpt::obs::CObservation::Ptr&)> emit =
         [&](const mrpt::obs::CObservation::Ptr& obs) {
-            out.write(*obs);
+            write(*obs);
             ++result.observations;
             if (payload) payload->onObservation(obs);
         };
     for (long k = 0; k <= steps; ++k) {
         const double t = double(k) * sc.dt;
         const auto stamp = mrpt::Clock::fromDouble(sc.startTime + t);
-        Step step{k, t, sc.dt, sc.startTime, stamp, fleet, world_, rng, emit};
+        Step step{k, t, sc.dt, sc.startTime, stamp, fleet, *world_, rng, emit};
         if (payload) payload->command(step);
         for (size_t i = 0; i < fleet.size(); ++i) {
             Robot& robot = fleet.robot(i);

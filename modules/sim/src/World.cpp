@@ -37,6 +37,18 @@ void WorldOptions::loadFromConfigFile(const mrpt::config::CConfigFileBase& src,
             s.fail(key, "the obstacle must lie inside the world (size)");
         obstacles.push_back(b);
     }
+    s.allowPrefix("pillar_");
+    pillars.clear();
+    for (const auto& key : s.keys()) {
+        if (key.rfind("pillar_", 0) != 0) continue;
+        const auto v = s.reals(key, {}, 4);
+        if (!(v[2] > 0) || !(v[3] > 0)) s.fail(key, "expected x y radius height, both positive");
+        Pillar p{key.substr(7), v[0], v[1], v[2], v[3]};
+        if (!contains({p.x - p.radius, p.y - p.radius, 0}, resolution) ||
+            !contains({p.x + p.radius, p.y + p.radius, p.height}, resolution))
+            s.fail(key, "the pillar must lie inside the world (size)");
+        pillars.push_back(p);
+    }
     if (filledVoxels() > kMaxVoxels)
         s.fail("resolution", mrpt::format("walls and obstacles would fill %.3g voxels, more than "
                                           "the %.3g allowed: use a coarser resolution",
@@ -52,6 +64,9 @@ void WorldOptions::saveToConfigFile(mrpt::config::CConfigFileBase& t,
         t.write(section, "obstacle_" + b.name,
                 mrpt::format("%g %g %g %g %g %g", b.min.x, b.min.y, b.min.z, b.max.x, b.max.y,
                              b.max.z));
+    for (const auto& p : pillars)
+        t.write(section, "pillar_" + p.name,
+                mrpt::format("%g %g %g %g", p.x, p.y, p.radius, p.height));
 }
 
 double WorldOptions::filledVoxels() const {
@@ -60,6 +75,7 @@ double WorldOptions::filledVoxels() const {
     double n = 2 * (cells(sizeX) + cells(sizeY)) * cells(height);  // the four walls
     for (const auto& b : obstacles)
         n += cells(b.max.x - b.min.x) * cells(b.max.y - b.min.y) * cells(b.max.z - b.min.z);
+    for (const auto& p : pillars) n += cells(2 * p.radius) * cells(2 * p.radius) * cells(p.height);
     return n;
 }
 
@@ -78,7 +94,21 @@ World::World(WorldOptions options)
     fillBox({-r, 0, 0}, {0 - 1e-9, Y, H});
     fillBox({X + 1e-9, 0, 0}, {X + r, Y, H});
     for (const auto& b : options_.obstacles) fillBox(b.min, b.max);
+    for (const auto& p : options_.pillars) fillPillar(p);
     tree_->updateInnerOccupancy();
+}
+
+void World::fillPillar(const Pillar& p) {
+    const double r = options_.resolution;
+    // every voxel whose centre lies inside the circle
+    for (double x = p.x - p.radius + r / 2; x < p.x + p.radius; x += r)
+        for (double y = p.y - p.radius + r / 2; y < p.y + p.radius; y += r) {
+            if (std::hypot(x - p.x, y - p.y) > p.radius) continue;
+            for (double z = r / 2; z < p.height + r / 2; z += r)
+                tree_->updateNode(
+                    octomap::point3d(float(x), float(y), float(std::min(z, p.height))), true,
+                    /*lazy_eval=*/true);
+        }
 }
 
 void World::fillBox(const TPoint3D& min, const TPoint3D& max) {

@@ -25,6 +25,14 @@ struct RobotOptions : public mrpt::config::CLoadableOptions {
     double odometrySigmaXY = 0.02;                ///< per metre travelled
     double odometrySigmaPhi = 0.01;               ///< per radian turned
     double odometrySigmaPhiPerMetre = 0.005;      ///< rad per metre travelled
+    /** Systematic odometry errors, fixed for a run (the drift of a real base): the wheel
+     *  radius error scales every distance by (1 + scale error); the heading drifts by
+     *  heading drift (rad) per metre driven (unequal wheels). Each is drawn once at the
+     *  start, N(value, sigma), when its sigma is positive. */
+    double odometryScaleError = 0;         ///< odometry_scale_error (relative)
+    double odometryScaleErrorSigma = 0;    ///< odometry_scale_error_sigma (relative)
+    double odometryHeadingDrift = 0;       ///< odometry_heading_drift (deg/m in the INI; rad/m)
+    double odometryHeadingDriftSigma = 0;  ///< odometry_heading_drift_sigma (deg/m; rad/m)
     double actuationSigmaV = 0;  ///< relative noise on the commanded speed (0: none drawn)
     double actuationSigmaW = 0;  ///< rad/s noise on the commanded turn rate (0: none drawn)
     /** start is a required key (false: the scenario sets it, and the key is an error). */

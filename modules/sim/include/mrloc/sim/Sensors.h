@@ -8,10 +8,15 @@
 
 namespace mrloc::sim {
 
-/** Integrates the true motion increments with multiplicative Gaussian noise. */
+/** Integrates the true motion increments with multiplicative Gaussian noise and the
+ *  robot's systematic errors (a wheel radius error scaling distances, a heading drift per
+ *  metre). */
 class OdometrySensor {
  public:
-    explicit OdometrySensor(const RobotOptions& robot);
+    /** Draws the systematic errors from rng, in that order, only for a positive sigma. */
+    OdometrySensor(const RobotOptions& robot, mrpt::random::CRandomGenerator& rng);
+    double scaleError() const { return scaleError_; }
+    double headingDrift() const { return headingDrift_; }  ///< rad/m
     void accumulate(const mrpt::poses::CPose2D& trueDelta, mrpt::random::CRandomGenerator& rng);
     mrpt::obs::CObservationOdometry::Ptr read(const std::string& label,
                                               mrpt::Clock::time_point t) const;
@@ -19,6 +24,7 @@ class OdometrySensor {
  private:
     const RobotOptions& robot_;
     mrpt::poses::CPose2D odometry_;
+    double scaleError_ = 0, headingDrift_ = 0;
 };
 
 }  // namespace mrloc::sim

@@ -9,7 +9,9 @@
 #include <mrloc/sim/Payload.h>
 #include <mrloc/sim/Scenario.h>
 
+#include <functional>
 #include <map>
+#include <memory>
 
 namespace mrloc::sim {
 
@@ -21,16 +23,22 @@ struct SimulationResult {
 class Simulator {
  public:
     explicit Simulator(ScenarioConfig config);
+    /** With a world already built from config.world (a Monte Carlo's runs share one). */
+    Simulator(ScenarioConfig config, std::shared_ptr<const World> world);
     const ScenarioConfig& config() const { return config_; }
-    const World& world() const { return world_; }
+    const World& world() const { return *world_; }
 
     /** Simulates the whole duration. Deterministic for a given configuration and seed. */
     SimulationResult run(common::RawlogWriter& out, Payload* payload = nullptr,
                          common::Progress* progress = nullptr);
+    /** The same, every observation handed to `write` instead of a rawlog (an experiment's
+     *  runs, which keep no file). */
+    SimulationResult run(const std::function<void(const mrpt::obs::CObservation&)>& write,
+                         Payload* payload = nullptr, common::Progress* progress = nullptr);
 
  private:
     ScenarioConfig config_;
-    World world_;
+    std::shared_ptr<const World> world_;
 };
 
 /** The files a simulation wrote: the rawlog first, then ground truth and side files. */

@@ -1,6 +1,7 @@
 #pragma once
 // The simulated world: a rectangular room [0, size_x] x [0, size_y] x [0, height] whose
-// side walls and box obstacles are occupied voxels of an octomap::OcTree. Line of sight
+// side walls, box obstacles and pillars (vertical cylinders) are occupied voxels of an
+// octomap::OcTree. Line of sight
 // between a beacon and a receiver is a ray cast in that tree.
 #include <mrpt/config/CLoadableOptions.h>
 #include <mrpt/math/TPoint3D.h>
@@ -17,6 +18,12 @@ struct Box {
     mrpt::math::TPoint3D min, max;
 };
 
+/** A vertical cylinder standing on the floor: a pillar, a person, a bin. */
+struct Pillar {
+    std::string name;
+    double x = 0, y = 0, radius = 0, height = 0;
+};
+
 /** Section [world]. */
 struct WorldOptions : public mrpt::config::CLoadableOptions {
     /** Upper bounds that keep building the world finite and quick (doc/errors.md): a room
@@ -30,6 +37,7 @@ struct WorldOptions : public mrpt::config::CLoadableOptions {
     double sizeX = 5, sizeY = 5, height = 2.5;  ///< room extent (m)
     double resolution = 0.05;                   ///< OcTree voxel size (m)
     std::vector<Box> obstacles;                 ///< obstacle_<name> = xmin ymin zmin xmax ymax zmax
+    std::vector<Pillar> pillars;                ///< pillar_<name> = x y radius height
 
     void loadFromConfigFile(const mrpt::config::CConfigFileBase& source,
                             const std::string& section) override;
@@ -48,6 +56,7 @@ class World {
 
  private:
     void fillBox(const mrpt::math::TPoint3D& min, const mrpt::math::TPoint3D& max);
+    void fillPillar(const Pillar& p);
     WorldOptions options_;
     std::unique_ptr<octomap::OcTree> tree_;
 };

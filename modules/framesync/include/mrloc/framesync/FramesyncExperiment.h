@@ -1,0 +1,30 @@
+#pragma once
+// Seed 004's experiment over many runs: the INI's scenario simulated again with other seeds
+// (the paper's measure: the distance between the robots' estimates of the goal point, with
+// and without the shared frame), then with other sonar noises and odometry drifts. Each
+// run is the whole simulation (sonars in the OctoMap, drifting odometry, the on-board
+// systems), sharing one world; runs are spread over the cores and deterministic per seed.
+#include <mrloc/framesync/FramesyncConfig.h>
+#include <mrloc/framesync/FramesyncFiles.h>
+#include <mrloc/framesync/FramesyncPayload.h>
+#include <mrloc/method/Registry.h>
+#include <mrloc/sim/Scenario.h>
+
+namespace mrloc::framesync {
+
+/** One simulated run: the scenario with `seed`, sonar noise `sigma` (m) and every robot's
+ *  systematic odometry errors multiplied by `drift`. */
+ExperimentRun simulateRun(const sim::ScenarioConfig& scenario, const FramesyncConfig& config,
+                          const std::shared_ptr<const sim::World>& world,
+                          const std::shared_ptr<const FloorSlices>& slices, unsigned long seed,
+                          double sigma, double drift);
+
+/** The runs [framesync] asks for: experiment_seeds as given, then experiment_sweep_seeds
+ *  for each experiment_noise and each experiment_drift. */
+FramesyncExperimentFile runExperiment(const sim::ScenarioConfig& scenario,
+                                      const FramesyncConfig& config);
+
+/** The registered experiment step: writes framesync.experiment.txt. */
+std::vector<std::string> framesyncExperiment(const method::ExperimentInput& in);
+
+}  // namespace mrloc::framesync
