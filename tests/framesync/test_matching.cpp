@@ -214,3 +214,29 @@ TEST(InProcessBus, DeliversInOrderToEverySubscriberWithoutReentry) {
     EXPECT_EQ(maxDepth, 1);
     EXPECT_EQ(bus.delivered(), 2u);
 }
+
+TEST(FrameManager, ASecondWallOfAnotherDirectionFixesTheThirdDegreeOfFreedom) {
+    // b's frame is off by (0.2, 0.1) from a's. A wall facing +y fixes y only; a wall facing
+    // +x then fixes x: b ends in a's frame.
+    const PriorityOrder order({"a", "b"});
+    InProcessBus bus;
+    FrameManager a("a", order, {}, bus), b("b", order, {}, bus);
+    const CPose2D offset(0.2, 0.1, 0);  // b's frame = offset (+) a's
+    a.setPose(1, CPose2D(3, 1, 0));
+    b.setPose(1, offset + CPose2D(3, 1, 0));
+    a.announce(northWall(2, 4));
+    b.announce(northWall(2, 4).transformed(offset));
+    EXPECT_NEAR(b.correction().y(), -0.1, 1e-12);
+    EXPECT_NEAR(b.correction().x(), 0, 1e-12);  // along the wall: not seen
+    // the east wall x = 5 from y = 0 to 2, seen from the west (normal +x)
+    Wall east;
+    east.a = {5, 0}, east.b = {5, 2};
+    east.normal = 0;
+    a.setPose(2, CPose2D(4, 1, 0));
+    b.setPose(2, b.correction() + offset + CPose2D(4, 1, 0));
+    a.announce(east);
+    b.announce(east.transformed(b.correction() + offset));
+    EXPECT_NEAR(b.correction().x(), -0.2, 1e-12);
+    EXPECT_NEAR(b.correction().y(), -0.1, 1e-12);
+    EXPECT_NEAR((b.correction() + offset).norm(), 0, 1e-12);  // b's frame is a's
+}

@@ -3,6 +3,7 @@
 #include <mrpt/core/bits_math.h>
 #include <mrpt/core/format.h>
 
+#include <algorithm>
 #include <sstream>
 
 namespace mrloc::framesync {
@@ -44,7 +45,7 @@ void FramesyncConfig::loadFromConfigFile(const mrpt::config::CConfigFileBase& sr
     for (std::string n; names >> n;) order.push_back(n);
     try {
         team.priority = PriorityOrder(order);
-    } catch (const std::exception& e) {
+    } catch (const std::exception&) {
         s.fail("priority", "each robot once, highest first");
     }
     team.onRedefinition = s.choice("on_redefinition", "drop", {"drop", "transform"}) == "drop"
@@ -83,6 +84,9 @@ void FramesyncConfig::loadFromConfigFile(const mrpt::config::CConfigFileBase& sr
     }
     s.allowPrefix("sonar_");
     if (rig.mounts.empty()) rig.mounts = defaultMounts();
+    // sonar ids by name, whatever the INI's order: effective.ini gives the same ids back
+    std::sort(rig.mounts.begin(), rig.mounts.end(),
+              [](const SonarMount& a, const SonarMount& b) { return a.name < b.name; });
     if (rig.mounts.size() > size_t(kMaxSonars))
         s.fail("sonar_", mrpt::format("at most %ld sonars", kMaxSonars));
     rig.aperture = mrpt::DEG2RAD(s.real("sonar_aperture", 25, 0.5, 120));

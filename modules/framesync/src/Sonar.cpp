@@ -9,9 +9,9 @@ FloorSlice::FloorSlice(const sim::World& world, double height)
     : resolution_(world.options().resolution), height_(height) {
     const auto& o = world.options();
     const double r = resolution_;
-    // OctoMap's voxels are aligned on multiples of the resolution; one cell of margin
-    // holds the walls just outside the room
-    i0_ = long(std::floor(-r / r)) - 1, j0_ = i0_;
+    // OctoMap's voxels are aligned on multiples of the resolution: cell i is [i r, (i + 1) r).
+    // The room's walls are the cells -1 and size / r; one more cell of margin
+    i0_ = j0_ = -2;
     nx_ = long(std::ceil(o.sizeX / r)) + 3 - i0_;
     ny_ = long(std::ceil(o.sizeY / r)) + 3 - j0_;
     cells_.assign(size_t(nx_ * ny_), 0);

@@ -14,7 +14,6 @@ RobotNode::RobotNode(std::string name, const TeamOptions& options, WallBus& bus)
 void RobotNode::odometry(double t, const mrpt::poses::CPose2D& odometry) {
     odometry_ = odometry;
     hasOdometry_ = true;
-    lastTime_ = t;
     manager_.setPose(t, estimate());
 }
 
@@ -26,7 +25,6 @@ void RobotNode::sonar(double t, int sensor, const mrpt::poses::CPose2D& sensorOn
         o.halfAperture = halfAperture;
         it = detectors_.emplace(sensor, WallDetector(o)).first;
     }
-    lastTime_ = t;
     SonarReading r;
     r.t = t;
     r.sensor = estimate() + sensorOnRobot;
@@ -39,10 +37,6 @@ void RobotNode::found(double t, int sensor, const std::optional<Wall>& wall) {
     if (!wall) return;
     walls_.push_back({name_, sensor, t, manager_.version(), *wall});
     if (options_.sharing) manager_.announce(*wall);
-}
-
-void RobotNode::flush() {
-    for (auto& [id, d] : detectors_) found(lastTime_, id, d.flush());
 }
 
 void RobotNode::onRedefinition(const RedefinitionEvent& e) {
@@ -116,10 +110,6 @@ void FrameTeam::process(const mrpt::obs::CObservation::Ptr& obs) {
         n.sonar(t, m.sensorID, mrpt::poses::CPose2D(p.x, p.y, p.yaw), m.sensedDistance, echo,
                 range->sensorConeApperture / 2);
     }
-}
-
-void FrameTeam::finish() {
-    for (auto& [name, n] : robots_) n->flush();
 }
 
 std::vector<RedefinitionEvent> FrameTeam::takeNewEvents() {

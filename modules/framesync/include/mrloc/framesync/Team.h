@@ -46,7 +46,6 @@ class RobotNode : public FrameListener {
     /** One sonar's reading; sensorOnRobot is its pose on the robot (x, y, yaw). */
     void sonar(double t, int sensor, const mrpt::poses::CPose2D& sensorOnRobot, double range,
                bool echo, double halfAperture);
-    void flush();
     void onRedefinition(const RedefinitionEvent& event) override;
 
     bool hasPose() const { return hasOdometry_; }
@@ -67,7 +66,6 @@ class RobotNode : public FrameListener {
     std::map<int, WallDetector> detectors_;  ///< per sonar id
     mrpt::poses::CPose2D odometry_;
     bool hasOdometry_ = false;
-    double lastTime_ = 0;
     std::vector<AnnouncedWall> walls_;
 };
 
@@ -81,8 +79,6 @@ class FrameTeam {
 
     /** Odometry and sonar observations; others are ignored. */
     void process(const mrpt::obs::CObservation::Ptr& obs);
-    /** Closes the open wall groups (the log ended). */
-    void finish();
 
     /** Per robot: the estimate in its shared frame at every odometry reading, and the
      *  odometry alone (no sharing). */
