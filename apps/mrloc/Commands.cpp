@@ -19,6 +19,7 @@
 #include <filesystem>
 #include <fstream>
 #include <iostream>
+#include <optional>
 #include <set>
 #include <sstream>
 
@@ -28,9 +29,46 @@ namespace fs = std::filesystem;
 
 namespace {
 
-/** mrloc's sections are the lower-case ones; MRPT's apps name theirs in upper case. */
-bool ownedByMrloc(const std::string& section) {
-    return !section.empty() && std::islower(static_cast<unsigned char>(section[0]));
+/** A section mrloc reads: a registered method's, the framework's, or a robot's. */
+bool ownedByMrloc(const std::string& section, const std::vector<std::string>& known) {
+    return section.rfind("robot.", 0) == 0 ||
+           std::find(known.begin(), known.end(), section) != known.end();
+}
+
+/** Edit distance (insertions, deletions, substitutions, adjacent swaps), case-insensitive. */
+size_t editDistance(const std::string& a, const std::string& b) {
+    const auto lower = [](char c) { return char(std::tolower(static_cast<unsigned char>(c))); };
+    std::vector<std::vector<size_t>> d(a.size() + 1, std::vector<size_t>(b.size() + 1));
+    for (size_t i = 0; i <= a.size(); ++i) d[i][0] = i;
+    for (size_t j = 0; j <= b.size(); ++j) d[0][j] = j;
+    for (size_t i = 1; i <= a.size(); ++i)
+        for (size_t j = 1; j <= b.size(); ++j) {
+            const size_t cost = lower(a[i - 1]) == lower(b[j - 1]) ? 0 : 1;
+            d[i][j] = std::min({d[i - 1][j] + 1, d[i][j - 1] + 1, d[i - 1][j - 1] + cost});
+            if (i > 1 && j > 1 && lower(a[i - 1]) == lower(b[j - 2]) &&
+                lower(a[i - 2]) == lower(b[j - 1]))
+                d[i][j] = std::min(d[i][j], d[i - 2][j - 2] + 1);
+        }
+    return d[a.size()][b.size()];
+}
+
+/** The section of mrloc's that `section` looks like a misspelling of, if any: within one
+ *  edit (two for names of 6 letters or more), any case. Other sections belong to other
+ *  programs (MRPT's apps) and are left alone. */
+std::optional<std::string> closeTo(const std::string& section,
+                                   const std::vector<std::string>& known) {
+    std::optional<std::string> best;
+    size_t bestDistance = SIZE_MAX;
+    for (const auto& k : known) {
+        const size_t allowed = k.size() >= 6 ? 2 : 1;
+        const size_t d = editDistance(section, k);
+        if (d <= allowed && d < bestDistance) best = k, bestDistance = d;
+    }
+    // [robto.r1], [Robot.r1]: a robot's section
+    const auto dot = section.find('.');
+    if (dot != std::string::npos && editDistance(section.substr(0, dot), "robot") <= 1)
+        return "robot." + section.substr(dot + 1);
+    return best;
 }
 
 /** The INI's bytes, as read once: checked, parsed and copied into config.ini from these. */
@@ -43,27 +81,25 @@ std::string readIniText(const std::string& path) {
     return text.str();
 }
 
-/** Opens an INI and rejects lower-case sections that no registered method nor the
- *  framework owns (a misspelt section would otherwise be ignored). Sections of MRPT's apps
- *  start with upper case and are left alone. */
+/** Opens an INI. Sections of other programs (MRPT's apps: [ro-localization],
+ *  [MetricMap_...]) are left alone; a section that looks like a misspelling of one of mrloc's
+ *  ([sensor], [Beacons], [robto.r1]) would otherwise be ignored silently, and is refused. */
 std::unique_ptr<mrpt::config::CConfigFile> openIni(const std::string& path, const std::string& text,
                                                    const method::Registry& registry) {
-    // mrloc's sections are checked line by line; MRPT's are left as MRPT reads them.
-    common::lintIni(text, path, [](const std::string& section) {
-        return section.empty() || ownedByMrloc(section);
+    const auto known = registry.sections();
+    // mrloc's sections are checked line by line; the others are left as their programs read
+    // them.
+    common::lintIni(text, path, [&known](const std::string& section) {
+        return section.empty() || ownedByMrloc(section, known);
     });
     auto ini = std::make_unique<mrpt::config::CConfigFile>(path);
     std::vector<std::string> sections;
     ini->getAllSections(sections);
-    const auto known = registry.sections();
     for (const auto& s : sections) {
-        if (!ownedByMrloc(s)) continue;
-        if (std::find(known.begin(), known.end(), s) != known.end() || s.rfind("robot.", 0) == 0)
-            continue;
-        std::string list;
-        for (const auto& k : known) list += (list.empty() ? "" : ", ") + k;
-        throw Error(path + ": [" + s + "]: unknown section (mrloc's sections: " + list +
-                    "; see doc/ini.md)");
+        if (ownedByMrloc(s, known)) continue;
+        if (const auto near = closeTo(s, known))
+            throw Error(path + ": [" + s + "]: unknown section (did you mean [" + *near +
+                        "]? see doc/ini.md)");
     }
     return ini;
 }

@@ -163,10 +163,12 @@ TEST(MrlocInfo, SummarisesLabelsCountsAndRates) {
     };
     EXPECT_EQ(fields(line("r1.beacons")),
               (std::vector<std::string>{"r1", "r1.beacons", "mrpt::obs::CObservationBeaconRanges",
-                                        "298", "5.01", "0.559", "59.325"}));
+                                        "298", "5.01", "0.559", "59.325", "all", "valid"}));
     EXPECT_EQ(fields(line("r1.odom")),
               (std::vector<std::string>{"r1", "r1.odom", "mrpt::obs::CObservationOdometry", "1201",
-                                        "20.00", "0.000", "60.000"}));
+                                        "20.00", "0.000", "60.000", "all", "valid"}));
+    EXPECT_NE(r.output.find("file size: "), std::string::npos) << r.output;
+    EXPECT_NE(r.output.find("start: 2023/11/14,22:13:20"), std::string::npos) << r.output;
 }
 
 TEST(MrlocErrors, MisspeltKeyStopsWithFileSectionKeyAndWritesNothing) {

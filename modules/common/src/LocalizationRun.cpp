@@ -10,6 +10,7 @@
 
 #include <chrono>
 #include <filesystem>
+#include <iostream>
 
 namespace mrloc::common {
 
@@ -31,6 +32,15 @@ LocalizationResult runLocalization(Localizer& localizer, const LocalizationRunOp
         progress.update(++n);
     }
     progress.finish();
+    // one warning per label whose zero stamps took their sensory frame's time
+    nlohmann::json restamped = nlohmann::json::object();
+    for (const auto& [key, count] : reader.restamped()) {
+        const auto& [label, cls] = key;
+        std::cerr << "warning: rawlog " << o.rawlogPath << ": " << count << " "
+                  << (label.empty() ? std::string("unlabelled") : "'" + label + "'") << " " << cls
+                  << " stamped 0 took their sensory frame's time\n";
+        restamped[label.empty() ? "(no label)" : label] = count;
+    }
     const double wall =
         std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     const auto estimates = localizer.estimates();
@@ -48,6 +58,7 @@ LocalizationResult runLocalization(Localizer& localizer, const LocalizationRunOp
     metrics["rawlog_format"] = reader.format() == RawlogFormat::ActionsSensoryFrames
                                    ? "actions+sensory-frames"
                                    : "observations-only";
+    if (!restamped.empty()) metrics["restamped_observations"] = restamped;
     Trajectories worldTruth;
     for (const auto& [robot, traj] : estimates)
         if (const std::string gtPath = groundTruthPath(o.rawlogPath, robot);

@@ -1,15 +1,16 @@
 #include <mrloc/common/Error.h>
 #include <mrloc/common/Rawlog.h>
 #include <mrloc/common/RawlogProbe.h>
+#include <mrpt/maps/registerAllClasses.h>
 #include <mrpt/obs/CActionCollection.h>
 #include <mrpt/obs/CActionRobotMovement2D.h>
 #include <mrpt/obs/CObservationOdometry.h>
-#include <mrpt/maps/registerAllClasses.h>
 #include <mrpt/obs/registerAllClasses.h>
 #include <mrpt/serialization/CArchive.h>
 
 #include <cstring>
 #include <filesystem>
+#include <optional>
 
 namespace mrloc::common {
 
@@ -41,8 +42,8 @@ RawlogReader::RawlogReader(const std::string& path, Unchecked) : path_(path) { o
 void RawlogReader::open() {
     // Every observation class, also those mrloc never names (a rawlog may hold any):
     // mrpt-maps holds some (CObservationRotatingScan, CObservationPointCloud).
-    static const bool registered =
-        (mrpt::obs::registerAllClasses_mrpt_obs(), mrpt::maps::registerAllClasses_mrpt_maps(), true);
+    static const bool registered = (mrpt::obs::registerAllClasses_mrpt_obs(),
+                                    mrpt::maps::registerAllClasses_mrpt_maps(), true);
     (void)registered;
     const std::string& path = path_;
     std::error_code ec;
@@ -55,6 +56,8 @@ void RawlogReader::open() {
 
 void RawlogReader::absorbActions(const mrpt::serialization::CSerializable::Ptr& obj) {
     auto acts = std::dynamic_pointer_cast<mrpt::obs::CActionCollection>(obj);
+    for (const auto& a : *acts)
+        if (a) ++actions_[a->GetRuntimeClass()->className];
     auto move = acts->getBestMovementEstimation();
     if (!move) return;  // e.g. only 3-D actions: nothing a 2-D odometry stream can carry
     const bool raw = move->estimationMethod == mrpt::obs::CActionRobotMovement2D::emOdometry;
@@ -75,7 +78,42 @@ void RawlogReader::absorbActions(const mrpt::serialization::CSerializable::Ptr& 
         odo->hasVelocities = true;
         odo->velocityLocal = move->velocityLocal;
     }
+    releaseHeldAction();  // two actions in a row: the first keeps what it had
+    if (odo->timestamp == INVALID_TIMESTAMP) {
+        heldAction_ = odo;  // stamped by the sensory frame that follows
+        return;
+    }
+    lastActionTime_ = odo->timestamp;
     pending_.push_back(odo);
+}
+
+void RawlogReader::releaseHeldAction() {
+    if (!heldAction_) return;
+    pending_.push_back(heldAction_);
+    heldAction_.reset();
+}
+
+void RawlogReader::restampFrame(mrpt::obs::CSensoryFrame& sf) {
+    // An observation stamped 0 (MRPT's INVALID_TIMESTAMP: the beacon ranges of MRPT's older
+    // rawlogs) was taken with its frame: it gets the time of the frame's other observations,
+    // or of the action before the frame.
+    std::optional<mrpt::Clock::time_point> frameTime;
+    for (const auto& o : sf)
+        if (o && o->timestamp != INVALID_TIMESTAMP) {
+            frameTime = o->timestamp;
+            break;
+        }
+    if (!frameTime) frameTime = lastActionTime_;
+    if (heldAction_ && frameTime) {  // an action stamped 0: the frame it led to
+        heldAction_->timestamp = *frameTime;
+        ++restamped_[{heldAction_->sensorLabel, heldAction_->GetRuntimeClass()->className}];
+    }
+    releaseHeldAction();
+    for (const auto& o : sf)
+        if (o && o->timestamp == INVALID_TIMESTAMP && frameTime) {
+            o->timestamp = *frameTime;
+            ++restamped_[{o->sensorLabel, o->GetRuntimeClass()->className}];
+        }
 }
 
 bool RawlogReader::next(CObservation::Ptr& obs) {
@@ -88,7 +126,11 @@ bool RawlogReader::next(CObservation::Ptr& obs) {
         } catch (const std::bad_alloc&) {
             throw;  // a corrupt size: the probe names the entry and the memory cap
         } catch (const mrpt::serialization::CExceptionEOF&) {
-            if (file_.getPosition() == before) return false;  // clean end between objects
+            if (file_.getPosition() == before) {  // clean end between objects
+                releaseHeldAction();
+                if (pending_.empty()) return false;
+                break;
+            }
             throw Error("rawlog " + path_ + ": truncated inside entry " +
                         std::to_string(entries_ + 1));
         } catch (const std::exception& e) {
@@ -102,6 +144,7 @@ bool RawlogReader::next(CObservation::Ptr& obs) {
             pending_.push_back(o);
         } else if (auto sf = std::dynamic_pointer_cast<mrpt::obs::CSensoryFrame>(obj)) {
             format_ = RawlogFormat::ActionsSensoryFrames;
+            restampFrame(*sf);
             for (const auto& o : *sf) pending_.push_back(o);
         } else if (std::dynamic_pointer_cast<mrpt::obs::CActionCollection>(obj)) {
             format_ = RawlogFormat::ActionsSensoryFrames;

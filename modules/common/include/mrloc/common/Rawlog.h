@@ -14,7 +14,9 @@
 #include <mrpt/poses/CPose2D.h>
 
 #include <deque>
+#include <map>
 #include <memory>
+#include <optional>
 #include <string>
 
 namespace mrloc::common {
@@ -55,6 +57,13 @@ class RawlogReader {
     bool next(mrpt::obs::CObservation::Ptr& obs);
 
     RawlogFormat format() const { return format_; }
+    /** Observations stamped 0 (invalid) that were given their sensory frame's time (the
+     *  frame's other observations', or the action's before it; an action's, the frame's
+     *  after it), per label. */
+    using LabelClass = std::pair<std::string, std::string>;  ///< sensor label, class name
+    const std::map<LabelClass, size_t>& restamped() const { return restamped_; }
+    /** Actions read so far, by class (each action of every CActionCollection). */
+    const std::map<std::string, size_t>& actions() const { return actions_; }
     /** Serialized objects read so far (MRPT's "rawlog entry" counter). */
     size_t entriesRead() const { return entries_; }
     const std::string& path() const { return path_; }
@@ -62,6 +71,8 @@ class RawlogReader {
  private:
     void open();
     void absorbActions(const mrpt::serialization::CSerializable::Ptr& obj);
+    void restampFrame(mrpt::obs::CSensoryFrame& sf);
+    void releaseHeldAction();
 
     std::string path_;
     mrpt::io::CFileGZInputStream file_;
@@ -69,6 +80,10 @@ class RawlogReader {
     RawlogFormat format_ = RawlogFormat::Unknown;
     size_t entries_ = 0;
     mrpt::poses::CPose2D actionOdometry_;  // integrated CActionRobotMovement2D increments
+    std::optional<mrpt::Clock::time_point> lastActionTime_;
+    mrpt::obs::CObservation::Ptr heldAction_;  ///< odometry of an action stamped 0
+    std::map<LabelClass, size_t> restamped_;
+    std::map<std::string, size_t> actions_;
 };
 
 class RawlogWriter {
