@@ -71,8 +71,19 @@ std::optional<std::string> closeTo(const std::string& section,
     return best;
 }
 
+/** A rawlog by its name or its first bytes (gzip's magic, or MRPT's binary archive). */
+bool looksLikeRawlog(const std::string& path) {
+    const std::string ext = fs::path(path).extension().string();
+    if (ext == ".rawlog" || ext == ".gz") return true;
+    std::ifstream in(path, std::ios::binary);
+    unsigned char head[2] = {0, 0};
+    in.read(reinterpret_cast<char*>(head), 2);
+    return in.gcount() == 2 && ((head[0] == 0x1f && head[1] == 0x8b) || head[0] == 0x00);
+}
+
 /** The INI's bytes, as read once: checked, parsed and copied into config.ini from these. */
 std::string readIniText(const std::string& path) {
+    if (fs::is_directory(path)) throw Error("config " + path + ": is a folder; give an INI file");
     if (!fs::is_regular_file(path)) throw Error("config " + path + ": no such file");
     std::ifstream file(path, std::ios::binary);
     std::stringstream text;
@@ -221,11 +232,17 @@ void writeProvenance(const Setup& s, const std::string& dir, const std::string& 
 
 /** Removes, on failure, every file a command created in its output directory (and the
  *  directory if it created it), so that a failed run leaves nothing under final names; a
- *  SIGINT or SIGTERM meanwhile removes the same (common::RunOutputs). */
+ *  SIGINT or SIGTERM meanwhile removes the same (common::RunOutputs). On success, keep()
+ *  records the files this step wrote in provenance.json and removes those the same step
+ *  wrote last time that it did not write again (a robot fewer, a picture no longer drawn),
+ *  so a run into a used folder leaves no stale output; files mrloc did not write stay. */
 class OutputGuard {
  public:
-    explicit OutputGuard(std::string dir)
-        : dir_(std::move(dir)), existed_(fs::exists(dir_)), outputs_(existed_ ? "" : dir_) {
+    OutputGuard(std::string dir, std::string step)
+        : dir_(std::move(dir)),
+          step_(std::move(step)),
+          existed_(fs::exists(dir_)),
+          outputs_(existed_ ? "" : dir_) {
         if (existed_)
             for (const auto& e : fs::directory_iterator(dir_)) before_.insert(e.path());
     }
@@ -236,10 +253,28 @@ class OutputGuard {
             if (!before_.count(e.path())) fs::remove_all(e.path(), ec);
         if (!existed_) fs::remove(dir_, ec);
     }
-    void keep() { done_ = true; }
+    void keep() {
+        done_ = true;
+        const std::string path = common::run_dir::provenance(dir_);
+        if (!fs::exists(path)) return;
+        auto p = common::loadJson(path);
+        std::set<std::string> now;
+        std::error_code ec;
+        for (const auto& f : outputs_.committed())
+            if (fs::path(f).parent_path().lexically_normal() == fs::path(dir_).lexically_normal() &&
+                fs::path(f).filename() != fs::path(path).filename())
+                now.insert(fs::path(f).filename().string());
+        auto& record = p["outputs"][step_];
+        if (record.is_array())
+            for (const auto& name : record.get<std::vector<std::string>>())
+                if (!now.count(name) && fs::is_regular_file(fs::path(dir_) / name))
+                    fs::remove(fs::path(dir_) / name, ec);
+        record = std::vector<std::string>(now.begin(), now.end());
+        common::saveJson(path, p);
+    }
 
  private:
-    std::string dir_;
+    std::string dir_, step_;
     bool existed_;
     common::RunOutputs outputs_;  // what SIGINT / SIGTERM remove while the command runs
     std::set<fs::path> before_;
@@ -324,7 +359,7 @@ int simulate(const method::Registry& registry, int argc, char** argv) {
     if (const auto code = parseArgs(c.cmd, argc, argv)) return *code;
     Setup s = c.setup(registry);
     const std::string dir = c.output.dirOr(s.scenario.name);
-    OutputGuard guard(dir);
+    OutputGuard guard(dir, "simulate");
     const std::string rawlog = doSimulate(s, dir, c.output.quiet.getValue());
     writeProvenance(s, dir, "simulate", commandLine(argc, argv));
     guard.keep();
@@ -345,9 +380,15 @@ int localize(const method::Registry& registry, int argc, char** argv) {
     cmd.add(o.out);
     cmd.add(o.quiet);
     if (const auto code = parseArgs(cmd, argc, argv)) return *code;
+    if (looksLikeRawlog(iniArg.getValue()) && !looksLikeRawlog(rawlog.getValue())) {
+        std::cerr << "mrloc localize: the arguments are swapped: the INI comes first, "
+                     "mrloc localize <ini> <rawlog> ("
+                  << iniArg.getValue() << " is a rawlog)\n";
+        return 2;
+    }
     Setup s = loadSetup(registry, iniArg.getValue(), std::nullopt, false);
     const std::string dir = o.dirOr(s.scenario.name);
-    OutputGuard guard(dir);
+    OutputGuard guard(dir, "localize");
     doLocalize(s, rawlog.getValue(), dir, o.quiet.getValue());
     writeProvenance(s, dir, "localize", commandLine(argc, argv));
     guard.keep();
@@ -373,7 +414,7 @@ int run(const method::Registry& registry, int argc, char** argv) {
     if (const auto code = parseArgs(c.cmd, argc, argv)) return *code;
     Setup s = c.setup(registry);
     const std::string dir = c.output.dirOr(s.scenario.name);
-    OutputGuard guard(dir);
+    OutputGuard guard(dir, "run");
     std::string page;
     try {
         const std::string rawlog = doSimulate(s, dir, c.output.quiet.getValue());

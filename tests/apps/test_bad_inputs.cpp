@@ -27,14 +27,17 @@ std::string badInput(const std::string& name) {
 
 std::string quoted(const std::string& s) { return "'" + s + "'"; }
 
-/** Runs `mrloc <command> <input> [more] --out <dir>` (info takes no --out) and checks the
- *  contract: exit 1, one line of output, the file named, nothing written. The line. */
+/** Runs `mrloc <command> <input> [more] --out <dir>` (localize: `<more> <input>`, the INI first;
+ *  info takes no --out) and checks the contract: exit 1, one line of output, the file named,
+ *  nothing written. The line. */
 std::string refused(const std::string& command, const std::string& input,
                     const std::string& more = "") {
     const std::string out = tmp("bad_" + fs::path(input).filename().string());
     const bool writes = command != "info";
-    const auto r = mrlocCmd(command + " " + quoted(input) + " " + more +
-                            (writes ? " --quiet --out " + out : ""));
+    // localize takes the INI first: `more` is the INI, the input the rawlog
+    const std::string args =
+        command == "localize" ? more + " " + quoted(input) : quoted(input) + " " + more;
+    const auto r = mrlocCmd(command + " " + args + (writes ? " --quiet --out " + out : ""));
     EXPECT_EQ(r.code, 1) << r.output;
     EXPECT_EQ(std::count(r.output.begin(), r.output.end(), '\n'), 1) << r.output;
     EXPECT_NE(r.output.find(fs::path(input).filename().string()), std::string::npos) << r.output;
@@ -68,8 +71,9 @@ TEST(BadRawlog, CorruptGzipStreamIsAnErrorNotAnEmptyRawlog) {
 
 TEST(BadRawlog, HeaderOnlyGzipIsTruncated) {
     const auto line = refused("info", badInput("header_only_10B.rawlog"));
-    expectHas(line, "the gzip stream stops at byte 10 before its end (truncated file, no data "
-                    "after the header)");
+    expectHas(line,
+              "the gzip stream stops at byte 10 before its end (truncated file, no data "
+              "after the header)");
 }
 
 TEST(BadRawlog, MemoryBlowupIsCaughtByItsGzipCheck) {
@@ -161,16 +165,17 @@ TEST(BadIni, FinerWorldThanTheVoxelBudgetIsRefused) {
 }
 
 TEST(BadIni, NonUtf8ScenarioNameIsRefused) {
-    const std::string ini = writeIniFrom(config("quickstart"), "latin1", "name     = quickstart",
-                                         "name = q\xe9");
+    const std::string ini =
+        writeIniFrom(config("quickstart"), "latin1", "name     = quickstart", "name = q\xe9");
     const auto line = refused("run", ini);
     expectHas(line, "latin1.ini:");
     expectHas(line, "bytes that are not valid UTF-8");
     // A control character would end up in file names.
-    const std::string tab = writeIniFrom(config("quickstart"), "tab", "name     = quickstart",
-                                         "name = q\x1bx");
-    expectHas(refused("run", tab), "[scenario] name: must be a non-empty file name without '/', "
-                                   "spaces or control characters");
+    const std::string tab =
+        writeIniFrom(config("quickstart"), "tab", "name     = quickstart", "name = q\x1bx");
+    expectHas(refused("run", tab),
+              "[scenario] name: must be a non-empty file name without '/', "
+              "spaces or control characters");
 }
 
 TEST(BadIni, RunThatFailsAfterSimulatingLeavesNothing) {

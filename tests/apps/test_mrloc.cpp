@@ -274,3 +274,53 @@ TEST(MrlocErrors, ARunWithNoEstimateStopsAndWritesNothing) {
         << r.output;
     EXPECT_FALSE(fs::exists(out));
 }
+
+TEST(MrlocCli, SwappedArgumentsFoldersAndTextFilesAreSaidInWords) {
+    const std::string ini = config("quickstart");
+    const std::string rawlog = std::string(MRLOC_SOURCE_DIR) + "/rawlogs/quickstart.rawlog";
+    auto r = mrlocCmd("localize " + rawlog + " " + ini + " -q --out " + tmp("swapped"));
+    EXPECT_EQ(r.code, 2) << r.output;
+    EXPECT_NE(r.output.find("the arguments are swapped: the INI comes first"), std::string::npos)
+        << r.output;
+    r = mrlocCmd("localize " + std::string(MRLOC_SOURCE_DIR) + "/config " + rawlog + " -q");
+    EXPECT_EQ(r.code, 1);
+    EXPECT_NE(r.output.find("is a folder; give an INI file"), std::string::npos) << r.output;
+    r = mrlocCmd("localize " + ini + " " + std::string(MRLOC_SOURCE_DIR) + "/rawlogs -q --out " +
+                 tmp("folder"));
+    EXPECT_EQ(r.code, 1);
+    EXPECT_NE(r.output.find("is a folder; give a rawlog file"), std::string::npos) << r.output;
+    r = mrlocCmd("info " + ini);
+    EXPECT_EQ(r.code, 1);
+    EXPECT_NE(r.output.find("a text file, not a rawlog"), std::string::npos) << r.output;
+    EXPECT_EQ(std::count(r.output.begin(), r.output.end(), '\n'), 1) << r.output;  // one line
+    // noise: MRPT quotes a class name read from it; the line stays printable
+    const std::string noise = testing::TempDir() + "/noise.bin";
+    {
+        std::ofstream out(noise, std::ios::binary);
+        for (int i = 0; i < 3000; ++i) out.put(char((i * 7919 + 13) % 256));
+    }
+    r = mrlocCmd("info " + noise);
+    EXPECT_EQ(r.code, 1);
+    EXPECT_EQ(std::count(r.output.begin(), r.output.end(), '\n'), 1) << r.output;
+    for (const char c : r.output)
+        EXPECT_TRUE(c == '\n' || (c >= 0x20 && c < 0x7f)) << int(c) << " in " << r.output;
+}
+
+TEST(MrlocCli, ARunIntoAUsedFolderLeavesNoStaleOutputsAndKeepsTheUsersFiles) {
+    const std::string dir = tmp("used");
+    ASSERT_EQ(mrlocCmd("run " + config("beacons_multi_robot") + " -q --out " + dir).code, 0);
+    EXPECT_TRUE(fs::exists(dir + "/estimates.faster.txt"));
+    std::ofstream(dir + "/notes.txt") << "mine\n";
+    // the same scenario with two of its four robots
+    const std::string two =
+        writeIniFrom(config("beacons_multi_robot"), "two_robots",
+                     "robots   = slow medium fast faster", "robots   = slow medium");
+    ASSERT_EQ(mrlocCmd("run " + two + " -q --out " + dir).code, 0);
+    for (const char* gone : {"/estimates.fast.txt", "/estimates.faster.txt",
+                             "/groundtruth.faster.txt", "/beacons_multi_robot.fast.gt.txt"})
+        EXPECT_FALSE(fs::exists(dir + gone)) << gone;
+    EXPECT_TRUE(fs::exists(dir + "/estimates.medium.txt"));
+    EXPECT_EQ(slurp(dir + "/notes.txt"), "mine\n");  // not mrloc's: kept
+    const auto p = common::loadJson(dir + "/provenance.json");
+    EXPECT_EQ(p["outputs"]["run"].size(), 15u) << p.dump(2);  // 2 robots x 3 + 9
+}

@@ -1,6 +1,5 @@
 #include <mrloc/common/AtomicFile.h>
 #include <mrloc/common/Error.h>
-
 #include <signal.h>
 #include <unistd.h>
 
@@ -8,6 +7,8 @@
 #include <cstring>
 #include <filesystem>
 #include <fstream>
+#include <mutex>
+#include <vector>
 
 namespace fs = std::filesystem;
 
@@ -54,8 +55,7 @@ void releaseRunSlots() {
 extern "C" void removeOutputsAndExit(int sig) {
     for (auto& slot : g_slots) {
         const int kind = slot.kind.load();
-        if (kind == int(SlotKind::Temporary) || kind == int(SlotKind::RunFile))
-            ::unlink(slot.path);
+        if (kind == int(SlotKind::Temporary) || kind == int(SlotKind::RunFile)) ::unlink(slot.path);
     }
     for (auto& slot : g_slots)
         if (slot.kind.load() == int(SlotKind::RunDirectory)) ::rmdir(slot.path);
@@ -74,13 +74,31 @@ void installSignalCleanup() {
     sigaction(SIGTERM, &action, nullptr);
 }
 
+namespace {
+std::mutex g_committedLock;
+std::vector<std::string> g_committed;  ///< files committed while a RunOutputs lives
+}  // namespace
+
 RunOutputs::RunOutputs(const std::string& createdDir) {
+    {
+        std::lock_guard<std::mutex> lock(g_committedLock);
+        first_ = g_committed.size();
+    }
     ++g_runDepth;
     if (!createdDir.empty()) claimSlot(createdDir, SlotKind::RunDirectory);
 }
 
 RunOutputs::~RunOutputs() {
-    if (--g_runDepth == 0) releaseRunSlots();
+    if (--g_runDepth == 0) {
+        releaseRunSlots();
+        std::lock_guard<std::mutex> lock(g_committedLock);
+        g_committed.clear();
+    }
+}
+
+std::vector<std::string> RunOutputs::committed() const {
+    std::lock_guard<std::mutex> lock(g_committedLock);
+    return {g_committed.begin() + long(std::min(first_, g_committed.size())), g_committed.end()};
 }
 
 PendingFile::PendingFile(std::string finalPath, const std::string& tempSuffix)
@@ -105,7 +123,11 @@ void PendingFile::commit() {
     committed_ = true;
     releaseSlot(slot_);
     slot_ = -1;
-    if (g_runDepth > 0) claimSlot(final_, SlotKind::RunFile);  // released by RunOutputs
+    if (g_runDepth > 0) {
+        claimSlot(final_, SlotKind::RunFile);  // released by RunOutputs
+        std::lock_guard<std::mutex> lock(g_committedLock);
+        g_committed.push_back(final_);
+    }
 }
 
 void writeFileAtomically(const std::string& path, const std::string& content) {

@@ -12,7 +12,8 @@ std::string oneLine(const std::string& what) {
         std::istringstream in(what);
         std::string inner, plain;
         for (std::string line; std::getline(in, line);) {
-            if (line.rfind("Message:", 0) == 0) inner = line.substr(8);
+            if (line.rfind("Message:", 0) == 0)
+                inner = line.substr(8);
             else if (line.rfind("Location:", 0) == 0 || line.rfind("Call stack", 0) == 0 ||
                      line.rfind("[", 0) == 0 || line.rfind("====", 0) == 0 ||
                      line.rfind("Original exception", 0) == 0)
@@ -25,6 +26,26 @@ std::string oneLine(const std::string& what) {
     if (message.empty()) message = what;
     for (char& c : message)
         if (c == '\n' || c == '\r' || c == '\t') c = ' ';
+    // a corrupt file's bytes quoted by MRPT (a class name read from noise) stay readable:
+    // control bytes and bytes that are not UTF-8 become '?' (a path in UTF-8 is kept), and a
+    // long message is cut short
+    std::string clean;
+    for (size_t i = 0; i < message.size();) {
+        const auto c = static_cast<unsigned char>(message[i]);
+        const size_t n = c < 0x80           ? 1
+                         : (c >> 5) == 0x6  ? 2
+                         : (c >> 4) == 0xe  ? 3
+                         : (c >> 3) == 0x1e ? 4
+                                            : 0;
+        bool ok = n > 0 && i + n <= message.size() && (n > 1 || (c >= 0x20 && c != 0x7f));
+        for (size_t k = 1; ok && k < n; ++k)
+            ok = (static_cast<unsigned char>(message[i + k]) >> 6) == 0x2;
+        if (ok)
+            clean.append(message, i, n), i += n;
+        else
+            clean += '?', ++i;
+    }
+    message = clean.size() > 400 ? clean.substr(0, 400) + "..." : clean;
     const auto b = message.find_first_not_of(' ');
     const auto e = message.find_last_not_of(' ');
     return b == std::string::npos ? std::string() : message.substr(b, e - b + 1);

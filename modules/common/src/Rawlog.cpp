@@ -8,8 +8,10 @@
 #include <mrpt/obs/registerAllClasses.h>
 #include <mrpt/serialization/CArchive.h>
 
+#include <cctype>
 #include <cstring>
 #include <filesystem>
+#include <fstream>
 #include <optional>
 
 namespace mrloc::common {
@@ -47,10 +49,28 @@ void RawlogReader::open() {
     (void)registered;
     const std::string& path = path_;
     std::error_code ec;
+    if (std::filesystem::is_directory(path, ec))
+        throw Error("rawlog " + path + ": is a folder; give a rawlog file");
     if (!std::filesystem::is_regular_file(path, ec))
         throw Error("rawlog " + path + ": no such file");
     if (std::filesystem::file_size(path, ec) == 0)
         throw Error("rawlog " + path + ": the file is empty");
+    {
+        // text (an INI, a TUM file) is not a rawlog: say so in words, not in MRPT's
+        std::ifstream head(path, std::ios::binary);
+        char bytes[64];
+        head.read(bytes, sizeof bytes);
+        const auto n = head.gcount();
+        bool text = n > 0;
+        for (std::streamsize i = 0; i < n && text; ++i) {
+            const auto c = static_cast<unsigned char>(bytes[i]);
+            text = std::isprint(c) || std::isspace(c);
+        }
+        if (text)
+            throw Error("rawlog " + path +
+                        ": a text file, not a rawlog (an INI or a trajectory?); rawlogs are "
+                        "MRPT's binary .rawlog files");
+    }
     if (!file_.open(path)) throw Error("rawlog " + path + ": cannot open");
 }
 

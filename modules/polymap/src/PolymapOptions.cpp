@@ -4,6 +4,7 @@
 #include <mrpt/core/format.h>
 
 #include <cmath>
+#include <filesystem>
 #include <iterator>
 #include <sstream>
 
@@ -14,6 +15,19 @@ void PolymapOptions::loadFromConfigFile(const mrpt::config::CConfigFileBase& src
     common::IniSection s(src, section);
     origin_ = common::configOrigin(src) + ": [" + section + "]";
     mapFile = s.text("map", "");
+    if (!mapFile.empty()) {
+        // a relative path is the INI's: the file works from any folder, and effective.ini
+        // keeps the resolved path
+        const std::string ini = common::configOrigin(src);
+        namespace fs = std::filesystem;
+        if (fs::path(mapFile).is_relative() && fs::is_regular_file(ini))
+            mapFile = (fs::path(ini).parent_path() / mapFile).lexically_normal().string();
+        if (fs::is_directory(mapFile))
+            s.fail("map", "'" + mapFile + "' is a folder, not a .poly file");
+        if (!fs::exists(mapFile))
+            s.fail("map", "no such file '" + mapFile +
+                              "' (a relative path is taken from the INI's folder)");
+    }
     generator = s.choice("generator", "steps", {"steps", "rooms"});
     if (!mapFile.empty() && s.has("generator"))
         s.fail("generator", "give either map = <file.poly> or a generator, not both");

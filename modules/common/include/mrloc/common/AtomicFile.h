@@ -2,6 +2,7 @@
 // Outputs are written to "<name>.tmp" and renamed when complete, so that an error or a crash
 // never leaves a half-written file under the final name.
 #include <string>
+#include <vector>
 
 namespace mrloc::common {
 
@@ -44,6 +45,11 @@ class RunOutputs {
     ~RunOutputs();
     RunOutputs(const RunOutputs&) = delete;
     RunOutputs& operator=(const RunOutputs&) = delete;
+    /** The final paths of the files committed since this one was made. */
+    std::vector<std::string> committed() const;
+
+ private:
+    size_t first_ = 0;
 };
 
 /** Creates a directory and its parents; an error names the directory. */
