@@ -1,4 +1,5 @@
 #include <mrloc/common/Error.h>
+#include <mrloc/common/IniLint.h>
 
 #include <sstream>
 
@@ -32,15 +33,8 @@ std::string oneLine(const std::string& what) {
     std::string clean;
     for (size_t i = 0; i < message.size();) {
         const auto c = static_cast<unsigned char>(message[i]);
-        const size_t n = c < 0x80           ? 1
-                         : (c >> 5) == 0x6  ? 2
-                         : (c >> 4) == 0xe  ? 3
-                         : (c >> 3) == 0x1e ? 4
-                                            : 0;
-        bool ok = n > 0 && i + n <= message.size() && (n > 1 || (c >= 0x20 && c != 0x7f));
-        for (size_t k = 1; ok && k < n; ++k)
-            ok = (static_cast<unsigned char>(message[i + k]) >> 6) == 0x2;
-        if (ok)
+        const size_t n = common::utf8Length(message, i);
+        if (n > 1 || (n == 1 && c >= 0x20 && c != 0x7f))
             clean.append(message, i, n), i += n;
         else
             clean += '?', ++i;

@@ -8,28 +8,33 @@
 
 namespace mrloc::common {
 
+size_t utf8Length(const std::string& s, size_t i) {
+    const auto c = static_cast<unsigned char>(s[i]);
+    // Continuation bytes that follow the lead byte c (4: not a lead byte).
+    const size_t n = c < 0x80           ? 0
+                     : (c >> 5) == 0x6  ? 1
+                     : (c >> 4) == 0xE  ? 2
+                     : (c >> 3) == 0x1E ? 3
+                                        : 4;
+    if (n == 4 || (n == 1 && c < 0xC2) || i + n >= s.size()) return 0;
+    unsigned cp = n == 0 ? c : n == 1 ? (c & 0x1F) : n == 2 ? (c & 0x0F) : (c & 0x07);
+    for (size_t k = 1; k <= n; ++k) {
+        const auto d = static_cast<unsigned char>(s[i + k]);
+        if ((d >> 6) != 0x2) return 0;
+        cp = (cp << 6) | (d & 0x3F);
+    }
+    // No overlong forms, no surrogates, nothing past U+10FFFF.
+    if ((n == 2 && cp < 0x800) || (n == 3 && (cp < 0x10000 || cp > 0x10FFFF)) ||
+        (cp >= 0xD800 && cp <= 0xDFFF))
+        return 0;
+    return n + 1;
+}
+
 bool isUtf8(const std::string& s) {
-    size_t i = 0;
-    while (i < s.size()) {
-        const auto c = static_cast<unsigned char>(s[i]);
-        // Continuation bytes that follow the lead byte c (4: not a lead byte).
-        const size_t n = c < 0x80           ? 0
-                         : (c >> 5) == 0x6  ? 1
-                         : (c >> 4) == 0xE  ? 2
-                         : (c >> 3) == 0x1E ? 3
-                                            : 4;
-        if (n == 4 || (n == 1 && c < 0xC2) || i + n >= s.size() + (n == 0)) return false;
-        unsigned cp = n == 0 ? c : n == 1 ? (c & 0x1F) : n == 2 ? (c & 0x0F) : (c & 0x07);
-        for (size_t k = 1; k <= n; ++k) {
-            const auto d = static_cast<unsigned char>(s[i + k]);
-            if ((d >> 6) != 0x2) return false;
-            cp = (cp << 6) | (d & 0x3F);
-        }
-        // No overlong forms, no surrogates, nothing past U+10FFFF.
-        if ((n == 2 && cp < 0x800) || (n == 3 && (cp < 0x10000 || cp > 0x10FFFF)) ||
-            (cp >= 0xD800 && cp <= 0xDFFF))
-            return false;
-        i += n + 1;
+    for (size_t i = 0; i < s.size();) {
+        const size_t n = utf8Length(s, i);
+        if (n == 0) return false;
+        i += n;
     }
     return true;
 }
@@ -48,9 +53,7 @@ std::string lower(std::string s) {
     return s;
 }
 
-bool isComment(const std::string& t) {
-    return t[0] == '#' || t[0] == ';' || t.rfind("//", 0) == 0;
-}
+bool isComment(const std::string& t) { return t[0] == '#' || t[0] == ';' || t.rfind("//", 0) == 0; }
 
 }  // namespace
 
@@ -63,8 +66,8 @@ void lintIni(const std::string& text, const std::string& origin,
         fail(size_t(std::count(text.begin(), text.begin() + long(nul), '\n')) + 1,
              "a NUL byte (MRPT's parser would silently drop the rest of the file)");
 
-    std::string section;             // current section, as written
-    bool checking = checked("");     // lines before the first section
+    std::string section;                      // current section, as written
+    bool checking = checked("");              // lines before the first section
     std::map<std::string, size_t> firstLine;  // "section\nkey" (lower case) -> line
     std::istringstream in(text);
     std::string raw;

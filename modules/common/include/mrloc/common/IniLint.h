@@ -20,5 +20,7 @@ void lintIni(const std::string& text, const std::string& origin,
 
 /** True if `s` is well-formed UTF-8. */
 bool isUtf8(const std::string& s);
+/** Length of the well-formed UTF-8 sequence starting at s[i] (i < s.size()); 0 if none. */
+size_t utf8Length(const std::string& s, size_t i);
 
 }  // namespace mrloc::common
