@@ -7,19 +7,61 @@
 #include <mrloc/common/RunDirectory.h>
 #include <mrloc/common/Trajectory.h>
 #include <mrpt/core/format.h>
+#include <mrpt/obs/CObservationOdometry.h>
 
 #include <chrono>
 #include <filesystem>
 #include <iostream>
+#include <map>
 
 namespace mrloc::common {
+
+namespace {
+
+/** Dead reckoning's errors against the robot's ground truth (world frame): the odometry
+ *  path started at the true pose of its first reading (a log's odometry starts where its
+ *  robot's encoders were reset), then compared at every reading. Readings and, with truth,
+ *  the error statistics and the final error. */
+nlohmann::json odometryErrors(const Trajectory& odometry, const Trajectories& worldTruth,
+                              const std::string& robot) {
+    nlohmann::json j;
+    j["readings"] = odometry.size();
+    const auto gt = worldTruth.find(robot);
+    if (gt == worldTruth.end()) return j;
+    const auto start = interpolate(gt->second, odometry.front().t);
+    if (!start) return j;
+    const mrpt::poses::CPose3D align = *start + (-odometry.front().pose);
+    Trajectory aligned;
+    for (const auto& p : odometry) aligned.push_back({p.t, align + p.pose});
+    std::vector<double> e;
+    for (const auto& te : positionErrors(aligned, gt->second)) e.push_back(te.error);
+    j.update(statsToJson(computeStats(e)));
+    if (!e.empty()) j["final_m"] = e.back();
+    return j;
+}
+
+}  // namespace
 
 LocalizationResult runLocalization(Localizer& localizer, const LocalizationRunOptions& o) {
     RawlogReader reader(o.rawlogPath);
     const auto start = std::chrono::steady_clock::now();
     Progress progress("localizing", 0, o.quiet);
     size_t n = 0;
+    // odometry alone per robot, as MRPT's pf-localization writes it: the robot's odometry
+    // stream (<robot>.odom, or MRPT's actions), the first such label seen
+    Trajectories odometry;
+    std::map<std::string, std::string> odometryLabel;
     for (mrpt::obs::CObservation::Ptr obs; reader.next(obs);) {
+        if (const auto odo = std::dynamic_pointer_cast<mrpt::obs::CObservationOdometry>(obs)) {
+            const std::string robot = robotOfLabel(odo->sensorLabel);
+            const std::string sensor = sensorOfLabel(odo->sensorLabel);
+            if (sensor == "odom" || sensor == "odometry") {
+                const auto [it, fresh] = odometryLabel.emplace(robot, odo->sensorLabel);
+                if (it->second == odo->sensorLabel && odo->timestamp != INVALID_TIMESTAMP)
+                    odometry[robot].push_back({mrpt::Clock::toDouble(odo->timestamp),
+                                               mrpt::poses::CPose3D(odo->odometry)});
+            }
+        }
         try {
             localizer.process(obs);
         } catch (const Error& e) {
@@ -78,6 +120,10 @@ LocalizationResult runLocalization(Localizer& localizer, const LocalizationRunOp
             allErrors.insert(allErrors.end(), e.begin(), e.end());
             r.update(statsToJson(computeStats(e)));
             r.update(localizer.groundTruthMetrics(robot, gt));
+        }
+        if (const auto odo = odometry.find(robot); odo != odometry.end() && !odo->second.empty()) {
+            saveTum(run_dir::odometry(o.outDir, robot), odo->second);
+            r["odometry"] = odometryErrors(odo->second, worldTruth, robot);
         }
         metrics["robots"][robot] = r;
     }

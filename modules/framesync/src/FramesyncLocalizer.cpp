@@ -6,10 +6,6 @@
 
 namespace mrloc::framesync {
 
-std::string odometryPath(const std::string& dir, const std::string& robot) {
-    return dir + "/odometry." + robot + ".txt";
-}
-
 void FramesyncLocalizer::configure(const mrpt::config::CConfigFileBase& ini) {
     config_.loadFromConfigFile(ini, "framesync");
     team_ = std::make_unique<FrameTeam>(config_.team);
@@ -74,9 +70,7 @@ void FramesyncLocalizer::writeOutputs(const std::string& outDir,
         f.walls.insert(f.walls.end(), node->walls().begin(), node->walls().end());
     f.events = team_->events();
     f.pairs = endFigures(team_->estimates(), team_->odometry(), truth);
-    f.write(outDir);
-    for (const auto& [robot, track] : team_->odometry())
-        common::saveTum(odometryPath(outDir, robot), track);
+    f.write(outDir);  // odometry alone: odometry.<robot>.txt, written for every method
 }
 
 }  // namespace mrloc::framesync

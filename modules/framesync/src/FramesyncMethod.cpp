@@ -1,3 +1,4 @@
+#include <mrloc/common/RunDirectory.h>
 #include <mrloc/common/Trajectory.h>
 #include <mrloc/framesync/FramesyncExperiment.h>
 #include <mrloc/framesync/FramesyncFiles.h>
@@ -74,8 +75,8 @@ std::string runPicture(const report::RunView& run, const FramesyncRunFile& f) {
         const std::string n = std::to_string(i), colour = colourOf(i);
         std::vector<std::pair<double, double>> est, odo, gt, walls;
         for (const auto& p : run.estimates.at(r)) est.emplace_back(p.pose.x(), p.pose.y());
-        if (std::filesystem::exists(odometryPath(run.dir, r)))
-            for (const auto& p : common::loadTum(odometryPath(run.dir, r)))
+        if (std::filesystem::exists(common::run_dir::odometry(run.dir, r)))
+            for (const auto& p : common::loadTum(common::run_dir::odometry(run.dir, r)))
                 odo.emplace_back(p.pose.x(), p.pose.y());
         if (const auto t = run.truth.find(r); t != run.truth.end())
             for (const auto& p : t->second) gt.emplace_back(p.pose.x(), p.pose.y());

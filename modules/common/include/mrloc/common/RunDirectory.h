@@ -7,6 +7,7 @@
 //   metrics.json             method, errors (n, rmse_m, ...), per robot, method figures
 //   estimates.<robot>.txt    TUM format
 //   groundtruth.<robot>.txt  the rawlog's ground truth in the estimates' frame
+//   odometry.<robot>.txt     the robot's odometry alone (dead reckoning), TUM, as read
 //   report.html, *.png       written by `mrloc report`
 // plus the files each method writes for its report section (defined in the method).
 #include <string>
@@ -22,6 +23,9 @@ inline std::string estimates(const std::string& d, const std::string& robot) {
 }
 inline std::string groundTruth(const std::string& d, const std::string& robot) {
     return d + "/groundtruth." + robot + ".txt";
+}
+inline std::string odometry(const std::string& d, const std::string& robot) {
+    return d + "/odometry." + robot + ".txt";
 }
 inline std::string report(const std::string& d) { return d + "/report.html"; }
 

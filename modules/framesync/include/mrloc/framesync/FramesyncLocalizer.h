@@ -1,9 +1,10 @@
 #pragma once
 // The framesync method's localizer: the robots' on-board systems (FrameTeam) run again on
 // the log's odometry and sonar. Its estimates: each robot in its shared frame at every
-// odometry reading; beside them, odometry alone (odometry.<robot>.txt) and the walls and
-// redefinitions (framesync.run.txt). A log of one robot, an MRPT rawlog with sonar say,
-// gives its walls and its odometry: there is nobody to share a frame with.
+// odometry reading; beside them, the walls and redefinitions (framesync.run.txt). The
+// framework writes odometry alone (odometry.<robot>.txt) for every method. A log of one
+// robot, an MRPT rawlog with sonar say, gives its walls and its odometry: there is nobody to
+// share a frame with.
 #include <mrloc/common/Localizer.h>
 #include <mrloc/framesync/FramesyncConfig.h>
 #include <mrloc/framesync/Team.h>
@@ -30,8 +31,5 @@ class FramesyncLocalizer : public common::Localizer {
     std::unique_ptr<FrameTeam> team_;
     size_t recordedRedefinitions_ = 0;  ///< the on-board decision layers' comments in the log
 };
-
-/** Odometry alone of a robot beside its estimate: "<dir>/odometry.<robot>.txt" (TUM). */
-std::string odometryPath(const std::string& dir, const std::string& robot);
 
 }  // namespace mrloc::framesync
