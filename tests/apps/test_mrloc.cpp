@@ -336,3 +336,37 @@ TEST(MrlocCli, ARunIntoAUsedFolderLeavesNoStaleOutputsAndKeepsTheUsersFiles) {
     const auto p = common::loadJson(dir + "/provenance.json");
     EXPECT_EQ(p["outputs"]["run"].size(), 17u) << p.dump(2);  // 2 robots x 4 + 9
 }
+
+TEST(MrlocRun, BeaconReportsShowTheDistanceBetweenFixesPerScheduling) {
+    // seed 001 sec. 4: priority keeps the distance between fixes alike for slow and fast
+    // robots (measured 0.192-0.300 m), round robin spreads it (0.084-0.637 m)
+    std::map<std::string, std::vector<double>> mean;
+    for (const char* name : {"beacons_multi_robot", "beacons_multi_robot_round_robin"}) {
+        const std::string out = tmp(name);
+        ASSERT_EQ(mrlocCmd("run " + config(name) + " -q --out " + out).code, 0);
+        const std::string page = slurp(out + "/report.html");
+        const auto at = page.find("<tr><th>mean distance between fixes (m)</th>");
+        ASSERT_NE(at, std::string::npos) << name;
+        std::istringstream row(page.substr(at, page.find("</tr>", at) - at));
+        std::string cell;
+        while (std::getline(row, cell, '>'))
+            if (cell.size() > 4 && std::isdigit(static_cast<unsigned char>(cell[0])))
+                mean[name].push_back(std::stod(cell));
+        ASSERT_EQ(mean[name].size(), 4u) << name;
+        EXPECT_NE(page.find(std::string("Scheduling: <b>") +
+                            (std::string(name).find("round") == std::string::npos ? "priority"
+                                                                                  : "round robin")),
+                  std::string::npos);
+        // the reception rate is of the shots fired; "fixes" is one thing in metrics.json
+        EXPECT_NE(page.find("a reception rate of"), std::string::npos);
+        const auto b = common::loadJson(out + "/metrics.json")["beacons"];
+        EXPECT_FALSE(b.contains("reception_rate"));
+        EXPECT_FALSE(b.contains("fixes"));
+        EXPECT_TRUE(b.contains("multilateration_fixes"));
+    }
+    const auto spread = [](const std::vector<double>& v) {
+        return *std::max_element(v.begin(), v.end()) / *std::min_element(v.begin(), v.end());
+    };
+    EXPECT_LT(spread(mean["beacons_multi_robot"]), 2.0);              // measured 1.56
+    EXPECT_GT(spread(mean["beacons_multi_robot_round_robin"]), 5.0);  // measured 7.6
+}

@@ -29,6 +29,10 @@ TEST(MrlocPolymap, StepsMapRunFindsTwelveHypothesesWithTheTruthAmongThem) {
     EXPECT_EQ(common::Polygon::load(out + "/map.poly").size(), 148u);
     EXPECT_EQ(polymap::HypothesesFile::read(out, "r1").hypotheses.size(), 12u);
     EXPECT_NE(slurp(out + "/report.html").find("12 hypotheses"), std::string::npos);
+    // the headline: the truth's place among them, numbered as in the table (start_site = 4)
+    EXPECT_NE(slurp(out + "/report.html")
+                  .find("<b>12 hypotheses; the true start is hypothesis #4</b>, 0.000 m"),
+              std::string::npos);
 }
 
 TEST(MrlocPolymap, MapFileRunWithTwoRoomsAndByteIdenticalRepeats) {

@@ -185,7 +185,9 @@ nlohmann::json BeaconLocalizer::methodMetrics() const {
     j["ranges_used"] = total.rangesUsed;
     j["ranges_gated"] = total.rangesGated;
     j["ranges_unknown_beacon"] = total.rangesUnknownBeacon;
-    j["fixes"] = total.fixes;
+    // multilateration fixes (seed 001 eqs. 4-10): in fixes mode one per estimate, in tracker
+    // mode those that start or restart the filter; the estimates are per robot below
+    j["multilateration_fixes"] = total.fixes;
     j["fix_failures"] = total.fixFailures;
     j["mirror_resolved"] = total.mirrorResolved;
     j["filter_resets"] = total.resets;
@@ -196,9 +198,11 @@ nlohmann::json BeaconLocalizer::methodMetrics() const {
         r["mean_distance_between_fixes_m"] = sp.gaps ? sp.sumDistance / double(sp.gaps) : 0.0;
         r["max_time_between_fixes_s"] = sp.maxTime;
     }
-    j["reception_rate"] = total.epochs == 0 ? 0.0
-                                            : double(total.rangesReceived) /
-                                                  double(total.epochs * options_.map.size());
+    // The rawlog holds the ranges heard, not the shots fired (a section fires only its own
+    // beacons): the mean heard per epoch. The reception rate of the shots fired needs the
+    // simulator's shot log; the report shows it.
+    if (total.epochs > 0)
+        j["ranges_per_epoch"] = double(total.rangesReceived) / double(total.epochs);
     return j;
 }
 

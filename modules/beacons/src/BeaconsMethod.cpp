@@ -83,10 +83,12 @@ std::string receptionSection(const report::RunView& run) {
         }
         t += "</tr>\n";
     }
-    const auto row = [&](const char* name, const char* key, double scale, const char* fmt) {
+    const auto methodRobots = metrics.value("beacons", nlohmann::json::object())
+                                  .value("robots", nlohmann::json::object());
+    const auto rowOf = [&](const nlohmann::json& m, const char* name, const char* key, double scale,
+                           const char* fmt) {
         std::string r = std::string("<tr><th>") + name + "</th>";
         for (const auto& robot : robots) {
-            const auto& m = metrics["robots"];
             r += "<td>";
             if (m.contains(robot) && m[robot].contains(key) && m[robot][key].is_number())
                 r += mrpt::format(fmt, scale * m[robot][key].get<double>());
@@ -96,12 +98,35 @@ std::string receptionSection(const report::RunView& run) {
         }
         return r + "</tr>\n";
     };
+    const auto row = [&](const char* name, const char* key, double scale, const char* fmt) {
+        return rowOf(metrics["robots"], name, key, scale, fmt);
+    };
     t += row("mean error (mm)", "mean_m", 1000, "%.1f");
     t += row("max error (mm)", "max_m", 1000, "%.1f");
-    t += row("fixes", "estimates", 1, "%.0f");
+    t += row("estimates", "estimates", 1, "%.0f");
+    // seed 001 sec. 4's figure for the scheduler: how far a robot moves between two fixes
+    t += rowOf(methodRobots, "mean distance between fixes (m)", "mean_distance_between_fixes_m", 1,
+               "%.3f");
+    t += rowOf(methodRobots, "max distance between fixes (m)", "max_distance_between_fixes_m", 1,
+               "%.3f");
     t += "</table>\n";
-    t += "<p>Shots fired: " + std::to_string(shots.size()) + " (log: <code>" +
-         report::html(shotsPath) + "</code>).</p>\n";
+    t += "<p>Scheduling: <b>" +
+         std::string(options.system.scheduling == Scheduling::Priority
+                         ? "priority (slots in proportion to speed, seed 001 sec. 4)"
+                         : "round robin") +
+         "</b>. Seed 001's point: with priority scheduling the distance a robot moves between "
+         "two fixes stays about the same whatever its speed; round robin lets a fast robot "
+         "go further.</p>\n";
+    size_t detected = 0;
+    for (const auto& s : shots) detected += s.detected;
+    t += mrpt::format(
+             "<p>Shots fired: %zu, heard: %zu, a reception rate of %.1f %% (of the shots fired: "
+             "a section fires only its own beacons). Multilateration fixes: %d (in the tracker "
+             "mode, those that start or restart the filter; every epoch gives an estimate). Log: "
+             "<code>",
+             shots.size(), detected, 100.0 * double(detected) / double(shots.size()),
+             metrics.value("beacons", nlohmann::json::object()).value("multilateration_fixes", 0)) +
+         report::html(shotsPath) + "</code>.</p>\n";
     return t;
 }
 

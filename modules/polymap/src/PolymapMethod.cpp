@@ -158,6 +158,19 @@ std::string polymapSection(const report::RunView& run) {
         renderPolygonView(view, run.dir + "/" + png);
         out += "<h3>Robot " + report::html(robot) + ": " + std::to_string(file.hypotheses.size()) +
                " hypotheses</h3>\n<img src='" + png + "' alt='map, V and hypotheses'>\n";
+        // the headline: where the truth is among the hypotheses (# as in the table below)
+        if (view.truth && !file.hypotheses.empty()) {
+            size_t best = 0;
+            for (size_t i = 1; i < file.hypotheses.size(); ++i)
+                if ((file.hypotheses[i].point - *view.truth).norm() <
+                    (file.hypotheses[best].point - *view.truth).norm())
+                    best = i;
+            out += mrpt::format(
+                "<p><b>%zu hypotheses; the true start is hypothesis #%zu</b>, %.3f m from "
+                "it.</p>\n",
+                file.hypotheses.size(), best + 1,
+                (file.hypotheses[best].point - *view.truth).norm());
+        }
         const auto robots = run.metrics.value("polymap", nlohmann::json::object())
                                 .value("robots", nlohmann::json::object());
         if (robots.contains(robot) && robots[robot].contains("elimination")) {
