@@ -71,6 +71,17 @@ std::optional<std::string> closeTo(const std::string& section,
     return best;
 }
 
+/** [scenario] describes a simulation unless it only names a ground-truth file (an MRPT INI
+ *  with a [scenario] holding ground_truth* keys, for `mrloc localize`). */
+bool describesSimulation(const mrpt::config::CConfigFileBase& ini) {
+    if (!ini.sectionExists("scenario")) return false;
+    std::vector<std::string> keys;
+    ini.getAllKeys("scenario", keys);
+    for (const auto& k : keys)
+        if (k.rfind("ground_truth", 0) != 0 || k == "ground_truth_rate") return true;
+    return keys.empty();
+}
+
 /** A rawlog by its name or its first bytes (gzip's magic, or MRPT's binary archive). */
 bool looksLikeRawlog(const std::string& path) {
     const std::string ext = fs::path(path).extension().string();
@@ -169,7 +180,7 @@ Setup loadSetupUnguarded(const method::Registry& registry, const std::string& in
     s.method = &registry.get(s.scenario.method);
     s.localizer = s.method->localizer();
     s.localizer->configure(*s.ini);
-    if (needSimulation || s.ini->sectionExists("scenario")) {
+    if (needSimulation || describesSimulation(*s.ini)) {
         s.simulation = s.method->scenario(*s.ini, *s.localizer);
         s.simulation->config.scenario.seed = s.scenario.seed;
     }
@@ -289,7 +300,8 @@ std::string doSimulate(Setup& s, const std::string& dir, bool quiet) {
 
 void doLocalize(Setup& s, const std::string& rawlog, const std::string& dir, bool quiet) {
     const std::string& name = s.method->name;
-    const auto result = common::runLocalization(*s.localizer, {name, rawlog, dir, quiet});
+    const auto result =
+        common::runLocalization(*s.localizer, {name, rawlog, dir, quiet, s.scenario.groundTruth});
     if (s.method->experiment) s.method->experiment({*s.ini, *s.localizer, result.truth, dir});
     if (quiet) return;
     const auto& m = result.metrics;

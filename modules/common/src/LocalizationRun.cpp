@@ -102,10 +102,22 @@ LocalizationResult runLocalization(Localizer& localizer, const LocalizationRunOp
                                    : "observations-only";
     if (!restamped.empty()) metrics["restamped_observations"] = restamped;
     Trajectories worldTruth;
-    for (const auto& [robot, traj] : estimates)
-        if (const std::string gtPath = groundTruthPath(o.rawlogPath, robot);
-            std::filesystem::exists(gtPath))
-            worldTruth[robot] = loadTum(gtPath);
+    if (!o.groundTruth.path.empty()) {
+        std::vector<double> steps;
+        if (const auto odo = odometry.find(o.groundTruth.robot); odo != odometry.end())
+            for (const auto& p : odo->second) steps.push_back(p.t);
+        if (steps.empty() && o.groundTruth.format != "tum")
+            throw Error("ground truth " + o.groundTruth.path + ": the format " +
+                        o.groundTruth.format + " counts steps, and robot '" + o.groundTruth.robot +
+                        "' has no odometry in " + o.rawlogPath + " to time them");
+        worldTruth[o.groundTruth.robot] = loadGroundTruth(o.groundTruth, steps);
+        metrics["ground_truth_file"] = o.groundTruth.path;
+    } else {
+        for (const auto& [robot, traj] : estimates)
+            if (const std::string gtPath = groundTruthPath(o.rawlogPath, robot);
+                std::filesystem::exists(gtPath))
+                worldTruth[robot] = loadTum(gtPath);
+    }
     result.truth = localizer.truthInEstimateFrame(worldTruth);
     std::vector<double> allErrors;
     for (const auto& [robot, traj] : estimates) {

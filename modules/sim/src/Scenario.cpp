@@ -1,9 +1,11 @@
 #include <mrloc/common/Error.h>
 #include <mrloc/common/IniSection.h>
 #include <mrloc/sim/Scenario.h>
+#include <mrpt/core/bits_math.h>
 #include <mrpt/core/format.h>
 
 #include <algorithm>
+#include <filesystem>
 #include <set>
 #include <sstream>
 
@@ -14,7 +16,8 @@ void ScenarioOptions::loadFromConfigFile(const mrpt::config::CConfigFileBase& sr
     common::IniSection s(src, section);
     name = s.text("name", "run");
     if (name.empty() || name.find_first_of("/\\ ") != std::string::npos ||
-        std::any_of(name.begin(), name.end(), [](unsigned char c) { return c < 0x20 || c == 0x7f; }))
+        std::any_of(name.begin(), name.end(),
+                    [](unsigned char c) { return c < 0x20 || c == 0x7f; }))
         s.fail("name", "must be a non-empty file name without '/', spaces or control characters");
     method = s.text("method", "beacons");
     seed = (unsigned long)s.integer("seed", 1, 0, 4294967295L);
@@ -36,6 +39,23 @@ void ScenarioOptions::loadFromConfigFile(const mrpt::config::CConfigFileBase& sr
     }
     if (robots.size() > kMaxRobots)
         s.fail("robots", "more than " + std::to_string(kMaxRobots) + " robots");
+    groundTruth = {};
+    groundTruth.path = s.text("ground_truth", "");
+    groundTruth.format =
+        s.choice("ground_truth_format", "tum", common::GroundTruthSource::formats());
+    groundTruth.robot = s.text("ground_truth_robot", "robot");
+    const auto off = s.reals("ground_truth_offset", {0, 0, 0}, 3);
+    groundTruth.offset = mrpt::poses::CPose3D(off[0], off[1], 0, mrpt::DEG2RAD(off[2]), 0, 0);
+    if (!groundTruth.path.empty()) {
+        namespace fs = std::filesystem;
+        const std::string ini = common::configOrigin(src);
+        if (fs::path(groundTruth.path).is_relative() && fs::is_regular_file(ini))
+            groundTruth.path =
+                (fs::path(ini).parent_path() / groundTruth.path).lexically_normal().string();
+        if (!fs::is_regular_file(groundTruth.path))
+            s.fail("ground_truth", "no such file '" + groundTruth.path +
+                                       "' (a relative path is taken from the INI's folder)");
+    }
     s.finish();
 }
 
@@ -51,6 +71,14 @@ void ScenarioOptions::saveToConfigFile(mrpt::config::CConfigFileBase& t,
     std::string list;
     for (const auto& r : robots) list += (list.empty() ? "" : " ") + r;
     t.write(section, "robots", list);
+    if (!groundTruth.path.empty()) {
+        t.write(section, "ground_truth", groundTruth.path);
+        t.write(section, "ground_truth_format", groundTruth.format);
+        t.write(section, "ground_truth_robot", groundTruth.robot);
+        t.write(section, "ground_truth_offset",
+                mrpt::format("%g %g %g", groundTruth.offset.x(), groundTruth.offset.y(),
+                             mrpt::RAD2DEG(groundTruth.offset.yaw())));
+    }
 }
 
 ScenarioConfig ScenarioConfig::loadWithoutRobots(const mrpt::config::CConfigFileBase& ini) {

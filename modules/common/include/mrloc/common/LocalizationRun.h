@@ -2,6 +2,7 @@
 // Plays a rawlog through a Localizer and writes the run directory (see RunDirectory.h):
 // estimates, ground truth in the estimates' frame, errors against it, metrics.json and the
 // method's own files. effective.ini and provenance.json are the app's to write.
+#include <mrloc/common/GroundTruthFile.h>
 #include <mrloc/common/Localizer.h>
 
 #include <nlohmann/json.hpp>
@@ -14,6 +15,8 @@ struct LocalizationRunOptions {
     std::string rawlogPath;
     std::string outDir;
     bool quiet = false;
+    /** A ground-truth file named in the INI; without one, <rawlog stem>.<robot>.gt.txt. */
+    GroundTruthSource groundTruth = {};
 };
 
 struct LocalizationResult {

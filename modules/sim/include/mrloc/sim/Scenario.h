@@ -3,6 +3,7 @@
 // and the robots. The robots come from [scenario] robots with a [robot.<name>] section
 // each, or from the method's scenario builder (a generated swarm, a robot placed in a
 // floor plan): the simulator knows no method.
+#include <mrloc/common/GroundTruthFile.h>
 #include <mrloc/sim/Robot.h>
 #include <mrloc/sim/World.h>
 
@@ -24,6 +25,9 @@ struct ScenarioOptions : public mrpt::config::CLoadableOptions {
     double startTime = 1.7e9;         ///< time stamp of t = 0 (seconds since 1970)
     double groundTruthRate = 20;      ///< Hz
     std::vector<std::string> robots;  ///< robots = r1 r2 ... ; each has [robot.<name>]
+    /** ground_truth, ground_truth_format, ground_truth_robot, ground_truth_offset: a file of
+     *  ground truth for `mrloc localize` (a relative path is the INI's). */
+    common::GroundTruthSource groundTruth;
 
     void loadFromConfigFile(const mrpt::config::CConfigFileBase& source,
                             const std::string& section) override;

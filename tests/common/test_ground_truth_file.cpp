@@ -1,0 +1,77 @@
+// Ground truth in MRPT's dataset formats: index-stamped "i x y phi" and per-step
+// "x y z yaw pitch roll" robot paths, timed by the log's odometry steps, with a frame offset.
+#include <gtest/gtest.h>
+#include <mrloc/common/Error.h>
+#include <mrloc/common/GroundTruthFile.h>
+
+#include <cmath>
+#include <fstream>
+
+using namespace mrloc;
+using common::GroundTruthSource;
+
+namespace {
+std::vector<double> steps(size_t n) {
+    std::vector<double> t;
+    for (size_t i = 0; i < n; ++i) t.push_back(1000 + 0.5 * double(i));
+    return t;
+}
+}  // namespace
+
+TEST(GroundTruthFile, MrptsIndexedPathsTakeTheirStepsTimesAndTheOffset) {
+    GroundTruthSource s;
+    s.path = "/usr/share/mrpt/datasets/uwb_ro-localization_demo_GT.txt";
+    s.format = "index_x_y_phi";
+    s.offset = mrpt::poses::CPose3D(2, 4, 0, 0, 0, 0);
+    const auto gt = common::loadGroundTruth(s, steps(342));
+    ASSERT_EQ(gt.size(), 342u);  // rows 0 .. 341
+    // row 1: "1 0.002535 -0.007280 0.001317", at step 1's time, moved by (2, 4)
+    EXPECT_DOUBLE_EQ(gt[1].t, 1000.5);
+    EXPECT_NEAR(gt[1].pose.x(), 2.002535, 1e-9);
+    EXPECT_NEAR(gt[1].pose.y(), 3.992720, 1e-9);
+    EXPECT_NEAR(gt[1].pose.yaw(), 0.001317, 1e-9);
+    // fewer steps in the log: the rows past them are left out
+    EXPECT_EQ(common::loadGroundTruth(s, steps(100)).size(), 100u);
+}
+
+TEST(GroundTruthFile, MrptsRobotPathsOneRowPerStep) {
+    GroundTruthSource s;
+    s.path = "/usr/share/mrpt/datasets/kf-slam_6D_demo_ground_truth_robot_path.txt";
+    s.format = "x_y_z_yaw_pitch_roll";
+    std::ifstream in(s.path);
+    size_t rows = 0;
+    std::string first;
+    for (std::string l; std::getline(in, l);)
+        if (!l.empty() && l[0] != '%') {
+            if (!rows) first = l;
+            ++rows;
+        }
+    const auto gt = common::loadGroundTruth(s, steps(rows));
+    ASSERT_EQ(gt.size(), rows);
+    std::istringstream f(first);
+    double x, y, z, yaw, pitch, roll;
+    f >> x >> y >> z >> yaw >> pitch >> roll;
+    EXPECT_DOUBLE_EQ(gt[0].pose.x(), x);
+    EXPECT_DOUBLE_EQ(gt[0].pose.z(), z);
+    EXPECT_NEAR(gt[0].pose.yaw(), yaw, 1e-12);
+    EXPECT_NEAR(gt[0].pose.pitch(), pitch, 1e-12);
+    EXPECT_NEAR(gt[0].pose.roll(), roll, 1e-12);
+}
+
+TEST(GroundTruthFile, AMalformedRowIsNamedByFileAndLine) {
+    const std::string path = testing::TempDir() + "/gt_bad.txt";
+    std::ofstream(path) << "% header\n0 0 0 0\n1 0.1 zero 0\n";
+    GroundTruthSource s;
+    s.path = path;
+    s.format = "index_x_y_phi";
+    try {
+        common::loadGroundTruth(s, steps(5));
+        FAIL() << "accepted";
+    } catch (const Error& e) {
+        EXPECT_NE(std::string(e.what()).find("gt_bad.txt:3: 'zero' is not a number"),
+                  std::string::npos)
+            << e.what();
+    }
+    std::ofstream(path) << "0 0 0\n";
+    EXPECT_THROW(common::loadGroundTruth(s, steps(5)), Error);  // 3 numbers for 4
+}
