@@ -71,14 +71,27 @@ std::optional<std::string> closeTo(const std::string& section,
     return best;
 }
 
-/** [scenario] describes a simulation unless it only names a ground-truth file (an MRPT INI
- *  with a [scenario] holding ground_truth* keys, for `mrloc localize`). */
+/** [scenario] keys that do not describe a simulation: an MRPT INI may get a [scenario] with
+ *  these for `mrloc localize` (the method, a ground-truth file), and effective.ini of such a
+ *  run keeps only these. */
+bool localizeOnlyKey(const std::string& key) {
+    static const std::set<std::string> keys{"name",
+                                            "method",
+                                            "seed",
+                                            "ground_truth",
+                                            "ground_truth_format",
+                                            "ground_truth_robot",
+                                            "ground_truth_offset"};
+    return keys.count(key) > 0;
+}
+
+/** [scenario] describes a simulation unless it holds only localizeOnlyKey keys. */
 bool describesSimulation(const mrpt::config::CConfigFileBase& ini) {
     if (!ini.sectionExists("scenario")) return false;
     std::vector<std::string> keys;
     ini.getAllKeys("scenario", keys);
     for (const auto& k : keys)
-        if (k.rfind("ground_truth", 0) != 0 || k == "ground_truth_rate") return true;
+        if (!localizeOnlyKey(k)) return true;
     return keys.empty();
 }
 
@@ -217,7 +230,13 @@ std::string effectiveIni(const Setup& s) {
         s.simulation->config.save(eff);
         if (s.simulation->saveOptions) s.simulation->saveOptions(eff);
     } else {
-        s.scenario.saveToConfigFile(eff, "scenario");
+        // no simulation: only what `localize` reads, so that the file runs again as is
+        mrpt::config::CConfigFileMemory all;
+        s.scenario.saveToConfigFile(all, "scenario");
+        std::vector<std::string> keys;
+        all.getAllKeys("scenario", keys);
+        for (const auto& k : keys)
+            if (localizeOnlyKey(k)) eff.write("scenario", k, all.read_string("scenario", k, ""));
     }
     s.localizer->saveConfig(eff);
     s.reportOptions.saveToConfigFile(eff, "report");

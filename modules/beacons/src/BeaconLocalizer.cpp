@@ -30,7 +30,17 @@ void BeaconOptions::loadFromConfigFile(const mrpt::config::CConfigFileBase& src,
     f.maxIterations = int(s.integer("max_iterations", 20, 1, 1000));
     f.maxGdop = s.real("max_gdop", 1e3, 1.0);
     f.knownHeight = threeD ? std::nullopt : std::optional<double>(0.0);  // set per epoch
-    tracker.rangeSigma = s.real("range_sigma", 0.03, 1e-6, 10);
+    // MRPT's range-only INIs give the range noise in their landmarks map's likelihood
+    // options: honoured when [beacons] range_sigma is not given (effective.ini says so)
+    const char* kMrptLikelihood = "MetricMap_landmarksMap_00_likelihoodOpts";
+    rangeSigmaFrom.clear();
+    if (!s.has("range_sigma") && src.keyExists(kMrptLikelihood, "beaconRangesStd")) {
+        IniSection mrpt(src, kMrptLikelihood);  // MRPT's section: its other keys are its own
+        tracker.rangeSigma = mrpt.real("beaconRangesStd", 0.03, 1e-6, 10);
+        rangeSigmaFrom = std::string("[") + kMrptLikelihood + "] beaconRangesStd";
+    } else {
+        tracker.rangeSigma = s.real("range_sigma", 0.03, 1e-6, 10);
+    }
     tracker.gateProbability = s.real("gate_probability", 0.999, 0.5, 1.0 - 1e-12);
     tracker.odomSigmaPerMetre = s.real("odometry_sigma_xy", 0.05, 0, 10);
     tracker.odomSigmaPhiPerRad = s.real("odometry_sigma_phi", 0.05, 0, 10);
@@ -62,7 +72,8 @@ void BeaconOptions::saveToConfigFile(mrpt::config::CConfigFileBase& t,
                                             : "nearest");
     t.write(section, "max_iterations", f.maxIterations);
     t.write(section, "max_gdop", f.maxGdop);
-    t.write(section, "range_sigma", tracker.rangeSigma);
+    t.write(section, "range_sigma", tracker.rangeSigma, -1, -1,
+            rangeSigmaFrom.empty() ? std::string() : "from MRPT's " + rangeSigmaFrom);
     t.write(section, "gate_probability", tracker.gateProbability);
     t.write(section, "odometry_sigma_xy", tracker.odomSigmaPerMetre);
     t.write(section, "odometry_sigma_phi", tracker.odomSigmaPhiPerRad);

@@ -24,6 +24,8 @@ struct BeaconOptions : public mrpt::config::CLoadableOptions {
     RfBeaconOptions system;  ///< aiming, scheduling and sections (the RF beacon's side)
     /** paper_reception_<id> = % per robot: seed 001 Tables 3/4, for the report. */
     std::map<int, std::vector<double>> paperReception;
+    /** Where range_sigma came from when [beacons] does not give it: MRPT's key, or empty. */
+    std::string rangeSigmaFrom;
 
     void loadFromConfigFile(const mrpt::config::CConfigFileBase& source,
                             const std::string& section) override;
