@@ -245,6 +245,13 @@ TEST(MrptData, UwbDemoAgainstItsGroundTruthFile) {
                        "[MetricMap_landmarksMap_00_likelihoodOpts] beaconRangesStd"),
               std::string::npos)
         << eff;
+    // and so is its start pose: the filter starts there (no multilateration fix needed)
+    EXPECT_NE(eff.find("start = 2 4 0 // from MRPT's [OdometryEstimation] odometry_X/Y/PHI"),
+              std::string::npos)
+        << eff;
+    EXPECT_EQ(m["beacons"]["multilateration_fixes"], 0);
+    const auto first = common::loadTum(out + "/estimates.robot.txt").front().pose;
+    EXPECT_LT(std::hypot(first.x() - 2, first.y() - 4), 0.05);  // measured 0.037 m
     const std::string again = tmp("uwb_gt_again");
     ASSERT_EQ(mrlocCmd("localize " + out + "/effective.ini " + kDatasets +
                        "/uwb_ro-localization_demo.rawlog -q --out " + again)

@@ -3,6 +3,7 @@
 #include <mrloc/common/IniSection.h>
 #include <mrloc/common/Rawlog.h>
 #include <mrloc/common/Trajectory.h>
+#include <mrpt/core/bits_math.h>
 #include <mrpt/core/format.h>
 #include <mrpt/obs/CObservationOdometry.h>
 #include <mrpt/system/datetime.h>
@@ -41,6 +42,20 @@ void BeaconOptions::loadFromConfigFile(const mrpt::config::CConfigFileBase& src,
     } else {
         tracker.rangeSigma = s.real("range_sigma", 0.03, 1e-6, 10);
     }
+    // the start pose: [beacons] start, else MRPT's [OdometryEstimation] odometry_X/Y/PHI
+    startFrom.clear();
+    tracker.startPose.reset();
+    if (s.has("start")) {
+        const auto v = s.reals("start", {}, 3);
+        tracker.startPose = mrpt::poses::CPose2D(v[0], v[1], mrpt::DEG2RAD(v[2]));
+    } else if (src.keyExists("OdometryEstimation", "odometry_X") &&
+               src.keyExists("OdometryEstimation", "odometry_Y")) {
+        IniSection mrpt(src, "OdometryEstimation");  // MRPT's section
+        tracker.startPose =
+            mrpt::poses::CPose2D(mrpt.requireReal("odometry_X"), mrpt.requireReal("odometry_Y"),
+                                 mrpt::DEG2RAD(mrpt.real("odometry_PHI", 0, -360, 360)));
+        startFrom = "[OdometryEstimation] odometry_X/Y/PHI";
+    }
     tracker.gateProbability = s.real("gate_probability", 0.999, 0.5, 1.0 - 1e-12);
     tracker.odomSigmaPerMetre = s.real("odometry_sigma_xy", 0.05, 0, 10);
     tracker.odomSigmaPhiPerRad = s.real("odometry_sigma_phi", 0.05, 0, 10);
@@ -72,6 +87,11 @@ void BeaconOptions::saveToConfigFile(mrpt::config::CConfigFileBase& t,
                                             : "nearest");
     t.write(section, "max_iterations", f.maxIterations);
     t.write(section, "max_gdop", f.maxGdop);
+    if (tracker.startPose)
+        t.write(section, "start",
+                mrpt::format("%g %g %g", tracker.startPose->x(), tracker.startPose->y(),
+                             mrpt::RAD2DEG(tracker.startPose->phi())),
+                -1, -1, startFrom.empty() ? std::string() : "from MRPT's " + startFrom);
     t.write(section, "range_sigma", tracker.rangeSigma, -1, -1,
             rangeSigmaFrom.empty() ? std::string() : "from MRPT's " + rangeSigmaFrom);
     t.write(section, "gate_probability", tracker.gateProbability);

@@ -26,6 +26,7 @@ BeaconTracker::BeaconTracker(BeaconMap map, TrackerOptions options)
 
 void BeaconTracker::onOdometry(const CPose2D& odo) {
     hasOdometry_ = true;
+    if (!initialized_ && !lastOdometry_) startAtKnownPose();
     if (initialized_ && lastOdometry_) {
         const CPose2D delta = odo - *lastOdometry_;  // increment in the robot frame
         const double d = std::hypot(delta.x(), delta.y());
@@ -39,6 +40,17 @@ void BeaconTracker::onOdometry(const CPose2D& odo) {
         pdf_ += mrpt::poses::CPosePDFGaussian(delta, Q);  // pose composition with Jacobians
     }
     lastOdometry_ = odo;
+}
+
+void BeaconTracker::startAtKnownPose() {
+    if (!o_.startPose) return;
+    // the known start pose is the pose where the log starts (its first odometry reading or
+    // its first ranges, whichever comes first)
+    pdf_.mean = *o_.startPose;
+    pdf_.cov.setZero();
+    pdf_.cov(0, 0) = pdf_.cov(1, 1) = o_.startSigmaXY * o_.startSigmaXY;
+    pdf_.cov(2, 2) = o_.startSigmaPhi * o_.startSigmaPhi;
+    initialized_ = true;
 }
 
 std::vector<BeaconTracker::Range> BeaconTracker::usableRanges(
@@ -158,6 +170,7 @@ std::optional<CPose2D> BeaconTracker::onRanges(double t,
                                                const mrpt::obs::CObservationBeaconRanges& obs) {
     ++stats_.epochs;
     const auto ranges = usableRanges(obs);
+    if (!initialized_ && !lastOdometry_) startAtKnownPose();
     if (!initialized_) {
         lastT_ = t;
         return bootstrap(ranges);

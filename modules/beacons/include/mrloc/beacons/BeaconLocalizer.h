@@ -26,6 +26,8 @@ struct BeaconOptions : public mrpt::config::CLoadableOptions {
     std::map<int, std::vector<double>> paperReception;
     /** Where range_sigma came from when [beacons] does not give it: MRPT's key, or empty. */
     std::string rangeSigmaFrom;
+    /** Where the start pose came from when [beacons] start is absent: MRPT's key, or empty. */
+    std::string startFrom;
 
     void loadFromConfigFile(const mrpt::config::CConfigFileBase& source,
                             const std::string& section) override;

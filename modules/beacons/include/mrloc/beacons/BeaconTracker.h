@@ -7,8 +7,8 @@
 // used, so one bad range (NLOS reflection, a late tone-decoder trigger) is rejected instead
 // of dragging the estimate. If several epochs in a row have every range rejected, the filter
 // re-initialises from a robust multilateration fix (the bias was in the filter, not the
-// ranges). Start-up: position from a fix; heading from two fixes a baseline apart compared
-// with the odometry between them.
+// ranges). Start-up: from the known start pose if one is given; else position from a fix
+// and heading from two fixes a baseline apart compared with the odometry between them.
 #include <mrloc/beacons/BeaconMap.h>
 #include <mrloc/beacons/Multilateration.h>
 #include <mrpt/obs/CObservationBeaconRanges.h>
@@ -27,6 +27,11 @@ struct TrackerOptions {
     double randomWalkSigma = 0.5;        ///< m/sqrt(s), when the rawlog has no odometry
     double bootstrapBaseline = 0.3;      ///< m between the two fixes that give the heading
     int resetAfter = 5;                  ///< epochs with every range rejected before a reset
+    /** The robot's pose at its first odometry reading, if known (MRPT's apps take it from
+     *  [OdometryEstimation]): the filter starts there instead of from two fixes. */
+    std::optional<mrpt::poses::CPose2D> startPose;
+    double startSigmaXY = 0.1;   ///< m
+    double startSigmaPhi = 0.1;  ///< rad
     MultilaterationOptions fix;  ///< for start-up and reset fixes (2-D: knownHeight set per epoch)
 };
 
@@ -69,6 +74,7 @@ class BeaconTracker {
     std::optional<Fix> fixFrom(const std::vector<Range>& ranges, bool robust = true);
     bool updateWithRange(const Range& r, double gate);
     std::optional<mrpt::poses::CPose2D> bootstrap(const std::vector<Range>& ranges);
+    void startAtKnownPose();
 
     BeaconMap map_;
     TrackerOptions o_;
