@@ -65,6 +65,23 @@ TEST(MrlocRun, QuickstartEndToEndWithinBound) {
     EXPECT_NEAR(oe["final_m"].get<double>(), 0.0092, 0.0018) << oe.dump(2);
     EXPECT_DOUBLE_EQ(odometry.front().pose.x(),
                      common::loadTum(out + "/groundtruth.r1.txt").front().pose.x());
+    // Each estimate's covariance (the filter's; unknown, nan, for the start-up fixes before
+    // it starts: 5 measured), symmetric positive definite, at the estimates' times
+    const auto cov = common::loadCovariances(out + "/covariance.r1.txt");
+    const auto est = common::loadTum(out + "/estimates.r1.txt");
+    ASSERT_EQ(cov.size(), est.size());
+    size_t unknown = 0;
+    for (size_t i = 0; i < cov.size(); ++i) {
+        EXPECT_EQ(cov[i].t, est[i].t);
+        if (std::isnan(cov[i].cov(0, 0))) {
+            ++unknown;
+            continue;
+        }
+        const auto P = cov[i].cov;
+        EXPECT_GT(P.det(), 0) << i;
+        EXPECT_GT(P(0, 0), 0) << i;
+    }
+    EXPECT_EQ(unknown, 5u);
     for (const auto& [f, width] : std::map<std::string, size_t>{
              {"topview.png", 900}, {"error_time.png", 900}, {"error_cdf.png", 900}}) {
         mrpt::img::CImage img;
@@ -334,7 +351,7 @@ TEST(MrlocCli, ARunIntoAUsedFolderLeavesNoStaleOutputsAndKeepsTheUsersFiles) {
     EXPECT_TRUE(fs::exists(dir + "/estimates.medium.txt"));
     EXPECT_EQ(slurp(dir + "/notes.txt"), "mine\n");  // not mrloc's: kept
     const auto p = common::loadJson(dir + "/provenance.json");
-    EXPECT_EQ(p["outputs"]["run"].size(), 17u) << p.dump(2);  // 2 robots x 4 + 9
+    EXPECT_EQ(p["outputs"]["run"].size(), 19u) << p.dump(2);  // 2 robots x 5 + 9
 }
 
 TEST(MrlocRun, BeaconReportsShowTheDistanceBetweenFixesPerScheduling) {

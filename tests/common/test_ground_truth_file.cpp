@@ -75,3 +75,26 @@ TEST(GroundTruthFile, AMalformedRowIsNamedByFileAndLine) {
     std::ofstream(path) << "0 0 0\n";
     EXPECT_THROW(common::loadGroundTruth(s, steps(5)), Error);  // 3 numbers for 4
 }
+
+TEST(Covariances, TextFormatRoundTripsExactlyWithUnknownTerms) {
+    const std::string path = testing::TempDir() + "/covariance.r.txt";
+    common::CovarianceTrack track(2);
+    track[0].t = 1700000000.123456789;
+    track[0].cov.setZero();
+    track[0].cov(0, 0) = 1e-4, track[0].cov(1, 1) = 2e-4, track[0].cov(2, 2) = 3e-3;
+    track[0].cov(0, 1) = track[0].cov(1, 0) = -5e-5;
+    track[1].t = 1700000001;
+    track[1].cov.fill(NAN);
+    track[1].cov(0, 0) = 0.25;
+    common::saveCovariances(path, track);
+    const auto back = common::loadCovariances(path);
+    ASSERT_EQ(back.size(), 2u);
+    EXPECT_EQ(back[0].t, track[0].t);
+    for (int i = 0; i < 3; ++i)
+        for (int j = 0; j < 3; ++j) EXPECT_EQ(back[0].cov(i, j), track[0].cov(i, j)) << i << j;
+    EXPECT_EQ(back[1].cov(0, 0), 0.25);
+    EXPECT_TRUE(std::isnan(back[1].cov(2, 2)));
+    EXPECT_TRUE(std::isnan(back[1].cov(1, 0)));  // symmetric: the lower half from the upper
+    std::ofstream(path) << "1 2 3\n";
+    EXPECT_THROW(common::loadCovariances(path), Error);  // 3 fields for 7, named
+}

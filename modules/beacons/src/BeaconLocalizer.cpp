@@ -141,8 +141,14 @@ void BeaconLocalizer::process(const mrpt::obs::CObservation::Ptr& obs) {
         fixOnly(robot, t, *ranges);
         return;
     }
-    if (const auto pose = trackerOf(robot).onRanges(t, compensateMotion(robot, *ranges)))
+    BeaconTracker& tracker = trackerOf(robot);
+    if (const auto pose = tracker.onRanges(t, compensateMotion(robot, *ranges))) {
         addEstimate(robot, t, mrpt::poses::CPose3D(*pose));
+        common::StampedCovariance c{t, {}};
+        c.cov.fill(NAN);  // before the filter starts: a bootstrap fix, no covariance kept
+        if (tracker.initialized()) c.cov = tracker.pdf().cov;
+        covariances_[robot].push_back(c);
+    }
 }
 
 mrpt::obs::CObservationBeaconRanges BeaconLocalizer::compensateMotion(
@@ -203,6 +209,11 @@ void BeaconLocalizer::fixOnly(const std::string& robot, double t,
     const auto odometry = odometry_.find(robot);
     const double heading = odometry == odometry_.end() ? 0.0 : odometry->second.last()->phi();
     addEstimate(robot, t, mrpt::poses::CPose3D(f->position.x(), f->position.y(), z, heading, 0, 0));
+    common::StampedCovariance c{t, {}};
+    c.cov.fill(NAN);  // the heading is odometry's: the fix says nothing of it
+    for (int i = 0; i < 2; ++i)
+        for (int j = 0; j < 2; ++j) c.cov(i, j) = f->covariance(i, j);
+    covariances_[robot].push_back(c);
 }
 
 nlohmann::json BeaconLocalizer::methodMetrics() const {

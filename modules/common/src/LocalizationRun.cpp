@@ -139,6 +139,11 @@ LocalizationResult runLocalization(Localizer& localizer, const LocalizationRunOp
         }
         metrics["robots"][robot] = r;
     }
+    for (const auto& [robot, track] : localizer.covariances())
+        if (estimates.count(robot) && !track.empty()) {
+            saveCovariances(run_dir::covariance(o.outDir, robot), track);
+            metrics["robots"][robot]["covariances"] = track.size();
+        }
     metrics["ground_truth"] = !allErrors.empty();
     metrics.update(statsToJson(computeStats(allErrors)));
     metrics["wall_s"] = wall;

@@ -1,4 +1,5 @@
 #include <mrloc/common/AtomicFile.h>
+#include <mrloc/common/DataFile.h>
 #include <mrloc/common/Error.h>
 #include <mrloc/common/Trajectory.h>
 #include <mrpt/math/CQuaternion.h>
@@ -74,6 +75,37 @@ std::string groundTruthPath(const std::string& rawlogPath, const std::string& ro
     if (stem.size() > ext.size() && stem.compare(stem.size() - ext.size(), ext.size(), ext) == 0)
         stem.resize(stem.size() - ext.size());
     return stem + "." + robot + ".gt.txt";
+}
+
+}  // namespace mrloc::common
+
+namespace mrloc::common {
+
+void saveCovariances(const std::string& path, const CovarianceTrack& track) {
+    std::ostringstream out;
+    out << "# t xx xy xphi yy yphi phiphi (the covariance of x, y, phi: m^2, m rad, rad^2)\n";
+    for (const auto& c : track) {
+        out << formatNumber(c.t);
+        for (const auto& [i, j] : {std::pair{0, 0}, {0, 1}, {0, 2}, {1, 1}, {1, 2}, {2, 2}})
+            out << " " << formatNumber(c.cov(i, j));
+        out << "\n";
+    }
+    writeFileAtomically(path, out.str());
+}
+
+CovarianceTrack loadCovariances(const std::string& path) {
+    CovarianceTrack track;
+    for (const auto& line : readDataLines(path)) {
+        line.expectFields(7);
+        StampedCovariance c;
+        c.t = line.number(0);
+        size_t k = 1;
+        for (const auto& [i, j] : {std::pair{0, 0}, {0, 1}, {0, 2}, {1, 1}, {1, 2}, {2, 2}}) {
+            c.cov(i, j) = c.cov(j, i) = line.number(k++);
+        }
+        track.push_back(c);
+    }
+    return track;
 }
 
 }  // namespace mrloc::common

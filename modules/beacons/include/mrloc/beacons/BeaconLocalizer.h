@@ -41,6 +41,11 @@ class BeaconLocalizer : public common::Localizer {
     void saveConfig(mrpt::config::CConfigFileBase& target) const override;
     void process(const mrpt::obs::CObservation::Ptr& obs) override;
     std::map<std::string, common::Trajectory> estimates() const override { return estimates_; }
+    /** Tracker mode: the filter's covariance at each estimate; fixes mode: the fix's
+     *  position covariance, the heading's terms unknown (nan: it comes from odometry). */
+    std::map<std::string, common::CovarianceTrack> covariances() const override {
+        return covariances_;
+    }
     std::optional<mrpt::poses::CPose3D> latestEstimate(const std::string& robot) const override;
     nlohmann::json methodMetrics() const override;
 
@@ -54,6 +59,7 @@ class BeaconLocalizer : public common::Localizer {
     BeaconOptions options_;
     std::map<std::string, BeaconTracker> trackers_;
     std::map<std::string, common::Trajectory> estimates_;
+    std::map<std::string, common::CovarianceTrack> covariances_;
     /** Ranges as they would have been read at the epoch's time stamp (see doc/beacons.md). */
     mrpt::obs::CObservationBeaconRanges compensateMotion(
         const std::string& robot, const mrpt::obs::CObservationBeaconRanges& obs);

@@ -32,6 +32,9 @@ class Localizer {
     /** The robot's newest estimate, if any: what it reports on board in a closed-loop
      *  simulation. The default searches estimates(); methods override it to be O(1). */
     virtual std::optional<mrpt::poses::CPose3D> latestEstimate(const std::string& robot) const;
+    /** The covariance of each estimate (MRPT's CPosePDFGaussian), per robot, for the
+     *  methods that have one; written as covariance.<robot>.txt. Default: none. */
+    virtual std::map<std::string, CovarianceTrack> covariances() const { return {}; }
     /** The method's own figures for metrics.json (fixes, rejected ranges, ...). */
     virtual nlohmann::json methodMetrics() const { return nlohmann::json::object(); }
     /** A relative method estimates in a frame of its own (seed 000: robot A at the origin,

@@ -8,6 +8,7 @@
 //   estimates.<robot>.txt    TUM format
 //   groundtruth.<robot>.txt  the rawlog's ground truth in the estimates' frame
 //   odometry.<robot>.txt     the robot's odometry alone (dead reckoning), TUM, as read
+//   covariance.<robot>.txt   each estimate's covariance, when the method has one
 //   report.html, *.png       written by `mrloc report`
 // plus the files each method writes for its report section (defined in the method).
 #include <string>
@@ -26,6 +27,9 @@ inline std::string groundTruth(const std::string& d, const std::string& robot) {
 }
 inline std::string odometry(const std::string& d, const std::string& robot) {
     return d + "/odometry." + robot + ".txt";
+}
+inline std::string covariance(const std::string& d, const std::string& robot) {
+    return d + "/covariance." + robot + ".txt";
 }
 inline std::string report(const std::string& d) { return d + "/report.html"; }
 

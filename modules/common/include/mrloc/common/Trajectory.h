@@ -2,6 +2,7 @@
 // Time-stamped poses and their text form: the TUM format, one pose per line,
 // "t x y z qx qy qz qw", '#' comments. Ground truth and estimates share it.
 #include <mrpt/core/Clock.h>
+#include <mrpt/math/CMatrixFixed.h>
 #include <mrpt/poses/CPose3D.h>
 
 #include <optional>
@@ -16,6 +17,19 @@ struct StampedPose {
 };
 
 using Trajectory = std::vector<StampedPose>;
+
+/** An estimate's covariance (MRPT's CPosePDFGaussian: x, y, phi; m, rad), at its time. */
+struct StampedCovariance {
+    double t = 0;
+    mrpt::math::CMatrixDouble33 cov;
+};
+using CovarianceTrack = std::vector<StampedCovariance>;
+
+/** covariance.<robot>.txt: "t xx xy xphi yy yphi phiphi" (the upper triangle, m^2, m rad,
+ *  rad^2; "nan" where the method does not estimate a term), one line per estimate, at the
+ *  estimates' times. Written atomically; read back exactly (17 digits). */
+void saveCovariances(const std::string& path, const CovarianceTrack& track);
+CovarianceTrack loadCovariances(const std::string& path);
 
 /** Writes atomically; times with 9 decimals, positions with 6 (micrometres). */
 void saveTum(const std::string& path, const Trajectory& traj);
