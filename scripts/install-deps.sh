@@ -17,6 +17,8 @@ packages=(
   libegl1 libegl-mesa0 libgl1-mesa-dri   # head-less EGL rendering for CFBORender
   clang libclang-rt-14-dev   # the sanitized build and libFuzzer (scripts/sanitize.sh, fuzz.sh)
   mrpt-common            # MRPT's example rawlogs and INIs: tests and fuzzing seeds
+  mrpt-apps              # MRPT's own ro-localization / pf-localization: timed beside mrloc localize (doc/framesync.md)
+  xvfb                   # xvfb-run: MRPT's apps open a window even when asked for a log
 )
 
 missing=()

@@ -26,7 +26,7 @@ BeaconTracker::BeaconTracker(BeaconMap map, TrackerOptions options)
 
 void BeaconTracker::onOdometry(const CPose2D& odo) {
     hasOdometry_ = true;
-    if (!initialized_ && !lastOdometry_) startAtKnownPose();
+    if (!initialized_ && !lastOdometry_ && o_.startPose) startAt(*o_.startPose);
     if (initialized_ && lastOdometry_) {
         const CPose2D delta = odo - *lastOdometry_;  // increment in the robot frame
         const double d = std::hypot(delta.x(), delta.y());
@@ -42,11 +42,10 @@ void BeaconTracker::onOdometry(const CPose2D& odo) {
     lastOdometry_ = odo;
 }
 
-void BeaconTracker::startAtKnownPose() {
-    if (!o_.startPose) return;
-    // the known start pose is the pose where the log starts (its first odometry reading or
+void BeaconTracker::startAt(const CPose2D& pose) {
+    // a known start pose is the pose where the log starts (its first odometry reading or
     // its first ranges, whichever comes first)
-    pdf_.mean = *o_.startPose;
+    pdf_.mean = pose;
     pdf_.cov.setZero();
     pdf_.cov(0, 0) = pdf_.cov(1, 1) = o_.startSigmaXY * o_.startSigmaXY;
     pdf_.cov(2, 2) = o_.startSigmaPhi * o_.startSigmaPhi;
@@ -170,7 +169,7 @@ std::optional<CPose2D> BeaconTracker::onRanges(double t,
                                                const mrpt::obs::CObservationBeaconRanges& obs) {
     ++stats_.epochs;
     const auto ranges = usableRanges(obs);
-    if (!initialized_ && !lastOdometry_) startAtKnownPose();
+    if (!initialized_ && !lastOdometry_ && o_.startPose) startAt(*o_.startPose);
     if (!initialized_) {
         lastT_ = t;
         return bootstrap(ranges);

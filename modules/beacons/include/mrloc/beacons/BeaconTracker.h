@@ -74,7 +74,7 @@ class BeaconTracker {
     std::optional<Fix> fixFrom(const std::vector<Range>& ranges, bool robust = true);
     bool updateWithRange(const Range& r, double gate);
     std::optional<mrpt::poses::CPose2D> bootstrap(const std::vector<Range>& ranges);
-    void startAtKnownPose();
+    void startAt(const mrpt::poses::CPose2D& pose);
 
     BeaconMap map_;
     TrackerOptions o_;
