@@ -13,6 +13,8 @@
 #include <mrpt/obs/CObservationOdometry.h>
 #include <mrpt/serialization/CArchive.h>
 
+#include <Eigen/Dense>
+#include <algorithm>
 #include <array>
 #include <cstdio>
 #include <filesystem>
@@ -42,12 +44,14 @@ TEST(MrlocRun, QuickstartEndToEndWithinBound) {
     ASSERT_EQ(r.code, 0) << r.output;
     const auto m = common::loadJson(out + "/metrics.json");
     // Four active ceiling beacons, 1 cm range noise, 2 % late echoes, 2 % dropouts, a
-    // pillar, and the link's trigger delay (ranges 2-4 m away read 1-4 cm long): the tracker
-    // must stay within 4 cm RMSE and 8 cm worst case over the 60 s loop.
+    // pillar, and the link's trigger delay (ranges 2-4 m away read 1-4 cm long), which the
+    // tracker estimates online (per-beacon offsets and a common scale). Measured: RMSE
+    // 5.79 mm (28.6 mm without the bias estimate), worst 30.6 mm, over the 60 s loop; the
+    // bounds are the 7 mm target and the worst case + 30 %.
     EXPECT_EQ(m["method"], "beacons");
     EXPECT_GT(m["n"].get<int>(), 290);
-    EXPECT_LT(m["rmse_m"].get<double>(), 0.04) << m.dump(2);
-    EXPECT_LT(m["max_m"].get<double>(), 0.08) << m.dump(2);
+    EXPECT_LT(m["rmse_m"].get<double>(), 0.007) << m.dump(2);
+    EXPECT_LT(m["max_m"].get<double>(), 0.040) << m.dump(2);
     EXPECT_GT(m["beacons"]["ranges_gated"].get<int>(), 0);  // the late echoes were caught
     // What each file holds: the estimates metrics.json counts, the truth, the pictures at
     // their sizes, the page with its provenance, effective.ini with every section used.
@@ -55,18 +59,21 @@ TEST(MrlocRun, QuickstartEndToEndWithinBound) {
               m["robots"]["r1"]["estimates"].get<size_t>());
     EXPECT_EQ(common::loadTum(out + "/groundtruth.r1.txt").size(), 1201u);  // 60 s at 20 Hz
     // Odometry alone beside the estimate (as MRPT's pf-localization writes it), with its
-    // errors from the true start. Measured: RMSE 8.0 mm, 9.2 mm at the end; the quickstart's
-    // odometry is good (the tracker's error comes from the ranges: the link's bias).
+    // errors from the true start. Measured: RMSE 11.1 mm, 14.1 mm at the end (bounds 20 %
+    // apart); the quickstart's odometry is good, and the tracker must do better still.
     const auto odometry = common::loadTum(out + "/odometry.r1.txt");
     EXPECT_EQ(odometry.size(), 1201u);
     const auto& oe = m["robots"]["r1"]["odometry"];
     EXPECT_EQ(oe["readings"], 1201);
-    EXPECT_NEAR(oe["rmse_m"].get<double>(), 0.0080, 0.0016) << oe.dump(2);
-    EXPECT_NEAR(oe["final_m"].get<double>(), 0.0092, 0.0018) << oe.dump(2);
+    EXPECT_NEAR(oe["rmse_m"].get<double>(), 0.0111, 0.0022) << oe.dump(2);
+    EXPECT_NEAR(oe["final_m"].get<double>(), 0.0141, 0.0028) << oe.dump(2);
+    EXPECT_LT(m["rmse_m"].get<double>(), oe["rmse_m"].get<double>());
     EXPECT_DOUBLE_EQ(odometry.front().pose.x(),
                      common::loadTum(out + "/groundtruth.r1.txt").front().pose.x());
-    // Each estimate's covariance (the filter's; unknown, nan, for the start-up fixes before
-    // it starts: 5 measured), symmetric positive definite, at the estimates' times
+    // Each estimate's covariance (the filter's, which starts at the INI's start pose: no
+    // start-up fix without one), symmetric positive definite, at the estimates' times, and
+    // consistent with the errors: mean NEES of the position 0.52 measured (2 would be
+    // exact; 45 before the bias estimate), so between 0.3 and 2
     const auto cov = common::loadCovariances(out + "/covariance.r1.txt");
     const auto est = common::loadTum(out + "/estimates.r1.txt");
     ASSERT_EQ(cov.size(), est.size());
@@ -81,7 +88,20 @@ TEST(MrlocRun, QuickstartEndToEndWithinBound) {
         EXPECT_GT(P.det(), 0) << i;
         EXPECT_GT(P(0, 0), 0) << i;
     }
-    EXPECT_EQ(unknown, 5u);
+    EXPECT_EQ(unknown, 0u);
+    const auto truth = common::loadTum(out + "/groundtruth.r1.txt");
+    double nees = 0;
+    for (size_t i = 0; i < est.size(); ++i) {
+        const auto at = std::lower_bound(truth.begin(), truth.end(), est[i].t,
+                                         [](const auto& p, double t) { return p.t < t; });
+        ASSERT_NE(at, truth.end());
+        const Eigen::Vector2d v(est[i].pose.x() - at->pose.x(), est[i].pose.y() - at->pose.y());
+        const Eigen::Matrix2d P = cov[i].cov.asEigen().topLeftCorner<2, 2>();
+        nees += v.dot(P.ldlt().solve(v));
+    }
+    nees /= double(est.size());
+    EXPECT_GT(nees, 0.3);
+    EXPECT_LT(nees, 2.0);
     for (const auto& [f, width] : std::map<std::string, size_t>{
              {"topview.png", 900}, {"error_time.png", 900}, {"error_cdf.png", 900}}) {
         mrpt::img::CImage img;
@@ -201,7 +221,7 @@ TEST(MrlocInfo, SummarisesLabelsCountsAndRates) {
 
 TEST(MrlocErrors, MisspeltKeyStopsWithFileSectionKeyAndWritesNothing) {
     const std::string ini =
-        writeIni("misspelt", "range_sigma = 0.01\nbeacon_1", "range_sigam = 0.01\nbeacon_1");
+        writeIni("misspelt", "range_sigma = 0.01\nstart", "range_sigam = 0.01\nstart");
     const std::string out = tmp("misspelt");
     const auto r = mrlocCmd("run " + ini + " -q --out " + out);
     EXPECT_EQ(r.code, 1);

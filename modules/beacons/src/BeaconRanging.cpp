@@ -21,7 +21,13 @@ void SensorOptions::loadFromConfigFile(const mrpt::config::CConfigFileBase& src,
     rangeMax = s.real("range_max", 10, 0.01, 1000);
     dropout = s.real("range_dropout", 0.02, 0, 1);
     outlierProbability = s.real("range_outlier_probability", 0.01, 0, 1);
+    outlierMin = s.real("range_outlier_min", 0.1, 0, 100);
     outlierMax = s.real("range_outlier_max", 1.0, 0.1, 100);
+    if (outlierMax < outlierMin)
+        s.fail("range_outlier_max",
+               "must be at least range_outlier_min (" + std::to_string(outlierMin) + ")");
+    biasSigma = s.real("range_bias_sigma", 0, 0, 10);
+    biasDrift = s.real("range_bias_drift", 0, 0, 10);
     nlosReflect = s.choice("nlos", "reflect", {"reflect", "drop"}) == "reflect";
     s.finish();
 }
@@ -32,7 +38,10 @@ void SensorOptions::saveToConfigFile(mrpt::config::CConfigFileBase& t,
     t.write(section, "range_max", rangeMax);
     t.write(section, "range_dropout", dropout);
     t.write(section, "range_outlier_probability", outlierProbability);
+    t.write(section, "range_outlier_min", outlierMin);
     t.write(section, "range_outlier_max", outlierMax);
+    t.write(section, "range_bias_sigma", biasSigma);
+    t.write(section, "range_bias_drift", biasDrift);
     t.write(section, "nlos", nlosReflect ? "reflect" : "drop");
 }
 
@@ -72,8 +81,22 @@ double BeaconRanging::begin(double t, const RangingEpoch& epoch) {
     return firstShot_ + double(epoch.beacons.size()) * epoch.shotInterval;
 }
 
-ShotRecord BeaconRanging::shoot(int id, const TPoint3D& rx,
-                                mrpt::random::CRandomGenerator& rng) const {
+double BeaconRanging::beaconBias(int id, double t, mrpt::random::CRandomGenerator& rng) {
+    // drawn only when asked for, so logs without beacon biases keep their random stream
+    auto it = bias_.find(id);
+    if (it == bias_.end()) {
+        const double b0 = sensors_.biasSigma > 0 ? rng.drawGaussian1D(0, sensors_.biasSigma) : 0;
+        it = bias_.emplace(id, std::make_pair(b0, t)).first;
+    }
+    auto& [bias, since] = it->second;
+    if (sensors_.biasDrift > 0 && t > since)
+        bias += rng.drawGaussian1D(0, sensors_.biasDrift * std::sqrt(t - since));
+    since = t;
+    return bias;
+}
+
+ShotRecord BeaconRanging::shoot(int id, const TPoint3D& rx, double t,
+                                mrpt::random::CRandomGenerator& rng) {
     const Head& h = heads_.at(id);
     const TPoint3D& b = beacons_.at(id);
     ShotRecord r;
@@ -87,7 +110,9 @@ ShotRecord BeaconRanging::shoot(int id, const TPoint3D& rx,
     const double fading = rng.drawGaussian1D(0, link_.options().fadingSigmaDb);
     const double noise = rng.drawGaussian1D(0, sensors_.rangeSigma);
     const double u = rng.drawUniform(0.0, 1.0), v = rng.drawUniform(0.0, 1.0);
-    const double extra = rng.drawUniform(0.1, sensors_.outlierMax);
+    const double extra = rng.drawUniform(sensors_.outlierMin, sensors_.outlierMax);
+    const double beaconBias =
+        sensors_.biasSigma > 0 || sensors_.biasDrift > 0 ? this->beaconBias(id, t, rng) : 0.0;
 
     r.lineOfSight = world_.lineOfSight(b, rx);
     double path = r.distance;
@@ -104,7 +129,7 @@ ShotRecord BeaconRanging::shoot(int id, const TPoint3D& rx,
     if (r.lineOfSight && u < sensors_.dropout) return r;
     if (r.lineOfSight && v < sensors_.outlierProbability) path += extra;
     r.detected = true;
-    r.range = std::max(0.0, path + *bias + noise);
+    r.range = std::max(0.0, path + *bias + beaconBias + noise);
     return r;
 }
 
@@ -116,7 +141,7 @@ mrpt::obs::CObservationBeaconRanges::Ptr BeaconRanging::fireDue(
     const size_t n = epoch_.beacons.size();
     while (fired_ < n && firstShot_ + double(fired_) * interval <= t + 1e-9) {
         const double when = firstShot_ + double(fired_) * interval;
-        ShotRecord r = shoot(epoch_.beacons[fired_], receiverAt(when), rng);
+        ShotRecord r = shoot(epoch_.beacons[fired_], receiverAt(when), when, rng);
         r.start = lastShot_ = when;
         r.end = r.start + interval;
         r.robot = epoch_.robot;

@@ -2,6 +2,8 @@
 #include <mrpt/math/wrap2pi.h>
 
 #include <Eigen/Dense>
+#include <Eigen/Geometry>
+#include <algorithm>
 #include <cmath>
 
 namespace mrloc::beacons {
@@ -22,7 +24,46 @@ double chi2Quantile1(double p) {
 }
 
 BeaconTracker::BeaconTracker(BeaconMap map, TrackerOptions options)
-    : map_(std::move(map)), o_(std::move(options)), gate_(chi2Quantile1(o_.gateProbability)) {}
+    : map_(std::move(map)),
+      o_(std::move(options)),
+      gate_(chi2Quantile1(o_.gateProbability)),
+      divergenceGate_(-2.0 * std::log(1.0 - o_.gateProbability)) {  // chi-square(2) quantile
+    Eigen::Index n = 3;
+    if (o_.estimateBias) {
+        if (o_.scaleSigma > 0) scaleIndex_ = n++;
+        for (const auto& [id, beacon] : map_) offsetIndex_[id] = n++;
+    }
+    state_ = Eigen::VectorXd::Zero(n);
+    cov_ = Eigen::MatrixXd::Zero(n, n);
+}
+
+std::map<int, double> BeaconTracker::rangeOffsets() const {
+    std::map<int, double> out;
+    for (const auto& [id, i] : offsetIndex_) out[id] = state_(i);
+    return out;
+}
+
+void BeaconTracker::syncPdf() {
+    state_(2) = mrpt::math::wrapToPi(state_(2));
+    pdf_.mean = CPose2D(state_(0), state_(1), state_(2));
+    pdf_.cov = mrpt::math::CMatrixDouble33(Matrix3d(cov_.topLeftCorner<3, 3>()));
+}
+
+void BeaconTracker::initialize(const CPose2D& pose, const Matrix3d& poseCov) {
+    state_.setZero();
+    state_.head<3>() = Vector3d(pose.x(), pose.y(), pose.phi());
+    cov_.setZero();
+    cov_.topLeftCorner<3, 3>() = poseCov;
+    if (scaleIndex_) cov_(*scaleIndex_, *scaleIndex_) = o_.scaleSigma * o_.scaleSigma;
+    // every beacon's offset shares a common part (the same hardware on every link) and
+    // has its own: cov(b_i, b_j) = common^2 + [i = j] own^2
+    for (const auto& [id, i] : offsetIndex_)
+        for (const auto& [id2, j] : offsetIndex_)
+            cov_(i, j) =
+                o_.biasSigma * o_.biasSigma + (i == j ? o_.biasSpread * o_.biasSpread : 0.0);
+    initialized_ = true;
+    syncPdf();
+}
 
 void BeaconTracker::onOdometry(const CPose2D& odo) {
     hasOdometry_ = true;
@@ -33,11 +74,22 @@ void BeaconTracker::onOdometry(const CPose2D& odo) {
         const double sxy = o_.odomSigmaPerMetre * d + 1e-4;
         const double sphi =
             o_.odomSigmaPhiPerRad * std::abs(delta.phi()) + o_.odomSigmaPhiPerMetre * d + 1e-4;
-        mrpt::math::CMatrixDouble33 Q;
-        Q.setZero();
-        Q(0, 0) = Q(1, 1) = sxy * sxy;
-        Q(2, 2) = sphi * sphi;
-        pdf_ += mrpt::poses::CPosePDFGaussian(delta, Q);  // pose composition with Jacobians
+        const Matrix3d Q = Vector3d(sxy * sxy, sxy * sxy, sphi * sphi).asDiagonal();
+        // pose (+) delta, as CPosePDFGaussian's composition does, carried to the whole
+        // state: the bias states do not move, their cross-covariance turns with the pose
+        mrpt::math::CMatrixDouble33 dfDx, dfDu;
+        mrpt::poses::CPosePDF::jacobiansPoseComposition(pdf_.mean, delta, dfDx, dfDu);
+        const Matrix3d Jx = dfDx.asEigen(), Ju = dfDu.asEigen();
+        const CPose2D moved = pdf_.mean + delta;
+        state_.head<3>() = Vector3d(moved.x(), moved.y(), moved.phi());
+        const Eigen::Index m = cov_.rows() - 3;
+        cov_.topLeftCorner<3, 3>() =
+            Jx * cov_.topLeftCorner<3, 3>() * Jx.transpose() + Ju * Q * Ju.transpose();
+        if (m > 0) {
+            cov_.topRightCorner(3, m) = Jx * cov_.topRightCorner(3, m);
+            cov_.bottomLeftCorner(m, 3) = cov_.topRightCorner(3, m).transpose();
+        }
+        syncPdf();
     }
     lastOdometry_ = odo;
 }
@@ -45,11 +97,9 @@ void BeaconTracker::onOdometry(const CPose2D& odo) {
 void BeaconTracker::startAt(const CPose2D& pose) {
     // a known start pose is the pose where the log starts (its first odometry reading or
     // its first ranges, whichever comes first)
-    pdf_.mean = pose;
-    pdf_.cov.setZero();
-    pdf_.cov(0, 0) = pdf_.cov(1, 1) = o_.startSigmaXY * o_.startSigmaXY;
-    pdf_.cov(2, 2) = o_.startSigmaPhi * o_.startSigmaPhi;
-    initialized_ = true;
+    initialize(pose, Vector3d(o_.startSigmaXY * o_.startSigmaXY, o_.startSigmaXY * o_.startSigmaXY,
+                              o_.startSigmaPhi * o_.startSigmaPhi)
+                         .asDiagonal());
 }
 
 std::vector<BeaconTracker::Range> BeaconTracker::usableRanges(
@@ -65,13 +115,14 @@ std::vector<BeaconTracker::Range> BeaconTracker::usableRanges(
         if (!std::isfinite(m.sensedDistance) || m.sensedDistance <= 0) continue;
         const auto& b = it->second;
         const auto& s = m.sensorLocationOnRobot;
-        out.push_back(
-            {Vector3d(b.x, b.y, b.z), Vector3d(s.x(), s.y(), s.z()), double(m.sensedDistance)});
+        out.push_back({Vector3d(b.x, b.y, b.z), Vector3d(s.x(), s.y(), s.z()),
+                       double(m.sensedDistance), int(m.beaconID)});
     }
     return out;
 }
 
-std::optional<Fix> BeaconTracker::fixFrom(const std::vector<Range>& ranges, bool robust) {
+std::optional<Fix> BeaconTracker::fixFrom(const std::vector<Range>& ranges, bool robust,
+                                          std::vector<Range>* used, bool counted) {
     if (ranges.size() < 3) return std::nullopt;
     std::vector<RangeMeasurement> m;
     for (const auto& r : ranges) m.push_back({r.beacon, r.range});
@@ -79,83 +130,238 @@ std::optional<Fix> BeaconTracker::fixFrom(const std::vector<Range>& ranges, bool
     fo.rangeSigma = o_.rangeSigma;
     if (fo.knownHeight) fo.knownHeight = ranges.front().sensorOnRobot.z();  // robot on the floor
     if (lastFix_) fo.hint = *lastFix_;
-    ++stats_.fixes;
-    Fix f = robust ? robustMultilaterate(m, fo, 3.0 * o_.rangeSigma) : multilaterate(m, fo);
+    if (counted) ++stats_.fixes;
+    int rejected = -1;
+    Fix f =
+        robust ? robustMultilaterate(m, fo, 3.0 * o_.rangeSigma, &rejected) : multilaterate(m, fo);
     // With a spare range the residual tells an inconsistent set (two late echoes, say)
     // that leave-one-out could not repair: the filter must not start or restart from it.
     const size_t unknowns = fo.knownHeight ? 2 : 3;
     const bool inconsistent =
         robust && f.ok() && m.size() > unknowns && f.rmsResidual > 5.0 * o_.rangeSigma;
     if (!f.ok() || inconsistent) {
-        ++stats_.fixFailures;
+        if (counted) ++stats_.fixFailures;
         return std::nullopt;
     }
     if (f.mirrorAmbiguous) ++stats_.mirrorResolved;
     lastFix_ = f.position;
+    if (used) {
+        *used = ranges;
+        if (rejected >= 0) used->erase(used->begin() + rejected);
+    }
     return f;
 }
 
-bool BeaconTracker::updateWithRange(const Range& r, double gate) {
-    const CPose2D mean = pdf_.mean;
-    const double c = std::cos(mean.phi()), s = std::sin(mean.phi());
-    const Vector3d sensor(mean.x() + c * r.sensorOnRobot.x() - s * r.sensorOnRobot.y(),
-                          mean.y() + s * r.sensorOnRobot.x() + c * r.sensorOnRobot.y(),
+BeaconTracker::Innovation BeaconTracker::innovationOf(const Range& r) const {
+    Innovation in;
+    const double x = state_(0), y = state_(1), c = std::cos(state_(2)), s = std::sin(state_(2));
+    const Vector3d sensor(x + c * r.sensorOnRobot.x() - s * r.sensorOnRobot.y(),
+                          y + s * r.sensorOnRobot.x() + c * r.sensorOnRobot.y(),
                           r.sensorOnRobot.z());
     const Vector3d d = sensor - r.beacon;
-    const double predicted = d.norm();
-    if (predicted < 1e-9) return false;
-    // h(x) = |sensor(x) - beacon|; H = dh/d(x, y, phi).
-    Eigen::RowVector3d H;
-    H << d.x() / predicted, d.y() / predicted,
-        (d.x() * (-s * r.sensorOnRobot.x() - c * r.sensorOnRobot.y()) +
-         d.y() * (c * r.sensorOnRobot.x() - s * r.sensorOnRobot.y())) /
-            predicted;
-    const Matrix3d P = pdf_.cov.asEigen();
-    const double innovation = r.range - predicted;
-    const double S = H * P * H.transpose() + o_.rangeSigma * o_.rangeSigma;
-    if (innovation * innovation / S > gate) return false;
-    const Vector3d K = P * H.transpose() / S;
-    const Matrix3d IKH = Matrix3d::Identity() - K * H;
-    // Joseph form keeps P symmetric positive definite.
-    const Matrix3d newP =
-        IKH * P * IKH.transpose() + K * K.transpose() * (o_.rangeSigma * o_.rangeSigma);
-    pdf_.mean = CPose2D(mean.x() + K(0) * innovation, mean.y() + K(1) * innovation,
-                        mrpt::math::wrapToPi(mean.phi() + K(2) * innovation));
-    pdf_.cov = mrpt::math::CMatrixDouble33(newP);
+    const double distance = d.norm();
+    if (distance < 1e-9) return in;
+    // h(state) = (1 + scale) |sensor(x, y, phi) - beacon| + offset_beacon
+    const double scale = scaleIndex_ ? state_(*scaleIndex_) : 0.0;
+    in.H = Eigen::RowVectorXd::Zero(state_.size());
+    in.H(0) = (1 + scale) * d.x() / distance;
+    in.H(1) = (1 + scale) * d.y() / distance;
+    in.H(2) = (1 + scale) *
+              (d.x() * (-s * r.sensorOnRobot.x() - c * r.sensorOnRobot.y()) +
+               d.y() * (c * r.sensorOnRobot.x() - s * r.sensorOnRobot.y())) /
+              distance;
+    double predicted = (1 + scale) * distance;
+    if (scaleIndex_) in.H(*scaleIndex_) = distance;
+    if (const auto offset = offsetIndex_.find(r.beaconId); offset != offsetIndex_.end()) {
+        in.H(offset->second) = 1;
+        predicted += state_(offset->second);
+    }
+    in.value = r.range - predicted;
+    in.S = (in.H * cov_ * in.H.transpose())(0, 0) + o_.rangeSigma * o_.rangeSigma;
+    in.valid = true;
+    return in;
+}
+
+bool BeaconTracker::updateWithRange(const Range& r, double gate) {
+    const Innovation in = innovationOf(r);
+    if (!in.valid || in.value * in.value / in.S > gate) return false;
+    const double R = o_.rangeSigma * o_.rangeSigma;
+    const Eigen::VectorXd K = cov_ * in.H.transpose() / in.S;
+    const Eigen::MatrixXd IKH = Eigen::MatrixXd::Identity(state_.size(), state_.size()) - K * in.H;
+    // Joseph form keeps the covariance symmetric positive definite.
+    cov_ = IKH * cov_ * IKH.transpose() + K * K.transpose() * R;
+    state_ += K * in.value;
+    syncPdf();
     return true;
 }
 
+Eigen::MatrixXd BeaconTracker::fixBiasSensitivity(const Eigen::Vector3d& fix,
+                                                  const std::vector<Range>& used) const {
+    // A fix takes its ranges as unbiased, so its error is the bias carried through the
+    // solver: fix - true = A G e, with A = (J^T J)^-1 J^T the least-squares map from range
+    // errors to position and G the ranges' dependence on the bias states e.
+    const Eigen::Index extras = state_.size() - 3;
+    Eigen::MatrixXd J(used.size(), 2), G = Eigen::MatrixXd::Zero(used.size(), extras);
+    for (size_t k = 0; k < used.size(); ++k) {
+        const Vector3d d = fix - used[k].beacon;
+        const double distance = std::max(d.norm(), 1e-9);
+        J.row(Eigen::Index(k)) = d.head<2>().transpose() / distance;
+        if (scaleIndex_) G(Eigen::Index(k), *scaleIndex_ - 3) = distance;
+        const auto it = offsetIndex_.find(used[k].beaconId);
+        if (it != offsetIndex_.end()) G(Eigen::Index(k), it->second - 3) = 1;
+    }
+    const Eigen::Matrix2d JtJ = J.transpose() * J;
+    if (extras == 0 || std::abs(JtJ.determinant()) < 1e-12) return Eigen::MatrixXd::Zero(2, extras);
+    return JtJ.inverse() * J.transpose() * G;
+}
+
+void BeaconTracker::initializeFromFix(const Fix& fix, const std::vector<Range>& used, double phi,
+                                      double phiVariance) {
+    Matrix3d P = Matrix3d::Zero();
+    P.topLeftCorner<2, 2>() = fix.covariance.topLeftCorner<2, 2>();
+    P(2, 2) = phiVariance;
+    initialize(CPose2D(fix.position.x(), fix.position.y(), phi), P);
+    const Eigen::Index extras = state_.size() - 3;
+    if (extras == 0 || used.size() < 2) return;
+    // The position inherits the bias states' prior through the fix (and its correlation
+    // with them) instead of ignoring it: true = fix - A G e.
+    const Eigen::MatrixXd AG = fixBiasSensitivity(fix.position, used);
+    const Eigen::MatrixXd Se = cov_.bottomRightCorner(extras, extras);
+    cov_.topLeftCorner<2, 2>() += AG * Se * AG.transpose();
+    cov_.block(0, 3, 2, extras) = -AG * Se;
+    cov_.block(3, 0, extras, 2) = cov_.block(0, 3, 2, extras).transpose();
+    syncPdf();
+}
+
+bool BeaconTracker::disagreesWithFix(const std::vector<Range>& ranges) {
+    // The ranges as the filter believes them to be: its bias estimates taken out.
+    std::vector<Range> corrected = ranges;
+    const double scale = scaleIndex_ ? state_(*scaleIndex_) : 0.0;
+    for (auto& r : corrected) {
+        const auto it = offsetIndex_.find(r.beaconId);
+        r.range = (r.range - (it != offsetIndex_.end() ? state_(it->second) : 0.0)) / (1 + scale);
+    }
+    std::vector<Range> used;
+    const auto f = fixFrom(corrected, /*robust=*/true, &used, /*counted=*/false);
+    // no consistent fix, or one that could not have dropped a bad range (leave-one-out
+    // needs two ranges to spare): no evidence either way
+    const size_t unknowns = o_.fix.knownHeight ? 2 : 3;
+    if (!f || used.size() < unknowns + 2) return false;
+    // fix - filter ~ N(0, filter's + fix's own + the fix's share of the bias uncertainty)
+    const Eigen::Index extras = state_.size() - 3;
+    Eigen::Matrix2d C = cov_.topLeftCorner<2, 2>() + f->covariance.topLeftCorner<2, 2>();
+    if (extras > 0) {
+        const Eigen::MatrixXd AG = fixBiasSensitivity(f->position, used);
+        C += AG * cov_.bottomRightCorner(extras, extras) * AG.transpose();
+    }
+    const Eigen::Vector2d v = f->position.head<2>() - state_.head<2>();
+    return v.dot(C.ldlt().solve(v)) > divergenceGate_;
+}
+
+std::optional<Eigen::Matrix3d> BeaconTracker::alignTrack() {
+    // Consensus first: every pair of fixes far enough apart proposes the rigid motion from
+    // the odometry frame to the world; the one most fixes fit wins (a wrong fix, from two
+    // late echoes that agree, cannot drag a short line round). Then Umeyama (no scale) on
+    // those fixes, which must all still fit and span the baseline.
+    const size_t n = track_.size();
+    if (n < kMinTrack) return std::nullopt;
+    const auto odometryAt = [&](size_t i) {
+        return Eigen::Vector2d(track_[i].odometry.x(), track_[i].odometry.y());
+    };
+    const auto fits = [&](const Eigen::Matrix3d& T, size_t i) {
+        const Eigen::Vector2d aligned =
+            T.topLeftCorner<2, 2>() * odometryAt(i) + T.topRightCorner<2, 1>();
+        return (aligned - track_[i].fix).norm() <= track_[i].tolerance;
+    };
+    std::vector<size_t> best;
+    for (size_t i = 0; i < n; ++i)
+        for (size_t j = i + 1; j < n; ++j) {
+            const Eigen::Vector2d odo = odometryAt(j) - odometryAt(i);
+            const Eigen::Vector2d fix = track_[j].fix - track_[i].fix;
+            if (odo.norm() < 0.5 * o_.bootstrapBaseline) continue;
+            const double angle = std::atan2(fix.y(), fix.x()) - std::atan2(odo.y(), odo.x());
+            Eigen::Matrix3d T = Eigen::Matrix3d::Identity();
+            T.topLeftCorner<2, 2>() = Eigen::Rotation2Dd(angle).toRotationMatrix();
+            T.topRightCorner<2, 1>() =
+                0.5 * (track_[i].fix + track_[j].fix) -
+                T.topLeftCorner<2, 2>() * 0.5 * (odometryAt(i) + odometryAt(j));
+            std::vector<size_t> inliers;
+            for (size_t k = 0; k < n; ++k)
+                if (fits(T, k)) inliers.push_back(k);
+            if (inliers.size() > best.size()) best = inliers;
+        }
+    if (best.size() < kMinTrack || 2 * best.size() < n + 1) return std::nullopt;
+    Eigen::Matrix2Xd from(2, best.size()), to(2, best.size());
+    for (size_t k = 0; k < best.size(); ++k) {
+        from.col(Eigen::Index(k)) = odometryAt(best[k]);
+        to.col(Eigen::Index(k)) = track_[best[k]].fix;
+    }
+    if ((from.col(from.cols() - 1) - from.col(0)).norm() < o_.bootstrapBaseline)
+        return std::nullopt;
+    const Eigen::Matrix3d T = Eigen::umeyama(from, to, false);
+    for (size_t k : best)
+        if (!fits(T, k)) return std::nullopt;
+    // keep only the fixes that agree (the heading's uncertainty is taken from their spread)
+    std::deque<TrackPoint> kept;
+    for (size_t k : best) kept.push_back(track_[k]);
+    track_ = std::move(kept);
+    return T;
+}
+
 std::optional<CPose2D> BeaconTracker::bootstrap(const std::vector<Range>& ranges) {
-    const auto f = fixFrom(ranges);
+    std::vector<Range> used;
+    const auto f = fixFrom(ranges, /*robust=*/true, &used);
     if (!f) return std::nullopt;
     const Eigen::Vector2d p = f->position.head<2>();
-    const CPose2D odo = lastOdometry_.value_or(CPose2D());
-    const auto start = [&](double phi, double sigmaPhi) {
-        pdf_.mean = CPose2D(p.x(), p.y(), phi);
-        Matrix3d P = Matrix3d::Zero();
-        P.topLeftCorner<2, 2>() = f->covariance.topLeftCorner<2, 2>();
-        P(2, 2) = sigmaPhi * sigmaPhi;
-        pdf_.cov = mrpt::math::CMatrixDouble33(P);
-        initialized_ = true;
-    };
     if (!hasOdometry_) {
-        start(0.0, M_PI);  // heading unobservable without odometry; ranges fix position only
-    } else if (!firstFix_) {
-        firstFix_ = {p, odo};
-    } else {
-        const Eigen::Vector2d moved = p - firstFix_->first;
-        const CPose2D& odo0 = firstFix_->second;
-        const double odoMoved = std::hypot(odo.x() - odo0.x(), odo.y() - odo0.y());
-        if (moved.norm() >= o_.bootstrapBaseline && odoMoved >= 0.5 * o_.bootstrapBaseline) {
-            // The world-frame direction of travel minus the odometry-frame one is the
-            // rotation between the frames; add it to the odometry heading.
-            const double offset = std::atan2(moved.y(), moved.x()) -
-                                  std::atan2(odo.y() - odo0.y(), odo.x() - odo0.x());
-            const double sigmaPhi = 2.0 * o_.rangeSigma * 2.0 / moved.norm() + 0.05;
-            start(mrpt::math::wrapToPi(odo.phi() + offset), sigmaPhi);
-        }
+        // heading unobservable without odometry; ranges fix position only
+        initializeFromFix(*f, used, 0.0, M_PI * M_PI);
+        return CPose2D(p.x(), p.y(), 0.0);
     }
-    return CPose2D(p.x(), p.y(), odo.phi());
+    const CPose2D odo = lastOdometry_.value_or(CPose2D());
+    // A fix may be wrong (two late echoes that agree with each other): it must fit, with
+    // the others, the odometry's path moved rigidly into the world (its noise, plus the
+    // few centimetres the ranges' unknown bias moves every fix alike).
+    if (f->gdop > kMaxBootstrapGdop) return std::nullopt;  // too poor a geometry to start from
+    const double sigma = std::sqrt(f->covariance.topLeftCorner<2, 2>().trace());
+    track_.push_back({p, odo, 3.0 * sigma + 0.03});
+    if (track_.size() > kMaxTrack) track_.pop_front();
+    if (const auto T = alignTrack()) {
+        // the fixes fit the odometry's path: the pose now is the odometry's, moved by T
+        const double rotation = std::atan2((*T)(1, 0), (*T)(0, 0));
+        Fix start = *f;
+        start.position.head<2>() = T->topLeftCorner<2, 2>() * Eigen::Vector2d(odo.x(), odo.y()) +
+                                   T->topRightCorner<2, 1>();
+        double spread = 0;  // sum of squared distances of the track's odometry from its centroid
+        Eigen::Vector2d centroid = Eigen::Vector2d::Zero();
+        for (const auto& q : track_) centroid += Eigen::Vector2d(q.odometry.x(), q.odometry.y());
+        centroid /= double(track_.size());
+        for (const auto& q : track_)
+            spread += (Eigen::Vector2d(q.odometry.x(), q.odometry.y()) - centroid).squaredNorm();
+        // the rotation of a line of fixes of error sigma: sigma / sqrt(spread), with the
+        // ranges' bias bending the line allowed for
+        const double sigmaPhi = 3.0 * o_.rangeSigma / std::sqrt(spread) + 0.05;
+        initializeFromFix(start, used, mrpt::math::wrapToPi(odo.phi() + rotation),
+                          sigmaPhi * sigmaPhi);
+        track_.clear();
+        return pdf_.mean;
+    }
+    // Not yet localized: the fix is the estimate if it agrees with every earlier fix on
+    // how far apart they are (odometry's distance, which needs no heading), with the
+    // heading of the last time the track was held.
+    if (track_.empty() || track_.back().fix != p) return std::nullopt;  // dropped as misfit
+    const TrackPoint& now = track_.back();
+    size_t agree = 0;
+    for (size_t i = 0; i + 1 < track_.size(); ++i) {
+        const TrackPoint& then = track_[i];
+        const double odoDistance =
+            std::hypot(now.odometry.x() - then.odometry.x(), now.odometry.y() - then.odometry.y());
+        const double tolerance = now.tolerance + then.tolerance + 0.05 * odoDistance;
+        if (std::abs((now.fix - then.fix).norm() - odoDistance) <= tolerance) ++agree;
+    }
+    // a lone fix may be a mirror image made of two long echoes: it waits for a second
+    if (track_.size() < 2 || agree + 1 < track_.size()) return std::nullopt;
+    return CPose2D(p.x(), p.y(), mrpt::math::wrapToPi(odo.phi() + headingOffset_));
 }
 
 std::optional<Fix> BeaconTracker::fixOnly(const mrpt::obs::CObservationBeaconRanges& obs) {
@@ -174,33 +380,48 @@ std::optional<CPose2D> BeaconTracker::onRanges(double t,
         lastT_ = t;
         return bootstrap(ranges);
     }
-    if (!hasOdometry_ && lastT_) {
-        const double q = o_.randomWalkSigma * o_.randomWalkSigma * std::max(0.0, t - *lastT_);
-        pdf_.cov(0, 0) += q;
-        pdf_.cov(1, 1) += q;
+    const double dt = lastT_ ? std::max(0.0, t - *lastT_) : 0.0;
+    if (!hasOdometry_) {
+        const double q = o_.randomWalkSigma * o_.randomWalkSigma * dt;
+        cov_(0, 0) += q;
+        cov_(1, 1) += q;
     }
+    for (const auto& [id, i] : offsetIndex_) cov_(i, i) += o_.biasDrift * o_.biasDrift * dt;
     lastT_ = t;
 
-    size_t used = 0;
+    // The most consistent ranges first: they tighten the state before a doubtful one is
+    // gated, so a long echo is judged against the epoch's good ranges, not the prior.
+    std::vector<std::pair<double, const Range*>> order;
     for (const auto& r : ranges) {
-        if (updateWithRange(r, gate_)) {
+        const Innovation in = innovationOf(r);
+        order.emplace_back(in.valid ? in.value * in.value / in.S : HUGE_VAL, &r);
+    }
+    std::stable_sort(order.begin(), order.end(),
+                     [](const auto& a, const auto& b) { return a.first < b.first; });
+    size_t used = 0;
+    for (const auto& [nis, r] : order) {
+        if (updateWithRange(*r, gate_)) {
             ++used;
         } else {
             ++stats_.rangesGated;
         }
     }
     stats_.rangesUsed += used;
-    epochsAllRejected_ = (used == 0 && ranges.size() >= 3) ? epochsAllRejected_ + 1 : 0;
-    if (epochsAllRejected_ >= o_.resetAfter) {
-        if (const auto f = fixFrom(ranges)) {
-            pdf_.mean = CPose2D(f->position.x(), f->position.y(), pdf_.mean.phi());
-            pdf_.cov(0, 0) = f->covariance(0, 0) + 1e-4;
-            pdf_.cov(1, 1) = f->covariance(1, 1) + 1e-4;
-            pdf_.cov(0, 1) = pdf_.cov(1, 0) = f->covariance(0, 1);
-            pdf_.cov(0, 2) = pdf_.cov(2, 0) = pdf_.cov(1, 2) = pdf_.cov(2, 1) = 0;
-            ++stats_.resets;
-            epochsAllRejected_ = 0;
-        }
+    // Lost track: every range rejected, or consistent fixes (ranges corrected by the bias
+    // estimates) far outside the filter's covariance, resetAfter epochs in a row.
+    if (used == 0 && ranges.size() >= 3) {
+        ++epochsLost_;
+    } else if (ranges.size() >= 3) {
+        epochsLost_ = disagreesWithFix(ranges) ? epochsLost_ + 1 : 0;
+    }
+    if (epochsLost_ >= o_.resetAfter) {
+        // lost: start again, as at the beginning, from fixes that fit the odometry's path
+        if (lastOdometry_) headingOffset_ = state_(2) - lastOdometry_->phi();
+        initialized_ = false;
+        track_.clear();
+        epochsLost_ = 0;
+        ++stats_.resets;
+        return bootstrap(ranges);
     }
     return pdf_.mean;
 }

@@ -24,8 +24,11 @@ struct SensorOptions : public mrpt::config::CLoadableOptions {
     double rangeMax = 10;              ///< no reading beyond (m)
     double dropout = 0.02;             ///< probability a line-of-sight range is missed
     double outlierProbability = 0.01;  ///< probability a range reads long (late trigger)
-    double outlierMax = 1.0;           ///< such a range is long by U(0.1, outlierMax) m
-    bool nlosReflect = true;           ///< blocked path: a long reflected range (else none)
+    double outlierMin = 0.1;           ///< such a range is long by U(outlierMin, outlierMax) m
+    double outlierMax = 1.0;
+    double biasSigma = 0;     ///< each beacon's own range offset, drawn once (m)
+    double biasDrift = 0;     ///< its random walk (m/sqrt(s)): a UWB antenna delay
+    bool nlosReflect = true;  ///< blocked path: a long reflected range (else none)
 
     void loadFromConfigFile(const mrpt::config::CConfigFileBase& source,
                             const std::string& section) override;
@@ -63,14 +66,16 @@ class BeaconRanging {
         PanTiltHead head;
         beacons::PanTiltAngles angles;  ///< current joint angles; 0, 0 = straight down
     };
-    ShotRecord shoot(int beacon, const mrpt::math::TPoint3D& rx,
-                     mrpt::random::CRandomGenerator& rng) const;
+    ShotRecord shoot(int beacon, const mrpt::math::TPoint3D& rx, double t,
+                     mrpt::random::CRandomGenerator& rng);
+    double beaconBias(int beacon, double t, mrpt::random::CRandomGenerator& rng);
 
     const sim::World& world_;
     const BeaconMap& beacons_;
     SensorOptions sensors_;
     UltrasonicLink link_;
     std::map<int, Head> heads_;
+    std::map<int, std::pair<double, double>> bias_;  ///< beacon -> its offset, and when (s)
 
     bool inEpoch_ = false;
     RangingEpoch epoch_;

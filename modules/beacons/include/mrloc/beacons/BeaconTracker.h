@@ -1,7 +1,14 @@
 #pragma once
 // Tracking filter for one robot: an extended Kalman filter on the planar pose (x, y, phi)
-// whose prediction is the odometry increment (composed with MRPT's CPosePDFGaussian) and
-// whose updates are the beacon ranges, one at a time.
+// whose prediction is the odometry increment (MRPT's pose-composition Jacobians) and whose
+// updates are the beacon ranges, one at a time.
+//
+// Range biases: real TOF links read long or short by a few centimetres that drift (a UWB
+// antenna delay, the ultrasonic decoder's late trigger on a weak burst, the speed of sound
+// with temperature). With bias estimation on, the state also holds one offset per beacon
+// (a random walk) and one scale common to all (the speed of sound), and a range is
+//   r = (1 + scale) |sensor - beacon| + offset_beacon + noise.
+// Odometry between epochs and the beacons' spread make them observable.
 //
 // Robustness: each range passes a chi-square gate on its normalised innovation before it is
 // used, so one bad range (NLOS reflection, a late tone-decoder trigger) is rejected instead
@@ -14,6 +21,8 @@
 #include <mrpt/obs/CObservationBeaconRanges.h>
 #include <mrpt/poses/CPosePDFGaussian.h>
 
+#include <deque>
+#include <map>
 #include <optional>
 
 namespace mrloc::beacons {
@@ -26,12 +35,18 @@ struct TrackerOptions {
     double odomSigmaPhiPerMetre = 0.02;  ///< heading noise per metre travelled (rad/m)
     double randomWalkSigma = 0.5;        ///< m/sqrt(s), when the rawlog has no odometry
     double bootstrapBaseline = 0.3;      ///< m between the two fixes that give the heading
-    int resetAfter = 5;                  ///< epochs with every range rejected before a reset
+    int resetAfter = 5;  ///< epochs in a row lost (every range rejected, or consistent
+                         ///< fixes outside the filter's covariance) before a reset
     /** The robot's pose at its first odometry reading, if known (MRPT's apps take it from
      *  [OdometryEstimation]): the filter starts there instead of from two fixes. */
     std::optional<mrpt::poses::CPose2D> startPose;
     double startSigmaXY = 0.1;   ///< m
     double startSigmaPhi = 0.1;  ///< rad
+    bool estimateBias = true;    ///< per-beacon offsets and a common scale in the state
+    double biasSigma = 0.05;     ///< prior sd of the offset common to all beacons (m)
+    double biasSpread = 0.01;    ///< prior sd of each beacon's own offset about it (m)
+    double biasDrift = 0.002;    ///< random walk of each offset (m/sqrt(s))
+    double scaleSigma = 0.01;    ///< prior sd of the common scale; 0 = no scale state
     MultilaterationOptions fix;  ///< for start-up and reset fixes (2-D: knownHeight set per epoch)
 };
 
@@ -62,31 +77,77 @@ class BeaconTracker {
     std::optional<Fix> fixOnly(const mrpt::obs::CObservationBeaconRanges& obs);
 
     bool initialized() const { return initialized_; }
+    /** The pose and its covariance (the pose block of the full state's). */
     const mrpt::poses::CPosePDFGaussian& pdf() const { return pdf_; }
     const TrackerStats& stats() const { return stats_; }
+    /** Estimated range offset of each beacon (m); empty with bias estimation off. */
+    std::map<int, double> rangeOffsets() const;
+    /** Estimated common range scale (0 = none); 0 when not estimated. */
+    double rangeScale() const { return scaleIndex_ ? state_(*scaleIndex_) : 0.0; }
 
  private:
     struct Range {
         Eigen::Vector3d beacon, sensorOnRobot;
         double range;
+        int beaconId;
+    };
+    struct Innovation {
+        bool valid = false;
+        double value = 0, S = 0;  ///< measured minus predicted range, and its variance
+        Eigen::RowVectorXd H;     ///< d(predicted)/d(state)
     };
     std::vector<Range> usableRanges(const mrpt::obs::CObservationBeaconRanges& obs);
-    std::optional<Fix> fixFrom(const std::vector<Range>& ranges, bool robust = true);
+    Innovation innovationOf(const Range& r) const;
+    /** d(fix position)/d(bias states) of a fix at `fix` from `used` (2 x extras). */
+    Eigen::MatrixXd fixBiasSensitivity(const Eigen::Vector3d& fix,
+                                       const std::vector<Range>& used) const;
+    /** A consistent fix from the ranges, corrected by the bias estimates, lies outside the
+     *  filter's position covariance (the divergence gate). */
+    bool disagreesWithFix(const std::vector<Range>& ranges);
+    /** A multilateration fix; `counted` in the stats (the consistency check's are not). */
+    std::optional<Fix> fixFrom(const std::vector<Range>& ranges, bool robust = true,
+                               std::vector<Range>* used = nullptr, bool counted = true);
     bool updateWithRange(const Range& r, double gate);
     std::optional<mrpt::poses::CPose2D> bootstrap(const std::vector<Range>& ranges);
     void startAt(const mrpt::poses::CPose2D& pose);
+    /** The rigid motion from the odometry frame to the world that most of the start-up
+     *  fixes fit, once they span bootstrapBaseline; the misfits are dropped. */
+    std::optional<Eigen::Matrix3d> alignTrack();
+    /** Sets the pose and its covariance; the bias states go back to their prior. */
+    void initialize(const mrpt::poses::CPose2D& pose, const Eigen::Matrix3d& poseCov);
+    /** Starts at a multilateration fix; the fix's error due to the bias states goes into
+     *  the position's covariance and its correlation with them. */
+    void initializeFromFix(const Fix& fix, const std::vector<Range>& used, double phi,
+                           double phiVariance);
+    void syncPdf();
 
     BeaconMap map_;
     TrackerOptions o_;
-    double gate_;  // chi-square(1) threshold for o_.gateProbability
+    double gate_;            // chi-square(1) threshold for o_.gateProbability
+    double divergenceGate_;  // chi-square(2) threshold, fix against filter
     mrpt::poses::CPosePDFGaussian pdf_;
+    // The full state: x, y, phi (kept in pdf_.mean), then the scale and the offsets.
+    Eigen::VectorXd state_;
+    Eigen::MatrixXd cov_;
+    std::optional<Eigen::Index> scaleIndex_;
+    std::map<int, Eigen::Index> offsetIndex_;  // beacon id -> state index
     bool initialized_ = false;
     bool hasOdometry_ = false;
     std::optional<mrpt::poses::CPose2D> lastOdometry_;
     std::optional<double> lastT_;
-    // Start-up: the first fix and the odometry reading at that moment.
-    std::optional<std::pair<Eigen::Vector2d, mrpt::poses::CPose2D>> firstFix_;
-    int epochsAllRejected_ = 0;
+    // Start-up: recent fixes with the odometry at their time, aligned when they span
+    // bootstrapBaseline; the heading offset of the last held track, for estimates meanwhile.
+    struct TrackPoint {
+        Eigen::Vector2d fix;
+        mrpt::poses::CPose2D odometry;
+        double tolerance;  ///< m: how far the aligned odometry may be from this fix
+    };
+    static constexpr size_t kMaxTrack = 15;
+    static constexpr size_t kMinTrack = 4;            ///< fixes that must agree before the start
+    static constexpr double kMaxBootstrapGdop = 5.0;  ///< a poorer fix is no start
+    std::deque<TrackPoint> track_;
+    double headingOffset_ = 0;
+    int epochsLost_ = 0;  // epochs in a row with every range rejected or the fix apart
     std::optional<Eigen::Vector3d> lastFix_;
     TrackerStats stats_;
 };

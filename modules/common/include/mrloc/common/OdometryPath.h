@@ -22,10 +22,15 @@ class OdometryPath {
     std::optional<double> speed() const { return speed_; }
     std::optional<double> forwardSpeed() const { return forwardSpeed_; }
     std::optional<mrpt::poses::CPose2D> last() const { return last_; }
+    /** The odometry at time t after the last reading, the last step's twist held (SE(2)
+     *  exp/log); nothing before two readings, before the last reading, or later than one
+     *  and a half steps after it (a reading is missing: the robot may have stopped). */
+    std::optional<mrpt::poses::CPose2D> extrapolate(double t) const;
 
  private:
     std::optional<mrpt::poses::CPose2D> last_;
     double lastTime_ = 0, length_ = 0, lastStep_ = 0;
+    std::optional<std::pair<mrpt::poses::CPose2D, double>> lastIncrement_;  // and its duration
     std::optional<double> speed_, forwardSpeed_;
 };
 
