@@ -255,6 +255,14 @@ nlohmann::json BeaconLocalizer::methodMetrics() const {
         r["mean_distance_between_fixes_m"] = sp.gaps ? sp.sumDistance / double(sp.gaps) : 0.0;
         r["max_time_between_fixes_s"] = sp.maxTime;
     }
+    // the range biases each robot's tracker estimated, as they stand at the end of the log
+    for (const auto& [robot, tr] : trackers_) {
+        const auto offsets = tr.rangeOffsets();
+        if (offsets.empty() || !tr.initialized()) continue;
+        auto& r = j["robots"][robot];
+        for (const auto& [id, offset] : offsets) r["range_offsets_m"][std::to_string(id)] = offset;
+        r["range_scale"] = tr.rangeScale();
+    }
     // The rawlog holds the ranges heard, not the shots fired (a section fires only its own
     // beacons): the mean heard per epoch. The reception rate of the shots fired needs the
     // simulator's shot log; the report shows it.

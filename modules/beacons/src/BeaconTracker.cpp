@@ -62,6 +62,7 @@ void BeaconTracker::initialize(const CPose2D& pose, const Matrix3d& poseCov) {
             cov_(i, j) =
                 o_.biasSigma * o_.biasSigma + (i == j ? o_.biasSpread * o_.biasSpread : 0.0);
     initialized_ = true;
+    settled_ = true;
     syncPdf();
 }
 
@@ -100,6 +101,7 @@ void BeaconTracker::startAt(const CPose2D& pose) {
     initialize(pose, Vector3d(o_.startSigmaXY * o_.startSigmaXY, o_.startSigmaXY * o_.startSigmaXY,
                               o_.startSigmaPhi * o_.startSigmaPhi)
                          .asDiagonal());
+    settled_ = false;  // a prior, not yet evidence: see onRanges
 }
 
 std::vector<BeaconTracker::Range> BeaconTracker::usableRanges(
@@ -233,14 +235,54 @@ void BeaconTracker::initializeFromFix(const Fix& fix, const std::vector<Range>& 
     syncPdf();
 }
 
-bool BeaconTracker::disagreesWithFix(const std::vector<Range>& ranges) {
-    // The ranges as the filter believes them to be: its bias estimates taken out.
+std::vector<BeaconTracker::Range> BeaconTracker::consistentSubset(
+    const std::vector<Range>& ranges) {
+    std::vector<Range> corrected = correctedByBias(ranges), used;
+    const auto f = fixFrom(corrected, /*robust=*/true, &used, /*counted=*/false);
+    // two ranges to spare, or as many as the map has beacons (three UWB anchors: one)
+    const size_t unknowns = o_.fix.knownHeight ? 2 : 3;
+    const size_t needed = std::max(unknowns + 1, std::min(unknowns + 2, map_.size()));
+    if (!f || used.size() < needed) return {};  // nothing to check them with: wait
+    std::vector<Range> out;
+    for (const auto& u : used)
+        for (const auto& r : ranges)
+            if (r.beaconId == u.beaconId) out.push_back(r);
+    return out;
+}
+
+std::vector<BeaconTracker::Range> BeaconTracker::correctedByBias(
+    const std::vector<Range>& ranges) const {
     std::vector<Range> corrected = ranges;
     const double scale = scaleIndex_ ? state_(*scaleIndex_) : 0.0;
     for (auto& r : corrected) {
         const auto it = offsetIndex_.find(r.beaconId);
         r.range = (r.range - (it != offsetIndex_.end() ? state_(it->second) : 0.0)) / (1 + scale);
     }
+    return corrected;
+}
+
+void BeaconTracker::noteGate(int beacon, bool accepted) {
+    // A beacon whose ranges fail the gate again and again while the filter holds (late
+    // echoes are random; ten in a row of one beacon are not) has an offset estimate gone
+    // wrong, most likely from a long echo taken in before the filter had settled: it is
+    // opened to its prior again, so its good ranges count and correct it.
+    const auto offset = offsetIndex_.find(beacon);
+    if (offset == offsetIndex_.end()) return;
+    auto& history = gateHistory_[beacon];
+    history.push_back(!accepted);
+    if (history.size() > kGateWindow) history.pop_front();
+    if (history.size() < kGateWindow ||
+        size_t(std::count(history.begin(), history.end(), true)) < kGateReopen)
+        return;
+    const Eigen::Index i = offset->second;
+    cov_(i, i) += o_.biasSpread * o_.biasSpread;
+    history.clear();
+    ++stats_.offsetsReopened;
+}
+
+bool BeaconTracker::disagreesWithFix(const std::vector<Range>& ranges) {
+    // The ranges as the filter believes them to be: its bias estimates taken out.
+    const std::vector<Range> corrected = correctedByBias(ranges);
     std::vector<Range> used;
     const auto f = fixFrom(corrected, /*robust=*/true, &used, /*counted=*/false);
     // no consistent fix, or one that could not have dropped a bad range (leave-one-out
@@ -389,10 +431,19 @@ std::optional<CPose2D> BeaconTracker::onRanges(double t,
     for (const auto& [id, i] : offsetIndex_) cov_(i, i) += o_.biasDrift * o_.biasDrift * dt;
     lastT_ = t;
 
+    // Started from a given pose, the filter has a prior but no evidence yet: its gate is
+    // wide enough to let two long echoes in, and the bias states would keep them. Until one
+    // epoch's ranges agree with each other (a fix with two ranges to spare, one bad range
+    // left out at most), it takes in no range; then only that epoch's agreeing ones.
+    std::vector<Range> agreeing = ranges;
+    if (!settled_) {
+        agreeing = consistentSubset(ranges);
+        settled_ = !agreeing.empty();
+    }
     // The most consistent ranges first: they tighten the state before a doubtful one is
     // gated, so a long echo is judged against the epoch's good ranges, not the prior.
     std::vector<std::pair<double, const Range*>> order;
-    for (const auto& r : ranges) {
+    for (const auto& r : agreeing) {
         const Innovation in = innovationOf(r);
         order.emplace_back(in.valid ? in.value * in.value / in.S : HUGE_VAL, &r);
     }
@@ -400,11 +451,9 @@ std::optional<CPose2D> BeaconTracker::onRanges(double t,
                      [](const auto& a, const auto& b) { return a.first < b.first; });
     size_t used = 0;
     for (const auto& [nis, r] : order) {
-        if (updateWithRange(*r, gate_)) {
-            ++used;
-        } else {
-            ++stats_.rangesGated;
-        }
+        const bool accepted = updateWithRange(*r, gate_);
+        accepted ? ++used : ++stats_.rangesGated;
+        noteGate(r->beaconId, accepted);
     }
     stats_.rangesUsed += used;
     // Lost track: every range rejected, or consistent fixes (ranges corrected by the bias

@@ -109,6 +109,30 @@ std::string receptionSection(const report::RunView& run) {
                "%.3f");
     t += rowOf(methodRobots, "max distance between fixes (m)", "max_distance_between_fixes_m", 1,
                "%.3f");
+    // the link's biases as each robot's tracker estimated them (estimate_bias)
+    bool anyBias = false;
+    std::string offsets = "<tr><th>range offset per beacon at the end (mm)</th>",
+                scales = "<tr><th>common range scale at the end (per mille)</th>";
+    for (const auto& robot : robots) {
+        const auto m = methodRobots.value(robot, nlohmann::json::object());
+        offsets += "<td>";
+        scales += "<td>";
+        if (m.contains("range_offsets_m")) {
+            anyBias = true;
+            std::string cell;
+            for (const auto& [id, v] : m["range_offsets_m"].items())
+                cell += (cell.empty() ? "" : ", ") + id + ": " +
+                        mrpt::format("%+.1f", 1000 * v.get<double>());
+            offsets += cell;
+            scales += mrpt::format("%+.2f", 1000 * m.value("range_scale", 0.0));
+        } else {
+            offsets += "none";
+            scales += "none";
+        }
+        offsets += "</td>";
+        scales += "</td>";
+    }
+    if (anyBias) t += offsets + "</tr>\n" + scales + "</tr>\n";
     t += "</table>\n";
     t += "<p>Scheduling: <b>" +
          std::string(options.system.scheduling == Scheduling::Priority
@@ -122,7 +146,8 @@ std::string receptionSection(const report::RunView& run) {
     t += mrpt::format(
              "<p>Shots fired: %zu, heard: %zu, a reception rate of %.1f %% (of the shots fired: "
              "a section fires only its own beacons). Multilateration fixes: %d (in the tracker "
-             "mode, those that start or restart the filter; every epoch gives an estimate). Log: "
+             "mode, those made while the filter starts or restarts; then every epoch gives an "
+             "estimate, the ranges corrected by the offsets and scale above). Log: "
              "<code>",
              shots.size(), detected, 100.0 * double(detected) / double(shots.size()),
              metrics.value("beacons", nlohmann::json::object()).value("multilateration_fixes", 0)) +

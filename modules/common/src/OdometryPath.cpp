@@ -1,7 +1,4 @@
 #include <mrloc/common/OdometryPath.h>
-#include <mrpt/poses/Lie/SE.h>
-
-#include <Eigen/Dense>
 #include <cmath>
 
 namespace mrloc::common {
@@ -25,10 +22,10 @@ std::optional<mrpt::poses::CPose2D> OdometryPath::extrapolate(double t) const {
     const auto& [increment, duration] = *lastIncrement_;
     const double ahead = t - lastTime_;
     if (ahead < 0 || ahead > 1.5 * duration) return std::nullopt;
-    using SE2 = mrpt::poses::Lie::SE<2>;
-    SE2::tangent_vector twist = SE2::log(increment);
-    twist *= ahead / duration;
-    return *last_ + SE2::exp(twist);
+    // the last increment in proportion: a chord of the arc the robot is on, which is 0.04 mm
+    // from the arc 30 ms after a reading at 0.5 m/s on a 2 m circle
+    const double f = ahead / duration;
+    return *last_ + mrpt::poses::CPose2D(f * increment.x(), f * increment.y(), f * increment.phi());
 }
 
 }  // namespace mrloc::common

@@ -18,7 +18,7 @@ namespace mrloc::beacons {
 /** A robot's beacon keys in [robot.<name>] (the simulator's robot options accept them). */
 struct BeaconRobotOptions {
     mrpt::math::TPoint3D receiver{0, 0, 0.3};  ///< receiver = x y z on the robot (m)
-    double beaconRate = 5;                     ///< beacon_rate: most ranging epochs it asks for (Hz)
+    double beaconRate = 5;   ///< beacon_rate: most ranging epochs it asks for (Hz)
     long rangingEpochs = 0;  ///< ranging_epochs: stops asking after this many (0: never)
 
     static const std::vector<std::string>& keys();

@@ -53,12 +53,13 @@ struct TrackerOptions {
 struct TrackerStats {
     size_t epochs = 0, rangesReceived = 0, rangesUsed = 0, rangesGated = 0, rangesUnknownBeacon = 0;
     size_t fixes = 0, fixFailures = 0, mirrorResolved = 0, resets = 0;
+    size_t offsetsReopened = 0;  ///< a beacon's ranges failed the gate 8 times in 10
 
     TrackerStats& operator+=(const TrackerStats& o) {
         epochs += o.epochs, rangesReceived += o.rangesReceived, rangesUsed += o.rangesUsed;
         rangesGated += o.rangesGated, rangesUnknownBeacon += o.rangesUnknownBeacon;
         fixes += o.fixes, fixFailures += o.fixFailures, mirrorResolved += o.mirrorResolved;
-        resets += o.resets;
+        resets += o.resets, offsetsReopened += o.offsetsReopened;
         return *this;
     }
 };
@@ -104,6 +105,13 @@ class BeaconTracker {
     /** A consistent fix from the ranges, corrected by the bias estimates, lies outside the
      *  filter's position covariance (the divergence gate). */
     bool disagreesWithFix(const std::vector<Range>& ranges);
+    /** The ranges of a consistent fix from these with two to spare (one left out at
+     *  most); none if there is no such fix. */
+    std::vector<Range> consistentSubset(const std::vector<Range>& ranges);
+    /** The ranges with the estimated offsets and scale taken out. */
+    std::vector<Range> correctedByBias(const std::vector<Range>& ranges) const;
+    /** Records a range's gate outcome; reopens the beacon's offset when it keeps failing. */
+    void noteGate(int beacon, bool accepted);
     /** A multilateration fix; `counted` in the stats (the consistency check's are not). */
     std::optional<Fix> fixFrom(const std::vector<Range>& ranges, bool robust = true,
                                std::vector<Range>* used = nullptr, bool counted = true);
@@ -147,7 +155,10 @@ class BeaconTracker {
     static constexpr double kMaxBootstrapGdop = 5.0;  ///< a poorer fix is no start
     std::deque<TrackPoint> track_;
     double headingOffset_ = 0;
-    int epochsLost_ = 0;  // epochs in a row with every range rejected or the fix apart
+    static constexpr size_t kGateWindow = 10, kGateReopen = 8;
+    std::map<int, std::deque<bool>> gateHistory_;  // beacon -> gated, its last ranges
+    bool settled_ = true;  // false from a given start pose until one consistent epoch
+    int epochsLost_ = 0;   // epochs in a row with every range rejected or the fix apart
     std::optional<Eigen::Vector3d> lastFix_;
     TrackerStats stats_;
 };

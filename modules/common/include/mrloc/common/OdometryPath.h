@@ -22,8 +22,8 @@ class OdometryPath {
     std::optional<double> speed() const { return speed_; }
     std::optional<double> forwardSpeed() const { return forwardSpeed_; }
     std::optional<mrpt::poses::CPose2D> last() const { return last_; }
-    /** The odometry at time t after the last reading, the last step's twist held (SE(2)
-     *  exp/log); nothing before two readings, before the last reading, or later than one
+    /** The odometry at time t after the last reading, the last step's increment taken in
+     *  proportion; nothing before two readings, before the last reading, or later than one
      *  and a half steps after it (a reading is missing: the robot may have stopped). */
     std::optional<mrpt::poses::CPose2D> extrapolate(double t) const;
 
