@@ -7,6 +7,9 @@
 #include <mrloc/omnivision/OmniFiles.h>
 #include <mrpt/img/CImage.h>
 
+#include <map>
+#include <numeric>
+
 #include "MrlocCli.h"
 
 namespace fs = std::filesystem;
@@ -27,13 +30,14 @@ TEST(MrlocOmnivision, FiveRobotsFromRenderedPanoramas) {
         EXPECT_TRUE(o["snapshots"][s]["unresolved"].empty());
     }
     // L from eq. (8): C moved 0.8 m against a 4.7 m baseline, so L is sensitive to the
-    // detected bearings (0.65 px). Measured: L 1.1 % short, paper median 0.96 %, refined
-    // 0.062 %, layout RMSE 6.3 mm; each bound is about 1.5 times that (the run is
-    // deterministic; the margin is for the renderer's driver).
-    EXPECT_NEAR(o["baseline_L_m"].get<double>() / o["true_L_m"].get<double>(), 1, 0.017);
-    EXPECT_LT(o["relative_distance_error_paper"]["median"].get<double>(), 0.015);
-    EXPECT_LT(o["relative_distance_error_refined"]["median"].get<double>(), 0.001);
-    EXPECT_LT(m["rmse_m"].get<double>(), 0.01);  // layout error in the paper's frame
+    // detected bearings. Measured (seed 5): L 0.23 % short, paper median 0.28 %, refined
+    // 0.26 %, layout RMSE 13.8 mm; each bound is about 1.5 times that (the run is
+    // deterministic; the margin is for the renderer's driver). Over 20 seeds the medians are
+    // 1.03 % and 0.37 % (doc/omnivision.md).
+    EXPECT_NEAR(o["baseline_L_m"].get<double>() / o["true_L_m"].get<double>(), 1, 0.0035);
+    EXPECT_LT(o["relative_distance_error_paper"]["median"].get<double>(), 0.0045);
+    EXPECT_LT(o["relative_distance_error_refined"]["median"].get<double>(), 0.004);
+    EXPECT_LT(m["rmse_m"].get<double>(), 0.021);  // layout error in the paper's frame
     // The files hold the five robots and the sweep's two axes.
     const auto layout = omnivision::LayoutFile::read(out);
     ASSERT_EQ(layout.points.size(), 5u);
@@ -66,9 +70,36 @@ TEST(MrlocOmnivision, FiveRobotsFromRenderedPanoramas) {
     EXPECT_NE(page.find("Accuracy against noise"), std::string::npos);
     // the headline figures in the section, not only in metrics.json
     EXPECT_NE(page.find("<b>Relative distance error, median (max) over the 10 pairs: the "
-                        "paper's solution 0.96 % (2.10 %), refined 0.06 % (0.19 %).</b>"),
+                        "paper's solution 0.28 % (0.70 %), refined 0.26 % (0.31 %).</b>"),
               std::string::npos);
     EXPECT_NE(page.find("Snapshot t_b: 10 of the 10 triangles found."), std::string::npos);
+}
+
+// The refinement's covariance against its errors (the report's 3-sigma ellipses): per robot,
+// the error weighed by the covariance, per free coordinate, averaged over 20 seeds, must be
+// near 1 (the issue: within 0.5 and 2). Measured: B 0.80, C 1.00, D 0.58, E 0.95; before
+// the detector weighed columns by angle and the refinement knew the rendered bearings'
+// noise, B 0.014, C 0.77, D 0.009, E 1.46 (the shipped seeds then differed only in odometry
+// noise, so every seed saw the same layout: its one draw, twenty times).
+TEST(MrlocOmnivision, ErrorsMatchTheCovarianceOverTwentySeeds) {
+    std::map<std::string, std::vector<double>> nees;
+    for (int seed = 1; seed <= 20; ++seed) {
+        const std::string out = tmp("omni_nees_" + std::to_string(seed));
+        ASSERT_EQ(mrlocCmd("run " + config("omnivision_5robots") + " -q --seed " +
+                           std::to_string(seed) + " --out " + out)
+                      .code,
+                  0);
+        for (const auto& p : omnivision::LayoutFile::read(out).points)
+            if (const auto e = omnivision::normalisedSquaredError(p)) nees[p.robot].push_back(*e);
+        fs::remove_all(out);
+    }
+    ASSERT_EQ(nees.size(), 4u);  // A is the frame's origin
+    for (const auto& [robot, v] : nees) {
+        ASSERT_EQ(v.size(), 20u) << robot;
+        const double mean = std::accumulate(v.begin(), v.end(), 0.0) / double(v.size());
+        EXPECT_GT(mean, 0.5) << robot;
+        EXPECT_LT(mean, 2.0) << robot;
+    }
 }
 
 TEST(MrlocOmnivision, SwarmOfThirty) {

@@ -162,4 +162,17 @@ void plotAccuracy(const AccuracyFile& sweep, const std::string& pngPath) {
     report::runGnuplot(body, pngPath, "1100,450");
 }
 
+/** The refined position's error weighed by its covariance, per coordinate the gauge leaves
+ *  free (B's y is fixed by the frame): e' P^-1 e / dof; nothing for A or without truth. */
+std::optional<double> normalisedSquaredError(const LayoutPoint& p) {
+    if (!std::isfinite(p.cxx) || !std::isfinite(p.trueX) || !std::isfinite(p.refinedX))
+        return std::nullopt;
+    const double ex = p.refinedX - p.trueX, ey = p.refinedY - p.trueY;
+    if (p.cxx <= 0 && p.cyy <= 0) return std::nullopt;  // A: the frame's origin
+    if (p.cyy <= 0) return ex * ex / p.cxx;             // B: on the x axis
+    const double det = p.cxx * p.cyy - p.cxy * p.cxy;
+    if (!(det > 0)) return std::nullopt;
+    return (p.cyy * ex * ex - 2 * p.cxy * ex * ey + p.cxx * ey * ey) / det / 2;
+}
+
 }  // namespace mrloc::omnivision

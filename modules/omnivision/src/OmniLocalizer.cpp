@@ -129,7 +129,17 @@ const OmniResult& OmniLocalizer::result() const {
     so.sumTolerance = options_.sumToleranceRad();
     so.bearingTolerance = options_.bearingToleranceRad();
     RefinementProblem p;
-    p.bearingSigma = options_.bearingAccuracy();
+    p.bearingSigma = options_.bearingNoise();
+    if (options_.render) {
+        // The middle of a marker's columns errs by 1/sqrt(24) of a column (each edge
+        // anywhere in its column), and a column spans cos^2(angle off the view's axis) / f.
+        const Panorama pano = options_.panorama;
+        p.bearingSigmaAt = [pano](double bearing) {
+            const double off = std::remainder(bearing, pano.viewFov());
+            return std::pow(std::cos(off), 2) / (std::sqrt(24.0) * pano.focal());
+        };
+        p.stillViewsRepeat = true;
+    }
     if (options_.method == "proposed") {
         bool solved = false;
         for (size_t round = 0; round < options_.pairs.size() && !solved; ++round) {

@@ -67,17 +67,24 @@ RefinedLayout refineLayout(const RefinementProblem& p) {
     };
     struct Bearing {
         int observer, target;
-        double z;
+        double z, weight;
     };
     std::vector<Bearing> bearings;
     for (size_t s = 0; s < S; ++s)
         for (size_t o = 0; o < n; ++o) {
             if (poseOf[s][o] < 0) continue;
             const auto& lab = p.labels[s][o];
-            for (size_t img = 0; img < lab.size(); ++img)
-                if (lab[img] >= 0 && poseOf[s][size_t(lab[img])] >= 0)
-                    bearings.push_back({poseOf[s][o], poseOf[s][size_t(lab[img])],
-                                        p.snapshots[s].views[o].bearings[img]});
+            for (size_t img = 0; img < lab.size(); ++img) {
+                if (lab[img] < 0 || poseOf[s][size_t(lab[img])] < 0) continue;
+                const int observer = poseOf[s][o], target = poseOf[s][size_t(lab[img])];
+                const bool seen = std::any_of(bearings.begin(), bearings.end(), [&](const auto& b) {
+                    return b.observer == observer && b.target == target;
+                });
+                if (p.stillViewsRepeat && seen) continue;  // both still: the same image again
+                const double z = p.snapshots[s].views[o].bearings[img];
+                const double sigma = p.bearingSigmaAt ? p.bearingSigmaAt(z) : p.bearingSigma;
+                bearings.push_back({observer, target, z, 1.0 / (sigma * sigma)});
+            }
         }
     // Initial headings: the circular mean of what each camera's labeled images imply.
     {
@@ -89,7 +96,6 @@ RefinedLayout refineLayout(const RefinementProblem& p) {
         }
         for (size_t v = 0; v < vars.size(); ++v) x[size_t(vars[v].h)] = std::atan2(sy[v], sx[v]);
     }
-    const double wb = 1.0 / (p.bearingSigma * p.bearingSigma);
     const auto rows = [&]() {
         std::vector<Row> out;
         for (const auto& m : bearings) {
@@ -99,7 +105,7 @@ RefinedLayout refineLayout(const RefinementProblem& p) {
             Row row;
             row.residual = mrpt::math::wrapToPi(std::atan2(d.y(), d.x()) -
                                                 x[size_t(vars[size_t(m.observer)].h)] - m.z);
-            row.weight = wb;
+            row.weight = m.weight;
             const double dx = -d.y() / rho2, dy = d.x() / rho2;  // d atan2 / d target
             const auto& vo = vars[size_t(m.observer)];
             const auto& vt = vars[size_t(m.target)];

@@ -5,6 +5,7 @@
 //   accuracy.txt   the Monte Carlo accuracy sweep (an experiment step, Accuracy.h)
 #include <mrloc/omnivision/Accuracy.h>
 
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -16,6 +17,10 @@ struct LayoutPoint {
     std::string robot;
     double paperX, paperY, refinedX, refinedY, cxx, cxy, cyy, trueX, trueY;
 };
+
+/** The refined position's error weighed by its covariance, per coordinate the gauge leaves
+ *  free (B's y is fixed by the frame): e' P^-1 e / dof; nothing for A or without truth. */
+std::optional<double> normalisedSquaredError(const LayoutPoint& p);
 
 struct LayoutFile {
     double time = 0;   ///< of the layout (s)

@@ -49,6 +49,10 @@ struct OmniOptions : public mrpt::config::CLoadableOptions {
     /** The bearing accuracy the tolerances derive from (rad): the noise in bearings mode,
      *  a pixel-derived figure in render mode (see doc/omnivision.md). */
     double bearingAccuracy() const;
+    /** The bearings' noise the refinement weighs them by (rad): the noise in bearings mode;
+     *  in render mode the detector's, 1/sqrt(24) px (a marker's two edges each fall
+     *  anywhere in a column: doc/omnivision.md). */
+    double bearingNoise() const;
     double sumToleranceRad() const;
     double bearingToleranceRad() const;
     /** Every instant the cameras fire (s). */

@@ -7,6 +7,7 @@
 #include <mrloc/omnivision/Geometry.h>
 #include <mrloc/omnivision/TriangleSearch.h>
 
+#include <functional>
 #include <optional>
 #include <vector>
 
@@ -28,7 +29,14 @@ struct RefinementProblem {
     std::vector<int> stationary;  ///< robots that did not move between the instants
     std::vector<DistanceMeasurement> distances;
     double bearingSigma = 0.1 * M_PI / 180;  ///< rad
-    int a = 0, b = 1;                        ///< the frame: A at (0,0), B on the x axis
+    /** If set, a bearing's sigma from where it is in the camera's image (a bearing in the
+     *  robot frame, rad): a rendered strip's pixels span less angle off a view's axis. */
+    std::function<double(double)> bearingSigmaAt;
+    /** The same camera and the same still target at two instants give the same image: its
+     *  bearing is one measurement, not two (rendered cameras; a real camera's noise would
+     *  differ between the frames). */
+    bool stillViewsRepeat = false;
+    int a = 0, b = 1;  ///< the frame: A at (0,0), B on the x axis
 };
 
 struct RefinedLayout {
