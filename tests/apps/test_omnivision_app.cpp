@@ -7,6 +7,7 @@
 #include <mrloc/omnivision/OmniFiles.h>
 #include <mrpt/img/CImage.h>
 
+#include <cmath>
 #include <map>
 #include <numeric>
 
@@ -43,6 +44,20 @@ TEST(MrlocOmnivision, FiveRobotsFromRenderedPanoramas) {
     ASSERT_EQ(layout.points.size(), 5u);
     EXPECT_EQ(layout.a, "A");
     EXPECT_EQ(layout.b, "B");
+    // each robot's covariance.<robot>.txt is the refinement's, at the estimate's time: A's
+    // zero (the frame's origin), B's y zero (the x axis), no heading (nan)
+    for (const auto& p : layout.points) {
+        const auto cov = common::loadCovariances(out + "/covariance." + p.robot + ".txt");
+        ASSERT_EQ(cov.size(), 1u) << p.robot;
+        EXPECT_EQ(cov[0].t, common::loadTum(out + "/estimates." + p.robot + ".txt")[0].t);
+        EXPECT_DOUBLE_EQ(cov[0].cov(0, 0), p.cxx) << p.robot;
+        EXPECT_DOUBLE_EQ(cov[0].cov(0, 1), p.cxy) << p.robot;
+        EXPECT_DOUBLE_EQ(cov[0].cov(1, 1), p.cyy) << p.robot;
+        EXPECT_TRUE(std::isnan(cov[0].cov(2, 2))) << p.robot;
+        if (p.robot == "A") EXPECT_EQ(cov[0].cov(0, 0), 0.0);
+        if (p.robot == "B") EXPECT_EQ(cov[0].cov(1, 1), 0.0);
+        if (p.robot != "A") EXPECT_GT(cov[0].cov(0, 0), 0.0) << p.robot;
+    }
     // groundtruth.<robot>.txt is in the paper's frame (truthInEstimateFrame): at the
     // layout's time A is at the origin and B on the +x axis, true_L_m away.
     const auto truthAt = [&](const std::string& robot) {

@@ -221,6 +221,22 @@ std::map<std::string, common::Trajectory> OmniLocalizer::estimates() const {
     return out;
 }
 
+std::map<std::string, common::CovarianceTrack> OmniLocalizer::covariances() const {
+    const auto& r = result();
+    std::map<std::string, common::CovarianceTrack> out;
+    if (!r.refined) return out;
+    const auto final = r.final();
+    for (size_t k = 0; k < r.robots.size(); ++k) {
+        if (!final[k]) continue;  // no estimate, no covariance (one line per estimate)
+        common::StampedCovariance c{r.time, {}};
+        c.cov.fill(NAN);
+        const Eigen::Matrix2d& P = r.refined->covariance.back()[k];
+        c.cov(0, 0) = P(0, 0), c.cov(0, 1) = c.cov(1, 0) = P(0, 1), c.cov(1, 1) = P(1, 1);
+        out[r.robots[k]].push_back(c);
+    }
+    return out;
+}
+
 common::Trajectories OmniLocalizer::truthInEstimateFrame(const common::Trajectories& gt) const {
     const auto& r = result();
     const auto ga = gt.find(r.robots[size_t(r.a)]), gb = gt.find(r.robots[size_t(r.b)]);

@@ -39,6 +39,10 @@ class OmniLocalizer : public common::Localizer {
     void saveConfig(mrpt::config::CConfigFileBase& target) const override;
     void process(const mrpt::obs::CObservation::Ptr& obs) override;
     std::map<std::string, common::Trajectory> estimates() const override;
+    /** The refinement's position covariance at the layout's time (A's is zero: it is the
+     *  frame's origin; B's y too); the heading is not estimated in the output: nan. None
+     *  without `refine`. */
+    std::map<std::string, common::CovarianceTrack> covariances() const override;
     common::Trajectories truthInEstimateFrame(
         const common::Trajectories& worldTruth) const override;
     nlohmann::json methodMetrics() const override;
