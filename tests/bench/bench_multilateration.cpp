@@ -1,13 +1,16 @@
 // Speed of the beacon path: multilateration fixes per second (4 and 8 beacons, both
-// residuals, 2-D and 3-D) and rawlog playback observations per second.
+// residuals, 2-D and 3-D), rawlog playback observations per second, and the tracker's
+// epochs per second with and without its bias states.
 // Run: build/tests/bench/bench_multilateration --benchmark_repetitions=5
 //      --benchmark_report_aggregates_only=true   (report the medians)
 #include <benchmark/benchmark.h>
+#include <mrloc/beacons/BeaconTracker.h>
 #include <mrloc/beacons/Multilateration.h>
 #include <mrloc/common/Rawlog.h>
 #include <mrpt/obs/CObservationBeaconRanges.h>
 #include <mrpt/random/RandomGenerators.h>
 
+#include <cmath>
 #include <filesystem>
 
 using namespace mrloc;
@@ -100,5 +103,53 @@ BENCHMARK(BM_RawlogPlayback)->Unit(benchmark::kMillisecond)->UseRealTime();
 BENCHMARK(BM_RawlogPlaybackUnchecked)->Unit(benchmark::kMillisecond)->UseRealTime();
 
 }  // namespace
+
+// The tracker (tests/beacons/test_tracker.cpp's drive): odometry at 20 Hz and four ranges
+// per 0.2 s epoch round a 1 m circle, 30 % of them long; one iteration is one epoch (its
+// four odometry readings and its ranges). Arg: 1 with the bias states, 0 without.
+static void BM_TrackerEpoch(benchmark::State& state) {
+    const beacons::BeaconMap map = {
+        {1, {0, 0, 2.5}}, {2, {3, 0, 2.5}}, {3, {3, 3, 2.5}}, {4, {0, 3, 2.5}}};
+    beacons::TrackerOptions o;
+    o.rangeSigma = 0.01;
+    o.fix.knownHeight = 0.0;
+    o.estimateBias = state.range(0) != 0;
+    // 300 epochs precomputed; the tracker runs them again and again
+    mrpt::random::CRandomGenerator rng(7);
+    mrpt::poses::CPose2D truth(1.5, 0.5, 0), odometry(5, -2, 1.0);
+    const mrpt::poses::CPose2D step(0.0125, 0, 0.0125);
+    std::vector<std::pair<std::vector<mrpt::poses::CPose2D>, mrpt::obs::CObservationBeaconRanges>>
+        epochs;
+    for (int k = 0; k < 300; ++k) {
+        std::vector<mrpt::poses::CPose2D> odo;
+        for (int j = 0; j < 4; ++j)
+            truth = truth + step, odometry = odometry + step, odo.push_back(odometry);
+        mrpt::obs::CObservationBeaconRanges obs;
+        for (const auto& [id, b] : map) {
+            mrpt::obs::CObservationBeaconRanges::TMeasurement m;
+            m.beaconID = id;
+            m.sensorLocationOnRobot = mrpt::poses::CPoint3D(0, 0, 0.5);
+            const double d =
+                std::sqrt(std::pow(b.x - truth.x(), 2) + std::pow(b.y - truth.y(), 2) + 4.0);
+            const double late = rng.drawUniform(0.0, 1.0) < 0.3 ? rng.drawUniform(0.02, 1.0) : 0;
+            m.sensedDistance = float(d + rng.drawGaussian1D(0, 0.01) + late);
+            obs.sensedData.push_back(m);
+        }
+        epochs.push_back({odo, obs});
+    }
+    size_t done = 0;
+    for (auto _ : state) {
+        state.PauseTiming();
+        beacons::BeaconTracker tracker(map, o);
+        state.ResumeTiming();
+        for (size_t k = 0; k < epochs.size(); ++k) {
+            for (const auto& p : epochs[k].first) tracker.onOdometry(p);
+            benchmark::DoNotOptimize(tracker.onRanges(0.2 * double(k + 1), epochs[k].second));
+        }
+        done += epochs.size();
+    }
+    state.counters["epochs_per_s"] = benchmark::Counter(double(done), benchmark::Counter::kIsRate);
+}
+BENCHMARK(BM_TrackerEpoch)->Arg(1)->Arg(0)->Unit(benchmark::kMicrosecond);
 
 BENCHMARK_MAIN();
