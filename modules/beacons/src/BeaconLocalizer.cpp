@@ -248,6 +248,7 @@ nlohmann::json BeaconLocalizer::methodMetrics() const {
     j["fix_failures"] = total.fixFailures;
     j["mirror_resolved"] = total.mirrorResolved;
     j["filter_resets"] = total.resets;
+    j["offsets_reopened"] = total.offsetsReopened;  // a beacon kept failing the gate
     for (const auto& [robot, sp] : spacing_) {
         auto& r = j["robots"][robot];
         r["estimates"] = estimates_.count(robot) ? estimates_.at(robot).size() : 0;
