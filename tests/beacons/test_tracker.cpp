@@ -7,6 +7,8 @@
 #include <iostream>
 #include <map>
 
+#include "BeaconRangesAt.h"
+
 using namespace mrloc;
 using mrpt::poses::CPose2D;
 
@@ -35,16 +37,9 @@ struct Drive {
         odometry = odometry + delta;  // perfect odometry: errors come from the ranges alone
         tracker.onOdometry(odometry);
         t += 0.2;
-        mrpt::obs::CObservationBeaconRanges obs;
-        for (const auto& [id, b] : kMap) {
-            mrpt::obs::CObservationBeaconRanges::TMeasurement m;
-            m.beaconID = id;
-            m.sensorLocationOnRobot = mrpt::poses::CPoint3D(0, 0, 0.5);
-            const double d =
-                std::sqrt(std::pow(b.x - truth.x(), 2) + std::pow(b.y - truth.y(), 2) + 4.0);
-            m.sensedDistance = float(d + rng.drawGaussian1D(0, 0.01) + (id == biased ? bias : 0));
-            obs.sensedData.push_back(m);
-        }
+        const auto obs = testing_beacons::rangesAt(kMap, truth, [&](int id, double) {
+            return rng.drawGaussian1D(0, 0.01) + (id == biased ? bias : 0);
+        });
         return tracker.onRanges(t, obs);
     }
     double error(const CPose2D& p) const {
@@ -153,23 +148,15 @@ struct BiasedDrive {
             truth = truth + step;
             odometry = odometry + step;  // perfect odometry: the errors are the ranges'
             tracker.onOdometry(odometry);
-            mrpt::obs::CObservationBeaconRanges obs;
-            for (const auto& [id, b] : kMap) {
-                mrpt::obs::CObservationBeaconRanges::TMeasurement m;
-                m.beaconID = id;
-                m.sensorLocationOnRobot = mrpt::poses::CPoint3D(0, 0, 0.5);
-                const double d =
-                    std::sqrt(std::pow(b.x - truth.x(), 2) + std::pow(b.y - truth.y(), 2) + 4.0);
+            const auto obs = testing_beacons::rangesAt(kMap, truth, [&](int id, double d) {
                 const double noise = rng.drawGaussian1D(0, 0.01);
                 const double u = rng.drawUniform(0.0, 1.0), late = rng.drawUniform(0.02, 1.0);
                 const auto off = offsets.find(id);
                 double step = id == stepBeacon && 0.2 * k >= stepAt ? stepSize : 0.0;
                 if (k == 1 && firstEpochLong.count(id)) step += firstEpochLong.at(id);
-                m.sensedDistance =
-                    float((1 + scale) * d + (off != offsets.end() ? off->second : 0) + step +
-                          noise + (u < longShare ? late : 0.0));
-                obs.sensedData.push_back(m);
-            }
+                return scale * d + (off != offsets.end() ? off->second : 0) + step + noise +
+                       (u < longShare ? late : 0.0);
+            });
             const auto p = tracker.onRanges(0.2 * k, obs);
             if (!p) continue;
             ++r.estimates;

@@ -13,6 +13,8 @@
 #include <cmath>
 #include <filesystem>
 
+#include "BeaconRangesAt.h"
+
 using namespace mrloc;
 using Eigen::Vector3d;
 
@@ -124,17 +126,10 @@ static void BM_TrackerEpoch(benchmark::State& state) {
         std::vector<mrpt::poses::CPose2D> odo;
         for (int j = 0; j < 4; ++j)
             truth = truth + step, odometry = odometry + step, odo.push_back(odometry);
-        mrpt::obs::CObservationBeaconRanges obs;
-        for (const auto& [id, b] : map) {
-            mrpt::obs::CObservationBeaconRanges::TMeasurement m;
-            m.beaconID = id;
-            m.sensorLocationOnRobot = mrpt::poses::CPoint3D(0, 0, 0.5);
-            const double d =
-                std::sqrt(std::pow(b.x - truth.x(), 2) + std::pow(b.y - truth.y(), 2) + 4.0);
+        const auto obs = testing_beacons::rangesAt(map, truth, [&](int, double) {
             const double late = rng.drawUniform(0.0, 1.0) < 0.3 ? rng.drawUniform(0.02, 1.0) : 0;
-            m.sensedDistance = float(d + rng.drawGaussian1D(0, 0.01) + late);
-            obs.sensedData.push_back(m);
-        }
+            return rng.drawGaussian1D(0, 0.01) + late;
+        });
         epochs.push_back({odo, obs});
     }
     size_t done = 0;
