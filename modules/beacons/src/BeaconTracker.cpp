@@ -2,7 +2,6 @@
 #include <mrpt/math/wrap2pi.h>
 
 #include <Eigen/Dense>
-#include <Eigen/Geometry>
 #include <algorithm>
 #include <cmath>
 
@@ -300,56 +299,6 @@ bool BeaconTracker::disagreesWithFix(const std::vector<Range>& ranges) {
     return v.dot(C.ldlt().solve(v)) > divergenceGate_;
 }
 
-std::optional<Eigen::Matrix3d> BeaconTracker::alignTrack() {
-    // Consensus first: every pair of fixes far enough apart proposes the rigid motion from
-    // the odometry frame to the world; the one most fixes fit wins (a wrong fix, from two
-    // late echoes that agree, cannot drag a short line round). Then Umeyama (no scale) on
-    // those fixes, which must all still fit and span the baseline.
-    const size_t n = track_.size();
-    if (n < kMinTrack) return std::nullopt;
-    const auto odometryAt = [&](size_t i) {
-        return Eigen::Vector2d(track_[i].odometry.x(), track_[i].odometry.y());
-    };
-    const auto fits = [&](const Eigen::Matrix3d& T, size_t i) {
-        const Eigen::Vector2d aligned =
-            T.topLeftCorner<2, 2>() * odometryAt(i) + T.topRightCorner<2, 1>();
-        return (aligned - track_[i].fix).norm() <= track_[i].tolerance;
-    };
-    std::vector<size_t> best;
-    for (size_t i = 0; i < n; ++i)
-        for (size_t j = i + 1; j < n; ++j) {
-            const Eigen::Vector2d odo = odometryAt(j) - odometryAt(i);
-            const Eigen::Vector2d fix = track_[j].fix - track_[i].fix;
-            if (odo.norm() < 0.5 * o_.bootstrapBaseline) continue;
-            const double angle = std::atan2(fix.y(), fix.x()) - std::atan2(odo.y(), odo.x());
-            Eigen::Matrix3d T = Eigen::Matrix3d::Identity();
-            T.topLeftCorner<2, 2>() = Eigen::Rotation2Dd(angle).toRotationMatrix();
-            T.topRightCorner<2, 1>() =
-                0.5 * (track_[i].fix + track_[j].fix) -
-                T.topLeftCorner<2, 2>() * 0.5 * (odometryAt(i) + odometryAt(j));
-            std::vector<size_t> inliers;
-            for (size_t k = 0; k < n; ++k)
-                if (fits(T, k)) inliers.push_back(k);
-            if (inliers.size() > best.size()) best = inliers;
-        }
-    if (best.size() < kMinTrack || 2 * best.size() < n + 1) return std::nullopt;
-    Eigen::Matrix2Xd from(2, best.size()), to(2, best.size());
-    for (size_t k = 0; k < best.size(); ++k) {
-        from.col(Eigen::Index(k)) = odometryAt(best[k]);
-        to.col(Eigen::Index(k)) = track_[best[k]].fix;
-    }
-    if ((from.col(from.cols() - 1) - from.col(0)).norm() < o_.bootstrapBaseline)
-        return std::nullopt;
-    const Eigen::Matrix3d T = Eigen::umeyama(from, to, false);
-    for (size_t k : best)
-        if (!fits(T, k)) return std::nullopt;
-    // keep only the fixes that agree (the heading's uncertainty is taken from their spread)
-    std::deque<TrackPoint> kept;
-    for (size_t k : best) kept.push_back(track_[k]);
-    track_ = std::move(kept);
-    return T;
-}
-
 std::optional<CPose2D> BeaconTracker::bootstrap(const std::vector<Range>& ranges) {
     std::vector<Range> used;
     const auto f = fixFrom(ranges, /*robust=*/true, &used);
@@ -365,44 +314,28 @@ std::optional<CPose2D> BeaconTracker::bootstrap(const std::vector<Range>& ranges
     // the others, the odometry's path moved rigidly into the world (its noise, plus the
     // few centimetres the ranges' unknown bias moves every fix alike).
     if (f->gdop > kMaxBootstrapGdop) return std::nullopt;  // too poor a geometry to start from
+    // each fix within 3 sigma of the aligned path, plus the few centimetres the ranges'
+    // unknown bias moves every fix alike
     const double sigma = std::sqrt(f->covariance.topLeftCorner<2, 2>().trace());
-    track_.push_back({p, odo, 3.0 * sigma + 0.03});
-    if (track_.size() > kMaxTrack) track_.pop_front();
-    if (const auto T = alignTrack()) {
+    track_.add({p, odo, 3.0 * sigma + 0.03});
+    if (const auto T = track_.align(o_.bootstrapBaseline)) {
         // the fixes fit the odometry's path: the pose now is the odometry's, moved by T
         const double rotation = std::atan2((*T)(1, 0), (*T)(0, 0));
         Fix start = *f;
         start.position.head<2>() = T->topLeftCorner<2, 2>() * Eigen::Vector2d(odo.x(), odo.y()) +
                                    T->topRightCorner<2, 1>();
-        double spread = 0;  // sum of squared distances of the track's odometry from its centroid
-        Eigen::Vector2d centroid = Eigen::Vector2d::Zero();
-        for (const auto& q : track_) centroid += Eigen::Vector2d(q.odometry.x(), q.odometry.y());
-        centroid /= double(track_.size());
-        for (const auto& q : track_)
-            spread += (Eigen::Vector2d(q.odometry.x(), q.odometry.y()) - centroid).squaredNorm();
-        // the rotation of a line of fixes of error sigma: sigma / sqrt(spread), with the
-        // ranges' bias bending the line allowed for
-        const double sigmaPhi = 3.0 * o_.rangeSigma / std::sqrt(spread) + 0.05;
+        // the rotation of a line of fixes of error sigma is sigma / sqrt(spread); three
+        // range sigmas and 0.05 rad allow for the ranges' bias bending the line
+        const double sigmaPhi = 3.0 * o_.rangeSigma / std::sqrt(track_.odometrySpread()) + 0.05;
         initializeFromFix(start, used, mrpt::math::wrapToPi(odo.phi() + rotation),
                           sigmaPhi * sigmaPhi);
         track_.clear();
         return pdf_.mean;
     }
-    // Not yet localized: the fix is the estimate if it agrees with every earlier fix on
-    // how far apart they are (odometry's distance, which needs no heading), with the
-    // heading of the last time the track was held.
-    if (track_.empty() || track_.back().fix != p) return std::nullopt;  // dropped as misfit
-    const TrackPoint& now = track_.back();
-    size_t agree = 0;
-    for (size_t i = 0; i + 1 < track_.size(); ++i) {
-        const TrackPoint& then = track_[i];
-        const double odoDistance =
-            std::hypot(now.odometry.x() - then.odometry.x(), now.odometry.y() - then.odometry.y());
-        const double tolerance = now.tolerance + then.tolerance + 0.05 * odoDistance;
-        if (std::abs((now.fix - then.fix).norm() - odoDistance) <= tolerance) ++agree;
-    }
-    // a lone fix may be a mirror image made of two long echoes: it waits for a second
-    if (track_.size() < 2 || agree + 1 < track_.size()) return std::nullopt;
+    // Not yet localized: the fix is the estimate if it agrees with every earlier one, with
+    // the heading of the last time the track was held. A lone fix may be a mirror image made
+    // of two long echoes: it waits for a second.
+    if (!track_.newestAgrees()) return std::nullopt;
     return CPose2D(p.x(), p.y(), mrpt::math::wrapToPi(odo.phi() + headingOffset_));
 }
 

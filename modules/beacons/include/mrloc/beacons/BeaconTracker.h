@@ -10,14 +10,15 @@
 //   r = (1 + scale) |sensor - beacon| + offset_beacon + noise.
 // Odometry between epochs and the beacons' spread make them observable.
 //
-// Robustness: each range passes a chi-square gate on its normalised innovation before it is
-// used, so one bad range (NLOS reflection, a late tone-decoder trigger) is rejected instead
-// of dragging the estimate. If several epochs in a row have every range rejected, the filter
-// re-initialises from a robust multilateration fix (the bias was in the filter, not the
-// ranges). Start-up: from the known start pose if one is given; else position from a fix
-// and heading from two fixes a baseline apart compared with the odometry between them.
+// Long echoes (NLOS reflections, a late tone decoder): each range passes a chi-square gate
+// on its normalised innovation, the most consistent first; a beacon that keeps failing it
+// has its offset reopened; from a given start pose nothing is taken in until one epoch's
+// ranges agree; a lost track (every range refused, or consistent fixes far outside the
+// covariance) starts again. Start-up: from the known start pose if one is given, else from
+// robust fixes that fit the odometry's path (consensus, then Umeyama). doc/beacons.md.
 #include <mrloc/beacons/BeaconMap.h>
 #include <mrloc/beacons/Multilateration.h>
+#include <mrloc/beacons/StartupTrack.h>
 #include <mrpt/obs/CObservationBeaconRanges.h>
 #include <mrpt/poses/CPosePDFGaussian.h>
 
@@ -34,7 +35,7 @@ struct TrackerOptions {
     double odomSigmaPhiPerRad = 0.05;    ///< heading noise per radian turned
     double odomSigmaPhiPerMetre = 0.02;  ///< heading noise per metre travelled (rad/m)
     double randomWalkSigma = 0.5;        ///< m/sqrt(s), when the rawlog has no odometry
-    double bootstrapBaseline = 0.3;      ///< m between the two fixes that give the heading
+    double bootstrapBaseline = 0.3;      ///< m the start-up fixes must span along the path
     int resetAfter = 5;  ///< epochs in a row lost (every range rejected, or consistent
                          ///< fixes outside the filter's covariance) before a reset
     /** The robot's pose at its first odometry reading, if known (MRPT's apps take it from
@@ -118,9 +119,6 @@ class BeaconTracker {
     bool updateWithRange(const Range& r, double gate);
     std::optional<mrpt::poses::CPose2D> bootstrap(const std::vector<Range>& ranges);
     void startAt(const mrpt::poses::CPose2D& pose);
-    /** The rigid motion from the odometry frame to the world that most of the start-up
-     *  fixes fit, once they span bootstrapBaseline; the misfits are dropped. */
-    std::optional<Eigen::Matrix3d> alignTrack();
     /** Sets the pose and its covariance; the bias states go back to their prior. */
     void initialize(const mrpt::poses::CPose2D& pose, const Eigen::Matrix3d& poseCov);
     /** Starts at a multilateration fix; the fix's error due to the bias states goes into
@@ -143,17 +141,10 @@ class BeaconTracker {
     bool hasOdometry_ = false;
     std::optional<mrpt::poses::CPose2D> lastOdometry_;
     std::optional<double> lastT_;
-    // Start-up: recent fixes with the odometry at their time, aligned when they span
-    // bootstrapBaseline; the heading offset of the last held track, for estimates meanwhile.
-    struct TrackPoint {
-        Eigen::Vector2d fix;
-        mrpt::poses::CPose2D odometry;
-        double tolerance;  ///< m: how far the aligned odometry may be from this fix
-    };
-    static constexpr size_t kMaxTrack = 15;
-    static constexpr size_t kMinTrack = 4;            ///< fixes that must agree before the start
+    // Start-up without a start pose; the heading offset of the last held track, for the
+    // estimates meanwhile.
+    StartupTrack track_;
     static constexpr double kMaxBootstrapGdop = 5.0;  ///< a poorer fix is no start
-    std::deque<TrackPoint> track_;
     double headingOffset_ = 0;
     static constexpr size_t kGateWindow = 10, kGateReopen = 8;
     std::map<int, std::deque<bool>> gateHistory_;  // beacon -> gated, its last ranges
