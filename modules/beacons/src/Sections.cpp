@@ -56,7 +56,8 @@ SectionMap readSections(common::IniSection& s, const BeaconMap& map) {
         sec.max = {r[2], r[3]};
         if (!s.has(key + "_beacons")) s.fail(key + "_beacons", "required for section " + name);
         for (double id : s.reals(key + "_beacons", {})) {
-            if (id != std::floor(id) || !map.count(int(id)))
+            // a whole number within int's range before it is one (1e112 is not a beacon)
+            if (id != std::floor(id) || std::abs(id) > 1e9 || !map.count(int(id)))
                 s.fail(key + "_beacons", mrpt::format("beacon %g is not in the beacon map", id));
             sec.beacons.push_back(int(id));
         }
