@@ -66,8 +66,7 @@ void BeaconTracker::initialize(const CPose2D& pose, const Matrix3d& poseCov) {
 }
 
 void BeaconTracker::onOdometry(const CPose2D& odo) {
-    hasOdometry_ = true;
-    if (!initialized_ && !lastOdometry_ && o_.startPose) startAt(*o_.startPose);
+    startIfGiven();
     if (initialized_ && lastOdometry_) {
         const CPose2D delta = odo - *lastOdometry_;  // increment in the robot frame
         const double d = std::hypot(delta.x(), delta.y());
@@ -94,9 +93,13 @@ void BeaconTracker::onOdometry(const CPose2D& odo) {
     lastOdometry_ = odo;
 }
 
+void BeaconTracker::startIfGiven() {
+    // a known start pose is the pose where the log starts: its first odometry reading or
+    // its first ranges, whichever comes first
+    if (!initialized_ && !lastOdometry_ && o_.startPose) startAt(*o_.startPose);
+}
+
 void BeaconTracker::startAt(const CPose2D& pose) {
-    // a known start pose is the pose where the log starts (its first odometry reading or
-    // its first ranges, whichever comes first)
     initialize(pose, Vector3d(o_.startSigmaXY * o_.startSigmaXY, o_.startSigmaXY * o_.startSigmaXY,
                               o_.startSigmaPhi * o_.startSigmaPhi)
                          .asDiagonal());
@@ -137,9 +140,8 @@ std::optional<Fix> BeaconTracker::fixFrom(const std::vector<Range>& ranges, bool
         robust ? robustMultilaterate(m, fo, 3.0 * o_.rangeSigma, &rejected) : multilaterate(m, fo);
     // With a spare range the residual tells an inconsistent set (two late echoes, say)
     // that leave-one-out could not repair: the filter must not start or restart from it.
-    const size_t unknowns = fo.knownHeight ? 2 : 3;
     const bool inconsistent =
-        robust && f.ok() && m.size() > unknowns && f.rmsResidual > 5.0 * o_.rangeSigma;
+        robust && f.ok() && m.size() > unknowns() && f.rmsResidual > 5.0 * o_.rangeSigma;
     if (!f.ok() || inconsistent) {
         if (counted) ++stats_.fixFailures;
         return std::nullopt;
@@ -234,14 +236,20 @@ void BeaconTracker::initializeFromFix(const Fix& fix, const std::vector<Range>& 
     syncPdf();
 }
 
+std::optional<Fix> BeaconTracker::checkingFix(const std::vector<Range>& ranges, size_t needed,
+                                              std::vector<Range>& used) {
+    // the ranges as the filter believes them to be: its bias estimates taken out
+    const auto f = fixFrom(correctedByBias(ranges), /*robust=*/true, &used, /*counted=*/false);
+    if (!f || used.size() < needed) return std::nullopt;
+    return f;
+}
+
 std::vector<BeaconTracker::Range> BeaconTracker::consistentSubset(
     const std::vector<Range>& ranges) {
-    std::vector<Range> corrected = correctedByBias(ranges), used;
-    const auto f = fixFrom(corrected, /*robust=*/true, &used, /*counted=*/false);
     // two ranges to spare, or as many as the map has beacons (three UWB anchors: one)
-    const size_t unknowns = o_.fix.knownHeight ? 2 : 3;
-    const size_t needed = std::max(unknowns + 1, std::min(unknowns + 2, map_.size()));
-    if (!f || used.size() < needed) return {};  // nothing to check them with: wait
+    const size_t needed = std::max(unknowns() + 1, std::min(unknowns() + 2, map_.size()));
+    std::vector<Range> used;
+    if (!checkingFix(ranges, needed, used)) return {};  // nothing to check them with: wait
     std::vector<Range> out;
     for (const auto& u : used)
         for (const auto& r : ranges)
@@ -280,14 +288,11 @@ void BeaconTracker::noteGate(int beacon, bool accepted) {
 }
 
 bool BeaconTracker::disagreesWithFix(const std::vector<Range>& ranges) {
-    // The ranges as the filter believes them to be: its bias estimates taken out.
-    const std::vector<Range> corrected = correctedByBias(ranges);
-    std::vector<Range> used;
-    const auto f = fixFrom(corrected, /*robust=*/true, &used, /*counted=*/false);
     // no consistent fix, or one that could not have dropped a bad range (leave-one-out
     // needs two ranges to spare): no evidence either way
-    const size_t unknowns = o_.fix.knownHeight ? 2 : 3;
-    if (!f || used.size() < unknowns + 2) return false;
+    std::vector<Range> used;
+    const auto f = checkingFix(ranges, unknowns() + 2, used);
+    if (!f) return false;
     // fix - filter ~ N(0, filter's + fix's own + the fix's share of the bias uncertainty)
     const Eigen::Index extras = state_.size() - 3;
     Eigen::Matrix2d C = cov_.topLeftCorner<2, 2>() + f->covariance.topLeftCorner<2, 2>();
@@ -304,12 +309,12 @@ std::optional<CPose2D> BeaconTracker::bootstrap(const std::vector<Range>& ranges
     const auto f = fixFrom(ranges, /*robust=*/true, &used);
     if (!f) return std::nullopt;
     const Eigen::Vector2d p = f->position.head<2>();
-    if (!hasOdometry_) {
+    if (!lastOdometry_) {
         // heading unobservable without odometry; ranges fix position only
         initializeFromFix(*f, used, 0.0, M_PI * M_PI);
         return CPose2D(p.x(), p.y(), 0.0);
     }
-    const CPose2D odo = lastOdometry_.value_or(CPose2D());
+    const CPose2D odo = *lastOdometry_;
     // A fix may be wrong (two late echoes that agree with each other): it must fit, with
     // the others, the odometry's path moved rigidly into the world (its noise, plus the
     // few centimetres the ranges' unknown bias moves every fix alike).
@@ -350,13 +355,13 @@ std::optional<CPose2D> BeaconTracker::onRanges(double t,
                                                const mrpt::obs::CObservationBeaconRanges& obs) {
     ++stats_.epochs;
     const auto ranges = usableRanges(obs);
-    if (!initialized_ && !lastOdometry_ && o_.startPose) startAt(*o_.startPose);
+    startIfGiven();
     if (!initialized_) {
         lastT_ = t;
         return bootstrap(ranges);
     }
     const double dt = lastT_ ? std::max(0.0, t - *lastT_) : 0.0;
-    if (!hasOdometry_) {
+    if (!lastOdometry_) {  // no odometry in this log: a random walk
         const double q = o_.randomWalkSigma * o_.randomWalkSigma * dt;
         cov_(0, 0) += q;
         cov_(1, 1) += q;
@@ -398,6 +403,7 @@ std::optional<CPose2D> BeaconTracker::onRanges(double t,
     }
     if (epochsLost_ >= o_.resetAfter) {
         // lost: start again, as at the beginning, from fixes that fit the odometry's path
+        // (without odometry there is no heading to keep: the estimates meanwhile say 0)
         if (lastOdometry_) headingOffset_ = state_(2) - lastOdometry_->phi();
         initialized_ = false;
         track_.clear();

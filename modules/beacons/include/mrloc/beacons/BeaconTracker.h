@@ -118,7 +118,15 @@ class BeaconTracker {
                                std::vector<Range>* used = nullptr, bool counted = true);
     bool updateWithRange(const Range& r, double gate);
     std::optional<mrpt::poses::CPose2D> bootstrap(const std::vector<Range>& ranges);
+    /** Starts at o_.startPose, once, before the first odometry reading. */
+    void startIfGiven();
     void startAt(const mrpt::poses::CPose2D& pose);
+    /** Unknowns of a fix: x, y, and z unless the receiver's height is known. */
+    size_t unknowns() const { return o_.fix.knownHeight ? 2 : 3; }
+    /** A consistent fix from the ranges with the bias estimates taken out, not counted in
+     *  the stats, using at least `needed` of them (`used`); nothing otherwise. */
+    std::optional<Fix> checkingFix(const std::vector<Range>& ranges, size_t needed,
+                                   std::vector<Range>& used);
     /** Sets the pose and its covariance; the bias states go back to their prior. */
     void initialize(const mrpt::poses::CPose2D& pose, const Eigen::Matrix3d& poseCov);
     /** Starts at a multilateration fix; the fix's error due to the bias states goes into
@@ -138,7 +146,6 @@ class BeaconTracker {
     std::optional<Eigen::Index> scaleIndex_;
     std::map<int, Eigen::Index> offsetIndex_;  // beacon id -> state index
     bool initialized_ = false;
-    bool hasOdometry_ = false;
     std::optional<mrpt::poses::CPose2D> lastOdometry_;
     std::optional<double> lastT_;
     // Start-up without a start pose; the heading offset of the last held track, for the
