@@ -6,7 +6,9 @@
 #include <mrloc/common/IniSection.h>
 #include <mrloc/common/LocalizationRun.h>
 #include <mrloc/common/Metrics.h>
+#include <mrloc/common/Names.h>
 #include <mrloc/common/RunDirectory.h>
+#include <mrloc/common/RunTransaction.h>
 #include <mrloc/common/Version.h>
 #include <mrloc/report/ReportOptions.h>
 #include <mrloc/sim/Simulator.h>
@@ -108,7 +110,8 @@ bool looksLikeRawlog(const std::string& path) {
 /** The INI's bytes, as read once: checked, parsed and copied into config.ini from these. */
 std::string readIniText(const std::string& path) {
     if (fs::is_directory(path)) throw Error("config " + path + ": is a folder; give an INI file");
-    if (!fs::is_regular_file(path)) throw Error("config " + path + ": no such file");
+    if (!fs::exists(path)) throw Error("config " + path + ": no such file");
+    common::checkReadableFile(path, "config", 16u << 20);  // not a FIFO nor /dev/zero
     std::ifstream file(path, std::ios::binary);
     std::stringstream text;
     text << file.rdbuf();
@@ -139,13 +142,45 @@ std::unique_ptr<mrpt::config::CConfigFile> openIni(const std::string& path, cons
     return ini;
 }
 
+/** An INI without [scenario] method: the one method whose own sections it holds, else the
+ *  one whose foreign sections (MRPT's) it holds; otherwise an error listing the methods. */
+std::string methodOfSections(const method::Registry& registry,
+                             const mrpt::config::CConfigFileBase& ini) {
+    for (const bool own : {true, false}) {
+        std::vector<std::string> owners;
+        for (const auto& name : registry.names()) {
+            const auto& m = registry.get(name);
+            for (const auto& section : own ? m.sections : m.foreignSections)
+                if (ini.sectionExists(section)) {
+                    owners.push_back(name);
+                    break;
+                }
+        }
+        if (owners.size() == 1) return owners.front();
+        if (owners.size() > 1)
+            throw Error(common::configOrigin(ini) +
+                        ": [scenario] method: required, the INI "
+                        "holds sections of " +
+                        std::to_string(owners.size()) + " methods (" + owners.front() + ", " +
+                        owners[1] + ", ...)");
+    }
+    std::string names;
+    for (const auto& n : registry.names()) names += (names.empty() ? "" : ", ") + n;
+    throw Error(common::configOrigin(ini) +
+                ": [scenario] method: required key is missing, and no section names a method "
+                "(one of: " +
+                names + ")");
+}
+
 /** --out and --quiet, shared by the commands that write a run directory. */
 struct OutputArgs {
     TCLAP::ValueArg<std::string> out{
         "o", "out", "output directory (default: out/<scenario name>)", false, "", "DIR"};
     TCLAP::SwitchArg quiet{"q", "quiet", "no progress bar, only errors"};
     std::string dirOr(const std::string& name) {
-        return out.isSet() ? out.getValue() : "out/" + name;
+        const std::string dir = out.isSet() ? out.getValue() : "out/" + name;
+        common::checkRunFolderPath(dir, out.isSet() ? "--out" : "[scenario] name");
+        return dir;
     }
 };
 
@@ -176,20 +211,15 @@ Setup loadSetupUnguarded(const method::Registry& registry, const std::string& in
     s.ini = openIni(iniPath, s.iniText, registry);
     s.scenario.loadFromConfigFile(*s.ini, "scenario");
     if (seed) {
-        if (*seed < 0) throw Error("--seed must be non-negative");
+        if (*seed < 0 || *seed > 4294967295L) throw Error("--seed must be in [0, 4294967295]");
         s.scenario.seed = (unsigned long)*seed;
+        // one resolved configuration: everything downstream (the localizer, the scenario,
+        // the experiment, effective.ini) reads the seed the run uses; never saved to the file
+        s.ini->write("scenario", "seed", std::to_string(*seed));
+        s.ini->discardSavingChanges();
     }
-    if (!s.ini->keyExists("scenario", "method")) {
-        // no [scenario] method: the one method whose section the INI holds, if exactly one
-        std::vector<std::string> owners;
-        for (const auto& name : registry.names())
-            for (const auto& section : registry.get(name).sections)
-                if (s.ini->sectionExists(section)) {
-                    owners.push_back(name);
-                    break;
-                }
-        if (owners.size() == 1) s.scenario.method = owners.front();
-    }
+    common::checkName(s.scenario.name, s.iniPath + ": [scenario] name");
+    if (s.scenario.method.empty()) s.scenario.method = methodOfSections(registry, *s.ini);
     s.method = &registry.get(s.scenario.method);
     s.localizer = s.method->localizer();
     s.localizer->configure(*s.ini);
@@ -252,7 +282,9 @@ void writeProvenance(const Setup& s, const std::string& dir, const std::string& 
     common::writeFileAtomically(common::run_dir::effectiveIni(dir), effectiveIni(s));
     nlohmann::json p = nlohmann::json::object();
     const std::string path = common::run_dir::provenance(dir);
-    if (fs::exists(path)) p = common::loadJson(path);
+    if (fs::is_regular_file(fs::symlink_status(path))) p = common::loadJson(path);
+    if (!p.is_object()) p = nlohmann::json::object();  // not ours: begun again
+    if (!p.contains("steps") || !p["steps"].is_object()) p["steps"] = nlohmann::json::object();
     p["ini"] = s.iniPath;
     p["seed"] = s.scenario.seed;
     p["version"] = kVersion;
@@ -260,68 +292,22 @@ void writeProvenance(const Setup& s, const std::string& dir, const std::string& 
     common::saveJson(path, p);
 }
 
-/** Removes, on failure, every file a command created in its output directory (and the
- *  directory if it created it), so that a failed run leaves nothing under final names; a
- *  SIGINT or SIGTERM meanwhile removes the same (common::RunOutputs). On success, keep()
- *  records the files this step wrote in provenance.json and removes those the same step
- *  wrote last time that it did not write again (a robot fewer, a picture no longer drawn),
- *  so a run into a used folder leaves no stale output; files mrloc did not write stay. */
-class OutputGuard {
- public:
-    OutputGuard(std::string dir, std::string step)
-        : dir_(std::move(dir)),
-          step_(std::move(step)),
-          existed_(fs::exists(dir_)),
-          outputs_(existed_ ? "" : dir_) {
-        if (existed_)
-            for (const auto& e : fs::directory_iterator(dir_)) before_.insert(e.path());
-    }
-    ~OutputGuard() {
-        if (done_ || !fs::exists(dir_)) return;
-        std::error_code ec;
-        for (const auto& e : fs::directory_iterator(dir_, ec))
-            if (!before_.count(e.path())) fs::remove_all(e.path(), ec);
-        if (!existed_) fs::remove(dir_, ec);
-    }
-    void keep() {
-        done_ = true;
-        const std::string path = common::run_dir::provenance(dir_);
-        if (!fs::exists(path)) return;
-        auto p = common::loadJson(path);
-        std::set<std::string> now;
-        std::error_code ec;
-        for (const auto& f : outputs_.committed())
-            if (fs::path(f).parent_path().lexically_normal() == fs::path(dir_).lexically_normal() &&
-                fs::path(f).filename() != fs::path(path).filename())
-                now.insert(fs::path(f).filename().string());
-        auto& record = p["outputs"][step_];
-        if (record.is_array())
-            for (const auto& name : record.get<std::vector<std::string>>())
-                if (!now.count(name) && fs::is_regular_file(fs::path(dir_) / name))
-                    fs::remove(fs::path(dir_) / name, ec);
-        record = std::vector<std::string>(now.begin(), now.end());
-        common::saveJson(path, p);
-    }
-
- private:
-    std::string dir_, step_;
-    bool existed_;
-    common::RunOutputs outputs_;  // what SIGINT / SIGTERM remove while the command runs
-    std::set<fs::path> before_;
-    bool done_ = false;
-};
-
 std::string doSimulate(Setup& s, const std::string& dir, bool quiet) {
     const auto files =
         sim::simulateToFiles(s.simulation->config, dir, quiet, s.simulation->payload.get());
     return files.rawlog;
 }
 
-void doLocalize(Setup& s, const std::string& rawlog, const std::string& dir, bool quiet) {
+/** `rawlogShownAs`: the rawlog's path as metrics.json records it (the run folder's, not the
+ *  staging folder's, for a rawlog this command simulated). */
+void doLocalize(Setup& s, const std::string& rawlog, const std::string& dir, bool quiet,
+                const std::string& rawlogShownAs) {
     const std::string& name = s.method->name;
-    const auto result =
-        common::runLocalization(*s.localizer, {name, rawlog, dir, quiet, s.scenario.groundTruth});
-    if (s.method->experiment) s.method->experiment({*s.ini, *s.localizer, result.truth, dir});
+    common::LocalizationRunOptions options{name, rawlog, dir, quiet, s.scenario.groundTruth};
+    options.rawlogShownAs = rawlogShownAs;
+    const auto result = common::runLocalization(*s.localizer, options);
+    if (s.method->experiment)
+        s.method->experiment({*s.ini, *s.localizer, result.truth, dir, s.scenario.seed});
     if (quiet) return;
     const auto& m = result.metrics;
     std::cerr << "localized " << m["observations"] << " observations with '" << name << "'";
@@ -390,18 +376,24 @@ int simulate(const method::Registry& registry, int argc, char** argv) {
     if (const auto code = parseArgs(c.cmd, argc, argv)) return *code;
     Setup s = c.setup(registry);
     const std::string dir = c.output.dirOr(s.scenario.name);
-    OutputGuard guard(dir, "simulate");
-    const std::string rawlog = doSimulate(s, dir, c.output.quiet.getValue());
-    writeProvenance(s, dir, "simulate", commandLine(argc, argv));
-    guard.keep();
-    std::cout << rawlog << "\n";
+    common::RunTransaction tx(dir, "simulate");
+    std::string rawlog;
+    try {
+        rawlog = doSimulate(s, tx.staging(), c.output.quiet.getValue());
+        writeProvenance(s, tx.staging(), "simulate", commandLine(argc, argv));
+        tx.commit();
+    } catch (const Error& e) {
+        throw Error(tx.inFolderTerms(e.what()));
+    }
+    std::cout << (fs::path(dir) / fs::path(rawlog).filename()).string() << "\n";
     return 0;
 }
 
 int localize(const method::Registry& registry, int argc, char** argv) {
     TCLAP::CmdLine cmd(
         "mrloc localize: run the INI's method ([scenario] method; without it, the "
-        "method whose section the INI holds, else 'beacons') on any MRPT rawlog, in "
+        "method whose section the INI holds, or whose MRPT sections it holds) on any MRPT rawlog, "
+        "in "
         "either rawlog format. Ground truth "
         "is taken from <rawlog stem>.<robot>.gt.txt when present.",
         ' ', kVersion);
@@ -419,10 +411,14 @@ int localize(const method::Registry& registry, int argc, char** argv) {
     }
     Setup s = loadSetup(registry, iniArg.getValue(), std::nullopt, false);
     const std::string dir = o.dirOr(s.scenario.name);
-    OutputGuard guard(dir, "localize");
-    doLocalize(s, rawlog.getValue(), dir, o.quiet.getValue());
-    writeProvenance(s, dir, "localize", commandLine(argc, argv));
-    guard.keep();
+    common::RunTransaction tx(dir, "localize");
+    try {
+        doLocalize(s, rawlog.getValue(), tx.staging(), o.quiet.getValue(), rawlog.getValue());
+        writeProvenance(s, tx.staging(), "localize", commandLine(argc, argv));
+        tx.commit();
+    } catch (const Error& e) {
+        throw Error(tx.inFolderTerms(e.what()));
+    }
     std::cout << dir << "\n";
     return 0;
 }
@@ -434,7 +430,18 @@ int report(const method::Registry& registry, int argc, char** argv) {
         ' ', kVersion);
     TCLAP::UnlabeledValueArg<std::string> dir("run-dir", "run directory", true, "", "DIR", cmd);
     if (const auto code = parseArgs(cmd, argc, argv)) return *code;
-    std::cout << doReport(registry, dir.getValue()) << "\n";
+    if (!fs::is_regular_file(fs::symlink_status(common::run_dir::metrics(dir.getValue()))))
+        throw Error(dir.getValue() +
+                    ": not a run directory (no metrics.json; run `mrloc localize` first)");
+    common::RunTransaction tx(dir.getValue(), "report");
+    std::string page;
+    try {
+        page = doReport(registry, tx.staging());
+        tx.commit();
+    } catch (const Error& e) {
+        throw Error(tx.inFolderTerms(e.what()));
+    }
+    std::cout << (fs::path(dir.getValue()) / fs::path(page).filename()).string() << "\n";
     return 0;
 }
 
@@ -445,19 +452,19 @@ int run(const method::Registry& registry, int argc, char** argv) {
     if (const auto code = parseArgs(c.cmd, argc, argv)) return *code;
     Setup s = c.setup(registry);
     const std::string dir = c.output.dirOr(s.scenario.name);
-    OutputGuard guard(dir, "run");
-    std::string page;
+    common::RunTransaction tx(dir, "run");
     try {
-        const std::string rawlog = doSimulate(s, dir, c.output.quiet.getValue());
-        doLocalize(s, rawlog, dir, c.output.quiet.getValue());
-        writeProvenance(s, dir, "run", commandLine(argc, argv));
-        page = doReport(registry, dir);
+        const std::string rawlog = doSimulate(s, tx.staging(), c.output.quiet.getValue());
+        doLocalize(s, rawlog, tx.staging(), c.output.quiet.getValue(),
+                   (fs::path(dir) / fs::path(rawlog).filename()).string());
+        writeProvenance(s, tx.staging(), "run", commandLine(argc, argv));
+        doReport(registry, tx.staging());
+        tx.commit();
     } catch (const Error& e) {
         // The files named in the message are the run's own, removed with the rest of it.
-        throw Error(s.iniPath + ": " + e.what() + " (nothing of the run was kept)");
+        throw Error(s.iniPath + " (" + dir + " left as it was): " + tx.inFolderTerms(e.what()));
     }
-    guard.keep();
-    std::cout << "report: " << page << "\n";
+    std::cout << "report: " << common::run_dir::report(dir) << "\n";
     return 0;
 }
 

@@ -173,15 +173,18 @@ TEST(BadIni, NonUtf8ScenarioNameIsRefused) {
     // A control character would end up in file names.
     const std::string tab =
         writeIniFrom(config("quickstart"), "tab", "name     = quickstart", "name = q\x1bx");
-    expectHas(refused("run", tab),
-              "[scenario] name: must be a non-empty file name without '/', "
-              "spaces or control characters");
+    expectHas(refused("run", tab), "[scenario] name: 'q\\x1bx' is not a name");
+    // nor a name that climbs out of out/ or hides the run
+    for (const char* name : {"..", ".", ".hidden", "a/b", "a b", "-x"})
+        expectHas(refused("run", writeIniFrom(config("quickstart"), "dots", "name     = quickstart",
+                                              std::string("name = ") + name)),
+                  "is not a name");
 }
 
 TEST(BadIni, RunThatFailsAfterSimulatingLeavesNothing) {
     const auto line = refused("run", badInput("steps_sigma8.ini"));
     expectHas(line, "fewer than 3 corners");
-    expectHas(line, "(nothing of the run was kept)");
+    expectHas(line, "left as it was): ");
 }
 
 // --- paths that are not UTF-8 ---
@@ -206,8 +209,8 @@ TEST(BadPath, NonUtf8RawlogPathRunsToTheEnd) {
 
 namespace {
 
-/** Starts `mrloc run <ini> --out <out> -q`, waits until the rawlog is being written, sends
- *  `sig`, and returns the exit status. */
+/** Starts `mrloc run <ini> --out <out> -q`, waits until the rawlog is being written (in the
+ *  staging folder beside `out`), sends `sig`, and returns the exit status. */
 int interruptedRun(const std::string& ini, const std::string& out, int sig) {
     const pid_t pid = fork();
     if (pid == 0) {
@@ -216,7 +219,11 @@ int interruptedRun(const std::string& ini, const std::string& out, int sig) {
         _exit(127);
     }
     const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(60);
-    while (!fs::exists(out + "/long.rawlog.tmp") && std::chrono::steady_clock::now() < deadline)
+    const fs::path o(out);
+    const std::string staging =
+        (o.parent_path() / ("." + o.filename().string() + ".staging." + std::to_string(pid)))
+            .string();
+    while (!fs::exists(staging + "/long.rawlog.tmp") && std::chrono::steady_clock::now() < deadline)
         std::this_thread::sleep_for(std::chrono::milliseconds(5));
     kill(pid, sig);
     int status = 0;
@@ -238,5 +245,9 @@ TEST(Signals, SigtermAndSigintEndARunAndRemoveEverything) {
         const std::string out = tmp("signal_" + std::to_string(sig));
         EXPECT_EQ(interruptedRun(ini, out, sig), code);
         EXPECT_FALSE(fs::exists(out)) << "left behind after signal " << sig;
+        for (const auto& e : fs::directory_iterator(fs::path(out).parent_path()))  // no staging
+            EXPECT_EQ(e.path().filename().string().find("." + fs::path(out).filename().string()),
+                      std::string::npos)
+                << e.path() << " left behind after signal " << sig;
     }
 }

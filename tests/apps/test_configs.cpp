@@ -5,6 +5,7 @@
 #include <mrloc/common/Error.h>
 
 #include <filesystem>
+#include <fstream>
 
 #include "AllMethods.h"
 #include "Commands.h"
@@ -27,4 +28,23 @@ TEST(ShippedConfigs, EveryConfigPassesTheAppsChecks) {
         ++checked;
     }
     EXPECT_GE(checked, 18u);  // 14 before formation, 4 formation configs
+}
+
+// No method is the default: an INI that names none and holds no method's section is refused
+// with the registered methods listed (the list taken from the registry, not written here).
+TEST(ShippedConfigs, AnIniThatNamesNoMethodListsTheRegisteredOnes) {
+    mrloc::method::Registry registry;
+    mrloc::app::registerAllMethods(registry);
+    const std::string ini = testing::TempDir() + "/no_method.ini";
+    std::ofstream(ini) << "[scenario]\nname = nothing\nrobots = r1\n[robot.r1]\nstart = 1 1 0\n";
+    try {
+        mrloc::app::checkIni(registry, ini);
+        FAIL() << "an INI without a method was taken";
+    } catch (const mrloc::Error& e) {
+        const std::string what = e.what();
+        EXPECT_NE(what.find("[scenario] method: required key is missing"), std::string::npos)
+            << what;
+        for (const auto& name : registry.names())
+            EXPECT_NE(what.find(name), std::string::npos) << name << " not listed: " << what;
+    }
 }

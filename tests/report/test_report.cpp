@@ -85,3 +85,42 @@ TEST(Plots, GnuplotWritesPngs) {
     EXPECT_THROW(report::plotErrorCdf({}, dir + "/mrloc_none.png"), Error);
     EXPECT_FALSE(std::filesystem::exists(dir + "/mrloc_none.png"));
 }
+
+// Every way a string once ran code in gnuplot: a quote ending the string, a newline ending the
+// command, a backtick or system() substitution, a macro, a pipe in `set output`. Each, as a
+// curve's title, a plot title and a data word, draws its picture and runs nothing.
+TEST(Plots, GnuplotStringsRunNothing) {
+    namespace fs = std::filesystem;
+    const std::string dir = testing::TempDir() + "/gnuplot_strings";
+    fs::remove_all(dir);
+    fs::create_directories(dir);
+    const std::string marker = dir + "/X";
+    EXPECT_EQ(report::gnuplotString("a'b"), "'a''b'");
+    EXPECT_EQ(report::gnuplotString("a\nb\r\x7f"), "'a?b??'");
+    EXPECT_EQ(report::gnuplotDataWord("a b\"c'#d\\e$f`g"), "a_b_c__d_e_f_g");
+    EXPECT_EQ(report::gnuplotDataWord(""), "_");
+    const std::vector<std::string> hostile{"x'; system(\"touch " + marker + "\"); '",
+                                           "x\nsystem(\"touch " + marker + "\")\n",
+                                           "`touch " + marker + "`",
+                                           "@m x' . system('touch " + marker + "') . '",
+                                           "$(touch " + marker + ")",
+                                           "x\\",
+                                           "|touch " + marker,
+                                           "x\"; system(\"touch " + marker + "\"); \""};
+    int i = 0;
+    for (const auto& name : hostile) {
+        const std::string png = dir + "/p" + std::to_string(i++) + ".png";
+        report::RobotErrors errors{{name, {{0.0, 0.1}, {1.0, 0.2}}}};
+        report::plotErrorOverTime(errors, png);
+        report::plotErrorPerRobot(errors, png + ".robots.png");
+        report::runGnuplot("m = 'touch " + marker + "'\nset title " + report::gnuplotString(name) +
+                               "\nplot x title " + report::gnuplotString(name) + "\n",
+                           png + ".title.png");
+        EXPECT_TRUE(report::isCompletePng(png)) << name;
+        EXPECT_TRUE(report::isCompletePng(png + ".title.png")) << name;
+        EXPECT_FALSE(fs::exists(marker)) << "ran: " << name;
+    }
+    // gnuplot's own check: a raw string would have run the command (the test can fail)
+    report::runGnuplot("system('touch " + marker + "')\nplot x\n", dir + "/raw.png");
+    EXPECT_TRUE(fs::exists(marker));
+}

@@ -42,7 +42,11 @@ namespace {
  *  the paper's figures ([beacons] paper_reception_<id>). */
 std::string receptionSection(const report::RunView& run) {
     const auto& metrics = run.metrics;
-    const std::string shotsPath = shotLogPath(metrics.value("rawlog", ""));
+    // the shot log of a rawlog simulated into this run folder: the report reads nothing
+    // outside the folder, whatever metrics.json names
+    const std::string rawlogName =
+        std::filesystem::path(metrics.value("rawlog", "")).filename().string();
+    const std::string shotsPath = shotLogPath(run.dir + "/" + rawlogName);
     if (!std::filesystem::exists(shotsPath))
         return "<p>No shot log beside the rawlog (not simulated here): no reception table.</p>\n";
     const auto shots = loadShotLog(shotsPath);
@@ -167,6 +171,9 @@ void registerMethod(method::Registry& registry) {
     method::Method m;
     m.name = "beacons";
     m.sections = {"beacons", "sensors", "ultrasonic"};
+    // MRPT's range-only localization INIs (ro-localization, pf-localization's RO demo) name
+    // no mrloc section: their beacon likelihood section says they are this method's
+    m.foreignSections = {"MetricMap_landmarksMap_00_likelihoodOpts"};
     m.localizer = [] { return std::make_unique<BeaconLocalizer>(); };
     m.scenario = [](const mrpt::config::CConfigFileBase& ini, const common::Localizer&) {
         return loadScenario(ini);

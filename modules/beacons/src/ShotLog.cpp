@@ -29,6 +29,7 @@ void saveShotLog(const std::string& path, const ShotLog& log) {
 }
 
 ShotLog loadShotLog(const std::string& path) {
+    mrloc::common::checkReadableFile(path, "shot log", 1u << 30);
     std::ifstream in(path);
     if (!in) throw Error("shot log " + path + ": cannot open");
     ShotLog log;

@@ -1,3 +1,4 @@
+#include <mrloc/common/AtomicFile.h>
 #include <mrloc/common/DataFile.h>
 #include <mrloc/common/Error.h>
 
@@ -24,6 +25,7 @@ void DataLine::expectFields(size_t n) const {
 }
 
 std::vector<DataLine> readDataLines(const std::string& path) {
+    checkReadableFile(path, "data file", 256u << 20);
     std::ifstream in(path);
     if (!in) throw Error(path + ": cannot open");
     std::vector<DataLine> lines;

@@ -1,3 +1,4 @@
+#include <mrloc/common/AtomicFile.h>
 #include <mrloc/common/DataFile.h>
 #include <mrloc/common/Error.h>
 #include <mrloc/common/GroundTruthFile.h>
@@ -18,6 +19,7 @@ Trajectory loadGroundTruth(const GroundTruthSource& source, const std::vector<do
         for (auto p : loadTum(source.path)) out.push_back({p.t, source.offset + p.pose});
         return out;
     }
+    checkReadableFile(source.path, "ground truth", 1u << 30);
     std::ifstream in(source.path);
     if (!in) throw Error("ground truth " + source.path + ": cannot open");
     const bool indexed = source.format == "index_x_y_phi";

@@ -2,11 +2,14 @@
 #include <mrloc/common/Error.h>
 #include <mrloc/common/LocalizationRun.h>
 #include <mrloc/common/Metrics.h>
+#include <mrloc/common/Names.h>
+#include <mrloc/common/ObservationCheck.h>
 #include <mrloc/common/Progress.h>
 #include <mrloc/common/Rawlog.h>
 #include <mrloc/common/RunDirectory.h>
 #include <mrloc/common/Trajectory.h>
 #include <mrpt/core/format.h>
+#include <mrpt/obs/CObservationComment.h>
 #include <mrpt/obs/CObservationOdometry.h>
 
 #include <chrono>
@@ -51,7 +54,28 @@ LocalizationResult runLocalization(Localizer& localizer, const LocalizationRunOp
     // stream (<robot>.odom, or MRPT's actions), the first such label seen
     Trajectories odometry;
     std::map<std::string, std::string> odometryLabel;
+    ObservationCheck check;
+    std::map<std::string, size_t> unstampedCount, copiesCount;
     for (mrpt::obs::CObservation::Ptr obs; reader.next(obs);) {
+        // stamped 0 with no sensory frame to take a time from (the last action of MRPT's
+        // logs): left out and counted, as no method can place it in time
+        if (obs->timestamp == INVALID_TIMESTAMP &&
+            !IS_CLASS(*obs, mrpt::obs::CObservationComment)) {
+            ++unstampedCount[obs->sensorLabel];
+            continue;
+        }
+        try {
+            check.check(*obs);
+        } catch (const Error& e) {
+            throw Error(mrpt::format("rawlog %s: entry %zu, observation %zu ('%s', %s): %s",
+                                     o.rawlogPath.c_str(), reader.entriesRead(), n + 1,
+                                     printable(obs->sensorLabel).c_str(),
+                                     obs->GetRuntimeClass()->className, e.what()));
+        }
+        if (check.isCopyOfTheOneBefore(obs)) {  // a log that repeats itself: counted, left out
+            ++copiesCount[obs->sensorLabel];
+            continue;
+        }
         if (const auto odo = std::dynamic_pointer_cast<mrpt::obs::CObservationOdometry>(obs)) {
             const std::string robot = robotOfLabel(odo->sensorLabel);
             const std::string sensor = sensorOfLabel(odo->sensorLabel);
@@ -83,6 +107,19 @@ LocalizationResult runLocalization(Localizer& localizer, const LocalizationRunOp
                   << " stamped 0 took their sensory frame's time\n";
         restamped[label.empty() ? "(no label)" : label] = count;
     }
+    nlohmann::json unstamped = nlohmann::json::object();
+    for (const auto& [label, count] : unstampedCount) {
+        std::cerr << "warning: rawlog " << o.rawlogPath << ": " << count << " '" << printable(label)
+                  << "' observation(s) stamped 0 with no sensory frame time to take: left out\n";
+        unstamped[label] = count;
+    }
+    nlohmann::json copies = nlohmann::json::object();
+    for (const auto& [label, count] : copiesCount) {
+        std::cerr << "warning: rawlog " << o.rawlogPath << ": " << count << " '" << printable(label)
+                  << "' observation(s) were exact copies of the one before (same time stamp): "
+                     "left out\n";
+        copies[label] = count;
+    }
     const double wall =
         std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     const auto estimates = localizer.estimates();
@@ -95,12 +132,14 @@ LocalizationResult runLocalization(Localizer& localizer, const LocalizationRunOp
     LocalizationResult result;
     auto& metrics = result.metrics;
     metrics["method"] = o.methodName;
-    metrics["rawlog"] = o.rawlogPath;
+    metrics["rawlog"] = o.rawlogShownAs.empty() ? o.rawlogPath : o.rawlogShownAs;
     metrics["observations"] = n;
     metrics["rawlog_format"] = reader.format() == RawlogFormat::ActionsSensoryFrames
                                    ? "actions+sensory-frames"
                                    : "observations-only";
     if (!restamped.empty()) metrics["restamped_observations"] = restamped;
+    if (!unstamped.empty()) metrics["unstamped_left_out"] = unstamped;
+    if (!copies.empty()) metrics["copies_left_out"] = copies;
     Trajectories worldTruth;
     if (!o.groundTruth.path.empty()) {
         std::vector<double> steps;
@@ -131,7 +170,7 @@ LocalizationResult runLocalization(Localizer& localizer, const LocalizationRunOp
             for (const auto& te : positionErrors(traj, gt)) e.push_back(te.error);
             allErrors.insert(allErrors.end(), e.begin(), e.end());
             r.update(statsToJson(computeStats(e)));
-            r.update(localizer.groundTruthMetrics(robot, gt));
+            if (const auto g = localizer.groundTruthMetrics(robot, gt); g.is_object()) r.update(g);
         }
         if (const auto odo = odometry.find(robot); odo != odometry.end() && !odo->second.empty()) {
             saveTum(run_dir::odometry(o.outDir, robot), odo->second);
@@ -148,7 +187,7 @@ LocalizationResult runLocalization(Localizer& localizer, const LocalizationRunOp
     metrics.update(statsToJson(computeStats(allErrors)));
     metrics["wall_s"] = wall;
     auto method = localizer.methodMetrics();
-    method.update(localizer.truthMetrics(result.truth));
+    if (const auto t = localizer.truthMetrics(result.truth); t.is_object()) method.update(t);
     metrics[o.methodName] = method;
 
     localizer.writeOutputs(o.outDir, result.truth);

@@ -55,10 +55,12 @@ nlohmann::json statsToJson(const ErrorStats& s) {
 void saveJson(const std::string& path, const nlohmann::json& j) {
     // Paths on Linux are bytes, not always UTF-8 (a file named in Latin-1, say): such a byte
     // is written as U+FFFD rather than throwing after other outputs were written.
-    writeFileAtomically(path, j.dump(2, ' ', false, nlohmann::json::error_handler_t::replace) + "\n");
+    writeFileAtomically(path,
+                        j.dump(2, ' ', false, nlohmann::json::error_handler_t::replace) + "\n");
 }
 
 nlohmann::json loadJson(const std::string& path) {
+    checkReadableFile(path, "JSON file", 64u << 20);  // a run's files are far smaller
     std::ifstream in(path);
     if (!in) throw Error(path + ": cannot open");
     try {

@@ -198,6 +198,7 @@ Polygon Polygon::fromVertices(std::vector<TPoint2D> v, const std::string& what) 
 }
 
 Polygon Polygon::load(const std::string& path) {
+    checkReadableFile(path, "polygon map", 64u << 20);  // not a FIFO, a device or a folder
     std::ifstream in(path);
     if (!in) throw Error("polygon map " + path + ": cannot open the file");
     std::vector<TPoint2D> v;

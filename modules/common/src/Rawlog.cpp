@@ -1,4 +1,5 @@
 #include <mrloc/common/Error.h>
+#include <mrloc/common/Names.h>
 #include <mrloc/common/Rawlog.h>
 #include <mrloc/common/RawlogProbe.h>
 #include <mrpt/maps/registerAllClasses.h>
@@ -24,15 +25,9 @@ bool storedFlag(const bool& flag) {
     return byte != 0;
 }
 
-std::string robotOfLabel(const std::string& label) {
-    const auto dot = label.find('.');
-    return dot == std::string::npos ? "robot" : label.substr(0, dot);
-}
+std::string robotOfLabel(const std::string& label) { return parseSensorLabel(label).robot; }
 
-std::string sensorOfLabel(const std::string& label) {
-    const auto dot = label.find('.');
-    return dot == std::string::npos ? label : label.substr(dot + 1);
-}
+std::string sensorOfLabel(const std::string& label) { return parseSensorLabel(label).sensor; }
 
 RawlogReader::RawlogReader(const std::string& path) : path_(path) {
     open();
@@ -51,8 +46,8 @@ void RawlogReader::open() {
     std::error_code ec;
     if (std::filesystem::is_directory(path, ec))
         throw Error("rawlog " + path + ": is a folder; give a rawlog file");
-    if (!std::filesystem::is_regular_file(path, ec))
-        throw Error("rawlog " + path + ": no such file");
+    if (!std::filesystem::exists(path, ec)) throw Error("rawlog " + path + ": no such file");
+    checkReadableFile(path, "rawlog", SIZE_MAX);  // not a FIFO nor a device
     if (std::filesystem::file_size(path, ec) == 0)
         throw Error("rawlog " + path + ": the file is empty");
     {
@@ -147,7 +142,7 @@ bool RawlogReader::next(CObservation::Ptr& obs) {
             throw;  // a corrupt size: the probe names the entry and the memory cap
         } catch (const mrpt::serialization::CExceptionEOF&) {
             if (file_.getPosition() == before) {  // clean end between objects
-                releaseHeldAction();
+                releaseHeldAction();              // still stamped 0: no sensory frame came after it
                 if (pending_.empty()) return false;
                 break;
             }
@@ -187,11 +182,28 @@ RawlogWriter::RawlogWriter(const std::string& path, int compressionLevel) : pend
 
 void RawlogWriter::write(const mrpt::serialization::CSerializable& obj) {
     auto archive = mrpt::serialization::archiveFrom(file_);
-    archive << obj;
+    try {
+        archive << obj;
+    } catch (const std::exception& e) {
+        throw Error("cannot write rawlog " + pending_.finalPath() +
+                    " (is the disk full?): " + oneLine(e.what()));
+    }
 }
 
 void RawlogWriter::commit() {
+    // gzip's trailer holds the stream's length mod 2^32: a close that failed (a full disk)
+    // leaves a file whose trailer does not match what was written
+    const uint64_t written = file_.getPosition();
     file_.close();
+    std::ifstream in(pending_.tempPath(), std::ios::binary);
+    in.seekg(-4, std::ios::end);
+    unsigned char isize[4] = {};
+    in.read(reinterpret_cast<char*>(isize), 4);
+    const uint32_t trailer = uint32_t(isize[0]) | uint32_t(isize[1]) << 8 |
+                             uint32_t(isize[2]) << 16 | uint32_t(isize[3]) << 24;
+    if (in.gcount() != 4 || trailer != uint32_t(written & 0xffffffffu))
+        throw Error("cannot write rawlog " + pending_.finalPath() +
+                    ": the file is incomplete (is the disk full?)");
     pending_.commit();
 }
 

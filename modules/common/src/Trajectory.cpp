@@ -2,6 +2,7 @@
 #include <mrloc/common/DataFile.h>
 #include <mrloc/common/Error.h>
 #include <mrloc/common/Trajectory.h>
+#include <mrpt/core/format.h>
 #include <mrpt/math/CQuaternion.h>
 #include <mrpt/math/wrap2pi.h>
 
@@ -17,6 +18,12 @@ void saveTum(const std::string& path, const Trajectory& traj) {
     std::string out = "# t x y z qx qy qz qw\n";
     char line[256];
     for (const auto& p : traj) {
+        if (!std::isfinite(p.t) || !std::isfinite(p.pose.x()) || !std::isfinite(p.pose.y()) ||
+            !std::isfinite(p.pose.z()) || !std::isfinite(p.pose.yaw()))
+            throw Error(
+                mrpt::format("%s: the pose at t = %.6f s is not finite: no NaN is "
+                             "written",
+                             path.c_str(), p.t));
         mrpt::math::CQuaternionDouble q;
         p.pose.getAsQuaternion(q);
         std::snprintf(line, sizeof(line), "%.9f %.6f %.6f %.6f %.9f %.9f %.9f %.9f\n", p.t,
@@ -27,6 +34,7 @@ void saveTum(const std::string& path, const Trajectory& traj) {
 }
 
 Trajectory loadTum(const std::string& path) {
+    checkReadableFile(path, "trajectory", 1u << 30);
     std::ifstream in(path);
     if (!in) throw Error("trajectory " + path + ": cannot open");
     Trajectory traj;

@@ -112,6 +112,8 @@ void FormationConfig::loadFromConfigFile(const mrpt::config::CConfigFileBase& sr
     cameraStarts = size_t(s.integer("camera_starts", 27, 0, 27));
     if (cameraStarts != 0 && cameraStarts != 27)
         s.fail("camera_starts", "0 (none) or 27 (the 3 x 3 x 3 grid of starts)");
+    // without the key, the experiment draws from the run's seed (--seed reaches it)
+    experimentSeedGiven = src.keyExists(section, "experiment_seed");
     experimentSeed = (unsigned long)s.integer("experiment_seed", 1, 0, 4294967295L);
     s.finish();
 }
@@ -168,7 +170,7 @@ void FormationConfig::saveToConfigFile(mrpt::config::CConfigFileBase& t,
     t.write(section, "experiment_routes", routes);
     t.write(section, "experiment_robots_max", int(experimentRobotsMax));
     t.write(section, "camera_starts", int(cameraStarts));
-    t.write(section, "experiment_seed", std::to_string(experimentSeed));
+    if (experimentSeedGiven) t.write(section, "experiment_seed", std::to_string(experimentSeed));
 }
 
 }  // namespace mrloc::formation

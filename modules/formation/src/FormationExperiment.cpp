@@ -108,7 +108,9 @@ FormationExperimentFile runFormationExperiment(const FormationConfig& c) {
 std::vector<std::string> formationExperiment(const method::ExperimentInput& in) {
     const auto& loc = dynamic_cast<const FormationLocalizer&>(in.localizer);
     if (loc.config().runs == 0) return {};
-    runFormationExperiment(loc.config()).write(in.outDir);
+    FormationConfig config = loc.config();
+    if (!config.experimentSeedGiven) config.experimentSeed = in.seed;
+    runFormationExperiment(config).write(in.outDir);
     return {FormationExperimentFile::path(in.outDir)};
 }
 

@@ -142,7 +142,8 @@ std::string figureFourteen(const std::string& dir, const FormationExperimentFile
                            "set key top right\nset yrange [0:*]\nset offsets 0, 0, graph 0.1, 0\n" +
                            plot + "\n",
                        dir + "/" + png);
-    return "<img src='" + png + "' alt='error against time, " + route + "'>\n";
+    return "<img src='" + report::html(png) + "' alt='error against time, " + report::html(route) +
+           "'>\n";
 }
 
 std::string experimentSection(const std::string& dir) {

@@ -1,4 +1,5 @@
 #include <mrloc/common/Error.h>
+#include <mrloc/common/Names.h>
 #include <mrloc/formation/Team.h>
 #include <mrpt/core/format.h>
 #include <mrpt/obs/CObservationComment.h>
@@ -35,13 +36,6 @@ double arrivalHeading(const Move& m, const std::vector<TPoint2D>& believed) {
     return std::atan2(m.target.y - anchor.y, m.target.x - anchor.x);
 }
 
-/** "<robot>.<sensor>" -> (robot, sensor). */
-std::pair<std::string, std::string> splitLabel(const std::string& label) {
-    const auto dot = label.rfind('.');
-    if (dot == std::string::npos) return {label, ""};
-    return {label.substr(0, dot), label.substr(dot + 1)};
-}
-
 }  // namespace
 
 Team::Team(TeamOptions options) : options_(std::move(options)) {
@@ -74,7 +68,7 @@ bool Team::observe(const mrpt::obs::CObservation::Ptr& obs) {
     // MRPT stores a comment's text and time, not its label: the text names the robot
     const auto comment = std::dynamic_pointer_cast<mrpt::obs::CObservationComment>(obs);
     const std::string label = comment ? arrivedLabel(comment->text) : obs->sensorLabel;
-    const auto [name, sensor] = splitLabel(label);
+    const auto [name, sensor] = common::parseSensorLabel(label);
     const auto robot = indexOf(name);
     if (!robot) return false;
     if (sensor == "obstacles") {

@@ -90,19 +90,19 @@ std::string runPicture(const report::RunView& run, const FramesyncRunFile& f) {
                 segments += mrpt::format("%.17g %.17g %.17g %.17g\n", w.wall.a.x, w.wall.a.y,
                                          w.wall.b.x - w.wall.a.x, w.wall.b.y - w.wall.a.y);
         data += "$walls" + n + " << EOD\n" + segments + "EOD\n";
-        const std::string truth = gt.empty()
-                                      ? ""
-                                      : "$gt" + n + " using 1:2 with lines lw 1 dt 2 lc rgb '" +
-                                            colour + "' title '" + r + " (true)', ";
+        const std::string truth =
+            gt.empty() ? ""
+                       : "$gt" + n + " using 1:2 with lines lw 1 dt 2 lc rgb '" + colour +
+                             "' title " + report::gnuplotString(r + " (true)") + ", ";
         odometryPlot += std::string(odometryPlot.empty() ? "plot " : ", ") + truth + "$odo" + n +
-                        " using 1:2 with lines lw 2 lc rgb '" + colour + "' title '" + r +
-                        " (odometry)'";
+                        " using 1:2 with lines lw 2 lc rgb '" + colour + "' title " +
+                        report::gnuplotString(r + " (odometry)");
         sharedPlot += std::string(sharedPlot.empty() ? "plot " : ", ") + truth + "$est" + n +
-                      " using 1:2 with lines lw 2 lc rgb '" + colour + "' title '" + r +
-                      " (shared frame)'";
+                      " using 1:2 with lines lw 2 lc rgb '" + colour + "' title " +
+                      report::gnuplotString(r + " (shared frame)");
         if (!segments.empty())
             sharedPlot += ", $walls" + n + " using 1:2:3:4 with vectors nohead lw 4 lc rgb '" +
-                          colour + "' title '" + r + "''s walls'";
+                          colour + "' title " + report::gnuplotString(r + "'s walls");
     }
     const double margin = 1;
     const std::string ranges = mrpt::format("set xrange [%.17g:%.17g]\nset yrange [%.17g:%.17g]\n",
@@ -217,8 +217,9 @@ std::string experimentSection(const std::string& dir) {
                 "'#1f77b4' title 'shared frame'\n",
             dir + "/" + png, "800,400");
         out += std::string("<h3>Against the ") +
-               (noise ? "sonar's range noise" : "odometry's drift") + "</h3>\n<img src='" + png +
-               "' alt='" + kind + " sweep'>\n" + table + "</table>\n";
+               (noise ? "sonar's range noise" : "odometry's drift") + "</h3>\n<img src='" +
+               report::html(png) + "' alt='" + report::html(kind) + " sweep'>\n" + table +
+               "</table>\n";
     }
     return out;
 }

@@ -97,7 +97,8 @@ void plotLayout(const LayoutFile& layout, const std::string& pngPath) {
     char line[256];
     for (const auto& p : points) {
         if (std::isfinite(p.trueX)) {
-            std::snprintf(line, sizeof line, "%.6f %.6f %s\n", p.trueX, p.trueY, p.robot.c_str());
+            std::snprintf(line, sizeof line, "%.6f %.6f %s\n", p.trueX, p.trueY,
+                          report::gnuplotDataWord(p.robot).c_str());
             truth += line;
         }
         if (std::isfinite(p.paperX)) {
@@ -122,8 +123,8 @@ void plotLayout(const LayoutFile& layout, const std::string& pngPath) {
     }
     std::string plot = truth + "EOD\n" + paper + "EOD\n" + refined + "EOD\n" + ellipses + "EOD\n";
     plot +=
-        "set title '" + title +
-        "'\nset size ratio -1\nset xlabel 'x (m)'\nset ylabel 'y (m)'\n"
+        "set title " + report::gnuplotString(title) +
+        "\nset size ratio -1\nset xlabel 'x (m)'\nset ylabel 'y (m)'\n"
         "set key outside right\n"
         "plot $ellipses using 1:2:3:4:5 with ellipses lc rgb '#9999ff' title 'refined, 3 sigma', "
         "$truth using 1:2 with points pt 6 ps 2 lc rgb '#008000' title 'truth', "

@@ -172,7 +172,7 @@ std::vector<std::string> accuracySweepStep(const method::ExperimentInput& in) {
     const auto layout = loc.accuracyLayout(in.truth);
     AccuracyFile file;
     file.distanceName = layout.proposed ? "odometer" : "LiDAR";
-    file.points = accuracySweep(layout, o.accuracyTrials, 1);
+    file.points = accuracySweep(layout, o.accuracyTrials, in.seed);
     file.write(in.outDir);
     return {AccuracyFile::path(in.outDir)};
 }
@@ -258,8 +258,8 @@ std::string omnivisionSection(const report::RunView& run) {
         out += mrpt::format(
             "<tr><td>%s</td><td>%g</td><td>%g</td><td>%.3f</td><td>%.3f</td><td>%d</td>"
             "<td>%d</td></tr>\n",
-            r.axis.c_str(), r.angleSigmaDeg, 100 * r.distanceSigma, 100 * r.paper, 100 * r.refined,
-            r.trials, r.failures);
+            report::html(r.axis).c_str(), r.angleSigmaDeg, 100 * r.distanceSigma, 100 * r.paper,
+            100 * r.refined, r.trials, r.failures);
     return out + "</table>\n";
 }
 

@@ -86,7 +86,7 @@ void plotSweep(const EliminationSweepFile& sweep, const std::string& dir) {
                     xy.emplace_back(r.n, travel ? r.meanTravel : 1e3 * r.meanSeconds);
             body += report::dataBlock("c" + std::to_string(c), xy);
             plot += std::string(plot.empty() ? "plot " : ", ") + "$c" + std::to_string(c) +
-                    " using 1:2 with linespoints lw 2 title '" + columns[c] + "'";
+                    " using 1:2 with linespoints lw 2 title " + report::gnuplotString(columns[c]);
         }
         body += std::string("set xlabel 'map vertices n'\n") +
                 (travel ? "set ylabel 'mean path d (m)'\nset key bottom right\n"
@@ -205,7 +205,9 @@ std::string eliminationTables(const EliminationFile& file, const EliminationTime
            "(Dudek, Romanik and Whitesides 1998): the least travel that rules out every other "
            "hypothesis with the truth known, found exactly by search over every algorithm's "
            "candidates and probes" +
-           (tours ? std::string() : std::string(" (not computed: more than 16 hypotheses)")) +
+           (tours ? std::string()
+                  : " (not computed: more than " + std::to_string(kMaxTourHypotheses) +
+                        " hypotheses)") +
            ". Seed 002 reports no bound.</p>\n" + table(true) +
            "<h3>Elimination: run time per start (seed 002 Table 2)</h3>\n"
            "<p>One whole localization, this machine, one core, milliseconds; the paper's in "

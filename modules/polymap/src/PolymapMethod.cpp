@@ -157,7 +157,8 @@ std::string polymapSection(const report::RunView& run) {
         const std::string png = "polymap." + robot + ".png";
         renderPolygonView(view, run.dir + "/" + png);
         out += "<h3>Robot " + report::html(robot) + ": " + std::to_string(file.hypotheses.size()) +
-               " hypotheses</h3>\n<img src='" + png + "' alt='map, V and hypotheses'>\n";
+               " hypotheses</h3>\n<img src='" + report::html(png) +
+               "' alt='map, V and hypotheses'>\n";
         // the headline: where the truth is among the hypotheses (# as in the table below)
         if (view.truth && !file.hypotheses.empty()) {
             size_t best = 0;
@@ -202,7 +203,7 @@ std::string polymapSection(const report::RunView& run) {
                 "first algorithm's candidates for its first probe, and each algorithm's route "
                 "from the run's true start (seed 002 figs. 2-5), its probes as dots.</p>\n"
                 "<img src='" +
-                zoom + "' alt='elimination routes from the true start'>\n";
+                report::html(zoom) + "' alt='elimination routes from the true start'>\n";
         }
         out +=
             "<table><tr><th>#</th><th>x (m)</th><th>y (m)</th><th>translation (m)</th>"

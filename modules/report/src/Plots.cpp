@@ -1,9 +1,8 @@
+#include <fcntl.h>
 #include <mrloc/common/AtomicFile.h>
 #include <mrloc/common/Error.h>
 #include <mrloc/report/Plots.h>
 #include <mrpt/core/format.h>
-
-#include <fcntl.h>
 #include <spawn.h>
 #include <sys/wait.h>
 #include <unistd.h>
@@ -12,6 +11,7 @@
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
+#include <cstring>
 #include <filesystem>
 #include <fstream>
 #include <limits>
@@ -20,19 +20,15 @@ namespace mrloc::report {
 
 namespace {
 
-/** A path inside a gnuplot single-quoted string, where a quote is written twice. */
-std::string gnuplotQuoted(const std::string& path) {
-    std::string q = "'";
-    for (char c : path) q += c == '\'' ? std::string("''") : std::string(1, c);
-    return q + "'";
-}
-
 /** Runs `gnuplot script` with stderr into `errPath`; its exit status. Spawned directly, not
  *  through std::system: no shell to quote paths for, and std::system would ignore SIGINT
  *  while gnuplot runs, so Ctrl-C would not end mrloc. */
-int spawnGnuplot(const std::string& script, const std::string& errPath) {
+int spawnGnuplot(const std::string& folder, const std::string& script, const std::string& errPath) {
     posix_spawn_file_actions_t actions;
     posix_spawn_file_actions_init(&actions);
+    // gnuplot works in the picture's folder and is given only file names of mrloc's making:
+    // no path of the user's (a --out of '|cmd') reaches its `set output`
+    posix_spawn_file_actions_addchdir_np(&actions, folder.c_str());
     posix_spawn_file_actions_addopen(&actions, STDERR_FILENO, errPath.c_str(),
                                      O_WRONLY | O_CREAT | O_TRUNC, 0644);
     std::string program = "gnuplot";
@@ -49,27 +45,72 @@ int spawnGnuplot(const std::string& script, const std::string& errPath) {
 
 }  // namespace
 
+std::string gnuplotString(const std::string& text) {
+    std::string q = "'";
+    for (const char c : text) {
+        const auto u = static_cast<unsigned char>(c);
+        if (c == '\'')
+            q += "''";  // the only escape a single-quoted gnuplot string has
+        else if (u < 0x20 || u == 0x7f)
+            q += '?';  // a newline would end the command and start another
+        else
+            q += c;
+    }
+    return q + "'";
+}
+
+std::string gnuplotDataWord(const std::string& text) {
+    std::string w;
+    for (const char c : text) {
+        const auto u = static_cast<unsigned char>(c);
+        const bool plain = u > 0x20 && u < 0x7f && c != '"' && c != '\'' && c != '#' && c != '\\' &&
+                           c != '$' && c != '`';
+        w += plain ? c : '_';
+    }
+    return w.empty() ? "_" : w;
+}
+
+bool isCompletePng(const std::string& path) {
+    std::ifstream in(path, std::ios::binary);
+    char head[8] = {};
+    in.read(head, 8);
+    if (in.gcount() != 8 || std::memcmp(head, "\x89PNG\r\n\x1a\n", 8) != 0) return false;
+    in.seekg(-12, std::ios::end);
+    char tail[12] = {};
+    in.read(tail, 12);
+    return in.gcount() == 12 && std::memcmp(tail + 4, "IEND", 4) == 0;
+}
+
 void runGnuplot(const std::string& body, const std::string& pngPath, const std::string& size) {
+    namespace fs = std::filesystem;
     common::PendingFile out(pngPath);
-    // Temporaries that are never committed: removed when done, or by a signal meanwhile.
+    // Temporaries that are never committed: removed when done.
     common::PendingFile script(out.tempPath() + ".gp", ""), err(out.tempPath() + ".err", "");
+    const fs::path folder = fs::absolute(fs::path(pngPath)).parent_path();
     {
         std::ofstream s(script.tempPath());
-        s << "set terminal pngcairo size " << size << " font 'Sans,11'\n"
-          << "set output " << gnuplotQuoted(out.tempPath()) << "\n"
+        s << "set terminal pngcairo size " << size << " font 'Sans,11' noenhanced\n"
+          << "set output " << gnuplotString(fs::path(out.tempPath()).filename().string()) << "\n"
           << "set grid\nset key top left\n"
           << body;
-        if (!s) throw Error("cannot write " + script.tempPath());
+        s.close();
+        if (!s) throw Error("cannot write " + script.tempPath() + " (is the disk full?)");
     }
-    const int rc = spawnGnuplot(script.tempPath(), err.tempPath());
+    const int rc = spawnGnuplot(folder.string(), fs::absolute(script.tempPath()).string(),
+                                fs::absolute(err.tempPath()).string());
     std::string message;
     {
         std::ifstream e(err.tempPath());
         std::getline(e, message, '\0');
     }
     if (rc != 0)
-        throw Error("gnuplot failed for " + pngPath + " (is gnuplot-nox installed?): " +
-                    oneLine(message));
+        throw Error("gnuplot failed for " + pngPath +
+                    " (is gnuplot-nox installed?): " + oneLine(message));
+    // gnuplot may exit 0 with a truncated picture (a full disk): check it is whole
+    if (!isCompletePng(out.tempPath()))
+        throw Error("cannot write " + pngPath +
+                    ": gnuplot's picture is incomplete (is the disk "
+                    "full?)");
     out.commit();
 }
 
@@ -105,8 +146,8 @@ void plotErrorOverTime(const RobotErrors& errors, const std::string& pngPath) {
         // Sparse errors (a few trials at a test point) as markers, not a zig-zag line.
         const std::string style = e.size() <= kSparse ? "points pt 7 ps 1" : "lines lw 1.5";
         plot += std::string(plot.empty() ? "plot " : ", ") + "$d" + std::to_string(i) +
-                " using 1:2 with " + style + " lc " + std::to_string(i + 1) + " title '" + robot +
-                "'";
+                " using 1:2 with " + style + " lc " + std::to_string(i + 1) + " title " +
+                gnuplotString(robot);
         ++i;
     }
     if (plot.empty()) throw Error("no errors to plot for " + pngPath);
@@ -121,7 +162,8 @@ void plotErrorPerRobot(const RobotErrors& errors, const std::string& pngPath) {
     std::string rows = "$e << EOD\n";
     int i = 0;
     for (const auto& [robot, e] : errors)
-        for (const auto& te : e) rows += mrpt::format("%d %.6f %s\n", i++, te.error, robot.c_str());
+        for (const auto& te : e)
+            rows += mrpt::format("%d %.6f %s\n", i++, te.error, gnuplotDataWord(robot).c_str());
     if (i == 0) throw Error("no errors to plot for " + pngPath);
     runGnuplot(rows +
                    "EOD\nset xlabel 'robot'\nset ylabel 'position error (m)'\n"
@@ -147,7 +189,7 @@ void plotErrorCdf(const RobotErrors& errors, const std::string& pngPath) {
             xy.emplace_back(v[k], double(k + 1) / double(v.size()));
         body += dataBlock("c" + std::to_string(i), xy);
         plot += std::string(plot.empty() ? "plot " : ", ") + "$c" + std::to_string(i) +
-                " using 1:2 with steps lw 1.5 title '" + robot + "'";
+                " using 1:2 with steps lw 1.5 title " + gnuplotString(robot);
         ++i;
     }
     if (plot.empty()) throw Error("no errors to plot for " + pngPath);

@@ -28,6 +28,12 @@ std::string html(const std::string& s) {
             case '&':
                 out += "&amp;";
                 break;
+            case '\'':
+                out += "&#39;";  // safe inside attributes too, quoted either way
+                break;
+            case '"':
+                out += "&quot;";
+                break;
             default:
                 out += c;
         }

@@ -1,5 +1,6 @@
 #include <mrloc/common/Error.h>
 #include <mrloc/common/IniSection.h>
+#include <mrloc/common/Names.h>
 #include <mrloc/sim/Scenario.h>
 #include <mrpt/core/bits_math.h>
 #include <mrpt/core/format.h>
@@ -15,11 +16,8 @@ void ScenarioOptions::loadFromConfigFile(const mrpt::config::CConfigFileBase& sr
                                          const std::string& section) {
     common::IniSection s(src, section);
     name = s.text("name", "run");
-    if (name.empty() || name.find_first_of("/\\ ") != std::string::npos ||
-        std::any_of(name.begin(), name.end(),
-                    [](unsigned char c) { return c < 0x20 || c == 0x7f; }))
-        s.fail("name", "must be a non-empty file name without '/', spaces or control characters");
-    method = s.text("method", "beacons");
+    common::checkName(name, common::configOrigin(src) + ": [" + section + "] name");
+    method = s.text("method", "");  // none given: the app finds it from the INI's sections
     seed = (unsigned long)s.integer("seed", 1, 0, 4294967295L);
     duration = s.real("duration", 60, 1e-3, 1e6);
     dt = s.real("dt", 0.01, 1e-4, 1.0);
@@ -33,7 +31,7 @@ void ScenarioOptions::loadFromConfigFile(const mrpt::config::CConfigFileBase& sr
     std::istringstream in(s.text("robots", ""));
     std::set<std::string> seen;
     for (std::string r; in >> r;) {
-        if (r.find('.') != std::string::npos) s.fail("robots", "robot name '" + r + "' has a '.'");
+        common::checkRobotName(r, common::configOrigin(src) + ": [" + section + "] robots");
         if (!seen.insert(r).second) s.fail("robots", "robot '" + r + "' is listed twice");
         robots.push_back(r);
     }
@@ -44,6 +42,8 @@ void ScenarioOptions::loadFromConfigFile(const mrpt::config::CConfigFileBase& sr
     groundTruth.format =
         s.choice("ground_truth_format", "tum", common::GroundTruthSource::formats());
     groundTruth.robot = s.text("ground_truth_robot", "robot");
+    common::checkRobotName(groundTruth.robot,
+                           common::configOrigin(src) + ": [" + section + "] ground_truth_robot");
     const auto off = s.reals("ground_truth_offset", {0, 0, 0}, 3);
     groundTruth.offset = mrpt::poses::CPose3D(off[0], off[1], 0, mrpt::DEG2RAD(off[2]), 0, 0);
     if (!groundTruth.path.empty()) {
@@ -117,6 +117,7 @@ void ScenarioConfig::addGeneratedRobots(const mrpt::config::CConfigFileBase& ini
         throw Error(common::configOrigin(ini) +
                     ": [scenario] robots: the robots are generated here; leave the key out");
     for (const auto& r : generated) {
+        common::checkRobotName(r.name, common::configOrigin(ini) + ": a generated robot");
         if (!world.contains({r.start.x(), r.start.y(), 0}))
             throw Error(common::configOrigin(ini) + ": generated robot " + r.name +
                         " starts outside the room");

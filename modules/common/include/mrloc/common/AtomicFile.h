@@ -1,16 +1,19 @@
 #pragma once
 // Outputs are written to "<name>.tmp" and renamed when complete, so that an error or a crash
-// never leaves a half-written file under the final name.
+// never leaves a half-written file under the final name. Inside a run folder the whole step
+// is a transaction besides (RunTransaction.h).
 #include <string>
-#include <vector>
 
 namespace mrloc::common {
 
-/** Writes `content` to `path` atomically (temporary name, then rename). */
+/** Writes `content` to `path` atomically (temporary name, then rename); every write is
+ *  checked, and an error (a full disk) names the file. */
 void writeFileAtomically(const std::string& path, const std::string& content);
 
 /** Holds a temporary path; commit() renames it to the final path, otherwise the destructor
- *  removes it. */
+ *  removes it. Whatever was at the temporary name (a symbolic link, say) is removed first,
+ *  so nothing is ever written through a link; the rename replaces a link at the final name
+ *  rather than following it. */
 class PendingFile {
  public:
     /** The temporary name is finalPath + tempSuffix; give it the final extension when the
@@ -27,32 +30,13 @@ class PendingFile {
  private:
     std::string final_, temp_;
     bool committed_ = false;
-    int slot_ = -1;  // the signal handler's entry for temp_ (or for final_ inside a run)
-};
-
-/** Installs SIGINT and SIGTERM handlers that remove every temporary of a live PendingFile,
- *  the files a guarded run committed so far and the directory it created (RunOutputs), then
- *  exit with 128 + the signal (130, 143). */
-void installSignalCleanup();
-
-/** While one of these lives, files committed by PendingFile belong to a command that has
- *  not finished: a signal removes them too. `createdDir`, if not empty, is the command's
- *  output folder, made by it, removed (if empty) after its files on a signal. Removing them
- *  on an error is the caller's job (the app's OutputGuard). */
-class RunOutputs {
- public:
-    explicit RunOutputs(const std::string& createdDir = "");
-    ~RunOutputs();
-    RunOutputs(const RunOutputs&) = delete;
-    RunOutputs& operator=(const RunOutputs&) = delete;
-    /** The final paths of the files committed since this one was made. */
-    std::vector<std::string> committed() const;
-
- private:
-    size_t first_ = 0;
 };
 
 /** Creates a directory and its parents; an error names the directory. */
 void makeDirectories(const std::string& dir);
+
+/** Throws mrloc::Error naming `what` unless `path` is a regular file (not a folder, FIFO or
+ *  device) of at most `maxBytes` bytes: checked before a user's file is read. */
+void checkReadableFile(const std::string& path, const std::string& what, size_t maxBytes);
 
 }  // namespace mrloc::common

@@ -17,6 +17,9 @@ struct LocalizationRunOptions {
     bool quiet = false;
     /** A ground-truth file named in the INI; without one, <rawlog stem>.<robot>.gt.txt. */
     GroundTruthSource groundTruth = {};
+    /** The rawlog's path as metrics.json records it, if not rawlogPath (a rawlog simulated
+     *  into a staging folder is recorded under the run folder it ends in). */
+    std::string rawlogShownAs = {};
 };
 
 struct LocalizationResult {

@@ -24,7 +24,7 @@ namespace mrloc::common {
 enum class RawlogFormat { Unknown, ObservationsOnly, ActionsSensoryFrames };
 
 /** Robot a sensor label belongs to: "r1.beacons" -> "r1"; a label with no dot (rawlogs
- *  recorded by other MRPT tools) -> "robot". */
+ *  recorded by other MRPT tools) -> "robot" (common::parseSensorLabel, Names.h). */
 std::string robotOfLabel(const std::string& sensorLabel);
 /** Sensor part of the label: "r1.beacons" -> "beacons"; no dot -> the whole label. */
 std::string sensorOfLabel(const std::string& sensorLabel);

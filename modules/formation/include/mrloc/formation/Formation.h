@@ -8,7 +8,8 @@
 //
 // The planner works on the positions the robots believe they have (the ideal lattice,
 // since every move is meant to build a perfect triangle); where a robot really ends up is
-// the business of the motion (ErrorModel.h, or the camera path).
+// the business of the motion (March.h's VertexErrorModel, or the camera path of
+// AlgorithmOne.h).
 #include <mrpt/math/TPoint2D.h>
 
 #include <array>

@@ -49,7 +49,9 @@ struct FormationConfig : public mrpt::config::CLoadableOptions {
     std::vector<std::string> experimentRoutes{"many_turns", "patrol"};
     size_t experimentRobotsMax = 10;  ///< fig. 15: N = 4 .. this
     size_t cameraStarts = 27;         ///< Algorithm 1 from pixels: a 3 x 3 x 3 grid, or 0
+    /** experiment_seed; without it (experimentSeedGiven false) the run's seed is used. */
     unsigned long experimentSeed = 1;
+    bool experimentSeedGiven = false;
 
     /** The route in the world frame (waypoints + origin), starting at the strip's centre. */
     std::vector<TPoint2D> worldRoute() const;

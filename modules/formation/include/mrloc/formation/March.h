@@ -73,8 +73,10 @@ struct MarchResult {
 
 /** N robots from initialStrip march through `route` (waypoints; each counts as reached
  *  when a robot's vertex is within side / sqrt(3) of it: every point is that near a lattice
- *  vertex). Each move's real end is the reflection of the real anchor across the real base,
- *  plus the error model's draw. Time: each move's path at the robot's speed. */
+ *  vertex). Each move's real end is where options.carry says (the ideal target shifted by
+ *  the base's errors, the reflection of the real anchor across the real base, or Algorithm
+ *  1's vertex on the real base), plus the error model's draw. Time: each move's path at the
+ *  robot's speed. */
 MarchResult march(size_t robots, const std::vector<TPoint2D>& route,
                   const std::vector<Obstacle>& obstacles, const MarchOptions& options,
                   const VertexErrorModel& errors, mrpt::random::CRandomGenerator& rng);

@@ -2,8 +2,9 @@
 // A localization method is one module that registers everything about it here, in one
 // call of its registerMethod(registry): its name, the INI sections it owns, its localizer,
 // its scenario builder (robots, sensors and on-board part for the simulator), an optional
-// experiment step and its report section. The app, the simulator and the report know no
-// method by name: they look it up here (like MRPT's TMetricMapTypesRegistry).
+// experiment step and its report section. The app, the simulator, the report and common know
+// no method by name: they look it up here (like MRPT's TMetricMapTypesRegistry), and an INI
+// that names no method gets the one whose sections it holds, or an error listing them all.
 #include <mrloc/common/Localizer.h>
 #include <mrloc/report/Report.h>
 #include <mrloc/sim/Payload.h>
@@ -35,6 +36,9 @@ struct ExperimentInput {
     const common::Localizer& localizer;  ///< after the whole rawlog
     const common::Trajectories& truth;   ///< in the estimates' frame
     std::string outDir;
+    /** The run's seed ([scenario] seed, or --seed): an experiment's random draws start
+     *  from it, so that `--seed` reaches the experiment and effective.ini reproduces it. */
+    unsigned long seed = 1;
 };
 
 struct Method {
@@ -42,6 +46,10 @@ struct Method {
     /** Lower-case INI sections this method owns; with the framework's, these are the only
      *  lower-case sections an INI may have. */
     std::vector<std::string> sections;
+    /** Sections of other programs (MRPT's apps) that this method reads: an INI without
+     *  [scenario] method and without any method's own section is this method's if it holds
+     *  one of these (and no other method's). */
+    std::vector<std::string> foreignSections;
     std::function<std::unique_ptr<common::Localizer>()> localizer;
     /** Reads the scenario from the INI; throws mrloc::Error naming file, section and key.
      *  The method's localizer, already configured from the same INI, is handed over so

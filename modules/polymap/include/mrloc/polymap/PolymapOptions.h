@@ -15,7 +15,7 @@
 namespace mrloc::polymap {
 
 struct PolymapOptions : public mrpt::config::CLoadableOptions {
-    std::string mapFile;              ///< map = <file.poly> (relative to the working dir)
+    std::string mapFile;  ///< map = <file.poly> (a relative path: from the INI's folder)
     std::string generator = "steps";  ///< generator = steps | rooms (when no map file)
     StepsMapOptions steps;
     RoomsMapOptions rooms;

@@ -22,6 +22,15 @@ void plotErrorCdf(const RobotErrors& errors, const std::string& pngPath);
  *  writes pngPath atomically. Every plot of mrloc, the methods' included, goes through it. */
 void runGnuplot(const std::string& body, const std::string& pngPath,
                 const std::string& size = "900,500");
+/** `text` as a gnuplot single-quoted string, quotes included: every user string (a robot's
+ *  name, a label) reaches a script only through this. A quote is doubled, control characters
+ *  (a newline would end the command) become '?'; inside single quotes gnuplot expands
+ *  neither backticks, macros (@) nor variables. */
+std::string gnuplotString(const std::string& text);
+/** `text` as one word of an inline data block: blanks, quotes, '#', '\\', '$' and '`' -> '_'. */
+std::string gnuplotDataWord(const std::string& text);
+/** A PNG whose signature and final IEND chunk are there (not cut short by a full disk). */
+bool isCompletePng(const std::string& path);
 /** An inline gnuplot data block `$name` of x y rows. */
 std::string dataBlock(const std::string& name, const std::vector<std::pair<double, double>>& xy);
 

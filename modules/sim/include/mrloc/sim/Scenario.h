@@ -17,8 +17,10 @@ struct ScenarioOptions : public mrpt::config::CLoadableOptions {
     /** Upper bounds (doc/errors.md): 1e7 steps is 28 h at the default 10 ms step. */
     static constexpr double kMaxSteps = 1e7;
     static constexpr size_t kMaxRobots = 1000;
-    std::string name = "run";        ///< names the output folder and files
-    std::string method = "beacons";  ///< localization method (registry name)
+    std::string name = "run";  ///< names the output folder and files
+    /** Localization method (registry name); empty when [scenario] names none: the app then
+     *  takes the one method whose sections the INI holds. */
+    std::string method;
     unsigned long seed = 1;
     double duration = 60;             ///< s
     double dt = 0.01;                 ///< simulation step (s)
