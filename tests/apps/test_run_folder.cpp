@@ -239,6 +239,9 @@ TEST(RunFolder, ACraftedProvenanceOrSymlinksReachNothingOutsideTheFolder) {
     for (const auto& e : fs::directory_iterator(out))
         EXPECT_FALSE(fs::is_symlink(e.symlink_status())) << e.path() << " carried into the run";
     EXPECT_TRUE(fs::is_regular_file(fs::symlink_status(out + "/report.html")));
+    for (const auto& e : fs::directory_iterator(out))  // the staging folder is named nowhere
+        if (e.path().extension() != ".png" && e.path().extension() != ".rawlog")
+            EXPECT_EQ(slurp(e.path().string()).find(".staging."), std::string::npos) << e.path();
     EXPECT_NE(r.output.find("left out of the new run"), std::string::npos) << r.output;
     // the outputs recorded are the run's own names, each with its content's hash
     const auto now = common::loadJson(out + "/provenance.json")["outputs"]["run"];

@@ -155,7 +155,8 @@ std::string receptionSection(const report::RunView& run) {
              "<code>",
              shots.size(), detected, 100.0 * double(detected) / double(shots.size()),
              metrics.value("beacons", nlohmann::json::object()).value("multilateration_fixes", 0)) +
-         report::html(shotsPath) + "</code>.</p>\n";
+         report::html(std::filesystem::path(shotsPath).filename().string()) +
+         "</code> (in this folder).</p>\n";
     return t;
 }
 

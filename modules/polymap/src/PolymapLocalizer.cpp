@@ -4,16 +4,27 @@
 #include <mrloc/common/Trajectory.h>
 #include <mrloc/polymap/PolymapFiles.h>
 #include <mrloc/polymap/PolymapLocalizer.h>
+#include <mrloc/sim/Robot.h>
+#include <mrloc/sim/Scenario.h>
 #include <mrpt/core/format.h>
 #include <mrpt/obs/CObservation2DRangeScan.h>
 
 #include <cmath>
+#include <sstream>
 
 namespace mrloc::polymap {
 
 void PolymapLocalizer::configure(const mrpt::config::CConfigFileBase& ini) {
     options_.loadFromConfigFile(ini, "polymap");
     map_ = std::make_unique<GeneratedMap>(options_.buildMap());
+    // the simulator's step and the robot's speed, as checked by the scenario's loader (the
+    // defaults of a log recorded elsewhere: no [scenario])
+    std::string robot = "r1";
+    if (const auto listed = ini.read_string("scenario", "robots", ""); !listed.empty())
+        std::istringstream(listed) >> robot;
+    probeRadius_ =
+        probeRadius(ini.read_double("robot." + robot, "speed", sim::RobotOptions{}.speed),
+                    ini.read_double("scenario", "dt", sim::ScenarioOptions{}.dt));
     results_.clear();
 }
 
@@ -21,8 +32,13 @@ void PolymapLocalizer::saveConfig(mrpt::config::CConfigFileBase& target) const {
     options_.saveToConfigFile(target, "polymap");
 }
 
+double probeRadius(double speed, double dt) {
+    return sim::arrivalRadius(speed, dt) + kArrivalMargin;
+}
+
 RobotHypotheses hypothesesFromScan(const PolymapOptions& options, const common::Polygon& map,
-                                   const mrpt::obs::CObservation2DRangeScan& scan) {
+                                   const mrpt::obs::CObservation2DRangeScan& scan,
+                                   double arrivalRadius) {
     ScanPolygonOptions so;
     so.rangeSigma = options.scanRangeSigma;
     so.breakAngle = options.breakAngle * M_PI / 180;
@@ -39,7 +55,7 @@ RobotHypotheses hypothesesFromScan(const PolymapOptions& options, const common::
         for (const auto& h : r.hypotheses) positions.push_back(h.point);
         r.session =
             std::make_shared<EliminationSession>(map, positions, options.driveOptions(r.tolerance),
-                                                 options.heading * M_PI / 180, kArrivalRadius);
+                                                 options.heading * M_PI / 180, arrivalRadius);
     }
     return r;
 }
@@ -57,7 +73,7 @@ void PolymapLocalizer::process(const mrpt::obs::CObservation::Ptr& obs) {
         }
         return;
     }
-    results_[robot] = hypothesesFromScan(options_, map_->polygon, *scan);
+    results_[robot] = hypothesesFromScan(options_, map_->polygon, *scan, probeRadius_);
 }
 
 std::map<std::string, common::Trajectory> PolymapLocalizer::estimates() const {

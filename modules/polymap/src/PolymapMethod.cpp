@@ -39,7 +39,7 @@ void PolymapPayload::onObservation(const mrpt::obs::CObservation::Ptr& obs) {
     const auto scan = std::dynamic_pointer_cast<mrpt::obs::CObservation2DRangeScan>(obs);
     if (!scan) return;
     if (!session_) {  // the first scan: hypotheses, then the first probe
-        auto r = hypothesesFromScan(options_, plan_.polygon, *scan);
+        auto r = hypothesesFromScan(options_, plan_.polygon, *scan, probeRadius_);
         session_ = r.session;
         phase_ = session_ ? Phase::Plan : Phase::Done;
         return;
@@ -122,7 +122,8 @@ method::Scenario loadScenario(const mrpt::config::CConfigFileBase& ini,
             mrpt::format(": the start (%g %g) is outside the floor plan", start.x, start.y));
     s.config.robots.push_back(r);
     s.payload = std::make_unique<PolymapPayload>(
-        sim::FloorPlan{map.polygon, {o.scanRays, o.scanRangeSigma, o.scanMaxRange, o.scanRate}}, o);
+        sim::FloorPlan{map.polygon, {o.scanRays, o.scanRangeSigma, o.scanMaxRange, o.scanRate}}, o,
+        probeRadius(r.speed, s.config.scenario.dt));
     return s;
 }
 

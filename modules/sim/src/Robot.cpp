@@ -78,7 +78,9 @@ void Robot::setWaypoints(std::vector<mrpt::math::TPoint2D> waypoints, bool loop)
     velocity_.reset();
 }
 
-double Robot::arrivalRadius(double dt) const { return std::max(0.02, options_.speed * dt); }
+double arrivalRadius(double speed, double dt) { return std::max(0.02, speed * dt); }
+
+double Robot::arrivalRadius(double dt) const { return sim::arrivalRadius(options_.speed, dt); }
 
 void Robot::drive(double v, double w) {
     velocity_ = std::make_pair(std::clamp(v, -options_.speed, options_.speed),

@@ -15,9 +15,9 @@
 
 namespace mrloc::polymap {
 
-/** How far from a probe the robot may have stopped (m): the simulator's waypoint follower
- *  stops within 2 cm. */
-constexpr double kArrivalRadius = 0.03;
+/** How much farther than the simulator's follower stops (sim::arrivalRadius) a robot may be
+ *  found from its probe (m). */
+constexpr double kArrivalMargin = 0.01;
 
 struct RobotHypotheses {
     double time = 0;           ///< of the scan
@@ -30,9 +30,14 @@ struct RobotHypotheses {
 };
 
 /** Hypothesis generation from a robot's first scan, as the localizer and the simulated
- *  robot's on-board part both do it. */
+ *  robot's on-board part both do it; `arrivalRadius`: how far from a probe the robot may be
+ *  found (probeRadius). */
 RobotHypotheses hypothesesFromScan(const PolymapOptions& options, const common::Polygon& map,
-                                   const mrpt::obs::CObservation2DRangeScan& scan);
+                                   const mrpt::obs::CObservation2DRangeScan& scan,
+                                   double arrivalRadius);
+/** The radius around a probe where the robot is found, for a robot of `speed` at step `dt`:
+ *  where the simulator's follower stops, plus kArrivalMargin. */
+double probeRadius(double speed, double dt);
 
 class PolymapLocalizer : public common::Localizer {
  public:
@@ -52,6 +57,7 @@ class PolymapLocalizer : public common::Localizer {
 
  private:
     PolymapOptions options_;
+    double probeRadius_ = 0;  ///< from the INI's [scenario] dt and its robot's speed
     std::unique_ptr<GeneratedMap> map_;
     std::map<std::string, RobotHypotheses> results_;
 };

@@ -18,9 +18,10 @@ namespace mrloc::polymap {
  *  controller that tracks it; odometry is recorded but not used to steer). */
 class PolymapPayload : public sim::Payload {
  public:
-    /** options: the run's [polymap] (it must outlive this). */
-    PolymapPayload(sim::FloorPlan plan, const PolymapOptions& options)
-        : plan_(std::move(plan)), options_(options) {}
+    /** options: the run's [polymap] (a copy: the payload owns what it needs);
+     *  probeRadius: polymap::probeRadius of the robot's speed and the simulator's step. */
+    PolymapPayload(sim::FloorPlan plan, PolymapOptions options, double probeRadius)
+        : plan_(std::move(plan)), options_(std::move(options)), probeRadius_(probeRadius) {}
     void command(sim::Step& step) override;
     void sense(sim::Step& step) override;
     void onObservation(const mrpt::obs::CObservation::Ptr& obs) override;
@@ -29,7 +30,8 @@ class PolymapPayload : public sim::Payload {
     enum class Phase { Start, Plan, Driving, Turning, Scan, Done };
 
     sim::FloorPlan plan_;
-    const PolymapOptions& options_;
+    PolymapOptions options_;
+    double probeRadius_;
     long scanEvery_ = -1;  ///< steps between scans (0: only at the start); set at step 0
     Phase phase_ = Phase::Start;
     std::shared_ptr<EliminationSession> session_;

@@ -14,6 +14,11 @@
 
 namespace mrloc::sim {
 
+/** How near a waypoint the follower stops, for a robot of `speed` (m/s) at step `dt` (s): a
+ *  step's travel, at least 2 cm (m). Methods that search for a robot at its goal (polymap's
+ *  probes) take their radius from here, not a constant of their own. */
+double arrivalRadius(double speed, double dt);
+
 struct RobotOptions : public mrpt::config::CLoadableOptions {
     std::string name;
     mrpt::poses::CPose2D start;                   ///< start = x y phi_deg
@@ -59,7 +64,7 @@ class Robot {
      *  rng only when the options ask for actuation noise. */
     mrpt::poses::CPose2D step(double dt, mrpt::random::CRandomGenerator& rng);
 
-    /** How near a waypoint counts as reached at step length dt (m). */
+    /** How near a waypoint counts as reached at step length dt (m): sim::arrivalRadius. */
     double arrivalRadius(double dt) const;
     /** Replaces the route and follows it (ends a drive() command). */
     void setWaypoints(std::vector<mrpt::math::TPoint2D> waypoints, bool loop);
