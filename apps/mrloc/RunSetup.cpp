@@ -1,0 +1,131 @@
+#include "RunSetup.h"
+
+#include <mrloc/common/AtomicFile.h>
+#include <mrloc/common/Error.h>
+#include <mrloc/common/IniSection.h>
+#include <mrloc/common/Metrics.h>
+#include <mrloc/common/Names.h>
+#include <mrloc/common/RunDirectory.h>
+#include <mrloc/common/Version.h>
+#include <mrpt/config/CConfigFileMemory.h>
+
+#include <filesystem>
+#include <set>
+
+#include "IniFile.h"
+
+namespace mrloc::app {
+
+namespace fs = std::filesystem;
+
+namespace {
+
+/** [scenario] keys that do not describe a simulation: an MRPT INI may get a [scenario] with
+ *  these for `mrloc localize` (the method, a ground-truth file), and effective.ini of such a
+ *  run keeps only these. */
+bool localizeOnlyKey(const std::string& key) {
+    static const std::set<std::string> keys{"name",
+                                            "method",
+                                            "seed",
+                                            "ground_truth",
+                                            "ground_truth_format",
+                                            "ground_truth_robot",
+                                            "ground_truth_offset"};
+    return keys.count(key) > 0;
+}
+
+/** [scenario] describes a simulation unless it holds only localizeOnlyKey keys. */
+bool describesSimulation(const mrpt::config::CConfigFileBase& ini) {
+    if (!ini.sectionExists("scenario")) return false;
+    std::vector<std::string> keys;
+    ini.getAllKeys("scenario", keys);
+    for (const auto& k : keys)
+        if (!localizeOnlyKey(k)) return true;
+    return keys.empty();
+}
+
+Setup loadSetupUnguarded(const method::Registry& registry, const std::string& iniPath,
+                         std::optional<long> seed, bool needSimulation) {
+    Setup s;
+    s.iniPath = iniPath;
+    s.iniText = readIniText(iniPath);
+    s.ini = openIni(iniPath, s.iniText, registry);
+    s.scenario.loadFromConfigFile(*s.ini, "scenario");
+    if (seed) {
+        if (*seed < 0 || *seed > 4294967295L) throw Error("--seed must be in [0, 4294967295]");
+        s.scenario.seed = (unsigned long)*seed;
+        // one resolved configuration: everything downstream (the localizer, the scenario,
+        // the experiment, effective.ini) reads the seed the run uses; never saved to the file
+        s.ini->write("scenario", "seed", std::to_string(*seed));
+        s.ini->discardSavingChanges();
+    }
+    common::checkName(s.scenario.name, s.iniPath + ": [scenario] name");
+    if (s.scenario.method.empty()) s.scenario.method = methodOfSections(registry, *s.ini);
+    s.method = &registry.get(s.scenario.method);
+    s.localizer = s.method->localizer();
+    s.localizer->configure(*s.ini);
+    if (needSimulation || describesSimulation(*s.ini)) {
+        s.simulation = s.method->scenario(*s.ini, *s.localizer);
+        s.simulation->config.scenario.seed = s.scenario.seed;
+    }
+    s.reportOptions.loadFromConfigFile(*s.ini, "report");
+    return s;
+}
+
+}  // namespace
+
+Setup loadSetup(const method::Registry& registry, const std::string& iniPath,
+                std::optional<long> seed, bool needSimulation) {
+    try {
+        return loadSetupUnguarded(registry, iniPath, seed, needSimulation);
+    } catch (const Error&) {
+        throw;
+    } catch (const std::exception& e) {
+        throw Error(iniPath + ": " + oneLine(e.what()));
+    }
+}
+
+std::string effectiveIni(const Setup& s) {
+    mrpt::config::CConfigFileMemory eff;
+    std::vector<std::string> sections;
+    s.ini->getAllSections(sections);
+    for (const auto& section : sections) {
+        std::vector<std::string> keys;
+        s.ini->getAllKeys(section, keys);
+        for (const auto& k : keys) eff.write(section, k, s.ini->read_string(section, k, ""));
+    }
+    if (s.simulation) {
+        s.simulation->config.save(eff);
+        if (s.simulation->saveOptions) s.simulation->saveOptions(eff);
+    } else {
+        // no simulation: only what `localize` reads, so that the file runs again as is
+        mrpt::config::CConfigFileMemory all;
+        s.scenario.saveToConfigFile(all, "scenario");
+        std::vector<std::string> keys;
+        all.getAllKeys("scenario", keys);
+        for (const auto& k : keys)
+            if (localizeOnlyKey(k)) eff.write("scenario", k, all.read_string("scenario", k, ""));
+    }
+    s.localizer->saveConfig(eff);
+    s.reportOptions.saveToConfigFile(eff, "report");
+    return eff.getContent();
+}
+
+void writeProvenance(const Setup& s, const std::string& dir, const std::string& step,
+                     const std::string& command) {
+    common::makeDirectories(dir);
+    common::writeFileAtomically(common::run_dir::configCopy(dir), s.iniText);
+    common::writeFileAtomically(common::run_dir::effectiveIni(dir), effectiveIni(s));
+    nlohmann::json p = nlohmann::json::object();
+    const std::string path = common::run_dir::provenance(dir);
+    if (fs::is_regular_file(fs::symlink_status(path))) p = common::loadJson(path);
+    if (!p.is_object()) p = nlohmann::json::object();  // not ours: begun again
+    if (!p.contains("steps") || !p["steps"].is_object()) p["steps"] = nlohmann::json::object();
+    p["ini"] = s.iniPath;
+    p["seed"] = s.scenario.seed;
+    p["version"] = kVersion;
+    p["steps"][step] = command;
+    common::saveJson(path, p);
+}
+
+}  // namespace mrloc::app

@@ -1,0 +1,46 @@
+#pragma once
+// One INI resolved for a run: read and validated before anything is written (the INI, --seed
+// written into it so that everything downstream reads the seed the run uses, the method, its
+// configured localizer, the scenario), and what a run folder records of it: effective.ini
+// (the resolved configuration, which runs again byte for byte) and provenance.json.
+#include <mrloc/method/Registry.h>
+#include <mrloc/report/ReportOptions.h>
+#include <mrloc/sim/Scenario.h>
+#include <mrpt/config/CConfigFile.h>
+
+#include <memory>
+#include <optional>
+#include <string>
+
+namespace mrloc::app {
+
+/** Everything one INI asks for, read and validated before anything is written. */
+struct Setup {
+    std::string iniPath;
+    std::string iniText;  ///< the file as read, copied to config.ini
+    std::unique_ptr<mrpt::config::CConfigFile> ini;
+    sim::ScenarioOptions scenario;  ///< [scenario], with --seed applied
+    const method::Method* method = nullptr;
+    std::unique_ptr<common::Localizer> localizer;  ///< configured
+    /** Built when the INI describes a simulation (it has [scenario]). */
+    std::optional<method::Scenario> simulation;
+    report::ReportOptions reportOptions;
+};
+
+/** Everything read from an INI fails as mrloc::Error naming the INI (MRPT's parser throws
+ *  its own exceptions, without the file's name). `needSimulation`: build the scenario even
+ *  when the INI's [scenario] holds only localize keys. */
+Setup loadSetup(const method::Registry& registry, const std::string& iniPath,
+                std::optional<long> seed, bool needSimulation);
+
+/** effective.ini: every section of the INI as given (MRPT's own sections too), then every
+ *  section mrloc reads rewritten with its defaults filled in. `simulate`, `localize` and
+ *  `run` write the same file for the same INI and seed. */
+std::string effectiveIni(const Setup& s);
+
+/** config.ini (a copy of the INI), effective.ini and provenance.json, with this step's
+ *  command line added to the steps already recorded there. */
+void writeProvenance(const Setup& s, const std::string& dir, const std::string& step,
+                     const std::string& command);
+
+}  // namespace mrloc::app
