@@ -1,7 +1,9 @@
 #!/usr/bin/env bash
 # Runs mrloc's libFuzzer targets (tests/fuzz) from the sanitized clang build (build-asan/).
-#   scripts/fuzz.sh [SECONDS_PER_TARGET=600] [TARGET...]    targets: rawlog ini poly
-# Seeds: rawlogs/, config/, maps/, tests/data/bad-inputs/ and MRPT's example datasets and INIs.
+#   scripts/fuzz.sh [SECONDS_PER_TARGET=600] [TARGET...]    targets: tests/fuzz/fuzz_<TARGET>.cpp
+# Each target's header comment names its seeds (`// fuzz-seeds: <globs from the project's
+# root>`), its largest input (`// fuzz-max-len: N`) and, if not 4096, its malloc limit
+# (`// fuzz-malloc-limit-mb: N`): a new target needs no edit here.
 # The corpus grows in build-asan/fuzz/corpus/<target>; a crash, a leak of a non-mrloc
 # exception, a timeout or an out-of-memory is written to build-asan/fuzz/findings/ and makes
 # this script fail. CI runs it briefly after the sanitized tests; see doc/hardening.md.
@@ -11,7 +13,9 @@ cd "$(dirname "$0")/.."
 seconds="${1:-600}"
 shift || true
 targets=("$@")
-[ ${#targets[@]} -eq 0 ] && targets=(rawlog ini poly)
+if [ ${#targets[@]} -eq 0 ]; then
+  for f in tests/fuzz/fuzz_*.cpp; do t="${f##*/fuzz_}"; targets+=("${t%.cpp}"); done
+fi
 
 if [ ! -f build-asan/CMakeCache.txt ]; then
   CXX=clang++ cmake -S . -B build-asan -DCMAKE_BUILD_TYPE=Release \
@@ -24,23 +28,21 @@ test "${PIPESTATUS[0]}" -eq 0
 root="$PWD"
 work="$root/build-asan/fuzz"
 mkdir -p "$work/findings"
+declared() {  # declared <target> <key> <default>: the value of `// <key>: ...` in its source
+  local v
+  v=$(sed -n "s|^// $2: *\([^ ]*\( [^(]*\)*\).*|\1|p" "$root/tests/fuzz/fuzz_$1.cpp" | head -1)
+  echo "${v:-$3}"
+}
 seeds() {  # the seed files of a target, one per line
-  case "$1" in
-    rawlog) ls "$root"/rawlogs/*.rawlog /usr/share/mrpt/datasets/*.rawlog \
-              "$root"/tests/data/bad-inputs/*.rawlog* 2>/dev/null ;;
-    ini)    ls "$root"/config/*.ini "$root"/tests/data/bad-inputs/*.ini 2>/dev/null
-            find /usr/share/mrpt/config_files -name '*.ini' 2>/dev/null | head -40 ;;
-    poly)   ls "$root"/maps/*.poly "$root"/tests/data/bad-inputs/*.poly 2>/dev/null ;;
-  esac
+  local pattern
+  for pattern in $(declared "$1" fuzz-seeds ""); do
+    [ "${pattern#/}" = "$pattern" ] && pattern="$root/$pattern"
+    compgen -G "$pattern" || true
+  done
 }
-max_len() {
-  case "$1" in rawlog) echo 1048576 ;; ini) echo 16384 ;; poly) echo 65536 ;; esac
-}
-# libFuzzer stops at any malloc above this. The rawlog probe's child deserializes corrupt
-# sizes on purpose (its own cap is 2048 MiB of resident memory): the limit is lifted there.
-malloc_limit() {
-  case "$1" in rawlog) echo 1000000 ;; *) echo 4096 ;; esac
-}
+max_len() { declared "$1" fuzz-max-len 65536; }
+# libFuzzer stops at any malloc above this (fuzz-malloc-limit-mb, 4096 unless declared).
+malloc_limit() { declared "$1" fuzz-malloc-limit-mb 4096 | cut -d' ' -f1; }
 
 status=0
 for t in "${targets[@]}"; do

@@ -123,8 +123,9 @@ Outcome mutateEveryWay(const std::string& ini, const std::string& rawlog,
     const double nan = std::numeric_limits<double>::quiet_NaN(),
                  inf = std::numeric_limits<double>::infinity();
     for (const auto& cls : classes)
-        for (const auto& [name, value] : std::vector<std::pair<std::string, double>>{
+        for (const auto& [name, v] : std::vector<std::pair<std::string, double>>{
                  {"NaN", nan}, {"inf", inf}, {"-inf", -inf}, {"huge", 1e30}, {"negative", -5}}) {
+            const double value = v;  // a lambda may not capture a structured binding (C++17)
             for (const bool all : {false, true}) {
                 // every odometry reading shifted alike is another frame, not a bad value
                 if (all && name == "negative" && cls.find("Odometry") != std::string::npos)

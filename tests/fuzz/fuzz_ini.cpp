@@ -2,6 +2,8 @@
 // the line checks, MRPT's parser, every registered method's options, the scenario (world,
 // robots, maps) and effective.ini. Any input must be accepted or refused with mrloc::Error,
 // in bounded time and memory.
+// fuzz-seeds: config/*.ini tests/data/bad-inputs/*.ini /usr/share/mrpt/config_files/*/*.ini
+// fuzz-max-len: 16384
 #include <mrloc/common/Error.h>
 
 #include "AllMethods.h"

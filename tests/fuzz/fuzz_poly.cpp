@@ -3,6 +3,8 @@
 // loads must have positive area, triangulate into n - 2 triangles inside it, and give a
 // visibility polygon from a vertex, an edge midpoint and a triangle's centroid, and a
 // shortest path between two vertices, without an error: the target aborts otherwise.
+// fuzz-seeds: maps/*.poly tests/data/bad-inputs/*.poly
+// fuzz-max-len: 65536
 #include <mrloc/common/Error.h>
 #include <mrloc/common/Polygon.h>
 #include <mrloc/polymap/ShortestPath.h>

@@ -96,7 +96,9 @@ TEST(Plots, GnuplotStringsRunNothing) {
     fs::create_directories(dir);
     const std::string marker = dir + "/X";
     EXPECT_EQ(report::gnuplotString("a'b"), "'a''b'");
-    EXPECT_EQ(report::gnuplotString("a\nb\r\x7f"), "'a?b??'");
+    EXPECT_EQ(report::gnuplotString("a\nb\r\x7f"),
+              "'a?b?"
+              "?'");
     EXPECT_EQ(report::gnuplotDataWord("a b\"c'#d\\e$f`g"), "a_b_c__d_e_f_g");
     EXPECT_EQ(report::gnuplotDataWord(""), "_");
     const std::vector<std::string> hostile{"x'; system(\"touch " + marker + "\"); '",
