@@ -43,10 +43,13 @@ TEST(PolymapOptions, EliminationKeys) {
     EXPECT_EQ(load("random_points = 50").randomPoints, std::vector<int>{50});
     EXPECT_EQ(load("drive = windows").drive, polymap::ProbeStrategy::Windows);
     EXPECT_FALSE(load("").drive);
-    for (const char* bad :
-         {"elimination = cell", "elimination = all windows", "random_points = 0",
-          "random_points = 10.5", "clearance = -1", "drive = fast", "drive = cells\nscan_rate = 1",
-          "sweep_steps = 3\nelimination = none"}) {
+    for (const char* bad : {"elimination = cell", "elimination = all windows", "random_points = 0",
+                            "random_points = 10.5", "clearance = -1", "drive = fast",
+                            "drive = cells\nscan_rate = 1", "sweep_steps = 3\nelimination = none",
+                            // list keys that multiply the experiment's work are bounded in length
+                            "random_points = 1 2 3 4 5 6 7 8 9",
+                            "sweep_steps = 1 2 3 4 5 6 7 8 9 10 11 12 13 14 15 16 17 18 19 20 "
+                            "21\nelimination = cells"}) {
         try {
             load(bad);
             ADD_FAILURE() << bad << ": no error";

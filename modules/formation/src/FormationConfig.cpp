@@ -100,11 +100,15 @@ void FormationConfig::loadFromConfigFile(const mrpt::config::CConfigFileBase& sr
     runs = size_t(s.integer("runs", 100, 0, kMaxRuns));
     experimentSpeeds = s.reals("experiment_speeds", {5.8, 2.9});
     if (experimentSpeeds.empty()) s.fail("experiment_speeds", "give at least one wheel speed");
+    if (experimentSpeeds.size() > 8)  // each is `runs` runs of every route
+        s.fail("experiment_speeds", "at most 8 wheel speeds");
     for (const double w : experimentSpeeds)
         if (!(w >= 1e-2 && w <= 1000)) s.fail("experiment_speeds", "each from 0.01 to 1000 rad/s");
     std::istringstream names(s.text("experiment_routes", "many_turns patrol"));
     experimentRoutes = {std::istream_iterator<std::string>(names), {}};
     if (experimentRoutes.empty()) s.fail("experiment_routes", "give many_turns, patrol or both");
+    if (experimentRoutes.size() > 2)
+        s.fail("experiment_routes", "many_turns, patrol or both, once each");
     for (const auto& r : experimentRoutes)
         if (r != "many_turns" && r != "patrol")
             s.fail("experiment_routes", "'" + r + "': expected many_turns or patrol");

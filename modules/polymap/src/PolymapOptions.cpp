@@ -82,6 +82,8 @@ void PolymapOptions::loadFromConfigFile(const mrpt::config::CConfigFileBase& src
         randomPoints.push_back((int)x);
     }
     if (randomPoints.empty()) s.fail("random_points", "give at least one X");
+    if (randomPoints.size() > kMaxListValues)  // each X is a column of the whole experiment
+        s.fail("random_points", "at most " + std::to_string(kMaxListValues) + " values");
     eliminationSeed = (unsigned long)s.integer("elimination_seed", 1, 0, 4294967295L);
     clearance = s.real("clearance", 0.1, 0, 10);
     sweepSteps.clear();
@@ -90,6 +92,8 @@ void PolymapOptions::loadFromConfigFile(const mrpt::config::CConfigFileBase& src
             s.fail("sweep_steps", "each step count must be a whole number from 1 to 1000");
         sweepSteps.push_back((int)x);
     }
+    if (sweepSteps.size() > kMaxSweepSteps)  // each is a map, every start, every algorithm
+        s.fail("sweep_steps", "at most " + std::to_string(kMaxSweepSteps) + " values");
     if (!sweepSteps.empty() && (!mapFile.empty() || generator != "steps"))
         s.fail("sweep_steps", "the sweep is over steps maps: needs generator = steps");
     if (!sweepSteps.empty() && elimination.empty())

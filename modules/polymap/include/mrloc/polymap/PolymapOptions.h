@@ -14,6 +14,10 @@
 
 namespace mrloc::polymap {
 
+/** Upper bounds on the list keys that multiply the experiment's work (doc/errors.md). */
+inline constexpr size_t kMaxListValues = 8;   ///< random_points
+inline constexpr size_t kMaxSweepSteps = 20;  ///< sweep_steps
+
 struct PolymapOptions : public mrpt::config::CLoadableOptions {
     std::string mapFile;  ///< map = <file.poly> (a relative path: from the INI's folder)
     std::string generator = "steps";  ///< generator = steps | rooms (when no map file)
