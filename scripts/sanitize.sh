@@ -15,5 +15,7 @@ test "${PIPESTATUS[0]}" -eq 0
 # LeakSanitizer off by default: see doc/hardening.md (ASAN_OPTIONS=detect_leaks=1 turns it on).
 export ASAN_OPTIONS="halt_on_error=1:detect_leaks=0:${ASAN_OPTIONS:-}"
 export UBSAN_OPTIONS="halt_on_error=1:print_stacktrace=1:${UBSAN_OPTIONS:-}"
+# Tests that only run whole scenarios again (Seed.*) skip here: the Release suite runs them.
+export MRLOC_SANITIZED=1
 cd build-asan
 ctest --output-on-failure -j "$(nproc)" "$@"
