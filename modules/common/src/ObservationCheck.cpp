@@ -55,10 +55,10 @@ void ObservationCheck::check(const mrpt::obs::CObservation& obs) {
     using namespace mrpt::obs;
     checkSensorLabel(obs.sensorLabel, "sensor label");
     // a comment is an on-board event (its label dropped by MRPT): no stream of its own
+    const double t = mrpt::Clock::toDouble(obs.timestamp);  // s
     if (!IS_CLASS(obs, CObservationComment)) {
         if (obs.timestamp == INVALID_TIMESTAMP)
             throw Error("no time stamp (0), and no sensory frame time to take");
-        const double t = mrpt::Clock::toDouble(obs.timestamp);
         if (!std::isfinite(t) || t <= 0)
             throw Error(mrpt::format("time stamp %.6f s is before 1970", t));
         const auto last = last_.find(obs.sensorLabel);
@@ -78,11 +78,10 @@ void ObservationCheck::check(const mrpt::obs::CObservation& obs) {
         coordinate(odo->odometry.y(), "odometry y");
         finite(odo->odometry.phi(), "odometry phi");
         const auto [it, fresh] =
-            lastOdometry_.emplace(obs.sensorLabel, std::make_pair(odo->odometry, obs.timestamp));
+            lastOdometry_.emplace(obs.sensorLabel, OdometryReading{odo->odometry, t});
         if (!fresh) {
-            const double step = (odo->odometry - it->second.first).norm();
-            const double dt =
-                mrpt::Clock::toDouble(obs.timestamp) - mrpt::Clock::toDouble(it->second.second);
+            const double step = (odo->odometry - it->second.pose).norm();
+            const double dt = t - it->second.t;
             if (step > B::kMaxOdometryStep)
                 throw Error(
                     mrpt::format("odometry moves %g m since its last reading, more "
@@ -95,7 +94,7 @@ void ObservationCheck::check(const mrpt::obs::CObservation& obs) {
                     mrpt::format("odometry moves %g m in %g s since its last reading, "
                                  "faster than %g m/s",
                                  step, dt, B::kMaxSpeed));
-            it->second = {odo->odometry, obs.timestamp};
+            it->second = {odo->odometry, t};
         }
     } else if (const auto* b = dynamic_cast<const CObservationBeaconRanges*>(&obs)) {
         count(b->sensedData.size(), B::kMaxRanges, "beacon ranges");

@@ -4,6 +4,7 @@
 // observation would otherwise be taken as data (a NaN in the estimates, an RMSE of 1e38
 // reported as a success, minutes of work on one observation).
 #include <mrpt/obs/CObservation.h>
+#include <mrpt/poses/CPose2D.h>
 
 #include <map>
 #include <optional>
@@ -48,7 +49,11 @@ class ObservationCheck {
     std::map<std::pair<std::string, std::string>, Previous> previous_;
     std::map<std::string, mrpt::Clock::time_point> last_;  ///< per label
     std::optional<double> lastAny_;                        ///< s, of any label
-    std::map<std::string, std::pair<mrpt::poses::CPose2D, mrpt::Clock::time_point>> lastOdometry_;
+    struct OdometryReading {
+        mrpt::poses::CPose2D pose;
+        double t = 0;  ///< s
+    };
+    std::map<std::string, OdometryReading> lastOdometry_;  ///< per label
 };
 
 }  // namespace mrloc::common
