@@ -1,6 +1,9 @@
 #pragma once
 // Helpers of the end-to-end tests: run the mrloc executable, temporary folders, INI edits.
+#include <fcntl.h>
 #include <gtest/gtest.h>
+#include <sys/wait.h>
+#include <unistd.h>
 
 #include <array>
 #include <cstdio>
@@ -25,6 +28,26 @@ inline Result mrlocCmd(const std::string& args) {
     const int status = pclose(p);
     // popen's shell reports a child killed by signal s as exit 128 + s.
     return {WIFSIGNALED(status) ? 128 + WTERMSIG(status) : WEXITSTATUS(status), out};
+}
+
+/** Starts `mrloc run <ini> --out <out> -q` in the background (its stderr to /dev/null when
+ *  `silent`); its pid, for waitStatus. */
+inline pid_t startRun(const std::string& ini, const std::string& out, bool silent = false) {
+    const pid_t pid = fork();
+    if (pid == 0) {
+        if (silent) dup2(::open("/dev/null", O_WRONLY), STDERR_FILENO);
+        execl(MRLOC_BINARY, "mrloc", "run", ini.c_str(), "--out", out.c_str(), "-q",
+              static_cast<char*>(nullptr));
+        _exit(127);
+    }
+    return pid;
+}
+
+/** Waits for `pid`: its exit status, or 128 + the signal that ended it. */
+inline int waitStatus(pid_t pid) {
+    int status = 0;
+    waitpid(pid, &status, 0);
+    return WIFEXITED(status) ? WEXITSTATUS(status) : 128 + WTERMSIG(status);
 }
 
 /** An empty temporary folder name (removed if it exists). */

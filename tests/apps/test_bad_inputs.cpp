@@ -212,12 +212,7 @@ namespace {
 /** Starts `mrloc run <ini> --out <out> -q`, waits until the rawlog is being written (in the
  *  staging folder beside `out`), sends `sig`, and returns the exit status. */
 int interruptedRun(const std::string& ini, const std::string& out, int sig) {
-    const pid_t pid = fork();
-    if (pid == 0) {
-        execl(MRLOC_BINARY, "mrloc", "run", ini.c_str(), "--out", out.c_str(), "-q",
-              static_cast<char*>(nullptr));
-        _exit(127);
-    }
+    const pid_t pid = startRun(ini, out);
     const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(60);
     const fs::path o(out);
     const std::string staging =
@@ -226,9 +221,7 @@ int interruptedRun(const std::string& ini, const std::string& out, int sig) {
     while (!fs::exists(staging + "/long.rawlog.tmp") && std::chrono::steady_clock::now() < deadline)
         std::this_thread::sleep_for(std::chrono::milliseconds(5));
     kill(pid, sig);
-    int status = 0;
-    waitpid(pid, &status, 0);
-    return WIFEXITED(status) ? WEXITSTATUS(status) : 128 + WTERMSIG(status);
+    return waitStatus(pid);
 }
 
 }  // namespace

@@ -71,19 +71,10 @@ std::string longQuickstart(const std::string& name, int seconds) {
 /** Runs `mrloc run <ini> --out <out> -q`, sends `sig` after `delay`, returns the status. */
 int runInterrupted(const std::string& ini, const std::string& out, int sig,
                    std::chrono::milliseconds delay) {
-    const pid_t pid = fork();
-    if (pid == 0) {
-        const int devnull = ::open("/dev/null", O_WRONLY);
-        dup2(devnull, STDERR_FILENO);
-        execl(MRLOC_BINARY, "mrloc", "run", ini.c_str(), "--out", out.c_str(), "-q",
-              static_cast<char*>(nullptr));
-        _exit(127);
-    }
+    const pid_t pid = startRun(ini, out, true);
     std::this_thread::sleep_for(delay);
     kill(pid, sig);
-    int status = 0;
-    waitpid(pid, &status, 0);
-    return WIFEXITED(status) ? WEXITSTATUS(status) : 128 + WTERMSIG(status);
+    return waitStatus(pid);
 }
 
 }  // namespace
@@ -141,12 +132,7 @@ TEST(RunFolder, AFailedReRunLeavesThePreviousRunAndNoStaging) {
 TEST(RunFolder, ASecondMrlocOnTheSameFolderIsRefused) {
     const std::string ini = longQuickstart("busy", 900);
     const std::string out = tmp("busy");
-    const pid_t pid = fork();
-    if (pid == 0) {
-        execl(MRLOC_BINARY, "mrloc", "run", ini.c_str(), "--out", out.c_str(), "-q",
-              static_cast<char*>(nullptr));
-        _exit(127);
-    }
+    const pid_t pid = startRun(ini, out);
     const std::string lock =
         (fs::path(out).parent_path() / ("." + fs::path(out).filename().string() + ".lock"))
             .string();
@@ -154,13 +140,12 @@ TEST(RunFolder, ASecondMrlocOnTheSameFolderIsRefused) {
     while (!fs::exists(lock) && std::chrono::steady_clock::now() < deadline)
         std::this_thread::sleep_for(std::chrono::milliseconds(5));
     const auto second = mrlocCmd("run " + config("polymap_steps") + " -q --out " + out);
-    int status = 0;
-    waitpid(pid, &status, 0);
+    const int first = waitStatus(pid);
     EXPECT_EQ(second.code, 1);
     EXPECT_NE(second.output.find("in use by another mrloc process"), std::string::npos)
         << second.output;
     EXPECT_EQ(std::count(second.output.begin(), second.output.end(), '\n'), 1);
-    ASSERT_TRUE(WIFEXITED(status) && WEXITSTATUS(status) == 0);
+    ASSERT_EQ(first, 0);
     // the folder is the first run's alone
     EXPECT_TRUE(fs::exists(out + "/busy.rawlog"));
     EXPECT_FALSE(fs::exists(out + "/polymap_steps.rawlog"));
