@@ -18,4 +18,16 @@ export UBSAN_OPTIONS="halt_on_error=1:print_stacktrace=1:${UBSAN_OPTIONS:-}"
 # Tests that only run whole scenarios again (Seed.*) skip here: the Release suite runs them.
 export MRLOC_SANITIZED=1
 cd build-asan
-ctest --output-on-failure -j "$(nproc)" "$@"
+# The Monte Carlo tests that repeat, at length, code the rest of the suite runs sanitized
+# (about 9 of the suite's 19 sanitized minutes on 2 cores) are left to the Release suite unless
+# MRLOC_SANITIZE_ALL=1: CI stays under 30 minutes (doc/hardening.md).
+long='MrlocOmnivision\.ErrorsMatchTheCovarianceOverTwentySeeds|MrlocFormation\.PixelModeMarch'
+long+='|Elimination\.OfficeFloorOfTwentyFourIdenticalRooms|MrlocPolymap\.DrivingWithEveryAlgorithm'
+long+='|MrlocFormation\.PatrolRoute|Visibility\.Star5000|Elimination\.FromNoisyScans'
+long+='|FormationMarch\.ErrorDoesNotGrow|FormationAlgorithmOne\.ConvergesFromEveryStart'
+long+='|Visibility\.RandomAndGeneratedMapsUpTo5000'
+if [ "${MRLOC_SANITIZE_ALL:-0}" = 1 ]; then
+  ctest --output-on-failure -j "$(nproc)" "$@"
+else
+  ctest --output-on-failure -j "$(nproc)" -E "$long" "$@"
+fi

@@ -14,6 +14,7 @@
 #include <filesystem>
 #include <iostream>
 #include <optional>
+#include <thread>
 
 #include "IniFile.h"
 #include "RunSetup.h"
@@ -42,6 +43,13 @@ std::string commandLine(int argc, char** argv) {
     return s;
 }
 
+/** Refuses work beyond the budget before anything is written; announces long work. */
+void checkWorkOf(const Setup& s, bool simulating, bool localizing, bool quiet) {
+    const unsigned cores = std::max(1u, std::thread::hardware_concurrency());
+    const auto line = method::checkWork(workOf(s, simulating, localizing), cores);
+    if (line && !quiet) std::cerr << "mrloc: " << *line << "\n";
+}
+
 std::string doSimulate(Setup& s, const std::string& dir, bool quiet) {
     const auto files =
         sim::simulateToFiles(s.simulation->config, dir, quiet, s.simulation->payload.get());
@@ -57,7 +65,8 @@ void doLocalize(Setup& s, const std::string& rawlog, const std::string& dir, boo
     options.rawlogShownAs = rawlogShownAs;
     const auto result = common::runLocalization(*s.localizer, options);
     if (s.method->experiment)
-        s.method->experiment({*s.ini, *s.localizer, result.truth, dir, s.scenario.seed});
+        s.method->experiment({*s.localizer, s.simulation ? &s.simulation->config : nullptr,
+                              result.truth, dir, s.scenario.seed, quiet});
     if (quiet) return;
     const auto& m = result.metrics;
     std::cerr << "localized " << m["observations"] << " observations with '" << name << "'";
@@ -125,6 +134,7 @@ int simulate(const method::Registry& registry, int argc, char** argv) {
         "effective.ini");
     if (const auto code = parseArgs(c.cmd, argc, argv)) return *code;
     Setup s = c.setup(registry);
+    checkWorkOf(s, true, false, c.output.quiet.getValue());
     const std::string dir = c.output.dirOr(s.scenario.name);
     common::RunTransaction tx(dir, "simulate");
     std::string rawlog;
@@ -160,6 +170,7 @@ int localize(const method::Registry& registry, int argc, char** argv) {
         return 2;
     }
     Setup s = loadSetup(registry, iniArg.getValue(), std::nullopt, false);
+    checkWorkOf(s, false, true, o.quiet.getValue());
     const std::string dir = o.dirOr(s.scenario.name);
     common::RunTransaction tx(dir, "localize");
     try {
@@ -201,6 +212,7 @@ int run(const method::Registry& registry, int argc, char** argv) {
         "<out> (default out/<scenario name>)");
     if (const auto code = parseArgs(c.cmd, argc, argv)) return *code;
     Setup s = c.setup(registry);
+    checkWorkOf(s, true, true, c.output.quiet.getValue());
     const std::string dir = c.output.dirOr(s.scenario.name);
     common::RunTransaction tx(dir, "run");
     try {

@@ -9,6 +9,7 @@
 #include <mrloc/common/Version.h>
 #include <mrpt/config/CConfigFileMemory.h>
 
+#include <algorithm>
 #include <filesystem>
 #include <set>
 
@@ -19,30 +20,6 @@ namespace mrloc::app {
 namespace fs = std::filesystem;
 
 namespace {
-
-/** [scenario] keys that do not describe a simulation: an MRPT INI may get a [scenario] with
- *  these for `mrloc localize` (the method, a ground-truth file), and effective.ini of such a
- *  run keeps only these. */
-bool localizeOnlyKey(const std::string& key) {
-    static const std::set<std::string> keys{"name",
-                                            "method",
-                                            "seed",
-                                            "ground_truth",
-                                            "ground_truth_format",
-                                            "ground_truth_robot",
-                                            "ground_truth_offset"};
-    return keys.count(key) > 0;
-}
-
-/** [scenario] describes a simulation unless it holds only localizeOnlyKey keys. */
-bool describesSimulation(const mrpt::config::CConfigFileBase& ini) {
-    if (!ini.sectionExists("scenario")) return false;
-    std::vector<std::string> keys;
-    ini.getAllKeys("scenario", keys);
-    for (const auto& k : keys)
-        if (!localizeOnlyKey(k)) return true;
-    return keys.empty();
-}
 
 Setup loadSetupUnguarded(const method::Registry& registry, const std::string& iniPath,
                          std::optional<long> seed, bool needSimulation) {
@@ -64,7 +41,7 @@ Setup loadSetupUnguarded(const method::Registry& registry, const std::string& in
     s.method = &registry.get(s.scenario.method);
     s.localizer = s.method->localizer();
     s.localizer->configure(*s.ini);
-    if (needSimulation || describesSimulation(*s.ini)) {
+    if (needSimulation || sim::ScenarioOptions::describesSimulation(*s.ini, "scenario")) {
         s.simulation = s.method->scenario(*s.ini, *s.localizer);
         s.simulation->config.scenario.seed = s.scenario.seed;
     }
@@ -85,6 +62,29 @@ Setup loadSetup(const method::Registry& registry, const std::string& iniPath,
     }
 }
 
+std::vector<method::WorkItem> workOf(const Setup& s, bool simulating, bool localizing) {
+    std::vector<method::WorkItem> items;
+    const sim::ScenarioConfig* scenario = s.simulation ? &s.simulation->config : nullptr;
+    if (simulating && scenario) {
+        // the simulator's own part, whatever the method: its robots' motion, odometry and
+        // ground truth (measured: doc/errors.md, "Work")
+        constexpr double kSecondsPerRobotStep = 2e-6;
+        const double steps = scenario->scenario.duration / scenario->scenario.dt;
+        method::WorkItem w;
+        w.what = "the simulation";
+        w.keys = "[scenario] duration / dt x robots";
+        w.seconds = steps * double(std::max<size_t>(1, scenario->robots.size())) *
+                    kSecondsPerRobotStep;
+        w.simulation = true;
+        items.push_back(w);
+    }
+    if (s.method->work)
+        for (auto& w : s.method->work(*s.localizer, scenario))
+            if ((w.simulation && simulating) || (!w.simulation && localizing))
+                items.push_back(std::move(w));
+    return items;
+}
+
 std::string effectiveIni(const Setup& s) {
     mrpt::config::CConfigFileMemory eff;
     std::vector<std::string> sections;
@@ -99,12 +99,7 @@ std::string effectiveIni(const Setup& s) {
         if (s.simulation->saveOptions) s.simulation->saveOptions(eff);
     } else {
         // no simulation: only what `localize` reads, so that the file runs again as is
-        mrpt::config::CConfigFileMemory all;
-        s.scenario.saveToConfigFile(all, "scenario");
-        std::vector<std::string> keys;
-        all.getAllKeys("scenario", keys);
-        for (const auto& k : keys)
-            if (localizeOnlyKey(k)) eff.write("scenario", k, all.read_string("scenario", k, ""));
+        s.scenario.saveLocalizeKeys(eff, "scenario");
     }
     s.localizer->saveConfig(eff);
     s.reportOptions.saveToConfigFile(eff, "report");

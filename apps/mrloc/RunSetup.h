@@ -33,6 +33,10 @@ struct Setup {
 Setup loadSetup(const method::Registry& registry, const std::string& iniPath,
                 std::optional<long> seed, bool needSimulation);
 
+/** What the run's steps will cost (method/Work.h): the simulation's steps when `simulating`,
+ *  and the method's parts for the steps asked. */
+std::vector<method::WorkItem> workOf(const Setup& s, bool simulating, bool localizing);
+
 /** effective.ini: every section of the INI as given (MRPT's own sections too), then every
  *  section mrloc reads rewritten with its defaults filled in. `simulate`, `localize` and
  *  `run` write the same file for the same INI and seed. */

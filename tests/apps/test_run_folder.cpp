@@ -105,7 +105,7 @@ TEST(RunFolder, AnInterruptedReRunLeavesThePreviousRunByteIdentical) {
             EXPECT_TRUE(now == before || sameRunButWallTimes(before, now))
                 << "signal " << sig << " after " << ms << " ms";
             before = now;
-            if (sig != SIGKILL) EXPECT_TRUE(leftBeside(out).empty()) << leftBeside(out).front();
+            if (sig != SIGKILL) { EXPECT_TRUE(leftBeside(out).empty()) << leftBeside(out).front(); }
         }
     EXPECT_GE(interrupted, 6);
     // what a SIGKILL left beside the folder is removed by the next run
@@ -226,8 +226,9 @@ TEST(RunFolder, ACraftedProvenanceOrSymlinksReachNothingOutsideTheFolder) {
         EXPECT_FALSE(fs::is_symlink(e.symlink_status())) << e.path() << " carried into the run";
     EXPECT_TRUE(fs::is_regular_file(fs::symlink_status(out + "/report.html")));
     for (const auto& e : fs::directory_iterator(out))  // the staging folder is named nowhere
-        if (e.path().extension() != ".png" && e.path().extension() != ".rawlog")
+        if (e.path().extension() != ".png" && e.path().extension() != ".rawlog") {
             EXPECT_EQ(slurp(e.path().string()).find(".staging."), std::string::npos) << e.path();
+        }
     EXPECT_NE(r.output.find("left out of the new run"), std::string::npos) << r.output;
     // the outputs recorded are the run's own names, each with its content's hash
     const auto now = common::loadJson(out + "/provenance.json")["outputs"]["run"];
@@ -344,8 +345,9 @@ TEST(HostileNames, InARawlogsLabelsAreRefusedOrShownEscaped) {
             ASSERT_EQ(mrlocCmd("report " + out).code, 0);
             const std::string page = slurp(out + "/report.html");
             EXPECT_EQ(page.find("<script>"), std::string::npos);
-            if (name.find_first_of("<>&'\"") != std::string::npos)
+            if (name.find_first_of("<>&'\"") != std::string::npos) {
                 EXPECT_EQ(page.find(name), std::string::npos) << "shown unescaped: " << name;
+            }
         }
         ++n;
     }

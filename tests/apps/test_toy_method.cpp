@@ -93,6 +93,7 @@ class ToyLocalizer : public common::Localizer {
                                   0, 0, 0, 0)});
     }
     common::Trajectories estimates() const override { return traj_; }
+    const ToyOptions& options() const { return o_; }
     void writeOutputs(const std::string& dir, const common::Trajectories&) const override {
         ToyFile{traj_.empty() ? 0 : traj_.begin()->second.size()}.write(dir);
     }
@@ -103,17 +104,24 @@ class ToyLocalizer : public common::Localizer {
 };
 
 void registerToy(method::Registry& registry) {
-    method::Method m;
+    method::MethodUnit<ToyLocalizer> m;
     m.name = "toy";
     m.sections = {"toy"};
-    m.localizer = [] { return std::make_unique<ToyLocalizer>(); };
-    m.scenario = [](const mrpt::config::CConfigFileBase& ini, const common::Localizer&) {
-        ToyOptions o;
-        o.load(ini);
+    m.scenario = [](const mrpt::config::CConfigFileBase& ini, const ToyLocalizer& localizer) {
         method::Scenario s;
         s.config = sim::ScenarioConfig::load(ini);
-        s.payload = std::make_unique<ToyPayload>(o);
+        s.payload = std::make_unique<ToyPayload>(localizer.options());
         return s;
+    };
+    // What the experiment is handed of the resolved run, written down for the tests: the
+    // seed, the scenario's (nullptr for a log recorded elsewhere) and the localizer's goal.
+    m.experiment = [](const method::ExperimentOf<ToyLocalizer>& in) {
+        const std::string path = in.outDir + "/toy.experiment.txt";
+        common::writeFileAtomically(
+            path, std::to_string(in.seed) + " " +
+                      (in.scenario ? std::to_string(in.scenario->scenario.seed) : "none") + " " +
+                      std::to_string(in.localizer.options().goalX) + "\n");
+        return std::vector<std::string>{path};
     };
     m.report.html = [](const report::RunView& run) {
         return "<h2>Toy section</h2><p>toy fixes: " + std::to_string(ToyFile::read(run.dir).fixes) +
@@ -195,4 +203,33 @@ TEST(ToyMethod, RegistryRefusesDuplicatesAndSectionsOwnedByOthers) {
     thief.sections = {"world"};
     EXPECT_THROW(registry.add(thief), Error);
     EXPECT_THROW(registry.get("nope"), Error);
+    // A unit's functions take only the localizer it was registered with.
+    const auto& toy = registry.get("toy");
+    sim::ScenarioConfig none;
+    common::Trajectories truth;
+    struct Other : ToyLocalizer {};
+    const Other other;
+    EXPECT_THROW(toy.experiment({other, &none, truth, testing_cli::tmp("toy_other"), 1}), Error);
+    const auto mine = toy.localizer();
+    EXPECT_NO_THROW(toy.experiment({*mine, nullptr, truth, testing_cli::tmp("toy_other"), 1}));
+}
+
+TEST(ToyMethod, TheExperimentGetsTheResolvedRunNotTheIni) {
+    method::Registry registry;
+    registerToy(registry);
+    const std::string dir = testing_cli::tmp("toy_resolved");
+    fs::create_directories(dir);
+    std::ofstream(dir + "/toy.ini") << kIni;
+    // --seed reaches the experiment and the scenario it is handed, as effective.ini says
+    ASSERT_EQ(runMrloc(registry, {"run", dir + "/toy.ini", "--seed", "7", "--out",
+                                  dir + "/run", "-q"}),
+              0);
+    EXPECT_EQ(testing_cli::slurp(dir + "/run/toy.experiment.txt"), "7 7 2.000000\n");
+    EXPECT_NE(testing_cli::slurp(dir + "/run/effective.ini").find("seed = 7"), std::string::npos);
+    // a log localized without a simulation: no scenario, the INI's seed
+    std::ofstream(dir + "/replay.ini") << "[scenario]\nmethod = toy\nseed = 3\n[toy]\ngoal = 1 1\n";
+    ASSERT_EQ(runMrloc(registry, {"localize", dir + "/replay.ini", dir + "/run/toy.rawlog",
+                                  "--out", dir + "/replay", "-q"}),
+              0);
+    EXPECT_EQ(testing_cli::slurp(dir + "/replay/toy.experiment.txt"), "3 none 1.000000\n");
 }

@@ -170,7 +170,7 @@ TEST(FormationMarch, BadInputIsAClearError) {
     o = {};
     o.maxMoves = 10;
     EXPECT_EQ(message([&] { formation::march(4, route, {}, o, {}, rng); }),
-              "formation: the route needs more than 10 moves");
+              "formation: the route needs more than 10 moves (max_moves)");
     EXPECT_EQ(message([&] { formation::march(3, route, {}, {}, {}, rng); }),
               "formation: at least 4 robots, got 3");
     EXPECT_EQ(message([&] { formation::drawAxisError(NAN, 0.01, rng); }),

@@ -76,6 +76,29 @@ TEST(WallDetector, ASonarPassingAFlatWallFindsItsLineAndNormal) {
     EXPECT_LT(std::abs(mean / double(pass.walls.size())), mrpt::DEG2RAD(0.25));
 }
 
+TEST(WallDetector, StandingOrCrawlingKeepsABoundedHistory) {
+    // seed 004 pairs each echo with the newest one a baseline back; a robot standing still
+    // never has one, and the detector kept every echo and searched them all for each new one
+    // (10,000 s of log: over 300 s). Now a standing robot keeps one reading (the one the
+    // search would pick) and a crawl at most kMaxHistory.
+    WallDetector detector{WallDetectorOptions{}};
+    SonarReading r;
+    r.sensor = mrpt::poses::CPose2D(1, 1, M_PI / 2);
+    r.range = 1.2, r.echo = true;
+    for (int i = 0; i < 20000; ++i) detector.add(r);
+    EXPECT_EQ(detector.historySize(), 1u);
+    for (int i = 0; i < 20000; ++i) {  // 0.1 mm per echo (1 mm/s at 10 Hz): 2 m in all
+        r.sensor = mrpt::poses::CPose2D(1 + 1e-4 * i, 1, M_PI / 2);
+        detector.add(r);
+        ASSERT_LE(detector.historySize(), WallDetector::kMaxHistory);
+    }
+    EXPECT_EQ(detector.historySize(), WallDetector::kMaxHistory);
+    EXPECT_EQ(detector.counts().readings, 40000u);
+    // the documented price: 1000 echoes span 0.1 m, under the 0.4 m baseline, so a crawl
+    // this slow pairs nothing (standing, the one reading kept pairs nothing either)
+    EXPECT_EQ(detector.counts().erps, 0u);
+}
+
 TEST(WallDetector, APillarIsNotAWall) {
     // a pillar of radius 0.2 m, 0.8 m from the path; the room's walls beyond the 4 m range
     auto o = room(10, 12);

@@ -1,6 +1,7 @@
 // Triangle search and identification: seed 000 Fig. 6, the fast search against the
 // brute-force oracle, and robustness to chance sums near 180 degrees.
 #include <gtest/gtest.h>
+#include <mrloc/common/Error.h>
 #include <mrloc/omnivision/TriangleSearch.h>
 
 #include "Swarm.h"
@@ -194,5 +195,29 @@ TEST(TriangleSearch, ARobotHiddenBehindAnotherStillResolves) {
         EXPECT_EQ(id.triangles.size(), 7u) << sigma;
         EXPECT_TRUE(id.unresolved.empty());
         EXPECT_EQ(score(id.labels, sw.truth).wrong, 0u);
+    }
+}
+
+TEST(TriangleSearch, TheSearchIsBoundedAndTooLooseATolerancesIsOneLine) {
+    // A swarm of 30 at 0.02 deg: the identification examines a few million angle pairs
+    // (measured: 4.06 million here, 573,000 for omnivision_swarm.ini's first snapshot); with
+    // 2-degree tolerances every pair is a candidate and the search once ran for hours. The
+    // meter stops it at maxPairVisits with one line naming the keys.
+    const auto sw = testing_omni::randomSwarm(30, 30u, 0.02);
+    SearchOptions o;
+    const auto id = identify(sw.snapshot, o);
+    EXPECT_GT(id.pairVisits, 0u);
+    EXPECT_LT(id.pairVisits, o.maxPairVisits(30) / 10);  // the budget is 13 times this
+    o.sumTolerance = o.bearingTolerance = 2 * kDeg;
+    // what the tight search needed: the loose one needs more
+    o.maxPairVisitsPerRobotCubed = double(id.pairVisits) / (30.0 * 30 * 30);
+    try {
+        identify(sw.snapshot, o);
+        ADD_FAILURE() << "the loose search finished within the tight one's pairs";
+    } catch (const Error& e) {
+        const std::string what = e.what();
+        EXPECT_NE(what.find("[omnivision] sum_tolerance, bearing_tolerance"), std::string::npos)
+            << what;
+        EXPECT_EQ(what.find('\n'), std::string::npos) << what;
     }
 }

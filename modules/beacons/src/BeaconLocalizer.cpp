@@ -16,6 +16,7 @@ using mrloc::common::IniSection;
 
 void BeaconOptions::loadFromConfigFile(const mrpt::config::CConfigFileBase& src,
                                        const std::string& section) {
+    *this = BeaconOptions{};  // every key absent takes the struct's default: written once
     IniSection s(src, section);
     mode = s.choice("mode", "tracker", {"tracker", "fixes"}) == "tracker" ? Mode::Tracker
                                                                           : Mode::Fixes;
@@ -28,8 +29,8 @@ void BeaconOptions::loadFromConfigFile(const mrpt::config::CConfigFileBase& src,
     f.mirror = mirror == "below"   ? MirrorRule::Below
                : mirror == "above" ? MirrorRule::Above
                                    : MirrorRule::NearestToHint;
-    f.maxIterations = int(s.integer("max_iterations", 20, 1, 1000));
-    f.maxGdop = s.real("max_gdop", 1e3, 1.0);
+    f.maxIterations = int(s.integer("max_iterations", long(f.maxIterations), 1, 1000));
+    f.maxGdop = s.real("max_gdop", f.maxGdop, 1.0);
     f.knownHeight = threeD ? std::nullopt : std::optional<double>(0.0);  // set per epoch
     // MRPT's range-only INIs give the range noise in their landmarks map's likelihood
     // options: honoured when [beacons] range_sigma is not given (effective.ini says so)
@@ -37,10 +38,10 @@ void BeaconOptions::loadFromConfigFile(const mrpt::config::CConfigFileBase& src,
     rangeSigmaFrom.clear();
     if (!s.has("range_sigma") && src.keyExists(kMrptLikelihood, "beaconRangesStd")) {
         IniSection mrpt(src, kMrptLikelihood);  // MRPT's section: its other keys are its own
-        tracker.rangeSigma = mrpt.real("beaconRangesStd", 0.03, 1e-6, 10);
+        tracker.rangeSigma = mrpt.real("beaconRangesStd", tracker.rangeSigma, 1e-6, 10);
         rangeSigmaFrom = std::string("[") + kMrptLikelihood + "] beaconRangesStd";
     } else {
-        tracker.rangeSigma = s.real("range_sigma", 0.03, 1e-6, 10);
+        tracker.rangeSigma = s.real("range_sigma", tracker.rangeSigma, 1e-6, 10);
     }
     // the start pose: [beacons] start, else MRPT's [OdometryEstimation] odometry_X/Y/PHI
     startFrom.clear();
@@ -56,18 +57,18 @@ void BeaconOptions::loadFromConfigFile(const mrpt::config::CConfigFileBase& src,
                                  mrpt::DEG2RAD(mrpt.real("odometry_PHI", 0, -360, 360)));
         startFrom = "[OdometryEstimation] odometry_X/Y/PHI";
     }
-    tracker.gateProbability = s.real("gate_probability", 0.999, 0.5, 1.0 - 1e-12);
-    tracker.odomSigmaPerMetre = s.real("odometry_sigma_xy", 0.05, 0, 10);
-    tracker.odomSigmaPhiPerRad = s.real("odometry_sigma_phi", 0.05, 0, 10);
-    tracker.odomSigmaPhiPerMetre = s.real("odometry_sigma_phi_per_m", 0.02, 0, 10);
-    tracker.randomWalkSigma = s.real("random_walk_sigma", 0.5, 0, 100);
-    tracker.bootstrapBaseline = s.real("bootstrap_baseline", 0.3, 0.01, 100);
-    tracker.resetAfter = int(s.integer("reset_after", 5, 1, 100000));
-    tracker.estimateBias = s.flag("estimate_bias", true);
-    tracker.biasSigma = s.real("bias_sigma", 0.05, 0, 10);
-    tracker.biasSpread = s.real("bias_spread", 0.01, 0, 10);
-    tracker.biasDrift = s.real("bias_drift", 0.002, 0, 10);
-    tracker.scaleSigma = s.real("scale_sigma", 0.01, 0, 1);
+    tracker.gateProbability = s.real("gate_probability", tracker.gateProbability, 0.5, 1.0 - 1e-12);
+    tracker.odomSigmaPerMetre = s.real("odometry_sigma_xy", tracker.odomSigmaPerMetre, 0, 10);
+    tracker.odomSigmaPhiPerRad = s.real("odometry_sigma_phi", tracker.odomSigmaPhiPerRad, 0, 10);
+    tracker.odomSigmaPhiPerMetre = s.real("odometry_sigma_phi_per_m", tracker.odomSigmaPhiPerMetre, 0, 10);
+    tracker.randomWalkSigma = s.real("random_walk_sigma", tracker.randomWalkSigma, 0, 100);
+    tracker.bootstrapBaseline = s.real("bootstrap_baseline", tracker.bootstrapBaseline, 0.01, 100);
+    tracker.resetAfter = int(s.integer("reset_after", long(tracker.resetAfter), 1, 100000));
+    tracker.estimateBias = s.flag("estimate_bias", tracker.estimateBias);
+    tracker.biasSigma = s.real("bias_sigma", tracker.biasSigma, 0, 10);
+    tracker.biasSpread = s.real("bias_spread", tracker.biasSpread, 0, 10);
+    tracker.biasDrift = s.real("bias_drift", tracker.biasDrift, 0, 10);
+    tracker.scaleSigma = s.real("scale_sigma", tracker.scaleSigma, 0, 1);
     map = loadBeaconMap(src, s);
     system.load(s, map);
     paperReception.clear();

@@ -24,8 +24,8 @@ void BeaconRobotOptions::load(const mrpt::config::CConfigFileBase& ini, const st
     common::IniSection s(ini, "robot." + robot);  // the simulator checks the other keys
     const auto rc = s.reals("receiver", {0, 0, 0.3}, 3);
     receiver = {rc[0], rc[1], rc[2]};
-    beaconRate = s.real("beacon_rate", 5, 0.01, 1000);
-    rangingEpochs = s.integer("ranging_epochs", 0, 0, 1L << 40);
+    beaconRate = s.real("beacon_rate", beaconRate, 0.01, 1000);
+    rangingEpochs = s.integer("ranging_epochs", long(rangingEpochs), 0, 1L << 40);
 }
 
 void BeaconRobotOptions::save(mrpt::config::CConfigFileBase& t, const std::string& robot) const {

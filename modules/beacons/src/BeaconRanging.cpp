@@ -16,18 +16,19 @@ constexpr double kReflectionLossDb = 3.0;
 
 void SensorOptions::loadFromConfigFile(const mrpt::config::CConfigFileBase& src,
                                        const std::string& section) {
+    *this = SensorOptions{};  // every key absent takes the struct's default: written once
     common::IniSection s(src, section);
-    rangeSigma = s.real("range_sigma", 0.01, 0, 10);
-    rangeMax = s.real("range_max", 10, 0.01, 1000);
-    dropout = s.real("range_dropout", 0.02, 0, 1);
-    outlierProbability = s.real("range_outlier_probability", 0.01, 0, 1);
-    outlierMin = s.real("range_outlier_min", 0.1, 0, 100);
-    outlierMax = s.real("range_outlier_max", 1.0, 0.1, 100);
+    rangeSigma = s.real("range_sigma", rangeSigma, 0, 10);
+    rangeMax = s.real("range_max", rangeMax, 0.01, 1000);
+    dropout = s.real("range_dropout", dropout, 0, 1);
+    outlierProbability = s.real("range_outlier_probability", outlierProbability, 0, 1);
+    outlierMin = s.real("range_outlier_min", outlierMin, 0, 100);
+    outlierMax = s.real("range_outlier_max", outlierMax, 0.1, 100);
     if (outlierMax < outlierMin)
         s.fail("range_outlier_max",
                "must be at least range_outlier_min (" + std::to_string(outlierMin) + ")");
-    biasSigma = s.real("range_bias_sigma", 0, 0, 10);
-    biasDrift = s.real("range_bias_drift", 0, 0, 10);
+    biasSigma = s.real("range_bias_sigma", biasSigma, 0, 10);
+    biasDrift = s.real("range_bias_drift", biasDrift, 0, 10);
     nlosReflect = s.choice("nlos", "reflect", {"reflect", "drop"}) == "reflect";
     s.finish();
 }

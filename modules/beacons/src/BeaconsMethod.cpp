@@ -169,14 +169,13 @@ void beaconsInTopView(const report::RunView& run, report::TopViewContent& view) 
 }  // namespace
 
 void registerMethod(method::Registry& registry) {
-    method::Method m;
+    method::MethodUnit<BeaconLocalizer> m;
     m.name = "beacons";
     m.sections = {"beacons", "sensors", "ultrasonic"};
     // MRPT's range-only localization INIs (ro-localization, pf-localization's RO demo) name
     // no mrloc section: their beacon likelihood section says they are this method's
     m.foreignSections = {"MetricMap_landmarksMap_00_likelihoodOpts"};
-    m.localizer = [] { return std::make_unique<BeaconLocalizer>(); };
-    m.scenario = [](const mrpt::config::CConfigFileBase& ini, const common::Localizer&) {
+    m.scenario = [](const mrpt::config::CConfigFileBase& ini, const BeaconLocalizer&) {
         return loadScenario(ini);
     };
     m.report.html = receptionSection;

@@ -7,10 +7,10 @@ void RfBeaconOptions::load(common::IniSection& s, const BeaconMap& map) {
     scheduling = s.choice("scheduling", "priority", {"priority", "round_robin"}) == "priority"
                      ? Scheduling::Priority
                      : Scheduling::RoundRobin;
-    minSpeed = s.real("min_speed", 0.05, 1e-6, 100);
-    handoverMargin = s.real("handover_margin", 0.5, 0, 1000);
-    registrationTime = s.real("registration_time", 0.5, 0, 1000);
-    shotInterval = s.real("shot_interval", 0.03, 1e-4, 10);
+    minSpeed = s.real("min_speed", minSpeed, 1e-6, 100);
+    handoverMargin = s.real("handover_margin", handoverMargin, 0, 1000);
+    registrationTime = s.real("registration_time", registrationTime, 0, 1000);
+    shotInterval = s.real("shot_interval", shotInterval, 1e-4, 10);
     sections = readSections(s, map);
 }
 

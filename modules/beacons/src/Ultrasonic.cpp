@@ -9,22 +9,23 @@ namespace mrloc::beacons {
 
 void UltrasonicOptions::loadFromConfigFile(const mrpt::config::CConfigFileBase& src,
                                            const std::string& section) {
+    *this = UltrasonicOptions{};  // every key absent takes the struct's default: written once
     common::IniSection s(src, section);
-    speedOfSound = s.real("speed_of_sound", 343, 100, 2000);
+    speedOfSound = s.real("speed_of_sound", speedOfSound, 100, 2000);
     const double beamDeg = s.real("beam_angle", 50, 0, 360);
     if (!(beamDeg > 0)) s.fail("beam_angle", "must be greater than 0 degrees");
     beamAngle = mrpt::DEG2RAD(beamDeg);
-    sourceMarginDb = s.real("source_margin_db", 23, -100, 200);
-    absorptionDbPerM = s.real("absorption_db_per_m", 1.3, 0, 100);
-    fadingSigmaDb = s.real("fading_sigma_db", 1.5, 0, 50);
-    riseTime = s.real("rise_time", 150e-6, 1e-9, 1);
-    firingTime = s.real("firing_time", 450e-6, 1e-9, 1);
-    calibrationDistance = s.real("calibration_distance", 1.0, 0.01, 100);
+    sourceMarginDb = s.real("source_margin_db", sourceMarginDb, -100, 200);
+    absorptionDbPerM = s.real("absorption_db_per_m", absorptionDbPerM, 0, 100);
+    fadingSigmaDb = s.real("fading_sigma_db", fadingSigmaDb, 0, 50);
+    riseTime = s.real("rise_time", riseTime, 1e-9, 1);
+    firingTime = s.real("firing_time", firingTime, 1e-9, 1);
+    calibrationDistance = s.real("calibration_distance", calibrationDistance, 0.01, 100);
     head.panMin = mrpt::DEG2RAD(s.real("pan_min", -180, -360, 360));
     head.panMax = mrpt::DEG2RAD(s.real("pan_max", 180, -360, 360));
     if (head.panMax <= head.panMin) s.fail("pan_max", "must be greater than pan_min");
     head.tiltMax = mrpt::DEG2RAD(s.real("tilt_max", 90, 0, 180));
-    head.slewRate = mrpt::DEG2RAD(s.real("slew_rate", 360, 1e-3, 1e5));
+    head.slewRate = mrpt::DEG2RAD(s.real("slew_rate", mrpt::RAD2DEG(head.slewRate), 1e-3, 1e5));
     s.finish();
 }
 

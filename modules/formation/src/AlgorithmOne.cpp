@@ -166,6 +166,12 @@ std::optional<std::vector<Maneuver>> AlgorithmOneController::decide(
     return std::vector<Maneuver>{};
 }
 
+Maneuver executed(Maneuver m, const ManeuverNoise& noise, mrpt::random::CRandomGenerator& rng) {
+    const double sd = m.kind == Maneuver::Kind::Turn ? noise.turn : noise.drive;
+    m.amount *= 1 + sd * rng.drawGaussian1D_normalized();
+    return m;
+}
+
 AlgorithmOneResult runAlgorithmOne(const mrpt::opengl::COpenGLScene& scene,
                                    const BeaconTriangle& beacons, mrpt::poses::CPose2D start,
                                    sim::PinholeCamera& camera, const MarkerOptions& markers,
@@ -174,12 +180,12 @@ AlgorithmOneResult runAlgorithmOne(const mrpt::opengl::COpenGLScene& scene,
     AlgorithmOneController controller(beacons, camera.intrinsics(), markers, o);
     AlgorithmOneResult r;
     auto pose = start;
-    const auto execute = [&](const Maneuver& m) {  // with its relative error
+    const auto execute = [&](const Maneuver& planned) {
+        const Maneuver m = executed(planned, o.noise, rng);
         if (m.kind == Maneuver::Kind::Turn) {
-            pose.phi(mrpt::math::wrapToPi(
-                pose.phi() + m.amount * (1 + o.turnNoise * rng.drawGaussian1D_normalized())));
+            pose.phi(mrpt::math::wrapToPi(pose.phi() + m.amount));
         } else {
-            const double d = m.amount * (1 + o.driveNoise * rng.drawGaussian1D_normalized());
+            const double d = m.amount;
             pose.x(pose.x() + d * std::cos(pose.phi()));
             pose.y(pose.y() + d * std::sin(pose.phi()));
         }

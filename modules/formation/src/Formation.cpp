@@ -127,4 +127,29 @@ std::optional<Move> nextMove(const std::vector<TPoint2D>& believed, const TPoint
     return std::nullopt;
 }
 
+RoutePlanner::RoutePlanner(std::vector<TPoint2D> route, FormationOptions options,
+                           size_t maxMoves)
+    : route_(std::move(route)), options_(options), maxMoves_(maxMoves) {
+    if (route_.empty()) throw Error("formation: the route needs a destination");
+}
+
+RoutePlanner::Outcome RoutePlanner::plan(const std::vector<TPoint2D>& believed,
+                                         const std::vector<Obstacle>& obstacles) {
+    move_.reset();
+    const double reach = options_.side / std::sqrt(3.0) * (1 + 1e-9);
+    const auto reached = [&](const TPoint2D& wp) {
+        return std::any_of(believed.begin(), believed.end(),
+                           [&](const TPoint2D& p) { return (p - wp).norm() <= reach; });
+    };
+    while (next_ < route_.size() && reached(route_[next_])) ++next_;
+    if (next_ == route_.size()) return Outcome::Arrived;
+    if (planned_ >= maxMoves_)
+        throw Error("formation: the route needs more than " + std::to_string(maxMoves_) +
+                    " moves (max_moves)");
+    move_ = nextMove(believed, route_[next_], obstacles, options_);
+    if (!move_) return Outcome::Stuck;
+    ++planned_;
+    return Outcome::Move;
+}
+
 }  // namespace mrloc::formation

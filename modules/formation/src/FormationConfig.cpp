@@ -43,11 +43,12 @@ std::vector<TPoint2D> FormationConfig::worldStrip() const {
 
 void FormationConfig::loadFromConfigFile(const mrpt::config::CConfigFileBase& src,
                                          const std::string& section) {
+    *this = FormationConfig{};  // every key absent takes the struct's default: written once
     common::IniSection s(src, section);
     mode = s.choice("mode", "model", {"model", "pixel"}) == "model" ? Mode::Model : Mode::Pixel;
-    robots = size_t(s.integer("robots", 4, 4, kMaxRobots));
-    formation.side = s.real("side", 1.5, 0.1, 100);
-    formation.safetyMargin = s.real("safety_margin", 0.3, 0, 100);
+    robots = size_t(s.integer("robots", long(robots), 4, kMaxRobots));
+    formation.side = s.real("side", formation.side, 0.1, 100);
+    formation.safetyMargin = s.real("safety_margin", formation.safetyMargin, 0, 100);
     const auto o = s.reals("origin", {3, 3}, 2);
     origin = {o[0], o[1]};
     routeName = s.choice("route", "many_turns", {"many_turns", "patrol", "custom"});
@@ -62,43 +63,44 @@ void FormationConfig::loadFromConfigFile(const mrpt::config::CConfigFileBase& sr
         if (s.has("waypoints")) s.fail("waypoints", "only with route = custom");
         waypoints = route(routeName);
     }
-    wheelRadius = s.real("wheel_radius", 0.035, 1e-3, 10);
-    wheelSpeed = s.real("wheel_speed", 5.8, 1e-2, 1000);
-    maxTurnRate = s.real("max_turn_rate", 1.5, 1e-2, 100);
+    wheelRadius = s.real("wheel_radius", wheelRadius, 1e-3, 10);
+    wheelSpeed = s.real("wheel_speed", wheelSpeed, 1e-2, 1000);
+    maxTurnRate = s.real("max_turn_rate", maxTurnRate, 1e-2, 100);
     const std::string c = s.choice("carry", "base", kCarryNames);
     carry = MarchOptions::Carry(std::find(kCarryNames.begin(), kCarryNames.end(), c) -
                                 kCarryNames.begin());
-    vertexErrors.lateralMean = s.real("lateral_error_mean", 0.036, 1e-6, 10);
-    vertexErrors.lateralSd = s.real("lateral_error_sd", 0.021, 1e-6, 10);
-    vertexErrors.longitudinalMean = s.real("longitudinal_error_mean", 0.013, 1e-6, 10);
-    vertexErrors.longitudinalSd = s.real("longitudinal_error_sd", 0.009, 1e-6, 10);
+    vertexErrors.lateralMean = s.real("lateral_error_mean", vertexErrors.lateralMean, 1e-6, 10);
+    vertexErrors.lateralSd = s.real("lateral_error_sd", vertexErrors.lateralSd, 1e-6, 10);
+    vertexErrors.longitudinalMean = s.real("longitudinal_error_mean", vertexErrors.longitudinalMean, 1e-6, 10);
+    vertexErrors.longitudinalSd = s.real("longitudinal_error_sd", vertexErrors.longitudinalSd, 1e-6, 10);
     auto& dr = deadReckoning;
     dr.headingModel = s.choice("heading_model", "gyro", {"gyro", "heading"}) == "gyro"
                           ? DeadReckoningOptions::HeadingModel::Gyro
                           : DeadReckoningOptions::HeadingModel::Heading;
-    dr.headingTau = s.real("heading_tau", 120, 1e-3, 1e6);
+    dr.headingTau = s.real("heading_tau", dr.headingTau, 1e-3, 1e6);
     dr.headingSigma = mrpt::DEG2RAD(s.real("heading_sigma", 2.5, 0, 90));
     dr.headingWhite = mrpt::DEG2RAD(s.real("heading_white", 0.8, 0, 90));
-    dr.radiusBias = s.real("radius_bias", 0, -0.5, 0.5);
-    dr.scaleFactor = s.real("scale_factor", 0.01, -0.5, 0.5);
-    dr.speedNoise = s.real("speed_noise", 0.045, 0, 10);
-    dr.dt = s.real("dr_period", 0.1, 1e-3, 10);
-    cameraFocal = s.real("camera_focal", 485, 100, 5000);
-    pixelTolerance = s.real("pixel_tolerance", 2, 0.1, 50);
+    dr.radiusBias = s.real("radius_bias", dr.radiusBias, -0.5, 0.5);
+    dr.scaleFactor = s.real("scale_factor", dr.scaleFactor, -0.5, 0.5);
+    dr.speedNoise = s.real("speed_noise", dr.speedNoise, 0, 10);
+    dr.dt = s.real("dr_period", dr.dt, 1e-3, 10);
+    cameraFocal = s.real("camera_focal", cameraFocal, 100, 5000);
+    pixelTolerance = s.real("pixel_tolerance", pixelTolerance, 0.1, 50);
     lateral = s.choice("algorithm_one", "midpoint", {"paper", "midpoint"}) == "paper"
                   ? AlgorithmOneOptions::Lateral::Paper
                   : AlgorithmOneOptions::Lateral::Midpoint;
-    gateStop = s.real("gate_stop", 0.8, 0.3, 10);
-    turnNoise = s.real("turn_noise", 0.02, 0, 0.5);
-    driveNoise = s.real("drive_noise", 0.02, 0, 0.5);
-    obstacleSensor.rays = int(s.integer("obstacle_rays", 72, 8, 3600));
-    obstacleSensor.maxRange = s.real("obstacle_range", 4, 0.1, 100);
-    obstacleSensor.rangeSigma = s.real("obstacle_sigma", 0.01, 0, 1);
-    obstacleSensorHeight = s.real("obstacle_height", 0.1, 0, 10);
-    obstacleCell = s.real("obstacle_cell", 0.1, 0.01, 10);
-    maxMoves = size_t(s.integer("max_moves", 10000, 1, kMaxMoves));
-    runs = size_t(s.integer("runs", 100, 0, kMaxRuns));
-    experimentSpeeds = s.reals("experiment_speeds", {5.8, 2.9});
+    gateStop = s.real("gate_stop", gateStop, 0.3, 10);
+    const ManeuverNoise noise;
+    maneuverNoise.turn = s.real("turn_noise", maneuverNoise.turn, 0, 0.5);
+    maneuverNoise.drive = s.real("drive_noise", maneuverNoise.drive, 0, 0.5);
+    obstacleSensor.rays = int(s.integer("obstacle_rays", long(obstacleSensor.rays), 8, 3600));
+    obstacleSensor.maxRange = s.real("obstacle_range", obstacleSensor.maxRange, 0.1, 100);
+    obstacleSensor.rangeSigma = s.real("obstacle_sigma", obstacleSensor.rangeSigma, 0, 1);
+    obstacleSensorHeight = s.real("obstacle_height", obstacleSensorHeight, 0, 10);
+    obstacleCell = s.real("obstacle_cell", obstacleCell, 0.01, 10);
+    maxMoves = size_t(s.integer("max_moves", long(maxMoves), 1, kMaxMoves));
+    runs = size_t(s.integer("runs", long(runs), 0, kMaxRuns));
+    experimentSpeeds = s.reals("experiment_speeds", experimentSpeeds);
     if (experimentSpeeds.empty()) s.fail("experiment_speeds", "give at least one wheel speed");
     if (experimentSpeeds.size() > 8)  // each is `runs` runs of every route
         s.fail("experiment_speeds", "at most 8 wheel speeds");
@@ -112,13 +114,13 @@ void FormationConfig::loadFromConfigFile(const mrpt::config::CConfigFileBase& sr
     for (const auto& r : experimentRoutes)
         if (r != "many_turns" && r != "patrol")
             s.fail("experiment_routes", "'" + r + "': expected many_turns or patrol");
-    experimentRobotsMax = size_t(s.integer("experiment_robots_max", 10, 4, 50));
-    cameraStarts = size_t(s.integer("camera_starts", 27, 0, 27));
+    experimentRobotsMax = size_t(s.integer("experiment_robots_max", long(experimentRobotsMax), 4, 50));
+    cameraStarts = size_t(s.integer("camera_starts", long(cameraStarts), 0, 27));
     if (cameraStarts != 0 && cameraStarts != 27)
         s.fail("camera_starts", "0 (none) or 27 (the 3 x 3 x 3 grid of starts)");
     // without the key, the experiment draws from the run's seed (--seed reaches it)
     experimentSeedGiven = src.keyExists(section, "experiment_seed");
-    experimentSeed = (unsigned long)s.integer("experiment_seed", 1, 0, 4294967295L);
+    experimentSeed = (unsigned long)s.integer("experiment_seed", long(experimentSeed), 0, 4294967295L);
     s.finish();
 }
 
@@ -159,8 +161,8 @@ void FormationConfig::saveToConfigFile(mrpt::config::CConfigFileBase& t,
     t.write(section, "algorithm_one",
             std::string(lateral == AlgorithmOneOptions::Lateral::Paper ? "paper" : "midpoint"));
     t.write(section, "gate_stop", gateStop);
-    t.write(section, "turn_noise", turnNoise);
-    t.write(section, "drive_noise", driveNoise);
+    t.write(section, "turn_noise", maneuverNoise.turn);
+    t.write(section, "drive_noise", maneuverNoise.drive);
     t.write(section, "obstacle_rays", obstacleSensor.rays);
     t.write(section, "obstacle_range", obstacleSensor.maxRange);
     t.write(section, "obstacle_sigma", obstacleSensor.rangeSigma);

@@ -1,7 +1,10 @@
+#include <mrloc/common/Progress.h>
 #include <mrloc/formation/AlgorithmOne.h>
 #include <mrloc/formation/FormationExperiment.h>
 #include <mrloc/formation/FormationLocalizer.h>
 #include <mrloc/formation/Routes.h>
+
+#include <mrpt/core/format.h>
 
 #include <cmath>
 
@@ -14,9 +17,15 @@ constexpr double kCurveStep = 5;
 
 }  // namespace
 
-FormationExperimentFile runFormationExperiment(const FormationConfig& c) {
+FormationExperimentFile runFormationExperiment(const FormationConfig& c, bool quiet) {
     FormationExperimentFile f;
     if (c.runs == 0) return f;
+    common::Progress progress(
+        "formation experiment",
+        c.runs * (c.experimentRoutes.size() * c.experimentSpeeds.size() +
+                  (c.experimentRobotsMax >= 4 ? c.experimentRobotsMax - 3 : 0)),
+        quiet);
+    size_t marches = 0;
     mrpt::random::CRandomGenerator rng(uint32_t(c.experimentSeed));
     MarchOptions o;
     o.formation = c.formation;
@@ -34,6 +43,7 @@ FormationExperimentFile runFormationExperiment(const FormationConfig& c) {
             for (size_t run = 0; run < c.runs; ++run) {
                 const auto m = march(c.robots, waypoints, {}, o, c.vertexErrors, rng);
                 const auto d = deadReckon(waypoints, c.wheelRadius, w, c.deadReckoning, rng);
+                progress.update(++marches);
                 row.formation += m.finalError() / double(c.runs);
                 row.deadReckoning += d.back().error / double(c.runs);
                 row.moves = m.moves.size();
@@ -61,13 +71,14 @@ FormationExperimentFile runFormationExperiment(const FormationConfig& c) {
     const auto waypoints = route(c.experimentRoutes.front());
     for (size_t n = 4; n <= c.experimentRobotsMax; ++n) {
         FormationExperimentFile::RobotsRow row{n, c.runs};
-        for (size_t run = 0; run < c.runs; ++run)
+        for (size_t run = 0; run < c.runs; ++run, progress.update(++marches))
             row.error +=
                 march(n, waypoints, {}, o, c.vertexErrors, rng).finalError() / double(c.runs);
         f.robots.push_back(row);
     }
     // fig. 11: the paper's moments (60 lab runs), the model's draws, and the camera path
-    f.steps.push_back({"paper", 0.036, 0.021, 0.013, 0.009, 60});
+    f.steps.push_back({"paper", paper::kLateralMean, paper::kLateralSd, paper::kLongitudinalMean,
+                       paper::kLongitudinalSd, paper::kFig11Runs});
     for (size_t k = 0; k < 100 * c.runs; ++k) {
         lateral.push_back(drawAxisError(c.vertexErrors.lateralMean, c.vertexErrors.lateralSd, rng));
         longitudinal.push_back(
@@ -84,8 +95,7 @@ FormationExperimentFile runFormationExperiment(const FormationConfig& c) {
         ao.side = c.formation.side;
         ao.pixelTolerance = c.pixelTolerance;
         ao.lateral = c.lateral;
-        ao.turnNoise = c.turnNoise;
-        ao.driveNoise = c.driveNoise;
+        ao.noise = c.maneuverNoise;
         std::vector<double> lat, lon;
         const auto& ideal = step.vertex;
         for (const double dx : {-0.15, 0.0, 0.15})
@@ -105,12 +115,56 @@ FormationExperimentFile runFormationExperiment(const FormationConfig& c) {
     return f;
 }
 
-std::vector<std::string> formationExperiment(const method::ExperimentInput& in) {
-    const auto& loc = dynamic_cast<const FormationLocalizer&>(in.localizer);
+std::vector<method::WorkItem> formationWork(const FormationLocalizer& localizer,
+                                            const sim::ScenarioConfig* scenario) {
+    const auto& c = localizer.config();
+    // Measured (doc/errors.md, "Work"): about 1 ms per error-model march of 4 robots along
+    // the many-turns route (113 m), dead reckoning included, growing about as N; 0.17 s per
+    // camera start (Algorithm 1 on rendered frames); the pixel mode's simulation 150 us per
+    // robot and step (formation_pixel.ini: 6,000 steps, 5 robots, 4.4 s).
+    constexpr double kSecondsPerMarchMetre = 1e-3 / 113, kSecondsPerCameraStart = 0.17;
+    constexpr double kPixelSecondsPerRobotStep = 1.5e-4;
+    const auto length = [](const std::string& name) {
+        const auto w = route(name);
+        double m = 0;
+        for (size_t i = 1; i < w.size(); ++i) m += (w[i] - w[i - 1]).norm();
+        return m;
+    };
+    std::vector<method::WorkItem> out;
+    if (scenario && c.mode == FormationConfig::Mode::Pixel) {
+        method::WorkItem w;
+        w.what = "the pixel mode's rendered frames";
+        w.keys = "[formation] mode = pixel, [scenario] duration / dt x robots";
+        w.seconds = scenario->scenario.duration / scenario->scenario.dt *
+                    double(c.robots + 1) * kPixelSecondsPerRobotStep;
+        w.simulation = true;
+        out.push_back(w);
+    }
+    if (c.runs == 0) return out;
+    double marchMetres = 0;  // Table 1 and fig. 14, then fig. 15 on the first route
+    for (const auto& name : c.experimentRoutes)
+        marchMetres += double(c.experimentSpeeds.size()) * length(name) * double(c.robots) / 4;
+    for (size_t n = 4; n <= c.experimentRobotsMax; ++n)
+        marchMetres += length(c.experimentRoutes.front()) * double(n) / 4;
+    method::WorkItem e;
+    e.what = mrpt::format("the experiment's %zu x %zu marches", c.runs,
+                          c.experimentRoutes.size() * c.experimentSpeeds.size() +
+                              (c.experimentRobotsMax >= 4 ? c.experimentRobotsMax - 3 : 0));
+    e.keys = "[formation] runs x (experiment_routes x experiment_speeds + "
+             "experiment_robots_max - 3)";
+    e.seconds = double(c.runs) * marchMetres * kSecondsPerMarchMetre +
+                (c.cameraStarts > 0 ? 27 * kSecondsPerCameraStart : 0);
+    out.push_back(e);
+    return out;
+}
+
+std::vector<std::string> formationExperiment(
+    const method::ExperimentOf<FormationLocalizer>& in) {
+    const auto& loc = in.localizer;
     if (loc.config().runs == 0) return {};
     FormationConfig config = loc.config();
     if (!config.experimentSeedGiven) config.experimentSeed = in.seed;
-    runFormationExperiment(config).write(in.outDir);
+    runFormationExperiment(config, in.quiet).write(in.outDir);
     return {FormationExperimentFile::path(in.outDir)};
 }
 

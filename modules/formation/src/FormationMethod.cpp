@@ -21,8 +21,8 @@ namespace {
 /** Robots f1 .. fN on the strip facing east, and dr at the route's start, from [formation];
  *  [scenario] robots must not name any. */
 method::Scenario loadScenario(const mrpt::config::CConfigFileBase& ini,
-                              const common::Localizer& localizer) {
-    const FormationConfig& c = dynamic_cast<const FormationLocalizer&>(localizer).config();
+                              const FormationLocalizer& localizer) {
+    const FormationConfig& c = localizer.config();
     method::Scenario s;
     s.config = sim::ScenarioConfig::loadWithoutRobots(ini);
     std::vector<sim::RobotOptions> robots;
@@ -263,12 +263,12 @@ std::string formationSection(const report::RunView& run) {
 }  // namespace
 
 void registerMethod(method::Registry& registry) {
-    method::Method m;
+    method::MethodUnit<FormationLocalizer> m;
     m.name = "formation";
     m.sections = {"formation"};
-    m.localizer = [] { return std::make_unique<FormationLocalizer>(); };
     m.scenario = loadScenario;
     m.experiment = formationExperiment;  // seed 003 Table 1, figs. 11, 14, 15
+    m.work = formationWork;
     m.report.html = formationSection;    // its own picture: no world top view
     registry.add(std::move(m));
 }

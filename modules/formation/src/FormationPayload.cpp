@@ -104,8 +104,7 @@ CameraMoveOptions cameraMoveOptions(const FormationConfig& c) {
     o.algorithmOne.side = c.formation.side;
     o.algorithmOne.pixelTolerance = c.pixelTolerance;
     o.algorithmOne.lateral = c.lateral;
-    o.algorithmOne.turnNoise = c.turnNoise;
-    o.algorithmOne.driveNoise = c.driveNoise;
+    o.algorithmOne.noise = c.maneuverNoise;
     o.gateStop = c.gateStop;
     return o;
 }
@@ -132,12 +131,7 @@ void FormationPayload::startCameraMove(sim::Step& step) {
 
 void FormationPayload::enqueue(const std::vector<Maneuver>& maneuvers,
                                mrpt::random::CRandomGenerator& rng) {
-    for (auto m : maneuvers) {  // each maneuver is done with its relative error
-        const double noise =
-            m.kind == Maneuver::Kind::Turn ? config_.turnNoise : config_.driveNoise;
-        m.amount *= 1 + noise * rng.drawGaussian1D_normalized();
-        maneuvers_.push_back(m);
-    }
+    for (const auto& m : maneuvers) maneuvers_.push_back(executed(m, config_.maneuverNoise, rng));
 }
 
 void FormationPayload::executeManeuver(sim::Step& step) {

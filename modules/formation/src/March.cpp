@@ -114,24 +114,13 @@ MarchResult march(size_t robots, const std::vector<TPoint2D>& route,
             throw Error("formation: route point " + std::to_string(w + 1) + " is not finite");
     MarchResult r;
     r.ideal = r.actual = initialStrip(robots, s);
-    const double reach = s / std::sqrt(3.0) + 1e-9 * s;
     double time = 0;
-    size_t next = 0;
-    const auto reached = [&](const TPoint2D& wp) {
-        for (const auto& p : r.ideal)
-            if ((p - wp).norm() <= reach) return true;
-        return false;
-    };
-    while (next < route.size()) {
-        if (reached(route[next])) {
-            ++next;
-            continue;
-        }
-        if (r.moves.size() >= options.maxMoves)
-            throw Error("formation: the route needs more than " + std::to_string(options.maxMoves) +
-                        " moves");
-        const auto move = nextMove(r.ideal, route[next], obstacles, options.formation);
-        if (!move) return r;  // stuck: arrived stays false
+    RoutePlanner planner(route, options.formation, options.maxMoves);  // the team's planner
+    for (;;) {
+        const auto outcome = planner.plan(r.ideal, obstacles);
+        if (outcome == RoutePlanner::Outcome::Stuck) return r;  // arrived stays false
+        if (outcome == RoutePlanner::Outcome::Arrived) break;
+        const auto& move = planner.move();
         const size_t m = move->robot;
         const TPoint2D end = moveEnd(*move, r.ideal, r.actual, options, errors, rng);
         time += pathLength(r.ideal[m], move->path) / speed;

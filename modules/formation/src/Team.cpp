@@ -38,7 +38,9 @@ double arrivalHeading(const Move& m, const std::vector<TPoint2D>& believed) {
 
 }  // namespace
 
-Team::Team(TeamOptions options) : options_(std::move(options)) {
+Team::Team(TeamOptions options)
+    : options_(std::move(options)),
+      planner_(options_.route, options_.formation, options_.maxMoves) {
     if (options_.names.size() != options_.start.size())
         throw Error("formation: the team needs one start per robot");
     if (options_.start.size() < 4) throw Error("formation: the team needs at least 4 robots");
@@ -130,23 +132,11 @@ void Team::addScan(size_t robot, const mrpt::obs::CObservation2DRangeScan& scan)
 }
 
 void Team::plan() {
-    current_.reset();
-    const double reach = options_.formation.side / std::sqrt(3.0) * (1 + 1e-9);
-    const auto reached = [&](const TPoint2D& wp) {
-        return std::any_of(believed_.begin(), believed_.end(),
-                           [&](const TPoint2D& p) { return (p - wp).norm() <= reach; });
-    };
-    while (nextWaypoint_ < options_.route.size() && reached(options_.route[nextWaypoint_]))
-        ++nextWaypoint_;
-    if (nextWaypoint_ == options_.route.size()) {
-        state_ = State::Arrived;
-        return;
-    }
-    if (moves_.size() >= options_.maxMoves)
-        throw Error(mrpt::format("formation: the route needs more than %zu moves (max_moves)",
-                                 options_.maxMoves));
-    current_ = nextMove(believed_, options_.route[nextWaypoint_], obstacles_, options_.formation);
-    state_ = current_ ? State::Moving : State::Stuck;
+    const auto outcome = planner_.plan(believed_, obstacles_);
+    current_ = planner_.move();
+    state_ = outcome == RoutePlanner::Outcome::Move      ? State::Moving
+             : outcome == RoutePlanner::Outcome::Arrived ? State::Arrived
+                                                         : State::Stuck;
 }
 
 }  // namespace mrloc::formation

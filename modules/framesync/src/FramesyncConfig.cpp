@@ -38,8 +38,9 @@ std::vector<SonarMount> defaultMounts() {
 
 void FramesyncConfig::loadFromConfigFile(const mrpt::config::CConfigFileBase& src,
                                          const std::string& section) {
+    *this = FramesyncConfig{};  // every key absent takes the struct's default: written once
     common::IniSection s(src, section);
-    team.sharing = s.flag("sharing", true);
+    team.sharing = s.flag("sharing", team.sharing);
     std::vector<std::string> order;
     std::istringstream names(s.text("priority", ""));
     for (std::string n; names >> n;) order.push_back(n);
@@ -52,22 +53,22 @@ void FramesyncConfig::loadFromConfigFile(const mrpt::config::CConfigFileBase& sr
                               ? TeamOptions::OnRedefinition::Drop
                               : TeamOptions::OnRedefinition::Transform;
     auto& d = team.detector;
-    d.baseline = s.real("erp_baseline", 0.4, 0.005, 10);
-    d.maxPairGap = s.real("pair_gap", 1.0, d.baseline, 100);
+    d.baseline = s.real("erp_baseline", d.baseline, 0.005, 10);
+    d.maxPairGap = s.real("pair_gap", d.maxPairGap, d.baseline, 100);
     d.coneMargin = mrpt::DEG2RAD(s.real("cone_margin", 5, 0, 90));
     d.groupAngle = mrpt::DEG2RAD(s.real("group_angle", 10, 0.1, 90));
-    d.groupGap = s.real("group_gap", 0.3, 0.001, 100);
-    d.minErps = size_t(s.integer("min_erps", 16, 2, 100000));
-    d.minLength = s.real("min_wall_length", 0.5, 0, 1000);
-    d.wallLength = s.real("wall_length", 1.0, d.minLength, 1000);
+    d.groupGap = s.real("group_gap", d.groupGap, 0.001, 100);
+    d.minErps = size_t(s.integer("min_erps", long(d.minErps), 2, 100000));
+    d.minLength = s.real("min_wall_length", d.minLength, 0, 1000);
+    d.wallLength = s.real("wall_length", d.wallLength, d.minLength, 1000);
     if (!(d.wallLength > 0)) s.fail("wall_length", "must be positive");
-    d.maxResidual = s.real("max_residual", 0.04, 0, 10);
+    d.maxResidual = s.real("max_residual", d.maxResidual, 0, 10);
     d.maxRayAngle = mrpt::DEG2RAD(s.real("max_ray_angle", 15, 0, 90));
     auto& m = team.manager;
     m.match.maxBearing = mrpt::DEG2RAD(s.real("max_bearing", 20, 0.01, 90));
-    m.match.maxDistance = s.real("max_distance", 0.5, 1e-3, 100);
-    m.match.minOverlap = s.real("min_overlap", 0.3, 0, 1000);
-    m.maxAge = s.real("max_age", 30, 0.1, 1e6);
+    m.match.maxDistance = s.real("max_distance", m.match.maxDistance, 1e-3, 100);
+    m.match.minOverlap = s.real("min_overlap", m.match.minOverlap, 0, 1000);
+    m.maxAge = s.real("max_age", m.maxAge, 0.1, 1e6);
     // the simulator's sonars
     rig.mounts.clear();
     for (const auto& key : s.keys()) {
@@ -90,14 +91,14 @@ void FramesyncConfig::loadFromConfigFile(const mrpt::config::CConfigFileBase& sr
     if (rig.mounts.size() > size_t(kMaxSonars))
         s.fail("sonar_", mrpt::format("at most %ld sonars", kMaxSonars));
     rig.aperture = mrpt::DEG2RAD(s.real("sonar_aperture", 25, 0.5, 120));
-    rig.minRange = s.real("sonar_min_range", 0.05, 0, 100);
-    rig.maxRange = s.real("sonar_max_range", 4, rig.minRange + 1e-3, 100);
-    rig.sigma = s.real("sonar_sigma", 0.01, 0, 1);
-    rig.rate = s.real("sonar_rate", 10, 0.1, 1000);
+    rig.minRange = s.real("sonar_min_range", rig.minRange, 0, 100);
+    rig.maxRange = s.real("sonar_max_range", rig.maxRange, rig.minRange + 1e-3, 100);
+    rig.sigma = s.real("sonar_sigma", rig.sigma, 0, 1);
+    rig.rate = s.real("sonar_rate", rig.rate, 0.1, 1000);
     rig.fanStep = mrpt::DEG2RAD(s.real("sonar_fan_step", 0.5, 0.05, 10));
     // the experiment
-    experimentSeeds = size_t(s.integer("experiment_seeds", 50, 0, kMaxSeeds));
-    sweepSeeds = size_t(s.integer("experiment_sweep_seeds", 20, 0, kMaxSeeds));
+    experimentSeeds = size_t(s.integer("experiment_seeds", long(experimentSeeds), 0, kMaxSeeds));
+    sweepSeeds = size_t(s.integer("experiment_sweep_seeds", long(sweepSeeds), 0, kMaxSeeds));
     sweepNoise = sweep(s, "experiment_noise", sweepNoise, 0, 1);
     sweepDrift = sweep(s, "experiment_drift", sweepDrift, 0, 100);
     s.finish();

@@ -21,8 +21,8 @@ namespace {
 
 /** Robots from [scenario] robots and their [robot.<name>] sections. */
 method::Scenario loadScenario(const mrpt::config::CConfigFileBase& ini,
-                              const common::Localizer& localizer) {
-    const auto& c = dynamic_cast<const FramesyncLocalizer&>(localizer).config();
+                              const FramesyncLocalizer& localizer) {
+    const auto& c = localizer.config();
     method::Scenario s;
     s.config = sim::ScenarioConfig::load(ini);
     s.payload = std::make_unique<FramesyncPayload>(c, s.config.scenario.dt);
@@ -275,12 +275,12 @@ std::string framesyncSection(const report::RunView& run) {
 }  // namespace
 
 void registerMethod(method::Registry& registry) {
-    method::Method m;
+    method::MethodUnit<FramesyncLocalizer> m;
     m.name = "framesync";
     m.sections = {"framesync"};
-    m.localizer = [] { return std::make_unique<FramesyncLocalizer>(); };
     m.scenario = loadScenario;
     m.experiment = framesyncExperiment;  // seed 004 sec. 5.2 over seeds, noises, drifts
+    m.work = framesyncWork;
     m.report.html = framesyncSection;    // its own picture (fig. 7): no world top view
     registry.add(std::move(m));
 }

@@ -68,7 +68,17 @@ std::optional<Wall> WallDetector::add(const SonarReading& r) {
             history_.clear();
     }
     const auto erps = erpsOf(r);
-    history_.push_back(r);
+    // A reading from the same pose as the one before it replaces it: erpsOf would pick the
+    // newer of the two anyway (same distance to any later reading), and a robot standing
+    // still then keeps one reading, not one per echo (the search was quadratic in the time
+    // stood). Beyond kMaxHistory readings within a baseline of travel, the oldest go.
+    const auto& s = r.sensor;
+    if (!history_.empty() && history_.back().sensor.x() == s.x() &&
+        history_.back().sensor.y() == s.y() && history_.back().sensor.phi() == s.phi())
+        history_.back() = r;
+    else
+        history_.push_back(r);
+    if (history_.size() > kMaxHistory) history_.pop_front();
     if (!erps) return std::nullopt;
     std::optional<Wall> out;
     if (!group_.empty()) {

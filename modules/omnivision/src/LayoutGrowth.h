@@ -7,6 +7,7 @@
 //  - LayoutGrower: places a seed triangle and grows the layout where rays of placed robots
 //    meet (LayoutGrowth.cpp), then polishes positions and relabels images (LayoutPolish.cpp);
 //  - identify() (SeedAndGrow.cpp) tries seeds until a layout labels nearly every image.
+#include <mrloc/common/Error.h>
 #include <mrloc/omnivision/TriangleSearch.h>
 
 #include <Eigen/Cholesky>
@@ -88,7 +89,9 @@ struct Candidate {
 /** Each camera's images and the signed angles between them. */
 class ImageTable {
  public:
-    explicit ImageTable(const Snapshot& s);
+    explicit ImageTable(const Snapshot& s, size_t maxVisits = size_t(-1));
+    /** Angle pairs forPairsNear has handed out so far. */
+    size_t visits() const { return visits_; }
 
     const Snapshot& snapshot() const { return snapshot_; }
     int robots() const { return int(snapshot_.robots()); }
@@ -110,7 +113,10 @@ class ImageTable {
         const auto scan = [&](double lo, double hi) {
             auto it = std::lower_bound(ps.begin(), ps.end(), lo,
                                        [](const PairAngle& p, double v) { return p.angle < v; });
-            for (; it != ps.end() && it->angle <= hi; ++it) f(it->from, it->to);
+            for (; it != ps.end() && it->angle <= hi; ++it) {
+                if (++visits_ > maxVisits_) throw tooMuchWork();
+                f(it->from, it->to);
+            }
         };
         scan(delta - tol, delta + tol);
         if (delta - tol < -M_PI) scan(delta - tol + 2 * M_PI, M_PI);
@@ -122,8 +128,12 @@ class ImageTable {
     int findImage(const Labels& labels, int r, double b, double tol) const;
 
  private:
+    Error tooMuchWork() const;
+
     const Snapshot& snapshot_;
     std::vector<std::vector<PairAngle>> pairs_;
+    mutable size_t visits_ = 0;  // the work meter: a search's cost, bounded by maxVisits_
+    size_t maxVisits_;
 };
 
 /** Tries a seed; true stops the search. */

@@ -143,9 +143,8 @@ OmniSetup omniSetupOf(const OmniOptions& o, const std::vector<std::string>& robo
 namespace {
 
 method::Scenario loadScenario(const mrpt::config::CConfigFileBase& ini,
-                              const common::Localizer& /*localizer*/) {
-    OmniOptions o;
-    o.loadFromConfigFile(ini, "omnivision");
+                              const OmniLocalizer& localizer) {
+    const OmniOptions& o = localizer.options();
     method::Scenario s;
     if (o.swarm > 0) {
         s.config = sim::ScenarioConfig::loadWithoutRobots(ini);
@@ -162,19 +161,50 @@ method::Scenario loadScenario(const mrpt::config::CConfigFileBase& ini,
 
 /** The accuracy sweep ([omnivision] accuracy_trials > 0): Monte Carlo on the run's true
  *  layout with its sightings, written to accuracy.txt. */
-std::vector<std::string> accuracySweepStep(const method::ExperimentInput& in) {
-    OmniOptions o;
-    o.loadFromConfigFile(in.ini, "omnivision");
+std::vector<std::string> accuracySweepStep(const method::ExperimentOf<OmniLocalizer>& in) {
+    const OmniOptions& o = in.localizer.options();
     if (o.accuracyTrials <= 0) return {};
     if (in.truth.empty())
         throw Error("[omnivision] accuracy_trials: the sweep needs the run's ground truth");
-    const auto& loc = dynamic_cast<const OmniLocalizer&>(in.localizer);
-    const auto layout = loc.accuracyLayout(in.truth);
+    const auto layout = in.localizer.accuracyLayout(in.truth);
     AccuracyFile file;
     file.distanceName = layout.proposed ? "odometer" : "LiDAR";
     file.points = accuracySweep(layout, o.accuracyTrials, in.seed);
     file.write(in.outDir);
     return {AccuracyFile::path(in.outDir)};
+}
+
+/** The work the configuration asks (method/Work.h): the rendered panoramas and the
+ *  accuracy sweep. */
+std::vector<method::WorkItem> omnivisionWork(const OmniLocalizer& localizer,
+                                             const sim::ScenarioConfig* scenario) {
+    const OmniOptions& o = localizer.options();
+    // Measured (doc/errors.md, "Work"): rendering costs 32 ns per panorama pixel
+    // (omnivision_5robots.ini at 640 to 2560 x 960 px per view), and holds the strip twice
+    // (render target and image, 3 bytes a pixel); a trial of the accuracy sweep 2.1 ms with
+    // 5 robots, taken to grow as N^3 (the refinement's normal equations).
+    constexpr double kSecondsPerPixel = 3.2e-8, kSecondsPerTrial = 2.1e-3;
+    const double robots = scenario ? double(scenario->robots.size()) : double(o.swarm);
+    std::vector<method::WorkItem> out;
+    if (scenario && o.render) {
+        const double pixels =
+            double(o.panorama.views) * double(o.panorama.viewWidth) * double(o.panorama.height);
+        method::WorkItem w;
+        w.what = mrpt::format("%.0f rendered panoramas", double(o.snapshotTimes().size()) * robots);
+        w.keys = "[omnivision] views x view_width x view_height, per robot and snapshot";
+        w.seconds = pixels * double(o.snapshotTimes().size()) * robots * kSecondsPerPixel;
+        w.memory = 2 * 3 * pixels;
+        w.simulation = true;
+        out.push_back(w);
+    }
+    if (o.accuracyTrials > 0) {
+        method::WorkItem w;
+        w.what = "the accuracy sweep";
+        w.keys = "[omnivision] accuracy_trials";
+        w.seconds = double(o.accuracyTrials) * kSecondsPerTrial * std::pow(robots / 5, 3);
+        out.push_back(w);
+    }
+    return out;
 }
 
 std::string omnivisionSection(const report::RunView& run) {
@@ -266,12 +296,12 @@ std::string omnivisionSection(const report::RunView& run) {
 }  // namespace
 
 void registerMethod(method::Registry& registry) {
-    method::Method m;
+    method::MethodUnit<OmniLocalizer> m;
     m.name = "omnivision";
     m.sections = {"omnivision"};
-    m.localizer = [] { return std::make_unique<OmniLocalizer>(); };
     m.scenario = loadScenario;
     m.experiment = accuracySweepStep;
+    m.work = omnivisionWork;
     m.report.html = omnivisionSection;  // its own picture: no world top view
     registry.add(std::move(m));
 }

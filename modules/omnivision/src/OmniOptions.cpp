@@ -10,11 +10,18 @@ namespace mrloc::omnivision {
 
 namespace {
 
-std::vector<std::pair<std::string, std::string>> parsePairs(common::IniSection& s,
-                                                            const std::string& key,
-                                                            const std::string& def) {
-    std::vector<std::pair<std::string, std::string>> out;
-    std::stringstream list(s.text(key, def));
+using Pairs = std::vector<std::pair<std::string, std::string>>;
+
+/** "A B, C D": the INI's text of a list of pairs. */
+std::string pairsText(const Pairs& pairs) {
+    std::string list;
+    for (const auto& [a, b] : pairs) list += (list.empty() ? "" : ", ") + a + " " + b;
+    return list;
+}
+
+Pairs parsePairs(common::IniSection& s, const std::string& key, const Pairs& def) {
+    Pairs out;
+    std::stringstream list(s.text(key, pairsText(def)));
     for (std::string item; std::getline(list, item, ',');) {
         std::istringstream in(item);
         std::string a, b, extra;
@@ -29,50 +36,49 @@ std::vector<std::pair<std::string, std::string>> parsePairs(common::IniSection& 
 
 void OmniOptions::loadFromConfigFile(const mrpt::config::CConfigFileBase& src,
                                      const std::string& section) {
+    *this = OmniOptions{};  // every key absent takes the struct's default: written once
     common::IniSection s(src, section);
     method = s.choice("method", "proposed", {"proposed", "conventional"});
-    pairs = parsePairs(s, "pairs", "A B");
+    pairs = parsePairs(s, "pairs", pairs);
     if (pairs.empty()) s.fail("pairs", "at least one pair of robots to stop");
-    tb = s.real("t_b", 10, 0, 1e6);
-    te = s.real("t_e", 12, 0, 1e6);
+    tb = s.real("t_b", tb, 0, 1e6);
+    te = s.real("t_e", te, 0, 1e6);
     if (te <= tb) s.fail("t_e", mrpt::format("must be after t_b (%g)", tb));
-    roundPeriod = s.real("round_period", 10, 0, 1e6);
+    roundPeriod = s.real("round_period", roundPeriod, 0, 1e6);
     if (pairs.size() > 1 && roundPeriod <= te - tb)
         s.fail("round_period", "must exceed t_e - t_b when several pairs are listed");
-    const auto measured = parsePairs(s, "measured_pair", "A B");
+    const auto measured = parsePairs(s, "measured_pair", {measuredPair});
     if (measured.size() != 1) s.fail("measured_pair", "exactly one pair");
     measuredPair = measured[0];
-    snapshot = s.real("snapshot", 10, 0, 1e6);
-    lidarSigma = s.real("lidar_sigma", 0.01, 0, 10);
+    snapshot = s.real("snapshot", snapshot, 0, 1e6);
+    lidarSigma = s.real("lidar_sigma", lidarSigma, 0, 10);
     render = s.choice("camera", "render", {"render", "bearings"}) == "render";
-    panorama.views = int(s.integer("views", 4, 3, 12));
-    panorama.viewWidth = int(s.integer("view_width", 512, 32, 8192));
-    panorama.height = int(s.integer("view_height", 64, 8, 4096));
-    bearingSigma = s.real("bearing_sigma", 0.05, 0, 10);
-    maxRange = s.real("max_range", 0, 0, 1e6);
-    markerRadius = s.real("marker_radius", 0.15, 1e-3, 10);
-    markerHeight = s.real("marker_height", 0.2, 1e-3, 10);
-    cameraHeight = s.real("camera_height", 0.5, 0, 100);
-    sumTolerance = s.real("sum_tolerance", 0, 0, 30);
-    bearingTolerance = s.real("bearing_tolerance", 0, 0, 30);
-    odometerSigma = s.real("odometer_sigma", 0.02, 1e-6, 1);
-    refine = s.flag("refine", true);
-    swarm = int(s.integer("swarm", 0, 0, 1000));
+    panorama.views = int(s.integer("views", long(panorama.views), 3, 12));
+    panorama.viewWidth = int(s.integer("view_width", long(panorama.viewWidth), 32, 8192));
+    panorama.height = int(s.integer("view_height", long(panorama.height), 8, 4096));
+    bearingSigma = s.real("bearing_sigma", bearingSigma, 0, 10);
+    maxRange = s.real("max_range", maxRange, 0, 1e6);
+    markerRadius = s.real("marker_radius", markerRadius, 1e-3, 10);
+    markerHeight = s.real("marker_height", markerHeight, 1e-3, 10);
+    cameraHeight = s.real("camera_height", cameraHeight, 0, 100);
+    sumTolerance = s.real("sum_tolerance", sumTolerance, 0, 30);
+    bearingTolerance = s.real("bearing_tolerance", bearingTolerance, 0, 30);
+    odometerSigma = s.real("odometer_sigma", odometerSigma, 1e-6, 1);
+    refine = s.flag("refine", refine);
+    swarm = int(s.integer("swarm", long(swarm), 0, 1000));
     if (swarm > 0 && swarm < 3) s.fail("swarm", "a swarm has at least 3 robots (0: none)");
-    swarmArea = s.real("swarm_area", 20, 1, 1e4);
-    swarmSpeed = s.real("swarm_speed", 0.3, 0, 10);
-    swarmSeparation = s.real("swarm_separation", 1.0, 0, 100);
-    swarmSeed = (unsigned long)s.integer("swarm_seed", 1, 0, 4294967295L);
-    accuracyTrials = int(s.integer("accuracy_trials", 0, 0, 100000));
+    swarmArea = s.real("swarm_area", swarmArea, 1, 1e4);
+    swarmSpeed = s.real("swarm_speed", swarmSpeed, 0, 10);
+    swarmSeparation = s.real("swarm_separation", swarmSeparation, 0, 100);
+    swarmSeed = (unsigned long)s.integer("swarm_seed", long(swarmSeed), 0, 4294967295L);
+    accuracyTrials = int(s.integer("accuracy_trials", long(accuracyTrials), 0, 100000));
     s.finish();
 }
 
 void OmniOptions::saveToConfigFile(mrpt::config::CConfigFileBase& t,
                                    const std::string& section) const {
-    std::string list;
-    for (const auto& [a, b] : pairs) list += (list.empty() ? "" : ", ") + a + " " + b;
     t.write(section, "method", method);
-    t.write(section, "pairs", list);
+    t.write(section, "pairs", pairsText(pairs));
     t.write(section, "t_b", tb);
     t.write(section, "t_e", te);
     t.write(section, "round_period", roundPeriod);

@@ -28,7 +28,7 @@ constexpr double kDoneShare = 0.9;
 }  // namespace
 
 Identification identify(const Snapshot& s, const SearchOptions& o) {
-    const ImageTable table(s);
+    const ImageTable table(s, o.maxPairVisits(s.robots()));
     const LayoutGrower grower(table, o);
     const int n = int(s.robots());
     size_t placeable = 0;
@@ -63,6 +63,7 @@ Identification identify(const Snapshot& s, const SearchOptions& o) {
     }
     auto id = consistentTriangles(s, std::move(labels), o.sumTolerance);
     id.candidates = tried;
+    id.pairVisits = table.visits();
     return id;
 }
 

@@ -1,4 +1,6 @@
 // Seed and grow: the image table and the seed triangles it offers.
+#include <mrpt/core/format.h>
+
 #include <map>
 #include <set>
 #include <tuple>
@@ -7,7 +9,16 @@
 
 namespace mrloc::omnivision::seedgrow {
 
-ImageTable::ImageTable(const Snapshot& s) : snapshot_(s), pairs_(s.robots()) {
+Error ImageTable::tooMuchWork() const {
+    return Error(mrpt::format(
+        "[omnivision] sum_tolerance, bearing_tolerance, bearing_sigma: the identification of "
+        "%zu robots examined over %zu angle pairs without settling (tolerances too loose for "
+        "the bearings' noise; doc/errors.md, \"Work\")",
+        snapshot_.robots(), maxVisits_));
+}
+
+ImageTable::ImageTable(const Snapshot& s, size_t maxVisits)
+    : snapshot_(s), pairs_(s.robots()), maxVisits_(maxVisits) {
     for (int r = 0; r < robots(); ++r) {
         const auto& v = view(r);
         for (int e = 0; e < int(v.size()); ++e)

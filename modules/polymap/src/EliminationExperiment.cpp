@@ -242,11 +242,48 @@ std::string sweepSection(const std::string& dir) {
 
 }  // namespace
 
+std::vector<method::WorkItem> polymapWork(const PolymapLocalizer& localizer,
+                                          const sim::ScenarioConfig* scenario) {
+    const PolymapOptions& o = localizer.options();
+    // Measured (doc/errors.md, "Work") on the steps map of n = 148 vertices: a scan costs
+    // 0.4 ms and 1 us per ray, and the rawlog keeps 3.5 bytes per ray (gzip); the randomized
+    // algorithm's column of the experiment 1 ms per random point, with the map's 12
+    // hypotheses. Both are taken to grow with n.
+    constexpr double kSecondsPerScan = 4e-4, kSecondsPerRay = 1e-6, kBytesPerRay = 3.5;
+    constexpr double kSecondsPerRandomPoint = 1e-3;
+    const double n = double(localizer.generatedMap().polygon.size()), mapFactor =
+                                                                      std::max(1.0, n / 148);
+    std::vector<method::WorkItem> out;
+    if (scenario && o.scanRate > 0) {
+        const double scans = scenario->scenario.duration * o.scanRate;
+        method::WorkItem w;
+        w.what = mrpt::format("%.0f scans of %d rays", scans, o.scanRays);
+        w.keys = "[polymap] scan_rate x scan_rays x [scenario] duration";
+        w.seconds = scans * (kSecondsPerScan + double(o.scanRays) * kSecondsPerRay) * mapFactor;
+        w.bytes = scans * double(o.scanRays) * kBytesPerRay;
+        w.simulation = true;
+        out.push_back(w);
+    }
+    if (std::find(o.elimination.begin(), o.elimination.end(), ProbeStrategy::Randomized) !=
+        o.elimination.end()) {
+        double points = 0;
+        for (const int x : o.randomPoints) points += x;
+        method::WorkItem w;
+        w.what = "the experiment's randomized columns";
+        w.keys = "[polymap] random_points";
+        w.seconds = points * kSecondsPerRandomPoint * mapFactor *
+                    double(1 + o.sweepSteps.size() * size_t(o.sweepStarts) / 12);
+        out.push_back(w);
+    }
+    return out;
+}
+
 /** Seed 002's experiment (Tables 1-2) on the run's hypotheses: every hypothesis in turn the
  *  truth, every configured algorithm, closed loop with exact views, deciding with the
  *  tolerance the hypotheses were generated with; then the sweep over n, if asked. */
-std::vector<std::string> eliminationExperiment(const method::ExperimentInput& in) {
-    const auto& loc = dynamic_cast<const PolymapLocalizer&>(in.localizer);
+std::vector<std::string> eliminationExperiment(
+    const method::ExperimentOf<PolymapLocalizer>& in) {
+    const auto& loc = in.localizer;
     const PolymapOptions& o = loc.options();
     if (o.elimination.empty()) return {};
     if (loc.results().empty())

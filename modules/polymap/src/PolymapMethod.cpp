@@ -99,8 +99,7 @@ namespace {
 /** One robot at the [polymap] start in the localizer's map (built once, when the localizer
  *  was configured); [robot.<name>] is optional and may not set a start. */
 method::Scenario loadScenario(const mrpt::config::CConfigFileBase& ini,
-                              const common::Localizer& localizer) {
-    const auto& polymap = dynamic_cast<const PolymapLocalizer&>(localizer);
+                              const PolymapLocalizer& polymap) {
     const PolymapOptions& o = polymap.options();
     const GeneratedMap& map = polymap.generatedMap();
     const auto start = o.startIn(map);
@@ -228,12 +227,12 @@ std::string polymapSection(const report::RunView& run) {
 }  // namespace
 
 void registerMethod(method::Registry& registry) {
-    method::Method m;
+    method::MethodUnit<PolymapLocalizer> m;
     m.name = "polymap";
     m.sections = {"polymap"};
-    m.localizer = [] { return std::make_unique<PolymapLocalizer>(); };
     m.scenario = loadScenario;
     m.experiment = eliminationExperiment;  // seed 002 Tables 1-2, Figs. 6-7
+    m.work = polymapWork;
     m.report.html = polymapSection;        // its own picture: no world top view
     registry.add(std::move(m));
 }

@@ -12,9 +12,10 @@ namespace mrloc::polymap {
 
 void PolymapOptions::loadFromConfigFile(const mrpt::config::CConfigFileBase& src,
                                         const std::string& section) {
+    *this = PolymapOptions{};  // every key absent takes the struct's default: written once
     common::IniSection s(src, section);
     origin_ = common::configOrigin(src) + ": [" + section + "]";
-    mapFile = s.text("map", "");
+    mapFile = s.text("map", mapFile);
     if (!mapFile.empty()) {
         // a relative path is the INI's: the file works from any folder, and effective.ini
         // keeps the resolved path
@@ -31,39 +32,39 @@ void PolymapOptions::loadFromConfigFile(const mrpt::config::CConfigFileBase& src
     generator = s.choice("generator", "steps", {"steps", "rooms"});
     if (!mapFile.empty() && s.has("generator"))
         s.fail("generator", "give either map = <file.poly> or a generator, not both");
-    steps.steps = (int)s.integer("steps", 6, 1, 1000);
-    steps.branchesPerStep = (int)s.integer("branches_per_step", 2, 1, 100);
-    steps.stepWidth = s.real("step_width", 16, 1e-3, 1e4);
-    steps.stepRise = s.real("step_rise", 2, 1e-3, 1e4);
-    steps.corridorHeight = s.real("corridor_height", 4, 1e-3, 1e4);
-    steps.branchWidth = s.real("branch_width", 1, 1e-3, 1e4);
-    steps.branchLeg = s.real("branch_leg", 2, 1e-3, 1e4);
-    rooms.rooms = (int)s.integer("rooms", 4, 1, 1000);
-    rooms.roomSteps = (int)s.integer("room_steps", 4, 1, 1000);
-    rooms.roomWidth = s.real("room_width", 6, 1e-3, 1e4);
-    rooms.roomHeightMin = s.real("room_height_min", 2, 1e-3, 1e4);
-    rooms.roomHeightMax = s.real("room_height_max", 5, 1e-3, 1e4);
-    rooms.neckWidth = s.real("neck_width", 1, 1e-3, 1e4);
-    rooms.neckLength = s.real("neck_length", 1.5, 1e-3, 1e4);
-    rooms.roomGap = s.real("room_gap", 1.5, 1e-3, 1e4);
-    rooms.rightMargin = s.real("right_margin", 0, 0, 1e4);
-    mapSeed = (unsigned long)s.integer("map_seed", 1, 0, 4294967295L);
+    steps.steps = (int)s.integer("steps", long(steps.steps), 1, 1000);
+    steps.branchesPerStep = (int)s.integer("branches_per_step", long(steps.branchesPerStep), 1, 100);
+    steps.stepWidth = s.real("step_width", steps.stepWidth, 1e-3, 1e4);
+    steps.stepRise = s.real("step_rise", steps.stepRise, 1e-3, 1e4);
+    steps.corridorHeight = s.real("corridor_height", steps.corridorHeight, 1e-3, 1e4);
+    steps.branchWidth = s.real("branch_width", steps.branchWidth, 1e-3, 1e4);
+    steps.branchLeg = s.real("branch_leg", steps.branchLeg, 1e-3, 1e4);
+    rooms.rooms = (int)s.integer("rooms", long(rooms.rooms), 1, 1000);
+    rooms.roomSteps = (int)s.integer("room_steps", long(rooms.roomSteps), 1, 1000);
+    rooms.roomWidth = s.real("room_width", rooms.roomWidth, 1e-3, 1e4);
+    rooms.roomHeightMin = s.real("room_height_min", rooms.roomHeightMin, 1e-3, 1e4);
+    rooms.roomHeightMax = s.real("room_height_max", rooms.roomHeightMax, 1e-3, 1e4);
+    rooms.neckWidth = s.real("neck_width", rooms.neckWidth, 1e-3, 1e4);
+    rooms.neckLength = s.real("neck_length", rooms.neckLength, 1e-3, 1e4);
+    rooms.roomGap = s.real("room_gap", rooms.roomGap, 1e-3, 1e4);
+    rooms.rightMargin = s.real("right_margin", rooms.rightMargin, 0, 1e4);
+    mapSeed = (unsigned long)s.integer("map_seed", long(mapSeed), 0, 4294967295L);
     start.reset();
     if (s.has("start")) {
         const auto xy = s.requireReals("start", 2);
         start = TPoint2D{xy[0], xy[1]};
         if (s.has("start_site")) s.fail("start_site", "give either start = x y or start_site");
     }
-    startSite = (int)s.integer("start_site", 1, 1, 1000000);
+    startSite = (int)s.integer("start_site", long(startSite), 1, 1000000);
     if (!start && !mapFile.empty()) s.fail("start", "required with a map file (start = x y)");
-    heading = s.real("heading", 0, -360, 360);
-    scanRays = (int)s.integer("scan_rays", 1440, 16, 100000);
-    scanRangeSigma = s.real("scan_range_sigma", 0.005, 0, 10);
-    scanMaxRange = s.real("scan_max_range", 100, 1e-3, 1e6);
-    scanRate = s.real("scan_rate", 0, 0, 1000);
-    tolerance = s.real("tolerance", 0, 0, 1e3);
-    angleTolerance = s.real("angle_tolerance", 3, 1e-6, 45);
-    breakAngle = s.real("break_angle", 10, 1, 45);
+    heading = s.real("heading", heading, -360, 360);
+    scanRays = (int)s.integer("scan_rays", long(scanRays), 16, 100000);
+    scanRangeSigma = s.real("scan_range_sigma", scanRangeSigma, 0, 10);
+    scanMaxRange = s.real("scan_max_range", scanMaxRange, 1e-3, 1e6);
+    scanRate = s.real("scan_rate", scanRate, 0, 1000);
+    tolerance = s.real("tolerance", tolerance, 0, 1e3);
+    angleTolerance = s.real("angle_tolerance", angleTolerance, 1e-6, 45);
+    breakAngle = s.real("break_angle", breakAngle, 1, 45);
     elimination.clear();
     std::istringstream names(s.text("elimination", "none"));
     std::vector<std::string> list{std::istream_iterator<std::string>(names), {}};
@@ -84,8 +85,8 @@ void PolymapOptions::loadFromConfigFile(const mrpt::config::CConfigFileBase& src
     if (randomPoints.empty()) s.fail("random_points", "give at least one X");
     if (randomPoints.size() > kMaxListValues)  // each X is a column of the whole experiment
         s.fail("random_points", "at most " + std::to_string(kMaxListValues) + " values");
-    eliminationSeed = (unsigned long)s.integer("elimination_seed", 1, 0, 4294967295L);
-    clearance = s.real("clearance", 0.1, 0, 10);
+    eliminationSeed = (unsigned long)s.integer("elimination_seed", long(eliminationSeed), 0, 4294967295L);
+    clearance = s.real("clearance", clearance, 0, 10);
     sweepSteps.clear();
     for (const double x : s.reals("sweep_steps", {})) {
         if (x < 1 || x > 1000 || x != std::floor(x))
@@ -98,7 +99,7 @@ void PolymapOptions::loadFromConfigFile(const mrpt::config::CConfigFileBase& src
         s.fail("sweep_steps", "the sweep is over steps maps: needs generator = steps");
     if (!sweepSteps.empty() && elimination.empty())
         s.fail("sweep_steps", "give the algorithms to sweep in elimination = ...");
-    sweepStarts = (int)s.integer("sweep_starts", 12, 1, 100000);
+    sweepStarts = (int)s.integer("sweep_starts", long(sweepStarts), 1, 100000);
     drive.reset();
     if (const std::string d = s.text("drive", "none"); d != "none") {
         try {

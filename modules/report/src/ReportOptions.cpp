@@ -5,9 +5,10 @@ namespace mrloc::report {
 
 void ReportOptions::loadFromConfigFile(const mrpt::config::CConfigFileBase& src,
                                        const std::string& section) {
+    *this = ReportOptions{};  // every key absent takes the struct's default: written once
     common::IniSection s(src, section);
-    paperCaption = s.text("paper_caption", "");
-    paperNote = s.text("paper_note", "");
+    paperCaption = s.text("paper_caption", paperCaption);
+    paperNote = s.text("paper_note", paperNote);
     s.finish();
 }
 

@@ -28,19 +28,19 @@ void RobotOptions::loadFromConfigFile(const mrpt::config::CConfigFileBase& src,
             s.fail("waypoints", "expected 'x y, x y, ...', got '" + item + "'");
         waypoints.push_back({x, y});
     }
-    loop = s.flag("loop", true);
-    speed = s.real("speed", 0.3, 1e-3, 10);
-    maxTurnRate = s.real("max_turn_rate", 1.5, 1e-3, 100);
-    odometryRate = s.real("odometry_rate", 20, 0.1, 1000);
-    odometrySigmaXY = s.real("odometry_sigma_xy", 0.02, 0, 1);
-    odometrySigmaPhi = s.real("odometry_sigma_phi", 0.01, 0, 1);
-    odometrySigmaPhiPerMetre = s.real("odometry_sigma_phi_per_m", 0.005, 0, 1);
-    odometryScaleError = s.real("odometry_scale_error", 0, -0.5, 0.5);
-    odometryScaleErrorSigma = s.real("odometry_scale_error_sigma", 0, 0, 0.5);
+    loop = s.flag("loop", loop);
+    speed = s.real("speed", speed, 1e-3, 10);
+    maxTurnRate = s.real("max_turn_rate", maxTurnRate, 1e-3, 100);
+    odometryRate = s.real("odometry_rate", odometryRate, 0.1, 1000);
+    odometrySigmaXY = s.real("odometry_sigma_xy", odometrySigmaXY, 0, 1);
+    odometrySigmaPhi = s.real("odometry_sigma_phi", odometrySigmaPhi, 0, 1);
+    odometrySigmaPhiPerMetre = s.real("odometry_sigma_phi_per_m", odometrySigmaPhiPerMetre, 0, 1);
+    odometryScaleError = s.real("odometry_scale_error", odometryScaleError, -0.5, 0.5);
+    odometryScaleErrorSigma = s.real("odometry_scale_error_sigma", odometryScaleErrorSigma, 0, 0.5);
     odometryHeadingDrift = mrpt::DEG2RAD(s.real("odometry_heading_drift", 0, -90, 90));
     odometryHeadingDriftSigma = mrpt::DEG2RAD(s.real("odometry_heading_drift_sigma", 0, 0, 90));
-    actuationSigmaV = s.real("actuation_sigma_v", 0, 0, 1);
-    actuationSigmaW = s.real("actuation_sigma_w", 0, 0, 10);
+    actuationSigmaV = s.real("actuation_sigma_v", actuationSigmaV, 0, 1);
+    actuationSigmaW = s.real("actuation_sigma_w", actuationSigmaW, 0, 10);
     for (const auto& k : methodKeys) s.allowKey(k);
     s.finish();
 }

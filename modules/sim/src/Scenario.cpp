@@ -3,7 +3,9 @@
 #include <mrloc/common/Names.h>
 #include <mrloc/sim/Scenario.h>
 #include <mrpt/core/bits_math.h>
+#include <mrpt/config/CConfigFileMemory.h>
 #include <mrpt/core/format.h>
+#include <mrpt/system/string_utils.h>
 
 #include <algorithm>
 #include <filesystem>
@@ -14,19 +16,20 @@ namespace mrloc::sim {
 
 void ScenarioOptions::loadFromConfigFile(const mrpt::config::CConfigFileBase& src,
                                          const std::string& section) {
+    *this = ScenarioOptions{};  // every key absent takes the struct's default: written once
     common::IniSection s(src, section);
-    name = s.text("name", "run");
+    name = s.text("name", name);
     common::checkName(name, common::configOrigin(src) + ": [" + section + "] name");
-    method = s.text("method", "");  // none given: the app finds it from the INI's sections
-    seed = (unsigned long)s.integer("seed", 1, 0, 4294967295L);
-    duration = s.real("duration", 60, 1e-3, 1e6);
-    dt = s.real("dt", 0.01, 1e-4, 1.0);
+    method = s.text("method", method);  // none given: the app finds it from the INI's sections
+    seed = (unsigned long)s.integer("seed", long(seed), 0, 4294967295L);
+    duration = s.real("duration", duration, 1e-3, 1e6);
+    dt = s.real("dt", dt, 1e-4, 1.0);
     if (duration / dt > kMaxSteps)
         s.fail("dt", mrpt::format("duration / dt = %.3g simulation steps, more than the %.3g "
                                   "allowed: a longer dt or a shorter duration",
                                   duration / dt, kMaxSteps));
-    startTime = s.real("start_time", 1.7e9, 1.0, 4e9);
-    groundTruthRate = s.real("ground_truth_rate", 20, 0.1, 1000);
+    startTime = s.real("start_time", startTime, 1.0, 4e9);
+    groundTruthRate = s.real("ground_truth_rate", groundTruthRate, 0.1, 1000);
     robots.clear();
     std::istringstream in(s.text("robots", ""));
     std::set<std::string> seen;
@@ -38,10 +41,10 @@ void ScenarioOptions::loadFromConfigFile(const mrpt::config::CConfigFileBase& sr
     if (robots.size() > kMaxRobots)
         s.fail("robots", "more than " + std::to_string(kMaxRobots) + " robots");
     groundTruth = {};
-    groundTruth.path = s.text("ground_truth", "");
+    groundTruth.path = s.text("ground_truth", groundTruth.path);
     groundTruth.format =
         s.choice("ground_truth_format", "tum", common::GroundTruthSource::formats());
-    groundTruth.robot = s.text("ground_truth_robot", "robot");
+    groundTruth.robot = s.text("ground_truth_robot", groundTruth.robot);
     common::checkRobotName(groundTruth.robot,
                            common::configOrigin(src) + ": [" + section + "] ground_truth_robot");
     const auto off = s.reals("ground_truth_offset", {0, 0, 0}, 3);
@@ -59,18 +62,11 @@ void ScenarioOptions::loadFromConfigFile(const mrpt::config::CConfigFileBase& sr
     s.finish();
 }
 
-void ScenarioOptions::saveToConfigFile(mrpt::config::CConfigFileBase& t,
+void ScenarioOptions::saveLocalizeKeys(mrpt::config::CConfigFileBase& t,
                                        const std::string& section) const {
     t.write(section, "name", name);
     t.write(section, "method", method);
     t.write(section, "seed", std::to_string(seed));
-    t.write(section, "duration", duration);
-    t.write(section, "dt", dt);
-    t.write(section, "start_time", mrpt::format("%.3f", startTime));
-    t.write(section, "ground_truth_rate", groundTruthRate);
-    std::string list;
-    for (const auto& r : robots) list += (list.empty() ? "" : " ") + r;
-    t.write(section, "robots", list);
     if (!groundTruth.path.empty()) {
         t.write(section, "ground_truth", groundTruth.path);
         t.write(section, "ground_truth_format", groundTruth.format);
@@ -79,6 +75,36 @@ void ScenarioOptions::saveToConfigFile(mrpt::config::CConfigFileBase& t,
                 mrpt::format("%g %g %g", groundTruth.offset.x(), groundTruth.offset.y(),
                              mrpt::RAD2DEG(groundTruth.offset.yaw())));
     }
+}
+
+bool ScenarioOptions::describesSimulation(const mrpt::config::CConfigFileBase& ini,
+                                          const std::string& section) {
+    if (!ini.sectionExists(section)) return false;
+    std::vector<std::string> keys, localizeKeys;
+    ini.getAllKeys(section, keys);
+    if (keys.empty()) return true;
+    // the localize keys are the ones saveLocalizeKeys writes, ground truth included
+    ScenarioOptions all;
+    all.groundTruth.path = "-";
+    mrpt::config::CConfigFileMemory written;
+    all.saveLocalizeKeys(written, section);
+    written.getAllKeys(section, localizeKeys);
+    const std::set<std::string> localize(localizeKeys.begin(), localizeKeys.end());
+    for (const auto& k : keys)
+        if (!localize.count(mrpt::system::lowerCase(k))) return true;
+    return false;
+}
+
+void ScenarioOptions::saveToConfigFile(mrpt::config::CConfigFileBase& t,
+                                       const std::string& section) const {
+    saveLocalizeKeys(t, section);
+    t.write(section, "duration", duration);
+    t.write(section, "dt", dt);
+    t.write(section, "start_time", mrpt::format("%.3f", startTime));
+    t.write(section, "ground_truth_rate", groundTruthRate);
+    std::string list;
+    for (const auto& r : robots) list += (list.empty() ? "" : " ") + r;
+    t.write(section, "robots", list);
 }
 
 ScenarioConfig ScenarioConfig::loadWithoutRobots(const mrpt::config::CConfigFileBase& ini) {

@@ -11,6 +11,7 @@ using mrpt::math::TPoint3D;
 
 void WorldOptions::loadFromConfigFile(const mrpt::config::CConfigFileBase& src,
                                       const std::string& section) {
+    *this = WorldOptions{};  // every key absent takes the struct's default: written once
     common::IniSection s(src, section);
     const auto size = s.reals("size", {sizeX, sizeY, height}, 3);
     for (int i = 0; i < 3; ++i)
@@ -18,7 +19,7 @@ void WorldOptions::loadFromConfigFile(const mrpt::config::CConfigFileBase& src,
     if (size[0] > kMaxSide || size[1] > kMaxSide || size[2] > kMaxHeight)
         s.fail("size", mrpt::format("at most %g x %g x %g m", kMaxSide, kMaxSide, kMaxHeight));
     sizeX = size[0], sizeY = size[1], height = size[2];
-    resolution = s.real("resolution", 0.05, 0.005, 1.0);
+    resolution = s.real("resolution", resolution, 0.005, 1.0);
     // OctoMap addresses a voxel with 16-bit keys centred on the origin.
     const double octomapReach = 32000 * resolution;
     if (std::max({sizeX, sizeY, height}) + resolution > octomapReach)

@@ -18,7 +18,7 @@ struct PanTiltAngles {
 struct PanTiltLimits {
     double panMin = -M_PI, panMax = M_PI;    ///< rad; a full turn or more: continuous rotation
     double tiltMin = 0, tiltMax = M_PI / 2;  ///< rad
-    double slewRate = M_PI;                  ///< rad/s, each joint
+    double slewRate = 2 * M_PI;              ///< rad/s, each joint (INI slew_rate, 360 deg/s)
 };
 
 class PanTiltHead {

@@ -15,13 +15,19 @@
 
 namespace mrloc::formation {
 
+/** How far a maneuver's execution strays: each turn's and drive's relative error (sd). The
+ *  pixel mode's robots and Algorithm 1's own test loop execute maneuvers through
+ *  `executed`, so both stray alike. */
+struct ManeuverNoise {
+    double turn = 0.02, drive = 0.02;
+};
+
 struct AlgorithmOneOptions {
     double side = 1.5;            ///< m, the triangles' side
     double pixelTolerance = 2.0;  ///< px: d_m1 = d_m2 and d_m1 = d_t within this (the far
                                   ///< anchor tag's centre is found within about 3 px)
     int maxManeuvers = 60;
-    double turnNoise = 0.02;     ///< relative error of each turn (sd)
-    double driveNoise = 0.02;    ///< relative error of each drive (sd)
+    ManeuverNoise noise;         ///< of each maneuver's execution
     double cameraHeight = 0.13;  ///< m, the rear camera's height (the tags' centre)
     /** The lateral condition (doc/formation.md):
      *  - Paper: d_m1 = d_m2, the base beacons symmetric about the anchor in the image (seed
@@ -77,6 +83,9 @@ struct Maneuver {
     static Maneuver turn(double angle) { return {Kind::Turn, angle}; }
     static Maneuver drive(double distance) { return {Kind::Drive, distance}; }
 };
+
+/** The maneuver as the wheels execute it: its amount times 1 + noise x N(0, 1). */
+Maneuver executed(Maneuver m, const ManeuverNoise& noise, mrpt::random::CRandomGenerator& rng);
 
 /** The rear camera on the robot's back face, looking backwards, at `height`. */
 mrpt::poses::CPose3D rearCameraPose(const mrpt::poses::CPose2D& robot, double bodySize,

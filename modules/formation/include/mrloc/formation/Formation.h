@@ -67,4 +67,29 @@ std::optional<Move> nextMove(const std::vector<TPoint2D>& believed, const TPoint
                              const std::vector<Obstacle>& obstacles,
                              const FormationOptions& options);
 
+/** Seed 003's march along a route, one move at a time: the waypoint the formation heads for
+ *  and the next move towards it. The team's on-board logic (Team) and the error-model march
+ *  (March) both plan through it, so that both take the same moves from the same beliefs. */
+class RoutePlanner {
+ public:
+    enum class Outcome { Move, Arrived, Stuck };
+    /** Throws mrloc::Error for an empty route. */
+    RoutePlanner(std::vector<TPoint2D> route, FormationOptions options, size_t maxMoves);
+    /** Skips the waypoints a believed vertex is within side / sqrt(3) of (every point is
+     *  that near a lattice vertex), then plans the next move towards the first one left.
+     *  Throws mrloc::Error naming maxMoves once that many moves have been planned. */
+    Outcome plan(const std::vector<TPoint2D>& believed, const std::vector<Obstacle>& obstacles);
+    /** The move the last plan() returned Outcome::Move with. */
+    const std::optional<Move>& move() const { return move_; }
+    size_t planned() const { return planned_; }
+
+ private:
+    std::vector<TPoint2D> route_;
+    FormationOptions options_;
+    size_t maxMoves_;
+    size_t next_ = 0;  ///< the first waypoint not reached
+    size_t planned_ = 0;
+    std::optional<Move> move_;
+};
+
 }  // namespace mrloc::formation

@@ -26,7 +26,7 @@ struct FormationConfig : public mrpt::config::CLoadableOptions {
     TPoint2D origin{3, 3};                 ///< world position of the paper's (0, 0)
     std::string routeName = "many_turns";  ///< many_turns | patrol | custom (waypoints)
     std::vector<TPoint2D> waypoints;       ///< the route, paper frame (from routeName or the INI)
-    double wheelRadius = 0.035, wheelSpeed = 5.8;  ///< m, rad/s
+    double wheelRadius = 0.035, wheelSpeed = paper::kWheelSpeedFast;  ///< m, rad/s
     double maxTurnRate = 1.5;                      ///< rad/s
     MarchOptions::Carry carry = MarchOptions::Carry::Base;
     VertexErrorModel vertexErrors;
@@ -38,14 +38,14 @@ struct FormationConfig : public mrpt::config::CLoadableOptions {
      *  moves are chained; doc/formation.md). */
     AlgorithmOneOptions::Lateral lateral = AlgorithmOneOptions::Lateral::Midpoint;
     double gateStop = 0.8;                                 ///< m before a gate to centre again
-    double turnNoise = 0.02, driveNoise = 0.02;            ///< relative sd of each maneuver
+    ManeuverNoise maneuverNoise;                           ///< turn_noise, drive_noise
     sim::ScannerOptions obstacleSensor{72, 0.01, 4.0, 0};  ///< rays, sigma, range (rate unused)
     double obstacleSensorHeight = 0.1;                     ///< m
     double obstacleCell = 0.1;  ///< m: detections are shared one per cell
     size_t maxMoves = 10000;
     // The experiment (seed 003 Table 1, figs. 14-15): 0 runs, none.
     size_t runs = 100;
-    std::vector<double> experimentSpeeds{5.8, 2.9};  ///< rad/s
+    std::vector<double> experimentSpeeds{paper::kWheelSpeedFast, paper::kWheelSpeedSlow};
     std::vector<std::string> experimentRoutes{"many_turns", "patrol"};
     size_t experimentRobotsMax = 10;  ///< fig. 15: N = 4 .. this
     size_t cameraStarts = 27;         ///< Algorithm 1 from pixels: a 3 x 3 x 3 grid, or 0

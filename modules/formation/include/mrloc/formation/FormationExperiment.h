@@ -5,16 +5,23 @@
 // errors: the paper's, the error model's draws, and Algorithm 1 from rendered frames.
 #include <mrloc/formation/FormationConfig.h>
 #include <mrloc/formation/FormationFiles.h>
+#include <mrloc/formation/FormationLocalizer.h>
 #include <mrloc/method/Registry.h>
 
 namespace mrloc::formation {
 
 /** The whole experiment from [formation]'s keys (runs, experiment_*, camera_starts); the
  *  same seed gives the same file. */
-FormationExperimentFile runFormationExperiment(const FormationConfig& config);
+FormationExperimentFile runFormationExperiment(const FormationConfig& config, bool quiet = true);
 
 /** The registered experiment step: runs it when runs > 0 and writes
  *  formation.experiment.txt. */
-std::vector<std::string> formationExperiment(const method::ExperimentInput& in);
+/** The work the configuration asks (method/Work.h): the pixel mode's frames and the
+ *  experiment's marches. */
+std::vector<method::WorkItem> formationWork(const FormationLocalizer& localizer,
+                                            const sim::ScenarioConfig* scenario);
+
+std::vector<std::string> formationExperiment(
+    const method::ExperimentOf<FormationLocalizer>& in);
 
 }  // namespace mrloc::formation

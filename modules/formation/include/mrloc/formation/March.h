@@ -4,6 +4,7 @@
 // per-step errors put it (seed 003 fig. 11), for fast Monte Carlo.
 #include <mrloc/formation/DeadReckoning.h>
 #include <mrloc/formation/Formation.h>
+#include <mrloc/formation/PaperValues.h>
 #include <mrpt/random/RandomGenerators.h>
 
 #include <vector>
@@ -16,8 +17,9 @@ namespace mrloc::formation {
  *  magnitude is drawn from the gamma distribution with that mean and deviation (positive,
  *  skewed like the paper's CDFs), its sign fair. */
 struct VertexErrorModel {
-    double lateralMean = 0.036, lateralSd = 0.021;            ///< m
-    double longitudinalMean = 0.013, longitudinalSd = 0.009;  ///< m
+    double lateralMean = paper::kLateralMean, lateralSd = paper::kLateralSd;  ///< m
+    double longitudinalMean = paper::kLongitudinalMean;                       ///< m
+    double longitudinalSd = paper::kLongitudinalSd;                           ///< m
 };
 
 /** A magnitude from gamma(mean, sd) (Marsaglia-Tsang on MRPT's generator), signed fairly. */
@@ -26,7 +28,7 @@ double drawAxisError(double mean, double sd, mrpt::random::CRandomGenerator& rng
 struct MarchOptions {
     FormationOptions formation;
     double wheelRadius = 0.035;  ///< m: speed = wheelRadius x wheelSpeed (the paper's R was lost)
-    double wheelSpeed = 5.8;   ///< rad/s, the intended wheel rotational speed (seed 003: 5.8, 2.9)
+    double wheelSpeed = paper::kWheelSpeedFast;  ///< rad/s, the intended wheel speed
     size_t maxMoves = 100000;  ///< a route that needs more is refused
     /** How a move's error carries on to the next (doc/formation.md). The paper says only that
      *  the per-step errors "accumulate with each successive movement". */

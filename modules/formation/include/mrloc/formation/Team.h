@@ -77,7 +77,7 @@ class Team {
     std::vector<bool> scanned_;
     std::optional<Move> current_;
     std::vector<MoveEvent> moves_;
-    size_t nextWaypoint_ = 0;
+    RoutePlanner planner_;
     std::map<std::pair<long, long>, size_t> cells_;  ///< cell -> index in obstacles_
     std::vector<Obstacle> obstacles_;
 };

@@ -6,6 +6,7 @@
 // systems), sharing one world; runs are spread over the cores and deterministic per seed.
 #include <mrloc/framesync/FramesyncConfig.h>
 #include <mrloc/framesync/FramesyncFiles.h>
+#include <mrloc/framesync/FramesyncLocalizer.h>
 #include <mrloc/framesync/FramesyncPayload.h>
 #include <mrloc/method/Registry.h>
 #include <mrloc/sim/Scenario.h>
@@ -22,9 +23,15 @@ ExperimentRun simulateRun(const sim::ScenarioConfig& scenario, const FramesyncCo
 /** The runs [framesync] asks for: experiment_seeds as given, then experiment_sweep_seeds
  *  for each experiment_noise and each experiment_drift. */
 FramesyncExperimentFile runExperiment(const sim::ScenarioConfig& scenario,
-                                      const FramesyncConfig& config);
+                                      const FramesyncConfig& config, bool quiet = true);
 
 /** The registered experiment step: writes framesync.experiment.txt. */
-std::vector<std::string> framesyncExperiment(const method::ExperimentInput& in);
+/** The work the configuration asks (method/Work.h): the sonars' simulation and the
+ *  experiment's runs. */
+std::vector<method::WorkItem> framesyncWork(const FramesyncLocalizer& localizer,
+                                            const sim::ScenarioConfig* scenario);
+
+std::vector<std::string> framesyncExperiment(
+    const method::ExperimentOf<FramesyncLocalizer>& in);
 
 }  // namespace mrloc::framesync

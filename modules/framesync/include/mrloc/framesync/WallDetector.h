@@ -61,6 +61,10 @@ class WallDetector {
     /** Closes the open group (the log ended). */
     std::optional<Wall> flush() { return close(); }
     const WallDetectorCounts& counts() const { return counts_; }
+    /** Readings kept for pairing (at most kMaxHistory): bounded however long the robot
+     *  stands or crawls, so that each reading costs the same. */
+    size_t historySize() const { return history_.size(); }
+    static constexpr size_t kMaxHistory = 1000;
     const WallDetectorOptions& options() const { return options_; }
 
  private:
@@ -70,6 +74,8 @@ class WallDetector {
     std::optional<Wall> fit();
 
     WallDetectorOptions options_;
+    // kMaxHistory: 100 s at the default 10 Hz within one baseline (0.4 m) of travel, 4 mm/s;
+    // a slower crawl pairs only its last 1000 readings.
     std::deque<SonarReading> history_;  ///< echoes since the last gap, oldest first
     std::vector<Erp> group_;
     double sumCos_ = 0, sumSin_ = 0;  ///< the group's directions, for their mean

@@ -1,11 +1,13 @@
 #pragma once
 // A localization method is one module that registers everything about it here, in one
-// call of its registerMethod(registry): its name, the INI sections it owns, its localizer,
+// call of its registerMethod(registry), as a MethodUnit<ItsLocalizer>: its name, the INI sections it owns, its localizer,
 // its scenario builder (robots, sensors and on-board part for the simulator), an optional
 // experiment step and its report section. The app, the simulator, the report and common know
 // no method by name: they look it up here (like MRPT's TMetricMapTypesRegistry), and an INI
 // that names no method gets the one whose sections it holds, or an error listing them all.
+#include <mrloc/common/Error.h>
 #include <mrloc/common/Localizer.h>
+#include <mrloc/method/Work.h>
 #include <mrloc/report/Report.h>
 #include <mrloc/sim/Payload.h>
 #include <mrloc/sim/Scenario.h>
@@ -15,6 +17,7 @@
 #include <map>
 #include <memory>
 #include <string>
+#include <typeinfo>
 #include <vector>
 
 namespace mrloc::method {
@@ -29,18 +32,22 @@ struct Scenario {
 };
 
 /** An experiment step run after localization, on the run directory: a Monte Carlo sweep
- *  on the run's true layout, say. It decides from the INI whether there is anything to
- *  do and returns the files it wrote (its report section reads them). */
+ *  on the run's true layout, say. It reads only the resolved run (the configured localizer,
+ *  the scenario as loaded, the seed), never the INI again, and returns the files it wrote
+ *  (its report section reads them). */
 struct ExperimentInput {
-    const mrpt::config::CConfigFileBase& ini;
-    const common::Localizer& localizer;  ///< after the whole rawlog
-    const common::Trajectories& truth;   ///< in the estimates' frame
+    const common::Localizer& localizer;  ///< configured, after the whole rawlog
+    /** The simulated scenario with the run's seed; nullptr for a log recorded elsewhere. */
+    const sim::ScenarioConfig* scenario;
+    const common::Trajectories& truth;  ///< in the estimates' frame
     std::string outDir;
     /** The run's seed ([scenario] seed, or --seed): an experiment's random draws start
      *  from it, so that `--seed` reaches the experiment and effective.ini reproduces it. */
     unsigned long seed = 1;
+    bool quiet = true;  ///< no progress bar (-q, or stderr not a terminal)
 };
 
+/** The type-erased form the app and the report use; a method registers a MethodUnit. */
 struct Method {
     std::string name;
     /** Lower-case INI sections this method owns; with the framework's, these are the only
@@ -57,6 +64,36 @@ struct Method {
     std::function<Scenario(const mrpt::config::CConfigFileBase&, const common::Localizer&)>
         scenario;
     std::function<std::vector<std::string>(const ExperimentInput&)> experiment;  ///< optional
+    /** The work the configuration asks of the method (its sensing in the simulation, its
+     *  experiment), before anything runs; `scenario` is nullptr when nothing is simulated
+     *  (Work.h). Optional: a method that names none adds nothing to the simulation's. */
+    std::function<std::vector<WorkItem>(const common::Localizer&, const sim::ScenarioConfig*)>
+        work;
+    report::Section report;
+};
+
+/** ExperimentInput with the method's own localizer type. */
+template <class LocalizerT>
+struct ExperimentOf {
+    const LocalizerT& localizer;
+    const sim::ScenarioConfig* scenario;  ///< nullptr for a log recorded elsewhere
+    const common::Trajectories& truth;
+    const std::string& outDir;
+    unsigned long seed;
+    bool quiet;  ///< no progress bar
+};
+
+/** A method as it registers: every function takes its own localizer type (and through it
+ *  its options), so no method downcasts; Registry::add binds them to the localizer it
+ *  creates. */
+template <class LocalizerT>
+struct MethodUnit {
+    std::string name;
+    std::vector<std::string> sections;         ///< as Method::sections
+    std::vector<std::string> foreignSections;  ///< as Method::foreignSections
+    std::function<Scenario(const mrpt::config::CConfigFileBase&, const LocalizerT&)> scenario;
+    std::function<std::vector<std::string>(const ExperimentOf<LocalizerT>&)> experiment;
+    std::function<std::vector<WorkItem>(const LocalizerT&, const sim::ScenarioConfig*)> work;
     report::Section report;
 };
 
@@ -65,6 +102,9 @@ class Registry {
     /** Throws mrloc::Error for a name registered twice, a section another method owns,
      *  or a method without a localizer or scenario. */
     void add(Method method);
+    /** Registers a method whose functions take its localizer type. */
+    template <class LocalizerT>
+    void add(MethodUnit<LocalizerT> unit);
     /** Throws mrloc::Error listing the known names if `name` is not registered. */
     const Method& get(const std::string& name) const;
     bool has(const std::string& name) const { return methods_.count(name) > 0; }
@@ -76,6 +116,43 @@ class Registry {
  private:
     std::map<std::string, Method> methods_;
 };
+
+/** The localizer a Method's functions are given, as the type its unit was registered with;
+ *  throws mrloc::Error for any other (a caller that mixed two methods' parts). */
+template <class LocalizerT>
+const LocalizerT& localizerOf(const common::Localizer& l, const std::string& method) {
+    if (typeid(l) != typeid(LocalizerT))
+        throw Error("method '" + method + "' was handed another method's localizer");
+    return static_cast<const LocalizerT&>(l);
+}
+
+template <class LocalizerT>
+void Registry::add(MethodUnit<LocalizerT> unit) {
+    Method m;
+    m.name = unit.name;
+    m.sections = std::move(unit.sections);
+    m.foreignSections = std::move(unit.foreignSections);
+    m.localizer = [] { return std::make_unique<LocalizerT>(); };
+    if (unit.scenario)
+        m.scenario = [f = std::move(unit.scenario), name = unit.name](
+                         const mrpt::config::CConfigFileBase& ini, const common::Localizer& l) {
+            return f(ini, localizerOf<LocalizerT>(l, name));
+        };
+    if (unit.experiment)
+        m.experiment = [f = std::move(unit.experiment), name = unit.name](
+                           const ExperimentInput& in) {
+            return f(ExperimentOf<LocalizerT>{localizerOf<LocalizerT>(in.localizer, name),
+                                              in.scenario, in.truth, in.outDir, in.seed,
+                                              in.quiet});
+        };
+    if (unit.work)
+        m.work = [f = std::move(unit.work), name = unit.name](const common::Localizer& l,
+                                                               const sim::ScenarioConfig* s) {
+            return f(localizerOf<LocalizerT>(l, name), s);
+        };
+    m.report = std::move(unit.report);
+    add(std::move(m));
+}
 
 /** Sections the framework owns, whatever the method. */
 const std::vector<std::string>& frameworkSections();

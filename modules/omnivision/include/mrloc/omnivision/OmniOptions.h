@@ -17,10 +17,10 @@ struct OmniOptions : public mrpt::config::CLoadableOptions {
     /** Proposed: the pairs that stop, in order; round r stops pair r during
      *  [t_b + r * round_period, t_e + r * round_period]. The first pair that shares a
      *  moving witness gives L; the others are the paper's restarts. */
-    std::vector<std::pair<std::string, std::string>> pairs;
+    std::vector<std::pair<std::string, std::string>> pairs{{"A", "B"}};
     double tb = 10, te = 12, roundPeriod = 10;  ///< s
     /** Conventional: the pair whose distance a LiDAR measures, at `snapshot`. */
-    std::pair<std::string, std::string> measuredPair;
+    std::pair<std::string, std::string> measuredPair{"A", "B"};
     double snapshot = 10;      ///< s
     double lidarSigma = 0.01;  ///< m
     // Cameras.

@@ -39,6 +39,15 @@ struct SearchOptions {
     double sumTolerance = 0.5 * M_PI / 180;      ///< |sum - 180 deg| accepted (rad)
     double bearingTolerance = 0.3 * M_PI / 180;  ///< a predicted bearing matches (rad)
     size_t maxSeeds = 200;  ///< seed triangles identify() grows before it gives up
+    /** Angle pairs identify() may examine while growing its seeds, in all, per N^3 robots:
+     *  tolerances too loose for the noise make every pair a candidate, and the search then
+     *  ran for hours (doc/errors.md, "Work"). Beyond it identify() throws mrloc::Error
+     *  naming the keys. 2000 N^3 is 5.4e7 for 30 robots, which need 0.6 to 4 million. */
+    double maxPairVisitsPerRobotCubed = 2000;
+    size_t maxPairVisits(size_t robots) const {
+        const double n = double(robots);
+        return size_t(maxPairVisitsPerRobotCubed * n * n * n);
+    }
 };
 
 struct Identification {
@@ -46,6 +55,7 @@ struct Identification {
     std::vector<Triangle> triangles;  ///< consistent with labels, sorted by robots
     std::vector<int> unresolved;      ///< robots in no consistent triangle
     size_t candidates = 0;            ///< angle triples (brute force) or seeds (fast) tried
+    size_t pairVisits = 0;            ///< angle pairs examined while growing (fast)
 };
 
 /** Every triple of angles from three different robots summing to 180 degrees within

@@ -4,6 +4,7 @@
 // views (Tables 1-2), and with sweep_steps the mean path and time against n (Figs. 6-7).
 #include <mrloc/method/Registry.h>
 #include <mrloc/polymap/PolymapFiles.h>
+#include <mrloc/polymap/PolymapLocalizer.h>
 
 #include <string>
 #include <vector>
@@ -12,7 +13,13 @@ namespace mrloc::polymap {
 
 /** The method's experiment step: writes elimination.txt, elimination.times.txt and, with a
  *  sweep, elimination.sweep.txt; nothing without [polymap] elimination. */
-std::vector<std::string> eliminationExperiment(const method::ExperimentInput& in);
+/** The work the configuration asks (method/Work.h): the simulated scans and the
+ *  experiment's randomized columns (the other algorithms cost little beside them). */
+std::vector<method::WorkItem> polymapWork(const PolymapLocalizer& localizer,
+                                          const sim::ScenarioConfig* scenario);
+
+std::vector<std::string> eliminationExperiment(
+    const method::ExperimentOf<PolymapLocalizer>& in);
 
 /** The report's part of it: Tables 1-2 beside the paper's values and, if the run swept,
  *  Figs. 6-7 (plotted into `dir`). */
