@@ -19,8 +19,8 @@ export UBSAN_OPTIONS="halt_on_error=1:print_stacktrace=1:${UBSAN_OPTIONS:-}"
 export MRLOC_SANITIZED=1
 cd build-asan
 # The Monte Carlo tests that repeat, at length, code the rest of the suite runs sanitized
-# (about 9 of the suite's 19 sanitized minutes on 2 cores) are left to the Release suite unless
-# MRLOC_SANITIZE_ALL=1: CI stays under 30 minutes (doc/hardening.md).
+# (8 of the suite's 19 sanitized minutes, counted one test after another) are left to the
+# Release suite unless MRLOC_SANITIZE_ALL=1: CI stays under 30 minutes (doc/hardening.md).
 long='MrlocOmnivision\.ErrorsMatchTheCovarianceOverTwentySeeds|MrlocFormation\.PixelModeMarch'
 long+='|Elimination\.OfficeFloorOfTwentyFourIdenticalRooms|MrlocPolymap\.DrivingWithEveryAlgorithm'
 long+='|MrlocFormation\.PatrolRoute|Visibility\.Star5000|Elimination\.FromNoisyScans'
