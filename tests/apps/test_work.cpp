@@ -6,6 +6,7 @@
 #include <mrloc/method/Work.h>
 
 #include <filesystem>
+#include <optional>
 
 #include "AllMethods.h"
 #include "MrlocCli.h"
@@ -24,6 +25,13 @@ method::WorkItem item(const std::string& keys, double seconds, bool parallel = f
     w.seconds = seconds;
     w.parallel = parallel;
     return w;
+}
+
+/** The announcement `mrloc run` would print for the INI on 2 cores, if any. */
+std::optional<std::string> announced(const method::Registry& registry, const std::string& ini,
+                                     bool localizing = true) {
+    const auto setup = app::loadSetup(registry, ini, std::nullopt, true);
+    return method::checkWork(app::workOf(setup, true, localizing), 2);
 }
 
 std::string messageOf(const std::vector<method::WorkItem>& items, unsigned cores) {
@@ -83,19 +91,17 @@ TEST(Work, LargeExperimentsAreAnnouncedWithTheirEstimate) {
     // formation: runs = 100000 (allowed) is an hour of marches; framesync: 10,000 seeds
     const std::string formation = writeIniFrom(config("formation_many_turns"), "work_runs",
                                                "runs        = 100", "runs = 100000");
-    const auto f = app::loadSetup(registry, formation, std::nullopt, true);
-    const auto fLine = method::checkWork(app::workOf(f, true, true), 2);
+    const auto fLine = announced(registry, formation);
     ASSERT_TRUE(fLine);
     EXPECT_NE(fLine->find("[formation] runs x (experiment_routes x experiment_speeds"),
               std::string::npos)
         << *fLine;
-    EXPECT_TRUE(method::checkWork(app::workOf(f, true, false), 2) == std::nullopt)
+    EXPECT_TRUE(announced(registry, formation, false) == std::nullopt)
         << "simulate runs no experiment";
     const std::string framesync = writeIniFrom(config("framesync_corridor"), "work_seeds",
                                                "experiment_seeds       = 50",
                                                "experiment_seeds = 10000");
-    const auto s = app::loadSetup(registry, framesync, std::nullopt, true);
-    const auto sLine = method::checkWork(app::workOf(s, true, true), 2);
+    const auto sLine = announced(registry, framesync);
     ASSERT_TRUE(sLine);
     // 10,000 + 20 x 9 sweep runs of 12,500 steps x 2 robots (measured: 210 runs in 11 s)
     EXPECT_NE(sLine->find("min on 2 cores, most of it the experiment's 10180 simulated runs"),
@@ -104,7 +110,6 @@ TEST(Work, LargeExperimentsAreAnnouncedWithTheirEstimate) {
     // the shipped configurations stay within the budget
     for (const auto& e : fs::directory_iterator(std::string(MRLOC_SOURCE_DIR) + "/config")) {
         if (e.path().extension() != ".ini") continue;
-        const auto c = app::loadSetup(registry, e.path().string(), std::nullopt, true);
-        EXPECT_NO_THROW(method::checkWork(app::workOf(c, true, true), 2)) << e.path();
+        EXPECT_NO_THROW(announced(registry, e.path().string())) << e.path();
     }
 }

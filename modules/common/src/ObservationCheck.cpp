@@ -55,33 +55,31 @@ void ObservationCheck::check(const mrpt::obs::CObservation& obs) {
     using namespace mrpt::obs;
     checkSensorLabel(obs.sensorLabel, "sensor label");
     // a comment is an on-board event (its label dropped by MRPT): no stream of its own
-    const double t = mrpt::Clock::toDouble(obs.timestamp);  // s
+    const double seconds = mrpt::Clock::toDouble(obs.timestamp);
+    LabelState& label = labels_[obs.sensorLabel];
     if (!IS_CLASS(obs, CObservationComment)) {
         if (obs.timestamp == INVALID_TIMESTAMP)
             throw Error("no time stamp (0), and no sensory frame time to take");
-        if (!std::isfinite(t) || t <= 0)
-            throw Error(mrpt::format("time stamp %.6f s is before 1970", t));
-        const auto last = last_.find(obs.sensorLabel);
-        if (last != last_.end() && obs.timestamp < last->second)
+        if (!std::isfinite(seconds) || seconds <= 0)
+            throw Error(mrpt::format("time stamp %.6f s is before 1970", seconds));
+        if (label.stamp != mrpt::Clock::time_point() && obs.timestamp < label.stamp)
             throw Error(mrpt::format("time runs backwards: %.6f s after %.6f s of the same label",
-                                     t, mrpt::Clock::toDouble(last->second)));
-        last_[obs.sensorLabel] = obs.timestamp;
-        if (lastAny_ && std::abs(t - *lastAny_) > B::kMaxTimeJump)
+                                     seconds, mrpt::Clock::toDouble(label.stamp)));
+        label.stamp = obs.timestamp;
+        if (previousSeconds_ && std::abs(seconds - *previousSeconds_) > B::kMaxTimeJump)
             throw Error(
                 mrpt::format("time jumps by %.6g s from the observation before (more "
                              "than the %g s allowed)",
-                             t - *lastAny_, B::kMaxTimeJump));
-        lastAny_ = t;
+                             seconds - *previousSeconds_, B::kMaxTimeJump));
+        previousSeconds_ = seconds;
     }
     if (const auto* odo = dynamic_cast<const CObservationOdometry*>(&obs)) {
         coordinate(odo->odometry.x(), "odometry x");
         coordinate(odo->odometry.y(), "odometry y");
         finite(odo->odometry.phi(), "odometry phi");
-        const auto [it, fresh] =
-            lastOdometry_.emplace(obs.sensorLabel, OdometryReading{odo->odometry, t});
-        if (!fresh) {
-            const double step = (odo->odometry - it->second.pose).norm();
-            const double dt = t - it->second.t;
+        if (label.odometry) {
+            const double step = (odo->odometry - *label.odometry).norm();
+            const double dt = seconds - label.odometrySeconds;
             if (step > B::kMaxOdometryStep)
                 throw Error(
                     mrpt::format("odometry moves %g m since its last reading, more "
@@ -94,8 +92,9 @@ void ObservationCheck::check(const mrpt::obs::CObservation& obs) {
                     mrpt::format("odometry moves %g m in %g s since its last reading, "
                                  "faster than %g m/s",
                                  step, dt, B::kMaxSpeed));
-            it->second = {odo->odometry, t};
         }
+        label.odometry = odo->odometry;
+        label.odometrySeconds = seconds;
     } else if (const auto* b = dynamic_cast<const CObservationBeaconRanges*>(&obs)) {
         count(b->sensedData.size(), B::kMaxRanges, "beacon ranges");
         for (const auto& m : b->sensedData) {

@@ -15,16 +15,23 @@ namespace {
 /** A dead-reckoning curve point every this many seconds (fig. 14). */
 constexpr double kCurveStep = 5;
 
+/** Algorithm 1 from pixels starts from a 3 x 3 x 3 grid around the vertex (any
+ *  camera_starts > 0). */
+constexpr size_t kCameraGridStarts = 27;
+
+/** Marches per Monte Carlo run: every route at every speed (Table 1, fig. 14), then N = 4 ..
+ *  experiment_robots_max on the first route (fig. 15). */
+size_t marchesPerRun(const FormationConfig& c) {
+    return c.experimentRoutes.size() * c.experimentSpeeds.size() +
+           (c.experimentRobotsMax >= 4 ? c.experimentRobotsMax - 3 : 0);
+}
+
 }  // namespace
 
 FormationExperimentFile runFormationExperiment(const FormationConfig& c, bool quiet) {
     FormationExperimentFile f;
     if (c.runs == 0) return f;
-    common::Progress progress(
-        "formation experiment",
-        c.runs * (c.experimentRoutes.size() * c.experimentSpeeds.size() +
-                  (c.experimentRobotsMax >= 4 ? c.experimentRobotsMax - 3 : 0)),
-        quiet);
+    common::Progress progress("formation experiment", c.runs * marchesPerRun(c), quiet);
     size_t marches = 0;
     mrpt::random::CRandomGenerator rng(uint32_t(c.experimentSeed));
     MarchOptions o;
@@ -147,13 +154,11 @@ std::vector<method::WorkItem> formationWork(const FormationLocalizer& localizer,
     for (size_t n = 4; n <= c.experimentRobotsMax; ++n)
         marchMetres += length(c.experimentRoutes.front()) * double(n) / 4;
     method::WorkItem e;
-    e.what = mrpt::format("the experiment's %zu x %zu marches", c.runs,
-                          c.experimentRoutes.size() * c.experimentSpeeds.size() +
-                              (c.experimentRobotsMax >= 4 ? c.experimentRobotsMax - 3 : 0));
+    e.what = mrpt::format("the experiment's %zu x %zu marches", c.runs, marchesPerRun(c));
     e.keys = "[formation] runs x (experiment_routes x experiment_speeds + "
              "experiment_robots_max - 3)";
     e.seconds = double(c.runs) * marchMetres * kSecondsPerMarchMetre +
-                (c.cameraStarts > 0 ? 27 * kSecondsPerCameraStart : 0);
+                (c.cameraStarts > 0 ? double(kCameraGridStarts) * kSecondsPerCameraStart : 0);
     out.push_back(e);
     return out;
 }

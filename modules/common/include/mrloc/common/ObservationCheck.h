@@ -47,13 +47,14 @@ class ObservationCheck {
         std::vector<uint8_t> bytes;  ///< serialized only when one more has the same stamp
     };
     std::map<std::pair<std::string, std::string>, Previous> previous_;
-    std::map<std::string, mrpt::Clock::time_point> last_;  ///< per label
-    std::optional<double> lastAny_;                        ///< s, of any label
-    struct OdometryReading {
-        mrpt::poses::CPose2D pose;
-        double t = 0;  ///< s
+    /** What a label's latest observation leaves for its next one to be checked against. */
+    struct LabelState {
+        mrpt::Clock::time_point stamp;
+        std::optional<mrpt::poses::CPose2D> odometry;  ///< its latest odometry reading
+        double odometrySeconds = 0;                    ///< that reading's time stamp
     };
-    std::map<std::string, OdometryReading> lastOdometry_;  ///< per label
+    std::map<std::string, LabelState> labels_;
+    std::optional<double> previousSeconds_;  ///< the stamp of the one before, of any label
 };
 
 }  // namespace mrloc::common

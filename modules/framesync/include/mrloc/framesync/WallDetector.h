@@ -64,6 +64,8 @@ class WallDetector {
     /** Readings kept for pairing (at most kMaxHistory): bounded however long the robot
      *  stands or crawls, so that each reading costs the same. */
     size_t historySize() const { return history_.size(); }
+    /** 100 s at the default 10 Hz within one baseline (0.4 m) of travel, 4 mm/s; a slower
+     *  crawl pairs only its latest 1000 readings. */
     static constexpr size_t kMaxHistory = 1000;
     const WallDetectorOptions& options() const { return options_; }
 
@@ -74,8 +76,6 @@ class WallDetector {
     std::optional<Wall> fit();
 
     WallDetectorOptions options_;
-    // kMaxHistory: 100 s at the default 10 Hz within one baseline (0.4 m) of travel, 4 mm/s;
-    // a slower crawl pairs only its last 1000 readings.
     std::deque<SonarReading> history_;  ///< echoes since the last gap, oldest first
     std::vector<Erp> group_;
     double sumCos_ = 0, sumSin_ = 0;  ///< the group's directions, for their mean
