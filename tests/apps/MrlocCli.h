@@ -12,6 +12,8 @@
 #include <sstream>
 #include <string>
 
+#include "TestPaths.h"
+
 namespace mrloc::testing_cli {
 
 struct Result {

@@ -14,6 +14,7 @@
 #include <thread>
 
 #include "MrlocCli.h"
+#include "TestPaths.h"
 
 namespace fs = std::filesystem;
 using namespace mrloc;

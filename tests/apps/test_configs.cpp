@@ -9,6 +9,7 @@
 
 #include "AllMethods.h"
 #include "Commands.h"
+#include "TestPaths.h"
 
 TEST(ShippedConfigs, EveryConfigPassesTheAppsChecks) {
     mrloc::method::Registry registry;

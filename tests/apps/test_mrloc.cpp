@@ -24,6 +24,7 @@
 #include <sstream>
 
 #include "MrlocCli.h"
+#include "TestPaths.h"
 
 namespace fs = std::filesystem;
 using namespace mrloc;

@@ -15,6 +15,7 @@
 #include <nlohmann/json.hpp>
 
 #include "MrlocCli.h"
+#include "TestPaths.h"
 
 namespace fs = std::filesystem;
 using namespace mrloc;

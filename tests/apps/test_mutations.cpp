@@ -20,6 +20,7 @@
 #include <optional>
 
 #include "MrlocCli.h"
+#include "TestPaths.h"
 
 namespace fs = std::filesystem;
 using namespace mrloc;

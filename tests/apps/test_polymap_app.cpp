@@ -7,6 +7,7 @@
 #include <mrpt/img/CImage.h>
 
 #include "MrlocCli.h"
+#include "TestPaths.h"
 
 namespace fs = std::filesystem;
 using namespace mrloc;

@@ -19,6 +19,7 @@
 #include <thread>
 
 #include "MrlocCli.h"
+#include "TestPaths.h"
 
 namespace fs = std::filesystem;
 using namespace mrloc;
@@ -105,7 +106,9 @@ TEST(RunFolder, AnInterruptedReRunLeavesThePreviousRunByteIdentical) {
             EXPECT_TRUE(now == before || sameRunButWallTimes(before, now))
                 << "signal " << sig << " after " << ms << " ms";
             before = now;
-            if (sig != SIGKILL) { EXPECT_TRUE(leftBeside(out).empty()) << leftBeside(out).front(); }
+            if (sig != SIGKILL) {
+                EXPECT_TRUE(leftBeside(out).empty()) << leftBeside(out).front();
+            }
         }
     EXPECT_GE(interrupted, 6);
     // what a SIGKILL left beside the folder is removed by the next run
@@ -397,8 +400,9 @@ void expectSeedReachesTheExperiment(const std::string& ini, const std::string& f
 
 TEST(Seed, ReachesFramesyncsExperimentAndEffectiveIniReproducesIt) {
     expectSeedReachesTheExperiment(
-        writeIniFrom(config("framesync_corridor"), "seed_framesync", "experiment_seeds       = 50",
-                     "experiment_seeds = 2"),
+        writeIniFrom(config("framesync_corridor"), "seed_framesync",
+                     "experiment_seeds       = 50\nexperiment_sweep_seeds = 20",
+                     "experiment_seeds = 2\nexperiment_sweep_seeds = 1"),
         "framesync.experiment.txt");
 }
 

@@ -124,8 +124,8 @@ void registerToy(method::Registry& registry) {
         return std::vector<std::string>{path};
     };
     m.report.html = [](const report::RunView& run) {
-        return "<h2>Toy section</h2><p>toy fixes: " + std::to_string(ToyFile::read(run.dir).fixes) +
-               "</p>\n";
+        return report::heading(2, "Toy section") +
+               report::paragraph("toy fixes: " + std::to_string(ToyFile::read(run.dir).fixes));
     };
     m.report.topView = [](const report::RunView&, report::TopViewContent& v) {
         v.landmarks.push_back({2, 1, 0});
@@ -178,7 +178,7 @@ TEST(ToyMethod, PlugsInThroughTheRegistryAlone) {
     EXPECT_NEAR(est.back().pose.y(), 1.0, 0.05);
     // Its report section read its own file; its section is in effective.ini.
     const std::string page = testing_cli::slurp(dir + "/run/report.html");
-    EXPECT_NE(page.find("<h2>Toy section</h2><p>toy fixes: 25</p>"), std::string::npos);
+    EXPECT_NE(page.find("<h2>Toy section</h2>\n<p>toy fixes: 25</p>"), std::string::npos);
     EXPECT_NE(testing_cli::slurp(dir + "/run/effective.ini").find("[toy]"), std::string::npos);
     EXPECT_TRUE(fs::exists(dir + "/run/topview.png"));
 
@@ -221,15 +221,15 @@ TEST(ToyMethod, TheExperimentGetsTheResolvedRunNotTheIni) {
     fs::create_directories(dir);
     std::ofstream(dir + "/toy.ini") << kIni;
     // --seed reaches the experiment and the scenario it is handed, as effective.ini says
-    ASSERT_EQ(runMrloc(registry, {"run", dir + "/toy.ini", "--seed", "7", "--out",
-                                  dir + "/run", "-q"}),
-              0);
+    ASSERT_EQ(
+        runMrloc(registry, {"run", dir + "/toy.ini", "--seed", "7", "--out", dir + "/run", "-q"}),
+        0);
     EXPECT_EQ(testing_cli::slurp(dir + "/run/toy.experiment.txt"), "7 7 2.000000\n");
     EXPECT_NE(testing_cli::slurp(dir + "/run/effective.ini").find("seed = 7"), std::string::npos);
     // a log localized without a simulation: no scenario, the INI's seed
     std::ofstream(dir + "/replay.ini") << "[scenario]\nmethod = toy\nseed = 3\n[toy]\ngoal = 1 1\n";
-    ASSERT_EQ(runMrloc(registry, {"localize", dir + "/replay.ini", dir + "/run/toy.rawlog",
-                                  "--out", dir + "/replay", "-q"}),
+    ASSERT_EQ(runMrloc(registry, {"localize", dir + "/replay.ini", dir + "/run/toy.rawlog", "--out",
+                                  dir + "/replay", "-q"}),
               0);
     EXPECT_EQ(testing_cli::slurp(dir + "/replay/toy.experiment.txt"), "3 none 1.000000\n");
 }

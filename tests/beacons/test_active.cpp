@@ -14,6 +14,8 @@
 #include <set>
 #include <sstream>
 
+#include "TestPaths.h"
+
 using namespace mrloc;
 
 namespace {

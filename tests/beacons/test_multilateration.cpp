@@ -183,3 +183,26 @@ TEST(Multilateration, RobustFixDropsOneOutlier) {
     EXPECT_EQ(rejected, 2);
     EXPECT_LT((f.position - truth).norm(), 1e-9);
 }
+
+TEST(Multilateration, RobustFixOfThousandsOfRangesFindsTheOutlierAmongTheSuspects) {
+    // 2,000 beacons on a ceiling grid (one observation as a hostile log may hold), 1 mm
+    // noise, one late echo of 0.8 m: beyond 12 ranges only the most suspect are refitted
+    // (Multilateration.cpp), and the echo must be among them.
+    const Vector3d truth(4.3, 7.1, 0.5);
+    std::vector<Vector3d> grid;
+    for (int i = 0; i < 2000; ++i)
+        grid.push_back({0.25 * (i % 40), 0.25 * (i / 40), 2.5 + 0.1 * (i % 3)});
+    auto m = exactRanges(grid, truth);
+    mrpt::random::CRandomGenerator rng(3);
+    for (auto& mi : m) mi.range += rng.drawGaussian1D(0, 0.001);
+    m[1234].range += 0.8;
+    MultilaterationOptions o;
+    o.knownHeight = 0.5;
+    int rejected = -1;
+    // a threshold under the echo's share of the RMS (0.8 / sqrt(2000) = 18 mm) and above
+    // the noise's 1 mm
+    const Fix f = robustMultilaterate(m, o, 0.01, &rejected);
+    ASSERT_TRUE(f.ok()) << toString(f.status);
+    EXPECT_EQ(rejected, 1234);
+    EXPECT_LT((f.position - truth).norm(), 1e-3);
+}

@@ -16,6 +16,8 @@
 #include <mrpt/obs/CObservationOdometry.h>
 #include <mrpt/obs/CObservationRange.h>
 
+#include "TestPaths.h"
+
 using namespace mrloc;
 using namespace mrloc::framesync;
 

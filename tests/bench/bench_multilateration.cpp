@@ -64,6 +64,30 @@ BENCHMARK(BM_Fix3D_Range)->Arg(4)->Arg(8);
 BENCHMARK(BM_Fix3D_SquaredRange_Seed001)->Arg(4)->Arg(8);
 BENCHMARK(BM_Fix2D_Range)->Arg(4)->Arg(8);
 
+// One observation of n ranges with one late echo (a hostile log's size, issue 26): the
+// robust fix refits only the most suspect 12 beyond 12 ranges, so time grows as n log n.
+void BM_RobustFix2D_OneEcho(benchmark::State& state) {
+    const int n = int(state.range(0));
+    const Vector3d x(4.3, 7.1, 0.5);
+    mrpt::random::CRandomGenerator rng(1);
+    std::vector<beacons::RangeMeasurement> m;
+    for (int i = 0; i < n; ++i) {  // a ceiling of 10 x 12 m
+        const Vector3d b(rng.drawUniform(0, 10), rng.drawUniform(0, 12), 2.5 + 0.1 * (i % 3));
+        m.push_back({b, (x - b).norm(), i});
+    }
+    m[size_t(n) / 2].range += 0.8;
+    beacons::MultilaterationOptions o;
+    o.knownHeight = 0.5;
+    int rejected = -1;
+    for (auto _ : state) {
+        const auto f = beacons::robustMultilaterate(m, o, 0.001, &rejected);
+        benchmark::DoNotOptimize(f.position);
+    }
+    if (rejected != n / 2) state.SkipWithError("the echo was not rejected");
+    state.SetComplexityN(n);
+}
+BENCHMARK(BM_RobustFix2D_OneEcho)->RangeMultiplier(4)->Range(8, 8192)->Complexity();
+
 // Playback: read a 200,000-observation rawlog (beacon ranges, 4 beacons each), as every
 // command does (checked first: the gzip stream, then every entry in an isolated child), and,
 // for comparison, unchecked. Wall-clock time: the check runs in another process.

@@ -14,6 +14,8 @@
 
 #include <map>
 
+#include "TestPaths.h"
+
 using namespace mrloc;
 using common::Polygon;
 using common::TPoint2D;

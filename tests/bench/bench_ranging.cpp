@@ -11,6 +11,8 @@
 #include <fstream>
 #include <sstream>
 
+#include "TestPaths.h"
+
 using namespace mrloc;
 
 namespace {

@@ -9,6 +9,8 @@
 #include <fstream>
 #include <sstream>
 
+#include "TestPaths.h"
+
 using namespace mrloc;
 
 namespace {

@@ -10,6 +10,8 @@
 #include <iostream>
 #include <random>
 
+#include "TestPaths.h"
+
 using mrloc::Error;
 using mrloc::common::Polygon;
 using mrloc::common::TPoint2D;

@@ -7,6 +7,7 @@
 #include <mrpt/config/CConfigFileMemory.h>
 
 #include "OptionsRoundTrip.h"
+#include "TestPaths.h"
 
 using namespace mrloc;
 

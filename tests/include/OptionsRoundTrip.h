@@ -9,6 +9,8 @@
 #include <string>
 #include <utility>
 
+#include "TestPaths.h"
+
 namespace mrloc::testing_options {
 
 template <class Options>

@@ -11,6 +11,8 @@
 #include <map>
 #include <set>
 
+#include "TestPaths.h"
+
 using namespace mrloc;
 using common::orientation;
 using common::Polygon;

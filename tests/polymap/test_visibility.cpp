@@ -9,6 +9,7 @@
 #include <iostream>
 
 #include "RayOracle.h"
+#include "TestPaths.h"
 
 using namespace mrloc;
 using common::Polygon;

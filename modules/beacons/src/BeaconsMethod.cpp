@@ -40,7 +40,8 @@ namespace {
 /** Seed 001 Tables 3/4 and Figs. 10/11 for this run: per robot (test point) the reception
  *  rate of each beacon from the simulator's shot log, and the mean and max error, beside
  *  the paper's figures ([beacons] paper_reception_<id>). */
-std::string receptionSection(const report::RunView& run) {
+report::Html receptionSection(const report::RunView& run) {
+    using report::Html;
     const auto& metrics = run.metrics;
     // the shot log of a rawlog simulated into this run folder: the report reads nothing
     // outside the folder, whatever metrics.json names
@@ -48,9 +49,10 @@ std::string receptionSection(const report::RunView& run) {
         std::filesystem::path(metrics.value("rawlog", "")).filename().string();
     const std::string shotsPath = shotLogPath(run.dir + "/" + rawlogName);
     if (!std::filesystem::exists(shotsPath))
-        return "<p>No shot log beside the rawlog (not simulated here): no reception table.</p>\n";
+        return report::paragraph(
+            "No shot log beside the rawlog (not simulated here): no reception table.");
     const auto shots = loadShotLog(shotsPath);
-    if (shots.empty()) return "<p>The shot log is empty: no beacon fired.</p>\n";
+    if (shots.empty()) return report::paragraph("The shot log is empty: no beacon fired.");
     BeaconOptions options;
     options.loadFromConfigFile(*run.effective, "beacons");
     report::ReportOptions paper;
@@ -64,100 +66,93 @@ std::string receptionSection(const report::RunView& run) {
         ++c.first;
         c.second += s.detected;
     }
-    std::string t = "<h2>Beacon system: reception and errors per robot</h2>\n";
+    Html out = report::heading(2, "Beacon system: reception and errors per robot");
     if (!options.paperReception.empty())
-        t +=
-            "<p>Ours, with the paper's in brackets" +
-            (paper.paperCaption.empty() ? std::string() : ": " + report::html(paper.paperCaption)) +
-            ".</p>\n";
-    t += "<table><tr><th>successful receiving rate (%)</th>";
-    for (const auto& r : robots) t += "<th>" + report::html(r) + "</th>";
-    t += "</tr>\n";
+        out +=
+            report::paragraph("Ours, with the paper's in brackets" +
+                              (paper.paperCaption.empty() ? "" : ": " + paper.paperCaption) + ".");
+    std::vector<Html> head{"successful receiving rate (%)"};
+    head.insert(head.end(), robots.begin(), robots.end());
+    report::Table table(head);
     for (const auto& [beacon, perRobot] : heard) {
-        t += "<tr><th>beacon " + std::to_string(beacon) + "</th>";
         const auto p = options.paperReception.find(beacon);
+        std::vector<Html> cells;
         for (size_t i = 0; i < robots.size(); ++i) {
             const auto c = perRobot.find(robots[i]);
-            t += "<td>";
+            std::string cell;
             if (c != perRobot.end())
-                t += mrpt::format("%.0f", 100.0 * c->second.second / c->second.first);
+                cell = mrpt::format("%.0f", 100.0 * c->second.second / c->second.first);
             if (p != options.paperReception.end() && i < p->second.size())
-                t += mrpt::format(" (%g)", p->second[i]);
-            t += "</td>";
+                cell += mrpt::format(" (%g)", p->second[i]);
+            cells.push_back(cell);
         }
-        t += "</tr>\n";
+        table.headedRow("beacon " + std::to_string(beacon), cells);
     }
     const auto methodRobots = metrics.value("beacons", nlohmann::json::object())
                                   .value("robots", nlohmann::json::object());
     const auto rowOf = [&](const nlohmann::json& m, const char* name, const char* key, double scale,
                            const char* fmt) {
-        std::string r = std::string("<tr><th>") + name + "</th>";
-        for (const auto& robot : robots) {
-            r += "<td>";
-            if (m.contains(robot) && m[robot].contains(key) && m[robot][key].is_number())
-                r += mrpt::format(fmt, scale * m[robot][key].get<double>());
-            else
-                r += "none";
-            r += "</td>";
-        }
-        return r + "</tr>\n";
+        std::vector<Html> cells;
+        for (const auto& robot : robots)
+            cells.push_back(m.contains(robot) && m[robot].contains(key) && m[robot][key].is_number()
+                                ? mrpt::format(fmt, scale * m[robot][key].get<double>())
+                                : std::string("none"));
+        table.headedRow(name, cells);
     };
     const auto row = [&](const char* name, const char* key, double scale, const char* fmt) {
-        return rowOf(metrics["robots"], name, key, scale, fmt);
+        rowOf(metrics["robots"], name, key, scale, fmt);
     };
-    t += row("mean error (mm)", "mean_m", 1000, "%.1f");
-    t += row("max error (mm)", "max_m", 1000, "%.1f");
-    t += row("estimates", "estimates", 1, "%.0f");
+    row("mean error (mm)", "mean_m", 1000, "%.1f");
+    row("max error (mm)", "max_m", 1000, "%.1f");
+    row("estimates", "estimates", 1, "%.0f");
     // seed 001 sec. 4's figure for the scheduler: how far a robot moves between two fixes
-    t += rowOf(methodRobots, "mean distance between fixes (m)", "mean_distance_between_fixes_m", 1,
-               "%.3f");
-    t += rowOf(methodRobots, "max distance between fixes (m)", "max_distance_between_fixes_m", 1,
-               "%.3f");
+    rowOf(methodRobots, "mean distance between fixes (m)", "mean_distance_between_fixes_m", 1,
+          "%.3f");
+    rowOf(methodRobots, "max distance between fixes (m)", "max_distance_between_fixes_m", 1,
+          "%.3f");
     // the link's biases as each robot's tracker estimated them (estimate_bias)
     bool anyBias = false;
-    std::string offsets = "<tr><th>range offset per beacon at the end (mm)</th>",
-                scales = "<tr><th>common range scale at the end (per mille)</th>";
+    std::vector<Html> offsets, scales;
     for (const auto& robot : robots) {
         const auto m = methodRobots.value(robot, nlohmann::json::object());
-        offsets += "<td>";
-        scales += "<td>";
-        if (m.contains("range_offsets_m")) {
+        if (m.contains("range_offsets_m") && m["range_offsets_m"].is_object()) {
             anyBias = true;
             std::string cell;
             for (const auto& [id, v] : m["range_offsets_m"].items())
                 cell += (cell.empty() ? "" : ", ") + id + ": " +
-                        mrpt::format("%+.1f", 1000 * v.get<double>());
-            offsets += cell;
-            scales += mrpt::format("%+.2f", 1000 * m.value("range_scale", 0.0));
+                        (v.is_number() ? mrpt::format("%+.1f", 1000 * v.get<double>()) : "none");
+            offsets.push_back(cell);
+            scales.push_back(mrpt::format("%+.2f", 1000 * m.value("range_scale", 0.0)));
         } else {
-            offsets += "none";
-            scales += "none";
+            offsets.push_back("none");
+            scales.push_back("none");
         }
-        offsets += "</td>";
-        scales += "</td>";
     }
-    if (anyBias) t += offsets + "</tr>\n" + scales + "</tr>\n";
-    t += "</table>\n";
-    t += "<p>Scheduling: <b>" +
-         std::string(options.system.scheduling == Scheduling::Priority
+    if (anyBias) {
+        table.headedRow("range offset per beacon at the end (mm)", offsets);
+        table.headedRow("common range scale at the end (per mille)", scales);
+    }
+    out += table.html();
+    out += report::paragraph(
+        "Scheduling: " +
+        report::bold(options.system.scheduling == Scheduling::Priority
                          ? "priority (slots in proportion to speed, seed 001 sec. 4)"
                          : "round robin") +
-         "</b>. Seed 001's point: with priority scheduling the distance a robot moves between "
-         "two fixes stays about the same whatever its speed; round robin lets a fast robot "
-         "go further.</p>\n";
+        ". Seed 001's point: with priority scheduling the distance a robot moves between two "
+        "fixes stays about the same whatever its speed; round robin lets a fast robot go "
+        "further.");
     size_t detected = 0;
     for (const auto& s : shots) detected += s.detected;
-    t += mrpt::format(
-             "<p>Shots fired: %zu, heard: %zu, a reception rate of %.1f %% (of the shots fired: "
-             "a section fires only its own beacons). Multilateration fixes: %d (in the tracker "
-             "mode, those made while the filter starts or restarts; then every epoch gives an "
-             "estimate, the ranges corrected by the offsets and scale above). Log: "
-             "<code>",
-             shots.size(), detected, 100.0 * double(detected) / double(shots.size()),
-             metrics.value("beacons", nlohmann::json::object()).value("multilateration_fixes", 0)) +
-         report::html(std::filesystem::path(shotsPath).filename().string()) +
-         "</code> (in this folder).</p>\n";
-    return t;
+    out += report::paragraph(
+        mrpt::format(
+            "Shots fired: %zu, heard: %zu, a reception rate of %.1f %% (of the shots fired: a "
+            "section fires only its own beacons). Multilateration fixes: %d (in the tracker "
+            "mode, those made while the filter starts or restarts; then every epoch gives an "
+            "estimate, the ranges corrected by the offsets and scale above). Log: ",
+            shots.size(), detected, 100.0 * double(detected) / double(shots.size()),
+            metrics.value("beacons", nlohmann::json::object()).value("multilateration_fixes", 0)) +
+        report::code(std::filesystem::path(shotsPath).filename().string()) + " (in this folder).");
+    return out;
 }
 
 void beaconsInTopView(const report::RunView& run, report::TopViewContent& view) {

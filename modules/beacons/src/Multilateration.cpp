@@ -2,6 +2,7 @@
 
 #include <Eigen/Eigenvalues>
 #include <Eigen/LU>
+#include <algorithm>
 #include <cmath>
 
 namespace mrloc::beacons {
@@ -37,6 +38,9 @@ namespace {
 constexpr double kCollinearRatio = 1e-8;
 constexpr double kPlanarRatio = 1e-4;  // out-of-plane spread under 1 % of the in-plane one
 constexpr double kCoincident = 1e-12;  // m^2
+// The leave-one-out fits robustMultilaterate tries at most: every range of the paper's
+// 4 to 8 beacons, the most suspect 12 of a longer observation.
+constexpr size_t kLeaveOneOutFits = 12;
 
 /** The problem in coordinates centred on the beacons' centroid (better conditioned).
  *  Nothing is copied: a fix allocates no memory. */
@@ -306,10 +310,49 @@ Fix robustMultilaterate(const std::vector<RangeMeasurement>& m, const Multilater
     Fix all = multilaterate(m, o);
     const size_t minLeft = o.knownHeight ? 3 : 4;  // one spare range to tell who is wrong
     if ((all.ok() && all.rmsResidual <= outlierThreshold) || m.size() < minLeft + 1) return all;
+    // Which ranges to try leaving out: every one while that is a few fits; beyond, the
+    // kLeaveOneOutFits whose removal the linearised fit says shrinks the squared residuals
+    // most, r_i^2 / (1 - h_ii) at the all-ranges solution (h_ii the hat matrix's diagonal,
+    // u_i^T (H^T H)^-1 u_i), so that a log with thousands of ranges in one observation costs
+    // O(n log n), not n fits of n ranges (issue 26).
+    std::vector<size_t> skips(m.size());
+    for (size_t i = 0; i < m.size(); ++i) skips[i] = i;
+    if (m.size() > kLeaveOneOutFits) {
+        if (all.position.allFinite() && all.status != FixStatus::InvalidInput &&
+            all.status != FixStatus::TooFewRanges && all.status != FixStatus::CoincidentBeacons &&
+            all.status != FixStatus::CollinearBeacons && all.status != FixStatus::AmbiguousMirror) {
+            const int dims = o.knownHeight ? 2 : 3;
+            Vector3d x = all.position;
+            if (o.knownHeight) x.z() = *o.knownHeight;
+            std::vector<Vector3d> u(m.size());
+            Matrix3d HtH = Matrix3d::Zero();
+            for (size_t i = 0; i < m.size(); ++i) {
+                const Vector3d d = x - m[i].beacon;
+                u[i] = d.norm() > 1e-12 ? Vector3d(d / d.norm()) : Vector3d::Zero();
+                if (dims == 2) u[i].z() = 0;
+                HtH += u[i] * u[i].transpose();
+            }
+            Matrix3d G;
+            if (!invertBlock(HtH, dims, G)) return all;
+            std::vector<double> drop(m.size());
+            for (size_t i = 0; i < m.size(); ++i) {
+                const double r = (x - m[i].beacon).norm() - m[i].range;
+                const double h = std::min(u[i].dot(G * u[i]), 1.0 - 1e-9);
+                drop[i] = r * r / (1.0 - h);
+            }
+            std::partial_sort(
+                skips.begin(), skips.begin() + kLeaveOneOutFits, skips.end(),
+                [&](size_t a, size_t b) { return drop[a] != drop[b] ? drop[a] > drop[b] : a < b; });
+            skips.resize(kLeaveOneOutFits);
+            std::sort(skips.begin(), skips.end());
+        } else {
+            return all;  // no solution to rank the ranges by
+        }
+    }
     Fix best;
     int bestIndex = -1;
     std::vector<RangeMeasurement> subset;
-    for (size_t skip = 0; skip < m.size(); ++skip) {
+    for (const size_t skip : skips) {
         subset.clear();
         for (size_t i = 0; i < m.size(); ++i)
             if (i != skip) subset.push_back(m[i]);

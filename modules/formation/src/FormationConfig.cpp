@@ -90,7 +90,6 @@ void FormationConfig::loadFromConfigFile(const mrpt::config::CConfigFileBase& sr
                   ? AlgorithmOneOptions::Lateral::Paper
                   : AlgorithmOneOptions::Lateral::Midpoint;
     gateStop = s.real("gate_stop", gateStop, 0.3, 10);
-    const ManeuverNoise noise;
     maneuverNoise.turn = s.real("turn_noise", maneuverNoise.turn, 0, 0.5);
     maneuverNoise.drive = s.real("drive_noise", maneuverNoise.drive, 0, 0.5);
     obstacleSensor.rays = int(s.integer("obstacle_rays", long(obstacleSensor.rays), 8, 3600));

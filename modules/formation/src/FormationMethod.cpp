@@ -5,6 +5,7 @@
 #include <mrloc/formation/FormationLocalizer.h>
 #include <mrloc/formation/FormationMethod.h>
 #include <mrloc/formation/FormationPayload.h>
+#include <mrloc/formation/PaperValues.h>
 #include <mrloc/report/Plots.h>
 #include <mrloc/sim/World.h>
 #include <mrpt/core/format.h>
@@ -61,7 +62,7 @@ std::string mm(double metres) { return mrpt::format("%.1f", 1e3 * metres); }
 
 /** The run's picture (seed 003 figs. 12-13): the route, the formation's vertices (believed
  *  and true), the dead-reckoning robot's estimate and truth, the obstacles found. */
-std::string runPicture(const report::RunView& run, const FormationRunFile& f) {
+report::Html runPicture(const report::RunView& run, const FormationRunFile& f) {
     std::vector<std::pair<double, double>> route, believed, truth, obstacles, drEst, drTrue, start;
     for (const auto& p : f.route) route.emplace_back(p.x, p.y);
     for (const auto& p : f.start) start.emplace_back(p.x, p.y);
@@ -111,12 +112,12 @@ std::string runPicture(const report::RunView& run, const FormationRunFile& f) {
     const double aspect = (y1 - y0 + 2) / std::max(x1 - x0 + 2, 1.0);
     const int height = std::clamp(int(std::lround(700 * aspect)) + 120, 320, 900);
     report::runGnuplot(body, run.dir + "/formation.run.png", mrpt::format("1000,%d", height));
-    return "<img src='formation.run.png' alt='route, vertices and dead reckoning'>\n";
+    return report::Figure{"formation.run.png", "route, vertices and dead reckoning"}.html();
 }
 
 /** Seed 003 fig. 14 for one route: the mean error against time, both speeds. */
-std::string figureFourteen(const std::string& dir, const FormationExperimentFile& e,
-                           const std::string& route) {
+report::Html figureFourteen(const std::string& dir, const FormationExperimentFile& e,
+                            const std::string& route) {
     std::set<double> speeds;
     for (const auto& c : e.curves)
         if (c.route == route) speeds.insert(c.wheelSpeed);
@@ -142,96 +143,116 @@ std::string figureFourteen(const std::string& dir, const FormationExperimentFile
                            "set key top right\nset yrange [0:*]\nset offsets 0, 0, graph 0.1, 0\n" +
                            plot + "\n",
                        dir + "/" + png);
-    return "<img src='" + report::html(png) + "' alt='error against time, " + report::html(route) +
-           "'>\n";
+    return report::Figure{png, "error against time, " + routeTitle(route)}.html();
 }
 
-std::string experimentSection(const std::string& dir) {
+/** A table of per-step vertex errors (seed 003 fig. 11's measure), in mm. */
+report::Table stepErrorTable() {
+    return report::Table({"source", "steps", "lateral mean (mm)", "lateral sd (mm)",
+                          "longitudinal mean (mm)", "longitudinal sd (mm)"});
+}
+
+void addStepErrors(report::Table& t, const std::string& source, size_t steps, double lateralMean,
+                   double lateralSd, double longitudinalMean, double longitudinalSd) {
+    t.row({source, std::to_string(steps), mm(lateralMean), mm(lateralSd), mm(longitudinalMean),
+           mm(longitudinalSd)});
+}
+
+report::Html experimentSection(const std::string& dir) {
+    using report::heading, report::paragraph;
     const auto e = FormationExperimentFile::read(dir);
-    std::string out =
-        "<h3>Seed 003 Table 1: error at the destination</h3>\n<p>Mean over the runs, in the "
-        "error-model mode. The formation's error is the last moving robot's, against the "
-        "vertex that perfect triangles give; dead reckoning's is its estimate's at the "
-        "destination. The paper's table was lost in extraction; its text: dead reckoning's "
-        "error \"increased significantly\" (about twice, fig. 14) when the wheel speed "
-        "halved, the formation's \"did not change meaningfully\".</p>\n<table><tr><th>route"
-        "</th><th>wheel speed (rad/s)</th><th>runs</th><th>moves</th><th>formation (m)</th>"
-        "<th>dead reckoning (m)</th><th>time, formation (s)</th><th>time, dead reckoning "
-        "(s)</th></tr>\n";
+    report::Html out =
+        heading(3, "Seed 003 Table 1: error at the destination") +
+        paragraph(
+            "Mean over the runs, in the error-model mode. The formation's error is the last "
+            "moving robot's, against the vertex that perfect triangles give; dead reckoning's "
+            "is its estimate's at the destination. The paper's table was lost in extraction; "
+            "its text: dead reckoning's error \"increased significantly\" (about twice, fig. "
+            "14) when the wheel speed halved, the formation's \"did not change "
+            "meaningfully\".");
+    report::Table table({"route", "wheel speed (rad/s)", "runs", "moves", "formation (m)",
+                         "dead reckoning (m)", "time, formation (s)", "time, dead reckoning (s)"});
     for (const auto& r : e.table)
-        out += mrpt::format(
-            "<tr><td>%s</td><td>%g</td><td>%zu</td><td>%zu</td><td>%.3f</td><td>%.3f</td>"
-            "<td>%.0f</td><td>%.0f</td></tr>\n",
-            report::html(r.route).c_str(), r.wheelSpeed, r.runs, r.moves, r.formation,
-            r.deadReckoning, r.formationTime, r.deadReckoningTime);
-    out += "</table>\n";
+        table.row({r.route, mrpt::format("%g", r.wheelSpeed), std::to_string(r.runs),
+                   std::to_string(r.moves), mrpt::format("%.3f", r.formation),
+                   mrpt::format("%.3f", r.deadReckoning), mrpt::format("%.0f", r.formationTime),
+                   mrpt::format("%.0f", r.deadReckoningTime)});
+    out += table.html();
     // the speed ratios, the paper's finding
     for (const auto& a : e.table)
         for (const auto& b : e.table)
             if (a.route == b.route && b.wheelSpeed < a.wheelSpeed)
-                out += mrpt::format(
-                    "<p>%s, %g rad/s against %g rad/s: dead reckoning's error x %.2f (the "
-                    "paper: about x 2), the formation's x %.2f (the paper: unchanged).</p>\n",
-                    report::html(a.route).c_str(), b.wheelSpeed, a.wheelSpeed,
-                    b.deadReckoning / a.deadReckoning, b.formation / a.formation);
+                out += paragraph(
+                    a.route +
+                    mrpt::format(", %g rad/s against %g rad/s: dead reckoning's error x %.2f (the "
+                                 "paper: about x 2), the formation's x %.2f (the paper: "
+                                 "unchanged).",
+                                 b.wheelSpeed, a.wheelSpeed, b.deadReckoning / a.deadReckoning,
+                                 b.formation / a.formation));
     std::set<std::string> routes;
     for (const auto& r : e.table) routes.insert(r.route);
-    out +=
-        "<h3>Seed 003 fig. 14: error against time</h3>\n<p>Dead reckoning's mean error "
-        "grows with time; the formation's is known only when a triangle is built (dots), "
-        "and depends on the number of triangles, not on the speed.</p>\n";
+    out += heading(3, "Seed 003 fig. 14: error against time") +
+           paragraph(
+               "Dead reckoning's mean error grows with time; the formation's is known only when "
+               "a triangle is built (dots), and depends on the number of triangles, not on the "
+               "speed.");
     for (const auto& r : routes) out += figureFourteen(dir, e, r);
-    if (!e.robots.empty()) {
+    if (!e.robots.empty() && !e.table.empty()) {
         std::vector<std::pair<double, double>> xy;
         for (const auto& r : e.robots) xy.emplace_back(double(r.robots), r.error);
         report::runGnuplot(report::dataBlock("n", xy) +
                                "set xlabel 'number of robots N'\nset ylabel 'mean error at the "
                                "destination (m)'\nset yrange [0:*]\nset xtics 1\nset key bottom "
                                "right\nplot $n using 1:2 with linespoints lw 2 pt 7 lc rgb "
-                               "'#1f77b4' title 'formation, " +
-                               routeTitle(e.table.front().route) + " route' noenhanced\n",
+                               "'#1f77b4' title " +
+                               report::gnuplotString("formation, " +
+                                                     routeTitle(e.table.front().route) + " route") +
+                               " noenhanced\n",
                            dir + "/formation.fig15.png", "700,400");
-        out +=
-            "<h3>Seed 003 fig. 15: error against the number of robots</h3>\n<p>The paper: "
-            "\"the localization error remains consistent despite an increase in the "
-            "number of robots\".</p>\n<img src='formation.fig15.png' alt='error against "
-            "N'>\n<table><tr><th>N</th>";
-        for (const auto& r : e.robots) out += "<td>" + std::to_string(r.robots) + "</td>";
-        out += "</tr><tr><th>error (m)</th>";
-        for (const auto& r : e.robots) out += mrpt::format("<td>%.3f</td>", r.error);
-        out += "</tr></table>\n";
+        std::vector<report::Html> ns, errors;
+        for (const auto& r : e.robots) {
+            ns.push_back(std::to_string(r.robots));
+            errors.push_back(mrpt::format("%.3f", r.error));
+        }
+        out += heading(3, "Seed 003 fig. 15: error against the number of robots") +
+               paragraph(
+                   "The paper: \"the localization error remains consistent despite an increase "
+                   "in the number of robots\".") +
+               report::Figure{"formation.fig15.png", "error against N"}.html() +
+               report::Table().headedRow("N", ns).headedRow("error (m)", errors).html();
     }
     out +=
-        "<h3>Seed 003 fig. 11: per-step vertex errors</h3>\n<p>Mean absolute error and "
-        "standard deviation along the new triangle's base (lateral) and across it "
-        "(longitudinal). <em>model</em>: the error model's draws, which the marches above "
-        "use; <em>camera</em>: Algorithm 1 from rendered frames (AprilTag 3), from a grid "
-        "of starts around the vertex.</p>\n<table><tr><th>source</th><th>steps</th><th>"
-        "lateral mean (mm)</th><th>lateral sd (mm)</th><th>longitudinal mean (mm)</th><th>"
-        "longitudinal sd (mm)</th></tr>\n";
+        heading(3, "Seed 003 fig. 11: per-step vertex errors") +
+        paragraph(
+            "Mean absolute error and standard deviation along the new triangle's base "
+            "(lateral) and across it (longitudinal). " +
+            report::emphasis("model") + ": the error model's draws, which the marches above use; " +
+            report::emphasis("camera") +
+            ": Algorithm 1 from rendered frames (AprilTag 3), from a grid of starts "
+            "around the vertex.");
+    auto steps = stepErrorTable();
     for (const auto& s : e.steps)
-        out += "<tr><td>" + report::html(s.source) + "</td><td>" + std::to_string(s.count) +
-               "</td><td>" + mm(s.lateralMean) + "</td><td>" + mm(s.lateralSd) + "</td><td>" +
-               mm(s.longitudinalMean) + "</td><td>" + mm(s.longitudinalSd) + "</td></tr>\n";
-    return out + "</table>\n";
+        addStepErrors(steps, s.source, s.count, s.lateralMean, s.lateralSd, s.longitudinalMean,
+                      s.longitudinalSd);
+    return out + steps.html();
 }
 
-std::string formationSection(const report::RunView& run) {
-    std::string out = "<h2>Formation (seed 003)</h2>\n";
+report::Html formationSection(const report::RunView& run) {
+    report::Html out = report::heading(2, "Formation (seed 003)");
     const auto f = FormationRunFile::read(run.dir);
     const auto m = run.metrics.value("formation", nlohmann::json::object());
     const double last = f.moves.empty() ? NAN : f.moves.back().error();
-    out += mrpt::format(
-        "<p>%zu moves; the team %s. The last moving robot's error at the destination: %s m "
-        "(seed 003 Table 1's measure); the dead-reckoning robot's: %s m.</p>\n",
-        f.moves.size(),
-        m.value("state", std::string("?")) == "arrived"
-            ? "reached the destination"
-            : ("ended " + m.value("state", std::string("?"))).c_str(),
+    const std::string state = m.contains("state") && m["state"].is_string()
+                                  ? m["state"].get<std::string>()
+                                  : std::string("?");
+    out += report::paragraph(mrpt::format(
+        "%zu moves; the team %s. The last moving robot's error at the destination: %s m "
+        "(seed 003 Table 1's measure); the dead-reckoning robot's: %s m.",
+        f.moves.size(), state == "arrived" ? "reached the destination" : ("ended " + state).c_str(),
         std::isfinite(last) ? mrpt::format("%.3f", last).c_str() : "none",
         std::isfinite(f.deadReckoningFinalError)
             ? mrpt::format("%.3f", f.deadReckoningFinalError).c_str()
-            : "none");
+            : "none"));
     out += runPicture(run, f);
     // the run's own per-step errors (seed 003 fig. 11's measure), beside the paper's
     std::vector<double> lat, lon;
@@ -244,16 +265,18 @@ std::string formationSection(const report::RunView& run) {
             run.effective && run.effective->read_string("formation", "mode", "") == "pixel"
                 ? "this run's moves, steered by the cameras (pixel mode)"
                 : "this run's moves (error-model mode)";
-        out +=
-            "<p>Per-step errors: each move's true end against the true anchor reflected "
-            "across the true base (a perfect triangle on the real beacons), along the base "
-            "(lateral) and across it (longitudinal); mean absolute value and standard "
-            "deviation.</p>\n<table><tr><th>source</th><th>steps</th><th>lateral mean (mm)"
-            "</th><th>lateral sd (mm)</th><th>longitudinal mean (mm)</th><th>longitudinal sd "
-            "(mm)</th></tr>\n<tr><td>seed 003 fig. 11 (60 lab runs)</td><td>60</td><td>36.0"
-            "</td><td>21.0</td><td>13.0</td><td>9.0</td></tr>\n<tr><td>" +
-            mode + "</td><td>" + std::to_string(lat.size()) + "</td><td>" + mm(lm) + "</td><td>" +
-            mm(ls) + "</td><td>" + mm(om) + "</td><td>" + mm(os) + "</td></tr>\n</table>\n";
+        auto steps = stepErrorTable();
+        addStepErrors(steps,
+                      "seed 003 fig. 11 (" + std::to_string(paper::kFig11Runs) + " lab runs)",
+                      paper::kFig11Runs, paper::kLateralMean, paper::kLateralSd,
+                      paper::kLongitudinalMean, paper::kLongitudinalSd);
+        addStepErrors(steps, mode, lat.size(), lm, ls, om, os);
+        out += report::paragraph(
+                   "Per-step errors: each move's true end against the true anchor reflected "
+                   "across the true base (a perfect triangle on the real beacons), along the "
+                   "base (lateral) and across it (longitudinal); mean absolute value and "
+                   "standard deviation.") +
+               steps.html();
     }
     if (std::filesystem::exists(FormationExperimentFile::path(run.dir)))
         out += experimentSection(run.dir);
@@ -269,7 +292,7 @@ void registerMethod(method::Registry& registry) {
     m.scenario = loadScenario;
     m.experiment = formationExperiment;  // seed 003 Table 1, figs. 11, 14, 15
     m.work = formationWork;
-    m.report.html = formationSection;    // its own picture: no world top view
+    m.report.html = formationSection;  // its own picture: no world top view
     registry.add(std::move(m));
 }
 

@@ -62,7 +62,7 @@ std::string worldObjects(const report::RunView& run) {
 
 /** Seed 004 fig. 7: the robots' estimates without (top) and with (bottom) the shared
  *  frame, the truth, the walls found and the redefinitions. */
-std::string runPicture(const report::RunView& run, const FramesyncRunFile& f) {
+report::Html runPicture(const report::RunView& run, const FramesyncRunFile& f) {
     std::vector<std::string> robots;
     for (const auto& [name, traj] : run.estimates) robots.push_back(name);
     std::string data, odometryPlot, sharedPlot;
@@ -115,7 +115,8 @@ std::string runPicture(const report::RunView& run, const FramesyncRunFile& f) {
         odometryPlot + "\nset title 'with the shared frame (seed 004)'\n" + sharedPlot +
         "\nunset multiplot\n";
     report::runGnuplot(body, run.dir + "/framesync.run.png", "1100,900");
-    return "<img src='framesync.run.png' alt='estimates without and with the shared frame'>\n";
+    return report::Figure{"framesync.run.png", "estimates without and with the shared frame"}
+        .html();
 }
 
 double percentile(std::vector<double> xs, double q) {
@@ -124,39 +125,36 @@ double percentile(std::vector<double> xs, double q) {
     return xs[std::min(xs.size() - 1, size_t(std::floor(q * double(xs.size() - 1) + 0.5)))];
 }
 
-std::string experimentSection(const std::string& dir) {
+report::Html experimentSection(const std::string& dir) {
+    using report::heading, report::paragraph;
     const auto e = FramesyncExperimentFile::read(dir);
     std::vector<double> shared, odometry;
     for (const auto& r : e.runs)
         if (r.kind == "paper" && std::isfinite(r.sharedError))
             shared.push_back(r.sharedError), odometry.push_back(r.odometryError);
-    std::string out;
+    report::Html out;
     if (!shared.empty()) {
-        auto row = [](const char* name, const std::vector<double>& xs, const char* paper) {
+        report::Table table({"frames", "mean (cm)", "median (cm)", "90th percentile (cm)",
+                             "max (cm)", "runs under 10 cm", "seed 004 (one run)"});
+        auto row = [&](const char* name, const std::vector<double>& xs, const char* paper) {
             double mean = 0;
             size_t under = 0;
             for (const double x : xs) mean += x, under += x < 0.10;
             mean /= double(xs.size());
-            return mrpt::format(
-                "<tr><td>%s</td><td>%s</td><td>%s</td><td>%s</td><td>%s</td><td>%.0f %%</td>"
-                "<td>%s</td></tr>\n",
-                name, cm(mean).c_str(), cm(percentile(xs, 0.5)).c_str(),
-                cm(percentile(xs, 0.9)).c_str(), cm(percentile(xs, 1)).c_str(),
-                100.0 * double(under) / double(xs.size()), paper);
+            table.row({name, cm(mean), cm(percentile(xs, 0.5)), cm(percentile(xs, 0.9)),
+                       cm(percentile(xs, 1)),
+                       mrpt::format("%.0f %%", 100.0 * double(under) / double(xs.size())), paper});
         };
-        out += mrpt::format(
-            "<h3>Seed 004 sec. 5.2 over %zu seeds</h3>\n<p>At the end of each run, where "
-            "each robot is as another sees it (its position in the other's frame and "
-            "heading), estimated against true, mean over the pairs of robots. The paper's two "
-            "robots end at one goal point: for them this is the distance between their "
-            "estimates of it. The INI's scenario, simulated again with other seeds.</p>\n"
-            "<table><tr><th>frames</th>"
-            "<th>mean (cm)</th><th>median (cm)</th><th>90th percentile (cm)</th><th>max (cm)"
-            "</th><th>runs under 10 cm</th><th>seed 004 (one run)</th></tr>\n",
-            shared.size());
-        out += row("each robot's own odometry", odometry, "about 30 cm");
-        out += row("shared (seed 004)", shared, "under 10 cm");
-        out += "</table>\n";
+        row("each robot's own odometry", odometry, "about 30 cm");
+        row("shared (seed 004)", shared, "under 10 cm");
+        out += heading(3, mrpt::format("Seed 004 sec. 5.2 over %zu seeds", shared.size())) +
+               paragraph(
+                   "At the end of each run, where each robot is as another sees it (its "
+                   "position in the other's frame and heading), estimated against true, mean "
+                   "over the pairs of robots. The paper's two robots end at one goal point: for "
+                   "them this is the distance between their estimates of it. The INI's "
+                   "scenario, simulated again with other seeds.") +
+               table.html();
         std::vector<std::pair<double, double>> cs, co;
         auto sortedShared = shared, sortedOdometry = odometry;
         std::sort(sortedShared.begin(), sortedShared.end());
@@ -176,7 +174,7 @@ std::string experimentSection(const std::string& dir) {
                 "'#d62728'\nplot $o using 1:2 with steps lw 2 lc rgb '#d62728' title 'own "
                 "odometry', $s using 1:2 with steps lw 2 lc rgb '#1f77b4' title 'shared frame'\n",
             dir + "/framesync.seeds.png", "800,450");
-        out += "<img src='framesync.seeds.png' alt='distribution over seeds'>\n";
+        out += report::Figure{"framesync.seeds.png", "distribution over seeds"}.html();
     }
     // the sweeps: mean over the seeds at each value
     for (const std::string kind : {"noise", "drift"}) {
@@ -188,10 +186,9 @@ std::string experimentSection(const std::string& dir) {
         if (by.empty()) continue;
         const bool noise = kind == "noise";
         std::vector<std::pair<double, double>> s, o;
-        std::string table = std::string("<table><tr><th>") +
-                            (noise ? "sonar noise, sd (cm)" : "odometry drift (x the INI's)") +
-                            "</th><th>runs</th><th>own odometry, mean (cm)</th><th>shared "
-                            "frame, mean (cm)</th><th>shared, 90th percentile (cm)</th></tr>\n";
+        report::Table table({noise ? "sonar noise, sd (cm)" : "odometry drift (x the INI's)",
+                             "runs", "own odometry, mean (cm)", "shared frame, mean (cm)",
+                             "shared, 90th percentile (cm)"});
         for (const auto& [value, xs] : by) {
             double ms = 0, mo = 0;
             for (const double x : xs.first) ms += x;
@@ -199,11 +196,8 @@ std::string experimentSection(const std::string& dir) {
             ms /= double(xs.first.size()), mo /= double(xs.second.size());
             const double x = noise ? 100 * value : value;
             s.emplace_back(x, 100 * ms), o.emplace_back(x, 100 * mo);
-            table += mrpt::format(
-                "<tr><td>%g</td><td>%zu</td><td>%s</td><td>%s</td><td>%s</td>"
-                "</tr>\n",
-                x, xs.first.size(), cm(mo).c_str(), cm(ms).c_str(),
-                cm(percentile(xs.first, 0.9)).c_str());
+            table.row({mrpt::format("%g", x), std::to_string(xs.first.size()), cm(mo), cm(ms),
+                       cm(percentile(xs.first, 0.9))});
         }
         const std::string png = "framesync." + kind + ".png";
         report::runGnuplot(
@@ -216,56 +210,53 @@ std::string experimentSection(const std::string& dir) {
                 "'#d62728' title 'own odometry', $s using 1:2 with linespoints lw 2 pt 5 lc rgb "
                 "'#1f77b4' title 'shared frame'\n",
             dir + "/" + png, "800,400");
-        out += std::string("<h3>Against the ") +
-               (noise ? "sonar's range noise" : "odometry's drift") + "</h3>\n<img src='" +
-               report::html(png) + "' alt='" + report::html(kind) + " sweep'>\n" + table +
-               "</table>\n";
+        out +=
+            heading(3, noise ? "Against the sonar's range noise" : "Against the odometry's drift") +
+            report::Figure{png, kind + " sweep"}.html() + table.html();
     }
     return out;
 }
 
-std::string framesyncSection(const report::RunView& run) {
-    std::string out = "<h2>Shared frame from walls (seed 004)</h2>\n";
+report::Html framesyncSection(const report::RunView& run) {
+    report::Html out = report::heading(2, "Shared frame from walls (seed 004)");
     const auto f = FramesyncRunFile::read(run.dir);
     const auto m = run.metrics.value("framesync", nlohmann::json::object());
     const auto [shared, odometry] = meanPairErrors(f.pairs);
     if (!f.pairs.empty())
-        out += mrpt::format(
-            "<p>At the end, where each robot is as another sees it, estimated against true "
-            "(for two robots at one goal, the distance between their estimates of it), mean "
-            "over the pairs: <b>%s cm with the shared frame, %s cm with each robot's own "
-            "odometry</b> (seed 004: under 10 cm and about 30 cm). %zu walls announced, %zu "
-            "redefinitions.</p>\n",
-            cm(shared).c_str(), cm(odometry).c_str(), f.walls.size(), f.events.size());
+        out += report::paragraph(
+            "At the end, where each robot is as another sees it, estimated against true (for "
+            "two robots at one goal, the distance between their estimates of it), mean over "
+            "the pairs: " +
+            report::bold(cm(shared) + " cm with the shared frame, " + cm(odometry) +
+                         " cm with each robot's own odometry") +
+            mrpt::format(" (seed 004: under 10 cm and about 30 cm). %zu walls announced, %zu "
+                         "redefinitions.",
+                         f.walls.size(), f.events.size()));
     else
-        out += mrpt::format(
-            "<p>%zu walls announced, %zu redefinitions; no pair of robots with ground truth "
-            "to compare.</p>\n",
-            f.walls.size(), f.events.size());
+        out += report::paragraph(mrpt::format(
+            "%zu walls announced, %zu redefinitions; no pair of robots with ground truth to "
+            "compare.",
+            f.walls.size(), f.events.size()));
     out += runPicture(run, f);
-    out +=
-        "<table><tr><th>robot</th><th>walls</th><th>redefinitions</th><th>ERPs</th><th>pairs "
-        "with no wall</th><th>groups too short</th><th>groups off the line</th><th>groups not "
-        "perpendicular</th></tr>\n";
+    report::Table counts({"robot", "walls", "redefinitions", "ERPs", "pairs with no wall",
+                          "groups too short", "groups off the line", "groups not perpendicular"});
     const auto robots = m.value("robots", nlohmann::json::object());
-    for (const auto& [name, r] : robots.items())
-        out += mrpt::format(
-            "<tr><td>%s</td><td>%d</td><td>%d</td><td>%d</td><td>%d</td><td>%d</td><td>%d</td>"
-            "<td>%d</td></tr>\n",
-            report::html(name).c_str(), r.value("walls", 0), r.value("redefinitions", 0),
-            r.value("erps", 0), r.value("pairs_without_wall", 0), r.value("groups_too_short", 0),
-            r.value("groups_off_line", 0), r.value("groups_not_perpendicular", 0));
-    out += "</table>\n";
+    for (const auto& [name, r] : robots.items()) {
+        std::vector<report::Html> cells{name};
+        for (const char* key : {"walls", "redefinitions", "erps", "pairs_without_wall",
+                                "groups_too_short", "groups_off_line", "groups_not_perpendicular"})
+            cells.push_back(report::cellText(r.is_object() ? r.value(key, nlohmann::json())
+                                                           : nlohmann::json()));
+        counts.row(std::move(cells));
+    }
+    out += counts.html();
     if (!f.pairs.empty()) {
-        out +=
-            "<table><tr><th>robots</th><th>true distance (m)</th><th>error, shared frame (cm)"
-            "</th><th>error, own odometry (cm)</th></tr>\n";
+        report::Table pairs({"robots", "true distance (m)", "error, shared frame (cm)",
+                             "error, own odometry (cm)"});
         for (const auto& p : f.pairs)
-            out +=
-                mrpt::format("<tr><td>%s, %s</td><td>%.2f</td><td>%s</td><td>%s</td></tr>\n",
-                             report::html(p.a).c_str(), report::html(p.b).c_str(), p.trueDistance,
-                             cm(p.sharedError).c_str(), cm(p.odometryError).c_str());
-        out += "</table>\n";
+            pairs.row({p.a + ", " + p.b, mrpt::format("%.2f", p.trueDistance), cm(p.sharedError),
+                       cm(p.odometryError)});
+        out += pairs.html();
     }
     if (std::filesystem::exists(FramesyncExperimentFile::path(run.dir)))
         out += experimentSection(run.dir);
@@ -281,7 +272,7 @@ void registerMethod(method::Registry& registry) {
     m.scenario = loadScenario;
     m.experiment = framesyncExperiment;  // seed 004 sec. 5.2 over seeds, noises, drifts
     m.work = framesyncWork;
-    m.report.html = framesyncSection;    // its own picture (fig. 7): no world top view
+    m.report.html = framesyncSection;  // its own picture (fig. 7): no world top view
     registry.add(std::move(m));
 }
 

@@ -207,90 +207,94 @@ std::vector<method::WorkItem> omnivisionWork(const OmniLocalizer& localizer,
     return out;
 }
 
-std::string omnivisionSection(const report::RunView& run) {
+report::Html omnivisionSection(const report::RunView& run) {
+    using report::heading, report::paragraph;
     const auto layout = LayoutFile::read(run.dir);
     plotLayout(layout, run.dir + "/layout.png");
     const auto& m = run.metrics.value("omnivision", nlohmann::json::object());
-    std::string out =
-        "<h2>Relative layout (seed 000)</h2>\n<p>The truth, the paper's solution (eq. (8) for "
-        "L, then the sine rule) and the least-squares refinement over every identified "
-        "bearing and measured distance, with its 3-sigma ellipses; the legend is in the "
-        "picture.</p>\n<img src='layout.png' alt='true and recovered layouts'>\n";
+    report::Html out =
+        heading(2, "Relative layout (seed 000)") +
+        paragraph(
+            "The truth, the paper's solution (eq. (8) for L, then the sine rule) and the "
+            "least-squares refinement over every identified bearing and measured "
+            "distance, with its 3-sigma ellipses; the legend is in the picture.") +
+        report::Figure{"layout.png", "true and recovered layouts"}.html();
     // the headline figures: every pairwise distance against the truth, and the triangles
     // each snapshot gave (seed 000 finds a layout from the triangles' interior angles)
     const auto pct = [&](const char* key, const char* stat) {
         const auto e = m.value(key, nlohmann::json::object());
-        return e.contains(stat) && e[stat].is_number()
+        return e.is_object() && e.contains(stat) && e[stat].is_number()
                    ? mrpt::format("%.2f %%", 100 * e[stat].get<double>())
                    : std::string("none");
     };
-    if (m.contains("relative_distance_error_paper")) {
-        out += mrpt::format(
-            "<p><b>Relative distance error, median (max) over the %d pairs: the paper's "
-            "solution %s (%s), refined %s (%s).</b> ",
-            m["relative_distance_error_paper"].value("pairs", 0),
-            pct("relative_distance_error_paper", "median").c_str(),
-            pct("relative_distance_error_paper", "max").c_str(),
-            pct("relative_distance_error_refined", "median").c_str(),
-            pct("relative_distance_error_refined", "max").c_str());
-        const size_t n = size_t(m.value("robots", 0));
+    if (m.contains("relative_distance_error_paper") &&
+        m["relative_distance_error_paper"].is_object()) {
+        report::Html headline = report::bold(
+            "Relative distance error, median (max) over the " +
+            report::cellText(m["relative_distance_error_paper"].value("pairs", nlohmann::json())) +
+            " pairs: the paper's solution " + pct("relative_distance_error_paper", "median") +
+            " (" + pct("relative_distance_error_paper", "max") + "), refined " +
+            pct("relative_distance_error_refined", "median") + " (" +
+            pct("relative_distance_error_refined", "max") + ").");
+        const long long robots = m.contains("robots") && m["robots"].is_number_integer()
+                                     ? m["robots"].get<long long>()
+                                     : 0;
+        const size_t n = size_t(std::clamp(robots, 0LL, 1LL << 20));
         const size_t all = n >= 3 ? n * (n - 1) * (n - 2) / 6 : 0;
         const auto snapshots = m.value("snapshots", nlohmann::json::object());
-        for (const auto& [name, snap] : snapshots.items())
-            out += mrpt::format("Snapshot %s: %d of the %zu triangles found%s. ",
-                                report::html(name).c_str(), snap.value("triangles", 0), all,
-                                snap.value("unresolved", nlohmann::json::array()).empty()
-                                    ? ""
-                                    : ", some robots unresolved");
-        out += "Seed 000 gives no figure to compare with.</p>\n";
+        for (const auto& [name, snap] : snapshots.items()) {
+            if (!snap.is_object()) continue;
+            headline += " Snapshot " + name + ": " +
+                        report::cellText(snap.value("triangles", nlohmann::json())) +
+                        mrpt::format(" of the %zu triangles found", all) +
+                        (snap.value("unresolved", nlohmann::json::array()).empty()
+                             ? "."
+                             : ", some robots unresolved.");
+        }
+        out += paragraph(headline + " Seed 000 gives no figure to compare with.");
     }
-    if (m.contains("restarts") && !m["restarts"].empty()) {
-        out += "<p>Restarts (the stopped pair shared no witness):</p><ul>\n";
-        for (const auto& r : m["restarts"])
-            out += "<li>" + report::html(r.get<std::string>()) + "</li>\n";
-        out += "</ul>\n";
+    if (m.contains("restarts") && m["restarts"].is_array() && !m["restarts"].empty()) {
+        std::vector<report::Html> restarts;
+        for (const auto& r : m["restarts"]) restarts.push_back(report::cellText(r));
+        out += paragraph("Restarts (the stopped pair shared no witness):") +
+               report::bulletList(restarts);
     }
     const auto xy = [](double x, double y) {
         return std::isfinite(x) ? mrpt::format("%.3f, %.3f", x, y) : std::string("none");
     };
-    out +=
-        "<table><tr><th>robot</th><th>paper x, y (m)</th><th>refined x, y (m)</th>"
-        "<th>sigma x, y (mm)</th><th>truth x, y (m)</th><th>normalised squared error</th>"
-        "</tr>\n";
+    report::Table table({"robot", "paper x, y (m)", "refined x, y (m)", "sigma x, y (mm)",
+                         "truth x, y (m)", "normalised squared error"});
     for (const auto& p : layout.points) {
         const auto nees = normalisedSquaredError(p);
-        out += "<tr><td>" + report::html(p.robot) + "</td><td>" + xy(p.paperX, p.paperY) +
-               "</td><td>" + xy(p.refinedX, p.refinedY) + "</td><td>" +
-               (std::isfinite(p.cxx)
-                    ? mrpt::format("%.1f, %.1f", 1000 * std::sqrt(std::max(0.0, p.cxx)),
-                                   1000 * std::sqrt(std::max(0.0, p.cyy)))
-                    : std::string("none")) +
-               "</td><td>" + xy(p.trueX, p.trueY) + "</td><td>" +
-               (nees ? mrpt::format("%.2f", *nees) : std::string("none")) + "</td></tr>\n";
+        table.row({p.robot, xy(p.paperX, p.paperY), xy(p.refinedX, p.refinedY),
+                   std::isfinite(p.cxx)
+                       ? mrpt::format("%.1f, %.1f", 1000 * std::sqrt(std::max(0.0, p.cxx)),
+                                      1000 * std::sqrt(std::max(0.0, p.cyy)))
+                       : std::string("none"),
+                   xy(p.trueX, p.trueY), nees ? mrpt::format("%.2f", *nees) : std::string("none")});
     }
-    out +=
-        "</table>\n<p>Normalised squared error: the refined position's error weighed by "
-        "its covariance, per coordinate (B's y is the frame's, so B has one). With a "
-        "covariance that matches the errors it averages 1 over runs (measured per robot "
-        "over 20 seeds of omnivision_5robots.ini: 0.58 to 1.00); one run's value is one "
-        "draw, mostly below 3.</p>\n";
+    out += table.html() +
+           paragraph(
+               "Normalised squared error: the refined position's error weighed by its "
+               "covariance, per coordinate (B's y is the frame's, so B has one). With a "
+               "covariance that matches the errors it averages 1 over runs (measured per "
+               "robot over 20 seeds of omnivision_5robots.ini: 0.58 to 1.00); one run's "
+               "value is one draw, mostly below 3.");
     if (!std::filesystem::exists(AccuracyFile::path(run.dir))) return out;
     const auto sweep = AccuracyFile::read(run.dir);
     plotAccuracy(sweep, run.dir + "/accuracy.png");
-    out +=
-        "<h3>Accuracy against noise (Monte Carlo on this run's true layout)</h3>\n"
-        "<p>Median relative error of all pairwise distances, mean over the trials. Seed 000 "
-        "gives no figure to compare with.</p>\n<img src='accuracy.png' alt='accuracy against "
-        "noise'>\n<table><tr><th>varied</th><th>bearing sigma (deg)</th><th>distance sigma "
-        "(%)</th><th>paper's solution (%)</th><th>least squares (%)</th><th>trials</th>"
-        "<th>failed</th></tr>\n";
+    report::Table accuracy({"varied", "bearing sigma (deg)", "distance sigma (%)",
+                            "paper's solution (%)", "least squares (%)", "trials", "failed"});
     for (const auto& r : sweep.points)
-        out += mrpt::format(
-            "<tr><td>%s</td><td>%g</td><td>%g</td><td>%.3f</td><td>%.3f</td><td>%d</td>"
-            "<td>%d</td></tr>\n",
-            report::html(r.axis).c_str(), r.angleSigmaDeg, 100 * r.distanceSigma, 100 * r.paper,
-            100 * r.refined, r.trials, r.failures);
-    return out + "</table>\n";
+        accuracy.row({r.axis, mrpt::format("%g", r.angleSigmaDeg),
+                      mrpt::format("%g", 100 * r.distanceSigma),
+                      mrpt::format("%.3f", 100 * r.paper), mrpt::format("%.3f", 100 * r.refined),
+                      std::to_string(r.trials), std::to_string(r.failures)});
+    return out + heading(3, "Accuracy against noise (Monte Carlo on this run's true layout)") +
+           paragraph(
+               "Median relative error of all pairwise distances, mean over the trials. "
+               "Seed 000 gives no figure to compare with.") +
+           report::Figure{"accuracy.png", "accuracy against noise"}.html() + accuracy.html();
 }
 
 }  // namespace

@@ -98,7 +98,8 @@ void plotSweep(const EliminationSweepFile& sweep, const std::string& dir) {
 }
 
 /** The experiment's tables, ours beside the paper's where the run is the paper's case. */
-std::string eliminationTables(const EliminationFile& file, const EliminationTimes& times) {
+report::Html eliminationTables(const EliminationFile& file, const EliminationTimes& times) {
+    using report::Html;
     const size_t starts = file.columns.front().travel.size();
     std::vector<int> paperColumn;  // ours -> the paper's, -1 if it has none
     for (const auto& c : file.columns) {
@@ -112,42 +113,39 @@ std::string eliminationTables(const EliminationFile& file, const EliminationTime
         for (double x : v) s += x;
         return v.empty() ? 0.0 : s / double(v.size());
     };
+    const auto f = [](const char* format, double x) { return Html(mrpt::format(format, x)); };
     // The verification tours, when every start has one.
     const bool tours =
         file.tour.size() == starts &&
         std::all_of(file.tour.begin(), file.tour.end(), [](double d) { return std::isfinite(d); });
     const auto table = [&](bool travel) {
         const bool tourColumn = travel && tours;
-        std::string out = "<table><tr><th>start</th>";
-        if (tourColumn) out += "<th>tour d (m)</th>";
-        for (size_t c = 0; c < file.columns.size(); ++c)
-            out += "<th>" + report::html(file.columns[c].name) + (travel ? " d (m)" : " t (ms)") +
-                   "</th>" +
-                   (paperColumn[c] >= 0
-                        ? std::string(travel ? "<th>paper d</th>" : "<th>paper t (s)</th>")
-                        : std::string());
-        out += "</tr>\n";
+        std::vector<Html> head{"start"};
+        if (tourColumn) head.push_back("tour d (m)");
+        for (size_t c = 0; c < file.columns.size(); ++c) {
+            head.push_back(file.columns[c].name + (travel ? " d (m)" : " t (ms)"));
+            if (paperColumn[c] >= 0) head.push_back(travel ? "paper d" : "paper t (s)");
+        }
+        report::Table t(head);
         for (size_t i = 0; i < starts; ++i) {
-            out += "<tr><td>" + std::to_string(i + 1) + (i == file.trueStart ? " (run)" : "") +
-                   "</td>";
-            if (tourColumn) out += mrpt::format("<td>%.2f</td>", file.tour[i]);
+            std::vector<Html> cells{std::to_string(i + 1) + (i == file.trueStart ? " (run)" : "")};
+            if (tourColumn) cells.push_back(f("%.2f", file.tour[i]));
             for (size_t c = 0; c < file.columns.size(); ++c) {
                 const auto& col = file.columns[c];
                 const std::string ok = col.survivors[i] == 1 ? "" : " (not localized)";
-                out += travel ? mrpt::format("<td>%.2f%s</td>", col.travel[i], ok.c_str())
-                              : mrpt::format("<td>%.2f</td>", 1e3 * times.seconds.at(c).at(i));
+                cells.push_back(travel ? mrpt::format("%.2f", col.travel[i]) + ok
+                                       : mrpt::format("%.2f", 1e3 * times.seconds.at(c).at(i)));
                 if (paperColumn[c] >= 0)
-                    out += mrpt::format(
-                        "<td>%.1f</td>",
-                        (travel ? paper::kTravel : paper::kSeconds)[i][paperColumn[c]]);
+                    cells.push_back(
+                        f("%.1f", (travel ? paper::kTravel : paper::kSeconds)[i][paperColumn[c]]));
             }
-            out += "</tr>\n";
+            t.row(std::move(cells));
         }
         // Averages, and each average over the first column's (the paper's d_i/d_1, t_i/t_1).
-        std::string avg = "<tr><td>mean</td>", ratio = "<tr><td>ratio to column 1</td>";
+        std::vector<Html> avg{"mean"}, ratio{"ratio to column 1"};
         if (tourColumn) {
-            avg += mrpt::format("<td>%.2f</td>", mean(file.tour));
-            ratio += "<td></td>";
+            avg.push_back(f("%.2f", mean(file.tour)));
+            ratio.push_back("");
         }
         const auto paperMean = [travel](int column) {
             double sum = 0;
@@ -159,85 +157,82 @@ std::string eliminationTables(const EliminationFile& file, const EliminationTime
         const double paperFirst = paperColumn[0] >= 0 ? paperMean(paperColumn[0]) : 0;
         for (size_t c = 0; c < file.columns.size(); ++c) {
             const double m = travel ? mean(file.columns[c].travel) : mean(times.seconds.at(c));
-            avg += mrpt::format("<td>%.2f</td>", travel ? m : 1e3 * m);
-            ratio += mrpt::format("<td>%.3f</td>", first > 0 ? m / first : 0.0);
+            avg.push_back(f("%.2f", travel ? m : 1e3 * m));
+            ratio.push_back(f("%.3f", first > 0 ? m / first : 0.0));
             if (paperColumn[c] >= 0) {
                 const double pm = paperMean(paperColumn[c]);
-                avg += mrpt::format("<td>%.2f</td>", pm);
-                ratio += paperFirst > 0 ? mrpt::format("<td>%.3f</td>", pm / paperFirst)
-                                        : std::string("<td></td>");
+                avg.push_back(f("%.2f", pm));
+                ratio.push_back(paperFirst > 0 ? f("%.3f", pm / paperFirst) : Html());
             }
         }
+        t.row(avg).row(ratio);
         // Each algorithm's mean path over the bounds: the first-separation distance, and,
         // start by start, the verification tour.
-        std::string toBound;
         const auto boundRow = [&](const std::string& label, auto value) {
-            std::string row = "<tr><td>" + label + "</td>" + (tourColumn ? "<td></td>" : "");
-            for (size_t c = 0; c < file.columns.size(); ++c)
-                row += mrpt::format("<td>%.2f</td>", value(file.columns[c])) +
-                       (paperColumn[c] >= 0 ? "<td></td>" : "");
-            return row + "</tr>\n";
+            std::vector<Html> cells{label};
+            if (tourColumn) cells.push_back("");
+            for (size_t c = 0; c < file.columns.size(); ++c) {
+                cells.push_back(f("%.2f", value(file.columns[c])));
+                if (paperColumn[c] >= 0) cells.push_back("");
+            }
+            t.row(std::move(cells));
         };
         if (travel && std::isfinite(file.bound) && file.bound > 0)
-            toBound += boundRow("mean d / first-separation bound",
-                                [&](const auto& col) { return mean(col.travel) / file.bound; });
+            boundRow("mean d / first-separation bound",
+                     [&](const auto& col) { return mean(col.travel) / file.bound; });
         if (tourColumn) {
-            toBound += boundRow("mean d / mean tour", [&](const auto& col) {
-                return mean(col.travel) / mean(file.tour);
-            });
-            toBound += boundRow("worst d / tour", [&](const auto& col) {
+            boundRow("mean d / mean tour",
+                     [&](const auto& col) { return mean(col.travel) / mean(file.tour); });
+            boundRow("worst d / tour", [&](const auto& col) {
                 double worst = 0;
                 for (size_t i = 0; i < starts; ++i)
                     worst = std::max(worst, col.travel[i] / file.tour[i]);
                 return worst;
             });
         }
-        return out + avg + "</tr>\n" + ratio + "</tr>\n" + toBound + "</table>\n";
+        return t.html();
     };
-    return "<h3>Elimination: path length per start (seed 002 Table 1)</h3>\n"
-           "<p>Every hypothesis in turn the truth; closed loop with exact views; d is the "
-           "robot's travel in metres. The paper's map units are not stated: compare the "
-           "ratios. Two bounds (doc/polymap.md): the first-separation distance, " +
-           (std::isfinite(file.bound) ? mrpt::format("%.2f m", file.bound)
-                                      : std::string("none found")) +
-           ", the shortest travel to any point where the hypotheses' views differ, which no "
-           "strategy beats from any start; and, start by start, the verification tour "
-           "(Dudek, Romanik and Whitesides 1998): the least travel that rules out every other "
-           "hypothesis with the truth known, found exactly by search over every algorithm's "
-           "candidates and probes" +
-           (tours ? std::string()
-                  : " (not computed: more than " + std::to_string(kMaxTourHypotheses) +
-                        " hypotheses)") +
-           ". Seed 002 reports no bound.</p>\n" + table(true) +
-           "<h3>Elimination: run time per start (seed 002 Table 2)</h3>\n"
-           "<p>One whole localization, this machine, one core, milliseconds; the paper's in "
-           "seconds (Visual C++ 2010).</p>\n" +
+    return report::heading(3, "Elimination: path length per start (seed 002 Table 1)") +
+           report::paragraph(
+               "Every hypothesis in turn the truth; closed loop with exact views; d is the "
+               "robot's travel in metres. The paper's map units are not stated: compare the "
+               "ratios. Two bounds (doc/polymap.md): the first-separation distance, " +
+               (std::isfinite(file.bound) ? mrpt::format("%.2f m", file.bound)
+                                          : std::string("none found")) +
+               ", the shortest travel to any point where the hypotheses' views differ, which no "
+               "strategy beats from any start; and, start by start, the verification tour "
+               "(Dudek, Romanik and Whitesides 1998): the least travel that rules out every "
+               "other hypothesis with the truth known, found exactly by search over every "
+               "algorithm's candidates and probes" +
+               (tours ? std::string()
+                      : " (not computed: more than " + std::to_string(kMaxTourHypotheses) +
+                            " hypotheses)") +
+               ". Seed 002 reports no bound.") +
+           table(true) + report::heading(3, "Elimination: run time per start (seed 002 Table 2)") +
+           report::paragraph(
+               "One whole localization, this machine, one core, milliseconds; the "
+               "paper's in seconds (Visual C++ 2010).") +
            table(false);
 }
 
 /** Figs. 6-7 and their table, if the run swept. */
-std::string sweepSection(const std::string& dir) {
-    if (!std::filesystem::exists(EliminationSweepFile::path(dir))) return "";
-    std::string out;
+report::Html sweepSection(const std::string& dir) {
+    if (!std::filesystem::exists(EliminationSweepFile::path(dir))) return {};
     const auto sweep = EliminationSweepFile::read(dir);
     plotSweep(sweep, dir);
-    out +=
-        "<h3>Elimination against map size (seed 002 Figs. 6-7)</h3>\n<p>Steps maps "
-        "of the run's shape, n vertices, their sites the hypotheses; mean over up "
-        "to " +
-        std::to_string(sweep.rows.empty() ? 0 : sweep.rows.front().starts) +
-        " starts per map, evenly spread.</p>\n<img src='elimination.fig6.png' "
-        "alt='mean path against n'>\n<img src='elimination.fig7.png' alt='mean "
-        "time against n'>\n<table><tr><th>n</th><th>k</th><th>algorithm</th><th>mean "
-        "d (m)</th><th>mean t (ms)</th><th>not localized</th></tr>\n";
+    report::Table table({"n", "k", "algorithm", "mean d (m)", "mean t (ms)", "not localized"});
     for (const auto& r : sweep.rows)
-        out += mrpt::format(
-            "<tr><td>%d</td><td>%d</td><td>%s</td><td>%.2f</td><td>%.2f</td>"
-            "<td>%d</td></tr>\n",
-            r.n, r.k, report::html(r.column).c_str(), r.meanTravel, 1e3 * r.meanSeconds,
-            r.notLocalized);
-    out += "</table>\n";
-    return out;
+        table.row({std::to_string(r.n), std::to_string(r.k), r.column,
+                   mrpt::format("%.2f", r.meanTravel), mrpt::format("%.2f", 1e3 * r.meanSeconds),
+                   std::to_string(r.notLocalized)});
+    return report::heading(3, "Elimination against map size (seed 002 Figs. 6-7)") +
+           report::paragraph(
+               "Steps maps of the run's shape, n vertices, their sites the hypotheses; mean "
+               "over up to " +
+               std::to_string(sweep.rows.empty() ? 0 : sweep.rows.front().starts) +
+               " starts per map, evenly spread.") +
+           report::Figure{"elimination.fig6.png", "mean path against n"}.html() +
+           report::Figure{"elimination.fig7.png", "mean time against n"}.html() + table.html();
 }
 
 }  // namespace
@@ -251,9 +246,45 @@ std::vector<method::WorkItem> polymapWork(const PolymapLocalizer& localizer,
     // hypotheses. Both are taken to grow with n.
     constexpr double kSecondsPerScan = 4e-4, kSecondsPerRay = 1e-6, kBytesPerRay = 3.5;
     constexpr double kSecondsPerRandomPoint = 1e-3;
-    const double n = double(localizer.generatedMap().polygon.size()), mapFactor =
-                                                                      std::max(1.0, n / 148);
+    // Every algorithm's localization from one start: 8 ms on the n = 148 map, the mean over
+    // the five columns of polymap_sweep.ini, growing as n^2.15 (0.49 s at n = 1012).
+    constexpr double kSecondsPerStart = 8e-3, kStartExponent = 2.15;
+    const auto perStart = [&](double vertices) {
+        return kSecondsPerStart * std::pow(vertices / 148, kStartExponent);
+    };
+    const double n = double(localizer.generatedMap().polygon.size()),
+                 mapFactor = std::max(1.0, n / 148);
     std::vector<method::WorkItem> out;
+    if (!o.elimination.empty()) {
+        // Tables 1-2: every hypothesis a start, every column; the hypotheses are the map's
+        // sites when it was generated, else taken as the steps maps' n / 12
+        const double starts = localizer.generatedMap().sites.empty()
+                                  ? std::max(1.0, n / 12)
+                                  : double(localizer.generatedMap().sites.size());
+        const double columns = double(experimentColumns(o, 0).size());
+        method::WorkItem w;
+        w.what = mrpt::format("the experiment's %.0f localizations", starts * columns);
+        w.keys = "[polymap] elimination (and random_points), the map's hypotheses";
+        w.seconds = starts * columns * perStart(n);
+        out.push_back(w);
+    }
+    if (!o.sweepSteps.empty() && !o.elimination.empty()) {
+        const double columns = double(experimentColumns(o, 0).size());
+        double seconds = 0, runs = 0;
+        for (const int steps : o.sweepSteps) {
+            StepsMapOptions so = o.steps;
+            so.steps = steps;
+            const auto map = stepsMap(so);
+            const double count = double(std::min(map.sites.size(), size_t(o.sweepStarts)));
+            runs += count * columns;
+            seconds += count * columns * perStart(double(map.polygon.size()));
+        }
+        method::WorkItem w;
+        w.what = mrpt::format("the sweep's %.0f localizations", runs);
+        w.keys = "[polymap] sweep_steps x sweep_starts x elimination";
+        w.seconds = seconds;
+        out.push_back(w);
+    }
     if (scenario && o.scanRate > 0) {
         const double scans = scenario->scenario.duration * o.scanRate;
         method::WorkItem w;
@@ -281,8 +312,7 @@ std::vector<method::WorkItem> polymapWork(const PolymapLocalizer& localizer,
 /** Seed 002's experiment (Tables 1-2) on the run's hypotheses: every hypothesis in turn the
  *  truth, every configured algorithm, closed loop with exact views, deciding with the
  *  tolerance the hypotheses were generated with; then the sweep over n, if asked. */
-std::vector<std::string> eliminationExperiment(
-    const method::ExperimentOf<PolymapLocalizer>& in) {
+std::vector<std::string> eliminationExperiment(const method::ExperimentOf<PolymapLocalizer>& in) {
     const auto& loc = in.localizer;
     const PolymapOptions& o = loc.options();
     if (o.elimination.empty()) return {};
@@ -371,8 +401,8 @@ std::vector<std::string> eliminationExperiment(
     return written;
 }
 
-std::string eliminationSection(const std::string& dir, const EliminationFile& file) {
-    std::string out;
+report::Html eliminationSection(const std::string& dir, const EliminationFile& file) {
+    report::Html out;
     if (!file.columns.empty()) out += eliminationTables(file, EliminationTimes::read(dir));
     return out + sweepSection(dir);
 }

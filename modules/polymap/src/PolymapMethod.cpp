@@ -126,11 +126,12 @@ method::Scenario loadScenario(const mrpt::config::CConfigFileBase& ini,
     return s;
 }
 
-std::string polymapSection(const report::RunView& run) {
-    std::string out =
-        "<h2>Polygon map: hypotheses</h2>\n<p>The map P; the sensed visibility polygon V at "
-        "the true start; V placed at each hypothesis; the hypotheses (seed 002, hypothesis "
-        "generation). Colours are in the picture's legend.</p>\n";
+report::Html polymapSection(const report::RunView& run) {
+    report::Html out = report::heading(2, "Polygon map: hypotheses") +
+                       report::paragraph(
+                           "The map P; the sensed visibility polygon V at the true start; V "
+                           "placed at each hypothesis; the hypotheses (seed 002, hypothesis "
+                           "generation). Colours are in the picture's legend.");
     const auto P = common::Polygon::load(mapFilePath(run.dir));
     for (const auto& [robot, r] : run.metrics["robots"].items()) {
         const auto file = HypothesesFile::read(run.dir, robot);
@@ -156,9 +157,9 @@ std::string polymapSection(const report::RunView& run) {
         }
         const std::string png = "polymap." + robot + ".png";
         renderPolygonView(view, run.dir + "/" + png);
-        out += "<h3>Robot " + report::html(robot) + ": " + std::to_string(file.hypotheses.size()) +
-               " hypotheses</h3>\n<img src='" + report::html(png) +
-               "' alt='map, V and hypotheses'>\n";
+        out += report::heading(3, "Robot " + robot + ": " + std::to_string(file.hypotheses.size()) +
+                                      " hypotheses") +
+               report::Figure{png, "map, V and hypotheses"}.html();
         // the headline: where the truth is among the hypotheses (# as in the table below)
         if (view.truth && !file.hypotheses.empty()) {
             size_t best = 0;
@@ -166,24 +167,27 @@ std::string polymapSection(const report::RunView& run) {
                 if ((file.hypotheses[i].point - *view.truth).norm() <
                     (file.hypotheses[best].point - *view.truth).norm())
                     best = i;
-            out += mrpt::format(
-                "<p><b>%zu hypotheses; the true start is hypothesis #%zu</b>, %.3f m from "
-                "it.</p>\n",
-                file.hypotheses.size(), best + 1,
-                (file.hypotheses[best].point - *view.truth).norm());
+            out += report::paragraph(
+                report::bold(mrpt::format("%zu hypotheses; the true start is hypothesis #%zu",
+                                          file.hypotheses.size(), best + 1)) +
+                mrpt::format(", %.3f m from it.",
+                             (file.hypotheses[best].point - *view.truth).norm()));
         }
         const auto robots = run.metrics.value("polymap", nlohmann::json::object())
                                 .value("robots", nlohmann::json::object());
-        if (robots.contains(robot) && robots[robot].contains("elimination")) {
+        if (robots.contains(robot) && robots[robot].is_object() &&
+            robots[robot].contains("elimination") && robots[robot]["elimination"].is_object()) {
             const auto& e = robots[robot]["elimination"];
-            out += mrpt::format(
-                "<p>The robot eliminated as it drove (<code>drive = %s</code>): %d probe(s), "
-                "%.2f m of travel, %s.</p>\n",
-                e.value("strategy", "?").c_str(), e.value("probes", 0), e.value("travel_m", 0.0),
-                e.value("localized", false)
-                    ? "localized: one hypothesis left, the errors above are its estimates"
-                    : mrpt::format("not localized: %d hypotheses left", e.value("left", 0))
-                          .c_str());
+            const auto value = [&](const char* key) {
+                return report::cellText(e.value(key, nlohmann::json()));
+            };
+            out += report::paragraph(
+                "The robot eliminated as it drove (" +
+                report::code("drive = " + value("strategy")) + "): " + value("probes") +
+                " probe(s), " + value("travel_m") + " m of travel, " +
+                (e.value("localized", nlohmann::json()) == true
+                     ? "localized: one hypothesis left, the errors above are its estimates."
+                     : "not localized: " + value("left") + " hypotheses left."));
         }
         if (!view.routes.empty()) {  // a close-up of the routes from the true start
             TPoint2D lo{INFINITY, INFINITY}, hi{-INFINITY, -INFINITY};
@@ -198,27 +202,25 @@ std::string polymapSection(const report::RunView& run) {
                                       TPoint2D{lo.x - pad + 1.8 * wide, hi.y + pad});
             const std::string zoom = "polymap." + robot + ".routes.png";
             renderPolygonView(view, run.dir + "/" + zoom, 1200, 600);
-            out +=
-                "<p>Close-up: the overlay region OI of all hypotheses at the true start, the "
-                "first algorithm's candidates for its first probe, and each algorithm's route "
-                "from the run's true start (seed 002 figs. 2-5), its probes as dots.</p>\n"
-                "<img src='" +
-                report::html(zoom) + "' alt='elimination routes from the true start'>\n";
+            out += report::paragraph(
+                       "Close-up: the overlay region OI of all hypotheses at the true start, the "
+                       "first algorithm's candidates for its first probe, and each algorithm's "
+                       "route from the run's true start (seed 002 figs. 2-5), its probes as "
+                       "dots.") +
+                   report::Figure{zoom, "elimination routes from the true start"}.html();
         }
-        out +=
-            "<table><tr><th>#</th><th>x (m)</th><th>y (m)</th><th>translation (m)</th>"
-            "<th>mismatch (m)</th><th>distance to truth (m)</th></tr>\n";
+        report::Table table(
+            {"#", "x (m)", "y (m)", "translation (m)", "mismatch (m)", "distance to truth (m)"});
         for (size_t i = 0; i < file.hypotheses.size(); ++i) {
             const auto& h = file.hypotheses[i];
             const std::string d =
                 view.truth ? mrpt::format("%.3f", (h.point - *view.truth).norm()) : "none";
-            out += mrpt::format(
-                "<tr><td>%zu</td><td>%.3f</td><td>%.3f</td><td>%.3f %.3f</td>"
-                "<td>%.4f</td><td>%s</td></tr>\n",
-                i + 1, h.point.x, h.point.y, h.translation.x, h.translation.y, h.mismatch,
-                d.c_str());
+            table.row({std::to_string(i + 1), mrpt::format("%.3f", h.point.x),
+                       mrpt::format("%.3f", h.point.y),
+                       mrpt::format("%.3f %.3f", h.translation.x, h.translation.y),
+                       mrpt::format("%.4f", h.mismatch), d});
         }
-        out += "</table>\n";
+        out += table.html();
         if (elimination) out += eliminationSection(run.dir, *elimination);
     }
     return out;
@@ -233,7 +235,7 @@ void registerMethod(method::Registry& registry) {
     m.scenario = loadScenario;
     m.experiment = eliminationExperiment;  // seed 002 Tables 1-2, Figs. 6-7
     m.work = polymapWork;
-    m.report.html = polymapSection;        // its own picture: no world top view
+    m.report.html = polymapSection;  // its own picture: no world top view
     registry.add(std::move(m));
 }
 

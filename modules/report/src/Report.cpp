@@ -2,6 +2,7 @@
 #include <mrloc/common/Error.h>
 #include <mrloc/common/IniSection.h>
 #include <mrloc/common/Metrics.h>
+#include <mrloc/common/Names.h>
 #include <mrloc/common/RunDirectory.h>
 #include <mrloc/report/Plots.h>
 #include <mrloc/report/Report.h>
@@ -14,32 +15,6 @@
 #include <sstream>
 
 namespace mrloc::report {
-
-std::string html(const std::string& s) {
-    std::string out;
-    for (char c : s) {
-        switch (c) {
-            case '<':
-                out += "&lt;";
-                break;
-            case '>':
-                out += "&gt;";
-                break;
-            case '&':
-                out += "&amp;";
-                break;
-            case '\'':
-                out += "&#39;";  // safe inside attributes too, quoted either way
-                break;
-            case '"':
-                out += "&quot;";
-                break;
-            default:
-                out += c;
-        }
-    }
-    return out;
-}
 
 std::string keyInWords(const std::string& key) {
     static const std::map<std::string, std::string> known = {
@@ -72,9 +47,7 @@ std::string keyInWords(const std::string& key) {
     return words + unit;
 }
 
-namespace {
-
-std::string cell(const nlohmann::json& v) {
+std::string cellText(const nlohmann::json& v) {
     if (v.is_null()) return "none";
     if (v.is_boolean()) return v.get<bool>() ? "yes" : "no";
     if (v.is_number_float()) {
@@ -85,12 +58,14 @@ std::string cell(const nlohmann::json& v) {
     }
     if (v.is_array()) {
         std::string out;
-        for (const auto& e : v) out += (out.empty() ? "" : ", ") + cell(e);
+        for (const auto& e : v) out += (out.empty() ? "" : ", ") + cellText(e);
         return out.empty() ? "none" : out;
     }
-    return html(v.is_string() ? v.get<std::string>()
-                              : v.dump(-1, ' ', false, nlohmann::json::error_handler_t::replace));
+    return v.is_string() ? v.get<std::string>()
+                         : v.dump(-1, ' ', false, nlohmann::json::error_handler_t::replace);
 }
+
+namespace {
 
 /** Reads the run directory: metrics, effective.ini, estimates and truth. */
 RunView readRun(const std::string& dir) {
@@ -108,6 +83,9 @@ RunView readRun(const std::string& dir) {
         run.effective->setContent(text.str());
     }
     for (const auto& [robot, r] : run.metrics["robots"].items()) {
+        // a run folder may come from someone else: its robots name files the report reads
+        // and pictures it writes, so they must be names, not paths
+        common::checkRobotName(robot, common::run_dir::metrics(dir) + ": robots");
         run.estimates[robot] = common::loadTum(common::run_dir::estimates(dir, robot));
         const auto gtPath = common::run_dir::groundTruth(dir, robot);
         if (std::filesystem::exists(gtPath)) run.truth[robot] = common::loadTum(gtPath);
@@ -116,34 +94,31 @@ RunView readRun(const std::string& dir) {
 }
 
 /** Provenance: what produced this run, from provenance.json (written by the app). */
-std::string provenanceSection(const std::string& dir) {
+Html provenanceSection(const std::string& dir) {
     const std::string path = common::run_dir::provenance(dir);
-    if (!std::filesystem::exists(path)) return "<p>No provenance.json in this run directory.</p>\n";
+    if (!std::filesystem::exists(path))
+        return paragraph("No provenance.json in this run directory.");
     const auto p = common::loadJson(path);
-    std::string t = "<table class='provenance'>\n";
-    const auto row = [&](const std::string& head, const std::string& value) {
-        t += "<tr><th>" + head + "</th><td>" + value + "</td></tr>\n";
-    };
+    Table t;
     if (p.contains("ini"))
-        row("INI", "<code>" + html(p["ini"].get<std::string>()) +
-                       "</code> (copied: <a href='config.ini'>config.ini</a>; with every default: "
-                       "<a href='effective.ini'>effective.ini</a>)");
-    if (p.contains("seed")) row("seed", cell(p["seed"]));
-    if (p.contains("version")) row("mrloc version", cell(p["version"]));
-    if (p.contains("steps"))
+        t.headedRow("INI",
+                    {code(cellText(p["ini"])) + " (copied: " + link("config.ini", "config.ini") +
+                     "; with every default: " + link("effective.ini", "effective.ini") + ")"});
+    if (p.contains("seed")) t.headedRow("seed", {cellText(p["seed"])});
+    if (p.contains("version")) t.headedRow("mrloc version", {cellText(p["version"])});
+    if (p.contains("steps") && p["steps"].is_object())
         for (const auto& [step, command] : p["steps"].items())
-            row(html(step) + " command", "<code>" + cell(command) + "</code>");
-    return t + "</table>\n";
+            t.headedRow(step + " command", {code(cellText(command))});
+    return t.html();
 }
 
 }  // namespace
 
-std::string metricsTable(const nlohmann::json& j) {
-    std::string t = "<table>\n";
+Html metricsTable(const nlohmann::json& j) {
+    Table t;
     for (const auto& [k, v] : j.items())
-        if (!v.is_object())
-            t += "<tr><th>" + html(keyInWords(k)) + "</th><td>" + cell(v) + "</td></tr>\n";
-    return t + "</table>\n";
+        if (!v.is_object()) t.headedRow(keyInWords(k), {cellText(v)});
+    return t.html();
 }
 
 std::string makeReport(const std::string& dir, const Section& section) {
@@ -178,50 +153,43 @@ std::string makeReport(const std::string& dir, const Section& section) {
     }
 
     const std::string method = metrics.value("method", "?");
-    std::string page =
-        "<!DOCTYPE html>\n<html><head><meta charset='utf-8'><title>mrloc report: " + html(method) +
-        "</title>\n<style>body{font-family:sans-serif;max-width:960px;margin:2em auto}"
-        "table{border-collapse:collapse;margin:1em 0}th,td{border:1px solid #ccc;padding:3px 8px;"
-        "text-align:left}img{max-width:100%;border:1px solid #ddd}</style></head><body>\n";
-    page += "<h1>mrloc report: " + html(method) + "</h1>\n";
-    page += provenanceSection(dir);
+    Html body = heading(1, "mrloc report: " + method) + provenanceSection(dir);
     ReportOptions paper;
     paper.loadFromConfigFile(*run.effective, "report");
     if (!paper.paperCaption.empty() || !paper.paperNote.empty())
-        page += "<p><b>Compared with the paper:</b> " + html(paper.paperCaption) +
-                (paper.paperNote.empty() ? "" : ". " + html(paper.paperNote)) + "</p>\n";
-    page += "<p>rawlog: <code>" + html(metrics.value("rawlog", "?")) + "</code></p>\n";
-    page += "<h2>Position error against the truth (horizontal, all robots)</h2>\n" +
+        body += paragraph(bold("Compared with the paper:") + " " + paper.paperCaption +
+                          (paper.paperNote.empty() ? "" : ". " + paper.paperNote));
+    body += paragraph("rawlog: " + code(metrics.value("rawlog", "?")));
+    body += heading(2, "Position error against the truth (horizontal, all robots)") +
             metricsTable(metrics);
-    page +=
-        "<h2>Per robot</h2>\n<table><tr><th>robot</th><th>estimates</th><th>compared</th>"
-        "<th>RMSE (m)</th><th>median (m)</th><th>95th percentile (m)</th><th>max (m)</th></tr>\n";
+    Table perRobotTable({"robot", "estimates", "compared", "RMSE (m)", "median (m)",
+                         "95th percentile (m)", "max (m)"});
     for (const auto& [robot, r] : metrics["robots"].items()) {
-        page += "<tr><td>" + html(robot) + "</td><td>" + cell(r.value("estimates", 0)) + "</td>";
+        std::vector<Html> cells{robot, cellText(r.value("estimates", 0))};
         for (const char* k : {"n", "rmse_m", "median_m", "p95_m", "max_m"})
-            page += "<td>" + (r.contains(k) ? cell(r[k]) : std::string("none")) + "</td>";
-        page += "</tr>\n";
+            cells.push_back(r.contains(k) ? cellText(r[k]) : "none");
+        perRobotTable.row(std::move(cells));
     }
-    page += "</table>\n";
+    body += heading(2, "Per robot") + perRobotTable.html();
     if (metrics.contains(method) && metrics[method].is_object() && !metrics[method].empty())
-        page += "<h2>Method figures</h2>\n" + metricsTable(metrics[method]);
-    if (section.html) page += section.html(run);
+        body += heading(2, "Method figures") + metricsTable(metrics[method]);
+    if (section.html) body += section.html(run);
     if (topView)
-        page +=
-            "<h2>Top view</h2>\n<p>Each robot in its colour: the truth pale, the estimates "
-            "full; the legend and the scale are in the picture.</p>\n"
-            "<img src='topview.png' alt='top view'>\n";
+        body += heading(2, "Top view") +
+                paragraph(
+                    "Each robot in its colour: the truth pale, the estimates full; the "
+                    "legend and the scale are in the picture.") +
+                Figure{"topview.png", "top view"}.html();
     if (errors.empty())
-        page += "<p>No estimate with ground truth beside it: no errors to plot.</p>\n";
+        body += paragraph("No estimate with ground truth beside it: no errors to plot.");
     else if (perRobot)
-        page +=
-            "<h2>Error per robot</h2>\n<p>One estimate per robot: one marker each.</p>\n"
-            "<img src='error_robots.png' alt='error per robot'>\n";
+        body += heading(2, "Error per robot") +
+                paragraph("One estimate per robot: one marker each.") +
+                Figure{"error_robots.png", "error per robot"}.html();
     else
-        page +=
-            "<h2>Error over time</h2>\n<img src='error_time.png' alt='error over time'>\n"
-            "<h2>Error CDF</h2>\n<img src='error_cdf.png' alt='error CDF'>\n";
-    page += "</body></html>\n";
+        body += heading(2, "Error over time") + Figure{"error_time.png", "error over time"}.html() +
+                heading(2, "Error CDF") + Figure{"error_cdf.png", "error CDF"}.html();
+    const std::string page = htmlPage("mrloc report: " + method, body);
     common::writeFileAtomically(common::run_dir::report(dir), page);
     return common::run_dir::report(dir);
 }

@@ -3,10 +3,10 @@
 #include <mrloc/report/TopView.h>
 #include <mrpt/core/format.h>
 #include <mrpt/opengl/CBox.h>
+#include <mrpt/opengl/CDisk.h>
 #include <mrpt/opengl/CFBORender.h>
 #include <mrpt/opengl/CGridPlaneXY.h>
 #include <mrpt/opengl/CSetOfLines.h>
-#include <mrpt/opengl/CDisk.h>
 
 #include <algorithm>
 #include <cmath>

@@ -75,7 +75,9 @@ Fix multilaterate(const std::vector<RangeMeasurement>& ranges,
 
 /** A fix tolerant of one bad range: if the all-ranges fix has an RMS residual above
  *  `outlierThreshold` and at least 4 ranges (5 in 3-D) remain, the best leave-one-out fix is
- *  returned instead; `rejectedIndex` tells which range was left out (-1 if none). */
+ *  returned instead; `rejectedIndex` tells which range was left out (-1 if none). Up to 12
+ *  ranges every one is tried; of more, the 12 the linearised fit finds most suspect
+ *  (largest r_i^2 / (1 - h_ii)), so the cost is O(n log n) in the ranges. */
 Fix robustMultilaterate(const std::vector<RangeMeasurement>& ranges,
                         const MultilaterationOptions& options, double outlierThreshold,
                         int* rejectedIndex = nullptr);

@@ -23,6 +23,6 @@ std::vector<std::string> eliminationExperiment(
 
 /** The report's part of it: Tables 1-2 beside the paper's values and, if the run swept,
  *  Figs. 6-7 (plotted into `dir`). */
-std::string eliminationSection(const std::string& dir, const EliminationFile& file);
+report::Html eliminationSection(const std::string& dir, const EliminationFile& file);
 
 }  // namespace mrloc::polymap

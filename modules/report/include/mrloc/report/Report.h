@@ -4,6 +4,7 @@
 // metrics in tables with heads in words and units, the top view (unless the method draws
 // its own picture), the error plots, and the method's registered section.
 #include <mrloc/common/Localizer.h>
+#include <mrloc/report/Html.h>
 #include <mrloc/report/TopView.h>
 #include <mrpt/config/CConfigFileMemory.h>
 
@@ -27,8 +28,9 @@ struct RunView {
 
 /** A method's part of the report. */
 struct Section {
-    /** HTML of the section; it may render pictures into the run directory. */
-    std::function<std::string(const RunView&)> html;
+    /** The section, built from report::Html's nodes (so escaped by construction); it may
+     *  render pictures into the run directory. */
+    std::function<Html(const RunView&)> html;
     /** Adds the method's static points (beacons...) to the world top view. Unset: the method
      *  draws its own picture in html() and the page has no top view. */
     std::function<void(const RunView&, TopViewContent&)> topView;
@@ -37,12 +39,13 @@ struct Section {
 /** Returns the path of report.html. Throws mrloc::Error if runDir is not a run directory. */
 std::string makeReport(const std::string& runDir, const Section& section);
 
-/** HTML-escaped text. */
-std::string html(const std::string& text);
 /** A metrics key in words with its unit: "max_distance_between_fixes_m" -> "max distance
  *  between fixes (m)", "p95_m" -> "95th percentile (m)". */
 std::string keyInWords(const std::string& key);
+/** A metrics.json value as a table cell: null "none", booleans "yes"/"no", numbers to 4
+ *  significant digits, arrays comma-separated. */
+std::string cellText(const nlohmann::json& value);
 /** A two-column table of the object's scalar members, keys in words; null reads "none". */
-std::string metricsTable(const nlohmann::json& object);
+Html metricsTable(const nlohmann::json& object);
 
 }  // namespace mrloc::report
