@@ -20,7 +20,7 @@ export MRLOC_SANITIZED=1
 cd build-asan
 # The Monte Carlo tests that repeat, at length, code the rest of the suite runs sanitized
 # (8 of the suite's 19 sanitized minutes, counted one test after another) are left to the
-# Release suite unless MRLOC_SANITIZE_ALL=1, to bring CI towards its 30 minutes (34 now;
+# Release suite unless MRLOC_SANITIZE_ALL=1, to keep CI under its 30 minutes (see
 # doc/hardening.md).
 long='MrlocOmnivision\.ErrorsMatchTheCovarianceOverTwentySeeds|MrlocFormation\.PixelModeMarch'
 long+='|Elimination\.OfficeFloorOfTwentyFourIdenticalRooms|MrlocPolymap\.DrivingWithEveryAlgorithm'

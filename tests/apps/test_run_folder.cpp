@@ -407,9 +407,13 @@ TEST(Seed, ReachesFramesyncsExperimentAndEffectiveIniReproducesIt) {
 }
 
 TEST(Seed, ReachesFormationsExperimentAndEffectiveIniReproducesIt) {
-    expectSeedReachesTheExperiment(writeIniFrom(config("formation_many_turns"), "seed_formation",
-                                                "runs        = 100", "runs = 2"),
-                                   "formation.experiment.txt");
+    // two marches per speed on one route, robots 4 and 5, no camera grid: the seed's path,
+    // at a third of the shipped experiment's cost
+    expectSeedReachesTheExperiment(
+        writeIniFrom(config("formation_many_turns"), "seed_formation", "runs        = 100",
+                     "runs = 2\nexperiment_routes = many_turns\nexperiment_robots_max = 5\n"
+                     "camera_starts = 0"),
+        "formation.experiment.txt");
 }
 
 TEST(Seed, ReachesOmnivisionsAccuracySweepAndEffectiveIniReproducesIt) {

@@ -8,10 +8,12 @@
 
 #include <cmath>
 
+#include "Degrees.h"
+
 using namespace mrloc;
 
 namespace {
-constexpr double kDeg = M_PI / 180;
+using mrloc::testing_angles::kDeg;
 }
 
 TEST(Panorama, ColumnsMapToBearingsAcrossViews) {

@@ -7,13 +7,14 @@
 
 #include <Eigen/LU>
 
+#include "Degrees.h"
 #include "Swarm.h"
 
 using namespace mrloc;
 using namespace mrloc::omnivision;
 
 namespace {
-constexpr double kDeg = M_PI / 180;
+using mrloc::testing_angles::kDeg;
 
 /** Interior angles at A and B of triangle ABC, and C's side of A->B. */
 LineDirections directionsOf(Vec2 a, Vec2 b, Vec2 c) {

@@ -5,13 +5,14 @@
 #include <mrloc/omnivision/TriangleSearch.h>
 
 #include "Swarm.h"
+#include "Degrees.h"
 
 using namespace mrloc;
 using namespace mrloc::omnivision;
 
 namespace {
 
-constexpr double kDeg = M_PI / 180;
+using mrloc::testing_angles::kDeg;
 
 struct LabelScore {
     size_t right = 0, wrong = 0, images = 0;

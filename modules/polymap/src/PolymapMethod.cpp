@@ -181,10 +181,14 @@ report::Html polymapSection(const report::RunView& run) {
             const auto value = [&](const char* key) {
                 return report::cellText(e.value(key, nlohmann::json()));
             };
+            const std::string travel =
+                e.contains("travel_m") && e["travel_m"].is_number()
+                    ? mrpt::format("%.2f", e["travel_m"].get<double>())
+                    : std::string("none");
             out += report::paragraph(
                 "The robot eliminated as it drove (" +
                 report::code("drive = " + value("strategy")) + "): " + value("probes") +
-                " probe(s), " + value("travel_m") + " m of travel, " +
+                " probe(s), " + travel + " m of travel, " +
                 (e.value("localized", nlohmann::json()) == true
                      ? "localized: one hypothesis left, the errors above are its estimates."
                      : "not localized: " + value("left") + " hypotheses left."));
