@@ -75,8 +75,8 @@ std::vector<method::WorkItem> workOf(const Setup& s, bool simulating, bool local
         method::WorkItem w;
         w.what = "the simulation";
         w.keys = "[scenario] duration / dt x robots";
-        w.seconds = steps * double(std::max<size_t>(1, scenario->robots.size())) *
-                    kSecondsPerRobotStep;
+        w.seconds =
+            steps * double(std::max<size_t>(1, scenario->robots.size())) * kSecondsPerRobotStep;
         w.simulation = true;
         items.push_back(w);
     }

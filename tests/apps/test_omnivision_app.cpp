@@ -54,9 +54,15 @@ TEST(MrlocOmnivision, FiveRobotsFromRenderedPanoramas) {
         EXPECT_DOUBLE_EQ(cov[0].cov(0, 1), p.cxy) << p.robot;
         EXPECT_DOUBLE_EQ(cov[0].cov(1, 1), p.cyy) << p.robot;
         EXPECT_TRUE(std::isnan(cov[0].cov(2, 2))) << p.robot;
-        if (p.robot == "A") { EXPECT_EQ(cov[0].cov(0, 0), 0.0); }
-        if (p.robot == "B") { EXPECT_EQ(cov[0].cov(1, 1), 0.0); }
-        if (p.robot != "A") { EXPECT_GT(cov[0].cov(0, 0), 0.0) << p.robot; }
+        if (p.robot == "A") {
+            EXPECT_EQ(cov[0].cov(0, 0), 0.0);
+        }
+        if (p.robot == "B") {
+            EXPECT_EQ(cov[0].cov(1, 1), 0.0);
+        }
+        if (p.robot != "A") {
+            EXPECT_GT(cov[0].cov(0, 0), 0.0) << p.robot;
+        }
     }
     // groundtruth.<robot>.txt is in the paper's frame (truthInEstimateFrame): at the
     // layout's time A is at the origin and B on the +x axis, true_L_m away.

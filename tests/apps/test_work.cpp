@@ -57,7 +57,8 @@ TEST(Work, TheBudgetNamesTheHeaviestPartsKeys) {
     EXPECT_EQ(*line, "this run: about 1.7 min on 2 cores, most of it a part ([b] y)");
     // a parallel part counts once per core; beyond the budget, refused by its keys
     EXPECT_EQ(messageOf({item("[b] y", 1.5 * B::kSeconds, true)}, 2), "");
-    const std::string slow = messageOf({item("[a] x", 10), item("[b] y", 3 * B::kSeconds, true)}, 2);
+    const std::string slow =
+        messageOf({item("[a] x", 10), item("[b] y", 3 * B::kSeconds, true)}, 2);
     EXPECT_EQ(slow.rfind("[b] y: a part would take about 9.0 h on 2 cores", 0), 0u) << slow;
     auto big = item("[d] w", 1);
     big.bytes = 2 * B::kBytes;
@@ -99,9 +100,9 @@ TEST(Work, LargeExperimentsAreAnnouncedWithTheirEstimate) {
         << *fLine;
     EXPECT_TRUE(announced(registry, formation, false) == std::nullopt)
         << "simulate runs no experiment";
-    const std::string framesync = writeIniFrom(config("framesync_corridor"), "work_seeds",
-                                               "experiment_seeds       = 50",
-                                               "experiment_seeds = 10000");
+    const std::string framesync =
+        writeIniFrom(config("framesync_corridor"), "work_seeds", "experiment_seeds       = 50",
+                     "experiment_seeds = 10000");
     const auto sLine = announced(registry, framesync);
     ASSERT_TRUE(sLine);
     // 10,000 + 20 x 9 sweep runs of 12,500 steps x 2 robots (measured: 210 runs in 11 s)

@@ -27,7 +27,9 @@ TEST(StartupTrack, AWrongFixDoesNotTurnTheStart) {
         if (k == 5) fix += Eigen::Vector2d(0.25, -0.3);  // two long echoes that agree
         track.add({fix, CPose2D(0.1 * k, 0, 0), 0.05});
         // four fixes must agree over the 0.3 m baseline before anything starts
-        if (k < 3) { EXPECT_FALSE(track.align(0.3)) << k; }
+        if (k < 3) {
+            EXPECT_FALSE(track.align(0.3)) << k;
+        }
     }
     const auto T = track.align(0.3);
     ASSERT_TRUE(T);

@@ -48,8 +48,9 @@ TEST(IniLint, RefusesWhatMrptWouldSilentlyChange) {
     EXPECT_EQ(lint("[polymap]\nHeading = 1\n[world]\n[polymap]\nheading = 2\n"),
               "x.ini:5: [polymap] heading: given twice (first at line 2); MRPT would keep the "
               "last silently");
-    EXPECT_EQ(lint("[polymap\nx = 1\n"), "x.ini:1: '[polymap': a section header without its "
-                                         "closing ']'");
+    EXPECT_EQ(lint("[polymap\nx = 1\n"),
+              "x.ini:1: '[polymap': a section header without its "
+              "closing ']'");
     EXPECT_EQ(lint("[scenario]\nname = q\xe9\n"),
               "x.ini:2: [scenario]: bytes that are not valid UTF-8");
     EXPECT_EQ(lint("[scenario]\n = 3\n"), "x.ini:2: [scenario]: '= 3' has no key before '='");
@@ -61,18 +62,18 @@ TEST(IniLint, RefusesWhatMrptWouldSilentlyChange) {
 TEST(IniLint, Utf8Validation) {
     EXPECT_TRUE(common::isUtf8("plain ascii"));
     EXPECT_TRUE(common::isUtf8("\xc3\xa9 \xe2\x82\xac \xf0\x9f\x98\x80"));  // é € 😀
-    EXPECT_FALSE(common::isUtf8("\xe9"));                                  // Latin-1 é
-    EXPECT_FALSE(common::isUtf8("\xc0\xaf"));                              // overlong '/'
-    EXPECT_FALSE(common::isUtf8("\xed\xa0\x80"));                          // a surrogate
-    EXPECT_FALSE(common::isUtf8("\xe2\x82"));                              // cut short
-    EXPECT_FALSE(common::isUtf8("\xf4\x90\x80\x80"));                      // past U+10FFFF
+    EXPECT_FALSE(common::isUtf8("\xe9"));                                   // Latin-1 é
+    EXPECT_FALSE(common::isUtf8("\xc0\xaf"));                               // overlong '/'
+    EXPECT_FALSE(common::isUtf8("\xed\xa0\x80"));                           // a surrogate
+    EXPECT_FALSE(common::isUtf8("\xe2\x82"));                               // cut short
+    EXPECT_FALSE(common::isUtf8("\xf4\x90\x80\x80"));                       // past U+10FFFF
 }
 
 TEST(IniLint, EveryIniOfMrptAndOfMrlocPasses) {
     // MRPT's example INIs run unchanged: nothing in them trips the checks of our sections.
     size_t n = 0;
-    for (const auto& root : {std::string("/usr/share/mrpt/config_files"),
-                             std::string(MRLOC_SOURCE_DIR) + "/config"}) {
+    for (const auto& root :
+         {std::string("/usr/share/mrpt/config_files"), std::string(MRLOC_SOURCE_DIR) + "/config"}) {
         ASSERT_TRUE(std::filesystem::is_directory(root)) << root;
         for (const auto& e : std::filesystem::recursive_directory_iterator(root)) {
             if (e.path().extension() != ".ini") continue;

@@ -4,8 +4,8 @@
 #include <mrloc/common/Error.h>
 #include <mrloc/omnivision/TriangleSearch.h>
 
-#include "Swarm.h"
 #include "Degrees.h"
+#include "Swarm.h"
 
 using namespace mrloc;
 using namespace mrloc::omnivision;

@@ -60,7 +60,8 @@ void BeaconOptions::loadFromConfigFile(const mrpt::config::CConfigFileBase& src,
     tracker.gateProbability = s.real("gate_probability", tracker.gateProbability, 0.5, 1.0 - 1e-12);
     tracker.odomSigmaPerMetre = s.real("odometry_sigma_xy", tracker.odomSigmaPerMetre, 0, 10);
     tracker.odomSigmaPhiPerRad = s.real("odometry_sigma_phi", tracker.odomSigmaPhiPerRad, 0, 10);
-    tracker.odomSigmaPhiPerMetre = s.real("odometry_sigma_phi_per_m", tracker.odomSigmaPhiPerMetre, 0, 10);
+    tracker.odomSigmaPhiPerMetre =
+        s.real("odometry_sigma_phi_per_m", tracker.odomSigmaPhiPerMetre, 0, 10);
     tracker.randomWalkSigma = s.real("random_walk_sigma", tracker.randomWalkSigma, 0, 100);
     tracker.bootstrapBaseline = s.real("bootstrap_baseline", tracker.bootstrapBaseline, 0.01, 100);
     tracker.resetAfter = int(s.integer("reset_after", long(tracker.resetAfter), 1, 100000));

@@ -54,17 +54,17 @@ void sensorPose(const mrpt::poses::CPose3D& p) {
 void ObservationCheck::check(const mrpt::obs::CObservation& obs) {
     using namespace mrpt::obs;
     checkSensorLabel(obs.sensorLabel, "sensor label");
-    // a comment is an on-board event (its label dropped by MRPT): no stream of its own
     const double seconds = mrpt::Clock::toDouble(obs.timestamp);
     LabelState& label = labels_[obs.sensorLabel];
+    // a comment is an on-board event (its label dropped by MRPT): no stream of its own
     if (!IS_CLASS(obs, CObservationComment)) {
         if (obs.timestamp == INVALID_TIMESTAMP)
             throw Error("no time stamp (0), and no sensory frame time to take");
         if (!std::isfinite(seconds) || seconds <= 0)
             throw Error(mrpt::format("time stamp %.6f s is before 1970", seconds));
-        if (label.stamp != mrpt::Clock::time_point() && obs.timestamp < label.stamp)
+        if (label.stamp && obs.timestamp < *label.stamp)
             throw Error(mrpt::format("time runs backwards: %.6f s after %.6f s of the same label",
-                                     seconds, mrpt::Clock::toDouble(label.stamp)));
+                                     seconds, mrpt::Clock::toDouble(*label.stamp)));
         label.stamp = obs.timestamp;
         if (previousSeconds_ && std::abs(seconds - *previousSeconds_) > B::kMaxTimeJump)
             throw Error(

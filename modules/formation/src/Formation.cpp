@@ -127,8 +127,7 @@ std::optional<Move> nextMove(const std::vector<TPoint2D>& believed, const TPoint
     return std::nullopt;
 }
 
-RoutePlanner::RoutePlanner(std::vector<TPoint2D> route, FormationOptions options,
-                           size_t maxMoves)
+RoutePlanner::RoutePlanner(std::vector<TPoint2D> route, FormationOptions options, size_t maxMoves)
     : route_(std::move(route)), options_(options), maxMoves_(maxMoves) {
     if (route_.empty()) throw Error("formation: the route needs a destination");
 }

@@ -71,8 +71,10 @@ void FormationConfig::loadFromConfigFile(const mrpt::config::CConfigFileBase& sr
                                 kCarryNames.begin());
     vertexErrors.lateralMean = s.real("lateral_error_mean", vertexErrors.lateralMean, 1e-6, 10);
     vertexErrors.lateralSd = s.real("lateral_error_sd", vertexErrors.lateralSd, 1e-6, 10);
-    vertexErrors.longitudinalMean = s.real("longitudinal_error_mean", vertexErrors.longitudinalMean, 1e-6, 10);
-    vertexErrors.longitudinalSd = s.real("longitudinal_error_sd", vertexErrors.longitudinalSd, 1e-6, 10);
+    vertexErrors.longitudinalMean =
+        s.real("longitudinal_error_mean", vertexErrors.longitudinalMean, 1e-6, 10);
+    vertexErrors.longitudinalSd =
+        s.real("longitudinal_error_sd", vertexErrors.longitudinalSd, 1e-6, 10);
     auto& dr = deadReckoning;
     dr.headingModel = s.choice("heading_model", "gyro", {"gyro", "heading"}) == "gyro"
                           ? DeadReckoningOptions::HeadingModel::Gyro
@@ -113,13 +115,15 @@ void FormationConfig::loadFromConfigFile(const mrpt::config::CConfigFileBase& sr
     for (const auto& r : experimentRoutes)
         if (r != "many_turns" && r != "patrol")
             s.fail("experiment_routes", "'" + r + "': expected many_turns or patrol");
-    experimentRobotsMax = size_t(s.integer("experiment_robots_max", long(experimentRobotsMax), 4, 50));
+    experimentRobotsMax =
+        size_t(s.integer("experiment_robots_max", long(experimentRobotsMax), 4, 50));
     cameraStarts = size_t(s.integer("camera_starts", long(cameraStarts), 0, 27));
     if (cameraStarts != 0 && cameraStarts != 27)
         s.fail("camera_starts", "0 (none) or 27 (the 3 x 3 x 3 grid of starts)");
     // without the key, the experiment draws from the run's seed (--seed reaches it)
     experimentSeedGiven = src.keyExists(section, "experiment_seed");
-    experimentSeed = (unsigned long)s.integer("experiment_seed", long(experimentSeed), 0, 4294967295L);
+    experimentSeed =
+        (unsigned long)s.integer("experiment_seed", long(experimentSeed), 0, 4294967295L);
     s.finish();
 }
 

@@ -3,7 +3,6 @@
 #include <mrloc/formation/FormationExperiment.h>
 #include <mrloc/formation/FormationLocalizer.h>
 #include <mrloc/formation/Routes.h>
-
 #include <mrpt/core/format.h>
 
 #include <cmath>
@@ -142,8 +141,8 @@ std::vector<method::WorkItem> formationWork(const FormationLocalizer& localizer,
         method::WorkItem w;
         w.what = "the pixel mode's rendered frames";
         w.keys = "[formation] mode = pixel, [scenario] duration / dt x robots";
-        w.seconds = scenario->scenario.duration / scenario->scenario.dt *
-                    double(c.robots + 1) * kPixelSecondsPerRobotStep;
+        w.seconds = scenario->scenario.duration / scenario->scenario.dt * double(c.robots + 1) *
+                    kPixelSecondsPerRobotStep;
         w.simulation = true;
         out.push_back(w);
     }
@@ -155,16 +154,16 @@ std::vector<method::WorkItem> formationWork(const FormationLocalizer& localizer,
         marchMetres += length(c.experimentRoutes.front()) * double(n) / 4;
     method::WorkItem e;
     e.what = mrpt::format("the experiment's %zu x %zu marches", c.runs, marchesPerRun(c));
-    e.keys = "[formation] runs x (experiment_routes x experiment_speeds + "
-             "experiment_robots_max - 3)";
+    e.keys =
+        "[formation] runs x (experiment_routes x experiment_speeds + "
+        "experiment_robots_max - 3)";
     e.seconds = double(c.runs) * marchMetres * kSecondsPerMarchMetre +
                 (c.cameraStarts > 0 ? double(kCameraGridStarts) * kSecondsPerCameraStart : 0);
     out.push_back(e);
     return out;
 }
 
-std::vector<std::string> formationExperiment(
-    const method::ExperimentOf<FormationLocalizer>& in) {
+std::vector<std::string> formationExperiment(const method::ExperimentOf<FormationLocalizer>& in) {
     const auto& loc = in.localizer;
     if (loc.config().runs == 0) return {};
     FormationConfig config = loc.config();

@@ -1,7 +1,7 @@
+#include <mrloc/common/Progress.h>
 #include <mrloc/framesync/FramesyncExperiment.h>
 #include <mrloc/framesync/FramesyncLocalizer.h>
 #include <mrloc/framesync/FramesyncPayload.h>
-#include <mrloc/common/Progress.h>
 #include <mrloc/sim/Simulator.h>
 #include <mrpt/core/format.h>
 
@@ -115,14 +115,14 @@ std::vector<method::WorkItem> framesyncWork(const FramesyncLocalizer& localizer,
     sonars.seconds = robotSteps * kSecondsPerRobotStep;
     sonars.simulation = true;
     out.push_back(sonars);
-    const double runs =
-        double(c.experimentSeeds) +
-        double(c.sweepSeeds) * double(c.sweepNoise.size() + c.sweepDrift.size());
+    const double runs = double(c.experimentSeeds) +
+                        double(c.sweepSeeds) * double(c.sweepNoise.size() + c.sweepDrift.size());
     if (runs > 0) {
         method::WorkItem e;
         e.what = mrpt::format("the experiment's %.0f simulated runs", runs);
-        e.keys = "[framesync] experiment_seeds + experiment_sweep_seeds x (experiment_noise + "
-                 "experiment_drift values), each [scenario] duration / dt x robots";
+        e.keys =
+            "[framesync] experiment_seeds + experiment_sweep_seeds x (experiment_noise + "
+            "experiment_drift values), each [scenario] duration / dt x robots";
         e.seconds = runs * robotSteps * kSecondsPerRobotStep;
         e.parallel = true;  // runExperiment's pool
         out.push_back(e);
@@ -130,8 +130,7 @@ std::vector<method::WorkItem> framesyncWork(const FramesyncLocalizer& localizer,
     return out;
 }
 
-std::vector<std::string> framesyncExperiment(
-    const method::ExperimentOf<FramesyncLocalizer>& in) {
+std::vector<std::string> framesyncExperiment(const method::ExperimentOf<FramesyncLocalizer>& in) {
     const auto& config = in.localizer.config();
     if (!in.scenario) return {};  // a log recorded elsewhere: no scenario to simulate again
     if (config.experimentSeeds == 0 &&

@@ -38,24 +38,24 @@ std::optional<std::string> checkWork(const std::vector<WorkItem>& items, unsigne
     };
     for (const auto& w : items)
         if (w.memory > WorkBudget::kMemory)
-            throw Error(mrpt::format("%s: %s would hold about %.1f GB at once, beyond the %.0f "
-                                     "GB one part may (doc/errors.md, \"Work\")",
-                                     w.keys.c_str(), w.what.c_str(), w.memory / 1e9,
-                                     WorkBudget::kMemory / 1e9));
+            throw Error(mrpt::format(
+                "%s: %s would hold about %.1f GB at once, beyond the %.0f "
+                "GB one part may (doc/errors.md, \"Work\")",
+                w.keys.c_str(), w.what.c_str(), w.memory / 1e9, WorkBudget::kMemory / 1e9));
     if (bytes > WorkBudget::kBytes) {
         const auto& w = heaviest([](const WorkItem& x) { return x.bytes; });
-        throw Error(mrpt::format("%s: %s would write about %.1f GB, beyond the %.0f GB a run may "
-                                 "write (doc/errors.md, \"Work\")",
-                                 w.keys.c_str(), w.what.c_str(), w.bytes / 1e9,
-                                 WorkBudget::kBytes / 1e9));
+        throw Error(
+            mrpt::format("%s: %s would write about %.1f GB, beyond the %.0f GB a run may "
+                         "write (doc/errors.md, \"Work\")",
+                         w.keys.c_str(), w.what.c_str(), w.bytes / 1e9, WorkBudget::kBytes / 1e9));
     }
     if (wall > WorkBudget::kSeconds) {
         const auto& w = heaviest([&](const WorkItem& x) { return itemWall(x, cores); });
-        throw Error(mrpt::format("%s: %s would take about %s on %u cores, beyond the %s a run "
-                                 "may take (doc/errors.md, \"Work\")",
-                                 w.keys.c_str(), w.what.c_str(),
-                                 durationText(itemWall(w, cores)).c_str(), cores,
-                                 durationText(WorkBudget::kSeconds).c_str()));
+        throw Error(
+            mrpt::format("%s: %s would take about %s on %u cores, beyond the %s a run "
+                         "may take (doc/errors.md, \"Work\")",
+                         w.keys.c_str(), w.what.c_str(), durationText(itemWall(w, cores)).c_str(),
+                         cores, durationText(WorkBudget::kSeconds).c_str()));
     }
     if (wall <= WorkBudget::kAnnounceSeconds) return std::nullopt;
     const auto& w = heaviest([&](const WorkItem& x) { return itemWall(x, cores); });

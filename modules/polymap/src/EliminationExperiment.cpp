@@ -113,7 +113,7 @@ report::Html eliminationTables(const EliminationFile& file, const EliminationTim
         for (double x : v) s += x;
         return v.empty() ? 0.0 : s / double(v.size());
     };
-    const auto f = [](const char* format, double x) { return Html(mrpt::format(format, x)); };
+    const auto number = [](const char* format, double x) { return Html(mrpt::format(format, x)); };
     // The verification tours, when every start has one.
     const bool tours =
         file.tour.size() == starts &&
@@ -129,22 +129,22 @@ report::Html eliminationTables(const EliminationFile& file, const EliminationTim
         report::Table t(head);
         for (size_t i = 0; i < starts; ++i) {
             std::vector<Html> cells{std::to_string(i + 1) + (i == file.trueStart ? " (run)" : "")};
-            if (tourColumn) cells.push_back(f("%.2f", file.tour[i]));
+            if (tourColumn) cells.push_back(number("%.2f", file.tour[i]));
             for (size_t c = 0; c < file.columns.size(); ++c) {
                 const auto& col = file.columns[c];
                 const std::string ok = col.survivors[i] == 1 ? "" : " (not localized)";
                 cells.push_back(travel ? mrpt::format("%.2f", col.travel[i]) + ok
                                        : mrpt::format("%.2f", 1e3 * times.seconds.at(c).at(i)));
                 if (paperColumn[c] >= 0)
-                    cells.push_back(
-                        f("%.1f", (travel ? paper::kTravel : paper::kSeconds)[i][paperColumn[c]]));
+                    cells.push_back(number(
+                        "%.1f", (travel ? paper::kTravel : paper::kSeconds)[i][paperColumn[c]]));
             }
             t.row(std::move(cells));
         }
         // Averages, and each average over the first column's (the paper's d_i/d_1, t_i/t_1).
         std::vector<Html> avg{"mean"}, ratio{"ratio to column 1"};
         if (tourColumn) {
-            avg.push_back(f("%.2f", mean(file.tour)));
+            avg.push_back(number("%.2f", mean(file.tour)));
             ratio.push_back("");
         }
         const auto paperMean = [travel](int column) {
@@ -157,12 +157,12 @@ report::Html eliminationTables(const EliminationFile& file, const EliminationTim
         const double paperFirst = paperColumn[0] >= 0 ? paperMean(paperColumn[0]) : 0;
         for (size_t c = 0; c < file.columns.size(); ++c) {
             const double m = travel ? mean(file.columns[c].travel) : mean(times.seconds.at(c));
-            avg.push_back(f("%.2f", travel ? m : 1e3 * m));
-            ratio.push_back(f("%.3f", first > 0 ? m / first : 0.0));
+            avg.push_back(number("%.2f", travel ? m : 1e3 * m));
+            ratio.push_back(number("%.3f", first > 0 ? m / first : 0.0));
             if (paperColumn[c] >= 0) {
                 const double pm = paperMean(paperColumn[c]);
-                avg.push_back(f("%.2f", pm));
-                ratio.push_back(paperFirst > 0 ? f("%.3f", pm / paperFirst) : Html());
+                avg.push_back(number("%.2f", pm));
+                ratio.push_back(paperFirst > 0 ? number("%.3f", pm / paperFirst) : Html());
             }
         }
         t.row(avg).row(ratio);
@@ -172,7 +172,7 @@ report::Html eliminationTables(const EliminationFile& file, const EliminationTim
             std::vector<Html> cells{label};
             if (tourColumn) cells.push_back("");
             for (size_t c = 0; c < file.columns.size(); ++c) {
-                cells.push_back(f("%.2f", value(file.columns[c])));
+                cells.push_back(number("%.2f", value(file.columns[c])));
                 if (paperColumn[c] >= 0) cells.push_back("");
             }
             t.row(std::move(cells));
@@ -255,21 +255,20 @@ std::vector<method::WorkItem> polymapWork(const PolymapLocalizer& localizer,
     const double n = double(localizer.generatedMap().polygon.size()),
                  mapFactor = std::max(1.0, n / 148);
     std::vector<method::WorkItem> out;
-    if (!o.elimination.empty()) {
+    const double columns = double(experimentColumns(o, 0).size());  // 0 without elimination
+    if (columns > 0) {
         // Tables 1-2: every hypothesis a start, every column; the hypotheses are the map's
         // sites when it was generated, else taken as the steps maps' n / 12
         const double starts = localizer.generatedMap().sites.empty()
                                   ? std::max(1.0, n / 12)
                                   : double(localizer.generatedMap().sites.size());
-        const double columns = double(experimentColumns(o, 0).size());
         method::WorkItem w;
         w.what = mrpt::format("the experiment's %.0f localizations", starts * columns);
         w.keys = "[polymap] elimination (and random_points), the map's hypotheses";
         w.seconds = starts * columns * perStart(n);
         out.push_back(w);
     }
-    if (!o.sweepSteps.empty() && !o.elimination.empty()) {
-        const double columns = double(experimentColumns(o, 0).size());
+    if (columns > 0 && !o.sweepSteps.empty()) {
         double seconds = 0, runs = 0;
         for (const int steps : o.sweepSteps) {
             StepsMapOptions so = o.steps;

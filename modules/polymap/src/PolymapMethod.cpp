@@ -181,10 +181,9 @@ report::Html polymapSection(const report::RunView& run) {
             const auto value = [&](const char* key) {
                 return report::cellText(e.value(key, nlohmann::json()));
             };
-            const std::string travel =
-                e.contains("travel_m") && e["travel_m"].is_number()
-                    ? mrpt::format("%.2f", e["travel_m"].get<double>())
-                    : std::string("none");
+            const std::string travel = e.contains("travel_m") && e["travel_m"].is_number()
+                                           ? mrpt::format("%.2f", e["travel_m"].get<double>())
+                                           : std::string("none");
             out += report::paragraph(
                 "The robot eliminated as it drove (" +
                 report::code("drive = " + value("strategy")) + "): " + value("probes") +

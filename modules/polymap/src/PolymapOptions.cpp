@@ -33,7 +33,8 @@ void PolymapOptions::loadFromConfigFile(const mrpt::config::CConfigFileBase& src
     if (!mapFile.empty() && s.has("generator"))
         s.fail("generator", "give either map = <file.poly> or a generator, not both");
     steps.steps = (int)s.integer("steps", long(steps.steps), 1, 1000);
-    steps.branchesPerStep = (int)s.integer("branches_per_step", long(steps.branchesPerStep), 1, 100);
+    steps.branchesPerStep =
+        (int)s.integer("branches_per_step", long(steps.branchesPerStep), 1, 100);
     steps.stepWidth = s.real("step_width", steps.stepWidth, 1e-3, 1e4);
     steps.stepRise = s.real("step_rise", steps.stepRise, 1e-3, 1e4);
     steps.corridorHeight = s.real("corridor_height", steps.corridorHeight, 1e-3, 1e4);
@@ -85,7 +86,8 @@ void PolymapOptions::loadFromConfigFile(const mrpt::config::CConfigFileBase& src
     if (randomPoints.empty()) s.fail("random_points", "give at least one X");
     if (randomPoints.size() > kMaxListValues)  // each X is a column of the whole experiment
         s.fail("random_points", "at most " + std::to_string(kMaxListValues) + " values");
-    eliminationSeed = (unsigned long)s.integer("elimination_seed", long(eliminationSeed), 0, 4294967295L);
+    eliminationSeed =
+        (unsigned long)s.integer("elimination_seed", long(eliminationSeed), 0, 4294967295L);
     clearance = s.real("clearance", clearance, 0, 10);
     sweepSteps.clear();
     for (const double x : s.reals("sweep_steps", {})) {

@@ -98,6 +98,8 @@ std::string encodedTarget(const std::string& target) {
 
 }  // namespace
 
+// The attributes below hold only encodedTarget's characters (no quote, no ':') and
+// escapeHtml's text; `content` is already a node.
 Html link(const std::string& target, const Html& content) {
     return HtmlWriter::markup("<a href='" + encodedTarget(target) + "'>" + content.markup() +
                               "</a>");

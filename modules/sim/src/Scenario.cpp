@@ -2,8 +2,8 @@
 #include <mrloc/common/IniSection.h>
 #include <mrloc/common/Names.h>
 #include <mrloc/sim/Scenario.h>
-#include <mrpt/core/bits_math.h>
 #include <mrpt/config/CConfigFileMemory.h>
+#include <mrpt/core/bits_math.h>
 #include <mrpt/core/format.h>
 #include <mrpt/system/string_utils.h>
 

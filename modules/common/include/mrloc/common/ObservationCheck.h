@@ -49,7 +49,7 @@ class ObservationCheck {
     std::map<std::pair<std::string, std::string>, Previous> previous_;
     /** What a label's latest observation leaves for its next one to be checked against. */
     struct LabelState {
-        mrpt::Clock::time_point stamp;
+        std::optional<mrpt::Clock::time_point> stamp;  ///< its latest time stamp
         std::optional<mrpt::poses::CPose2D> odometry;  ///< its latest odometry reading
         double odometrySeconds = 0;                    ///< that reading's time stamp
     };

@@ -27,7 +27,7 @@ struct FormationConfig : public mrpt::config::CLoadableOptions {
     std::string routeName = "many_turns";  ///< many_turns | patrol | custom (waypoints)
     std::vector<TPoint2D> waypoints;       ///< the route, paper frame (from routeName or the INI)
     double wheelRadius = 0.035, wheelSpeed = paper::kWheelSpeedFast;  ///< m, rad/s
-    double maxTurnRate = 1.5;                      ///< rad/s
+    double maxTurnRate = 1.5;                                         ///< rad/s
     MarchOptions::Carry carry = MarchOptions::Carry::Base;
     VertexErrorModel vertexErrors;
     DeadReckoningOptions deadReckoning;

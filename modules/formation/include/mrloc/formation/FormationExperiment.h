@@ -21,7 +21,6 @@ FormationExperimentFile runFormationExperiment(const FormationConfig& config, bo
 std::vector<method::WorkItem> formationWork(const FormationLocalizer& localizer,
                                             const sim::ScenarioConfig* scenario);
 
-std::vector<std::string> formationExperiment(
-    const method::ExperimentOf<FormationLocalizer>& in);
+std::vector<std::string> formationExperiment(const method::ExperimentOf<FormationLocalizer>& in);
 
 }  // namespace mrloc::formation

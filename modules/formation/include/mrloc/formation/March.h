@@ -29,7 +29,7 @@ struct MarchOptions {
     FormationOptions formation;
     double wheelRadius = 0.035;  ///< m: speed = wheelRadius x wheelSpeed (the paper's R was lost)
     double wheelSpeed = paper::kWheelSpeedFast;  ///< rad/s, the intended wheel speed
-    size_t maxMoves = 100000;  ///< a route that needs more is refused
+    size_t maxMoves = 100000;                    ///< a route that needs more is refused
     /** How a move's error carries on to the next (doc/formation.md). The paper says only that
      *  the per-step errors "accumulate with each successive movement". */
     enum class Carry {

@@ -31,7 +31,6 @@ FramesyncExperimentFile runExperiment(const sim::ScenarioConfig& scenario,
 std::vector<method::WorkItem> framesyncWork(const FramesyncLocalizer& localizer,
                                             const sim::ScenarioConfig* scenario);
 
-std::vector<std::string> framesyncExperiment(
-    const method::ExperimentOf<FramesyncLocalizer>& in);
+std::vector<std::string> framesyncExperiment(const method::ExperimentOf<FramesyncLocalizer>& in);
 
 }  // namespace mrloc::framesync

@@ -1,10 +1,11 @@
 #pragma once
 // A localization method is one module that registers everything about it here, in one
-// call of its registerMethod(registry), as a MethodUnit<ItsLocalizer>: its name, the INI sections it owns, its localizer,
-// its scenario builder (robots, sensors and on-board part for the simulator), an optional
-// experiment step and its report section. The app, the simulator, the report and common know
-// no method by name: they look it up here (like MRPT's TMetricMapTypesRegistry), and an INI
-// that names no method gets the one whose sections it holds, or an error listing them all.
+// call of its registerMethod(registry), as a MethodUnit<ItsLocalizer>: its name, the INI
+// sections it owns, its localizer, its scenario builder (robots, sensors and on-board part
+// for the simulator), an optional experiment step, its work estimate and its report section. The
+// app, the simulator, the report and common know no method by name: they look it up here (like
+// MRPT's TMetricMapTypesRegistry), and an INI that names no method gets the one whose sections it
+// holds, or an error listing them all.
 #include <mrloc/common/Error.h>
 #include <mrloc/common/Localizer.h>
 #include <mrloc/method/Work.h>
@@ -67,8 +68,7 @@ struct Method {
     /** The work the configuration asks of the method (its sensing in the simulation, its
      *  experiment), before anything runs; `scenario` is nullptr when nothing is simulated
      *  (Work.h). Optional: a method that names none adds nothing to the simulation's. */
-    std::function<std::vector<WorkItem>(const common::Localizer&, const sim::ScenarioConfig*)>
-        work;
+    std::function<std::vector<WorkItem>(const common::Localizer&, const sim::ScenarioConfig*)> work;
     report::Section report;
 };
 
@@ -139,15 +139,14 @@ void Registry::add(MethodUnit<LocalizerT> unit) {
             return f(ini, localizerOf<LocalizerT>(l, name));
         };
     if (unit.experiment)
-        m.experiment = [f = std::move(unit.experiment), name = unit.name](
-                           const ExperimentInput& in) {
+        m.experiment = [f = std::move(unit.experiment),
+                        name = unit.name](const ExperimentInput& in) {
             return f(ExperimentOf<LocalizerT>{localizerOf<LocalizerT>(in.localizer, name),
-                                              in.scenario, in.truth, in.outDir, in.seed,
-                                              in.quiet});
+                                              in.scenario, in.truth, in.outDir, in.seed, in.quiet});
         };
     if (unit.work)
         m.work = [f = std::move(unit.work), name = unit.name](const common::Localizer& l,
-                                                               const sim::ScenarioConfig* s) {
+                                                              const sim::ScenarioConfig* s) {
             return f(localizerOf<LocalizerT>(l, name), s);
         };
     m.report = std::move(unit.report);

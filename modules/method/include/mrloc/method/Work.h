@@ -25,8 +25,8 @@ struct WorkItem {
 };
 
 struct WorkBudget {
-    static constexpr double kSeconds = 6 * 3600;    ///< wall time refused beyond
-    static constexpr double kBytes = 4e9;           ///< output refused beyond
+    static constexpr double kSeconds = 6 * 3600;  ///< wall time refused beyond
+    static constexpr double kBytes = 4e9;         ///< output refused beyond
     /** One item's memory refused beyond: a rawlog entry must stay under the 2 GiB the
      *  rawlog check lets one entry take (RawlogProbe), with room for a copy. */
     static constexpr double kMemory = 1e9;

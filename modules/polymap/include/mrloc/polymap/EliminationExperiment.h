@@ -18,8 +18,7 @@ namespace mrloc::polymap {
 std::vector<method::WorkItem> polymapWork(const PolymapLocalizer& localizer,
                                           const sim::ScenarioConfig* scenario);
 
-std::vector<std::string> eliminationExperiment(
-    const method::ExperimentOf<PolymapLocalizer>& in);
+std::vector<std::string> eliminationExperiment(const method::ExperimentOf<PolymapLocalizer>& in);
 
 /** The report's part of it: Tables 1-2 beside the paper's values and, if the run swept,
  *  Figs. 6-7 (plotted into `dir`). */

@@ -37,8 +37,7 @@ struct ScenarioOptions : public mrpt::config::CLoadableOptions {
                           const std::string& section) const override;
     /** Only the keys `mrloc localize` reads (name, method, seed, the ground truth): the
      *  [scenario] of a run that simulated nothing. */
-    void saveLocalizeKeys(mrpt::config::CConfigFileBase& target,
-                          const std::string& section) const;
+    void saveLocalizeKeys(mrpt::config::CConfigFileBase& target, const std::string& section) const;
     /** The section describes a simulation: it is empty, or it holds a key beyond
      *  saveLocalizeKeys' (an MRPT INI may get a [scenario] of those for `mrloc localize`). */
     static bool describesSimulation(const mrpt::config::CConfigFileBase& ini,
