@@ -57,3 +57,20 @@ TEST(FormationFiles, RunAndExperimentFilesRoundTrip) {
             << err.what();
     }
 }
+
+TEST(FormationFiles, AnExperimentRouteThatIsAPathIsRefused) {
+    // the route names a picture the report writes into the run folder (formation.fig14.<route>
+    // .png): a crafted file's "../../x" must not reach it
+    const std::string dir = testing::TempDir() + "/formation_route_path";
+    std::filesystem::create_directories(dir);
+    std::ofstream(formation::FormationExperimentFile::path(dir))
+        << "curve ../../outside 5.8 dr 5 0.01\n";
+    try {
+        formation::FormationExperimentFile::read(dir);
+        FAIL() << "a route named ../../outside was taken";
+    } catch (const Error& err) {
+        EXPECT_NE(std::string(err.what()).find("formation.experiment.txt:1"), std::string::npos)
+            << err.what();
+        EXPECT_NE(std::string(err.what()).find("../../outside"), std::string::npos) << err.what();
+    }
+}

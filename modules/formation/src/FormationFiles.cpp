@@ -1,6 +1,7 @@
 #include <mrloc/common/AtomicFile.h>
 #include <mrloc/common/DataFile.h>
 #include <mrloc/common/Error.h>
+#include <mrloc/common/Names.h>
 #include <mrloc/formation/FormationFiles.h>
 #include <mrloc/formation/FormationPayload.h>
 
@@ -139,6 +140,9 @@ FormationExperimentFile FormationExperimentFile::read(const std::string& dir) {
     FormationExperimentFile f;
     for (const auto& line : common::readDataLines(path(dir))) {
         const std::string& tag = line.fields.at(0);
+        // a route names the report's fig. 14 picture: a name, never a path (the file may
+        // come from a run folder someone sent)
+        if (tag == "table" || tag == "curve") common::checkName(line.fields.at(1), line.where);
         if (tag == "table") {
             line.expectFields(9);
             f.table.push_back({line.fields[1], line.number(2), size_t(line.number(3)),
