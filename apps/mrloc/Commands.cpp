@@ -5,6 +5,7 @@
 #include <mrloc/common/Error.h>
 #include <mrloc/common/LocalizationRun.h>
 #include <mrloc/common/Metrics.h>
+#include <mrloc/common/Outcome.h>
 #include <mrloc/common/RunDirectory.h>
 #include <mrloc/common/RunTransaction.h>
 #include <mrloc/common/Version.h>
@@ -13,6 +14,7 @@
 #include <cstring>
 #include <filesystem>
 #include <iostream>
+#include <map>
 #include <optional>
 #include <thread>
 
@@ -56,25 +58,55 @@ std::string doSimulate(Setup& s, const std::string& dir, bool quiet) {
     return files.rawlog;
 }
 
+/** Which registered method would use a log of these classes, and the INI to start from:
+ *  the advice in the error of a run that used none of its log. */
+std::string fitHintOf(const method::Registry& registry, const std::string& current,
+                      const std::map<std::string, size_t>& classCounts) {
+    std::string hint;
+    for (const auto& name : registry.names()) {
+        if (name == current) continue;
+        const auto& m = registry.get(name);
+        for (const auto& cls : m.reads)
+            if (classCounts.count(cls)) {
+                hint += std::string(hint.empty() ? "" : "; ") + "method '" + name + "' reads " +
+                        cls + (m.exampleConfig.empty() ? "" : ": start from " + m.exampleConfig);
+                break;
+            }
+    }
+    return hint.empty() ? "no mrloc method reads what this log holds (mrloc info lists it)"
+                        : hint;
+}
+
 /** `rawlogShownAs`: the rawlog's path as metrics.json records it (the run folder's, not the
- *  staging folder's, for a rawlog this command simulated). */
-void doLocalize(Setup& s, const std::string& rawlog, const std::string& dir, bool quiet,
-                const std::string& rawlogShownAs) {
+ *  staging folder's, for a rawlog this command simulated). Returns the method's headline,
+ *  also written into metrics.json. */
+common::Headline doLocalize(const method::Registry& registry, Setup& s, const std::string& rawlog,
+                            const std::string& dir, bool quiet, const std::string& rawlogShownAs) {
     const std::string& name = s.method->name;
     common::LocalizationRunOptions options{name, rawlog, dir, quiet, s.scenario.groundTruth};
     options.rawlogShownAs = rawlogShownAs;
-    const auto result = common::runLocalization(*s.localizer, options);
+    options.fitHint = [&registry, &name](const std::map<std::string, size_t>& classes) {
+        return fitHintOf(registry, name, classes);
+    };
+    auto result = common::runLocalization(*s.localizer, options);
+    const sim::ScenarioConfig* scenario = s.simulation ? &s.simulation->config : nullptr;
     if (s.method->experiment)
-        s.method->experiment({*s.localizer, s.simulation ? &s.simulation->config : nullptr,
-                              result.truth, dir, s.scenario.seed, quiet});
-    if (quiet) return;
-    const auto& m = result.metrics;
-    std::cerr << "localized " << m["observations"] << " observations with '" << name << "'";
-    if (m.value("ground_truth", false))
-        std::cerr << ": RMSE " << m["rmse_m"].get<double>() << " m, max "
-                  << m["max_m"].get<double>() << " m over " << m["n"] << " estimates";
-    std::cerr << "\n";
+        s.method->experiment(
+            {*s.localizer, scenario, result.truth, dir, s.scenario.seed, quiet});
+    auto headline = s.method->headline({*s.localizer, scenario, result.metrics, dir});
+    if (result.metrics["robots"].empty() && headline.reached) {
+        // whatever the method's figures, a run without a single estimate reached nothing
+        headline.reached = false;
+        headline.status = "no estimate";
+    }
+    result.metrics["headline"] = common::toJson(headline);
+    common::saveJson(common::run_dir::metrics(dir), result.metrics);
+    return headline;
 }
+
+/** The exit code of a command whose run completed: 0, whether or not the method reached its
+ *  goal; the headline's status (the last line, metrics.json) says which. */
+int exitCodeOf(const common::Headline&) { return 0; }
 
 std::string doReport(const method::Registry& registry, const std::string& dir) {
     const std::string metricsPath = common::run_dir::metrics(dir);
@@ -173,15 +205,17 @@ int localize(const method::Registry& registry, int argc, char** argv) {
     checkWorkOf(s, false, true, o.quiet.getValue());
     const std::string dir = o.dirOr(s.scenario.name);
     common::RunTransaction tx(dir, "localize");
+    common::Headline headline;
     try {
-        doLocalize(s, rawlog.getValue(), tx.staging(), o.quiet.getValue(), rawlog.getValue());
+        headline = doLocalize(registry, s, rawlog.getValue(), tx.staging(), o.quiet.getValue(),
+                              rawlog.getValue());
         writeProvenance(s, tx.staging(), "localize", commandLine(argc, argv));
         tx.commit();
     } catch (const Error& e) {
         throw Error(tx.inFolderTerms(e.what()));
     }
-    std::cout << dir << "\n";
-    return 0;
+    std::cout << dir << "\n" << common::headlineLine(s.method->name, headline) << "\n";
+    return exitCodeOf(headline);
 }
 
 int report(const method::Registry& registry, int argc, char** argv) {
@@ -215,10 +249,11 @@ int run(const method::Registry& registry, int argc, char** argv) {
     checkWorkOf(s, true, true, c.output.quiet.getValue());
     const std::string dir = c.output.dirOr(s.scenario.name);
     common::RunTransaction tx(dir, "run");
+    common::Headline headline;
     try {
         const std::string rawlog = doSimulate(s, tx.staging(), c.output.quiet.getValue());
-        doLocalize(s, rawlog, tx.staging(), c.output.quiet.getValue(),
-                   (fs::path(dir) / fs::path(rawlog).filename()).string());
+        headline = doLocalize(registry, s, rawlog, tx.staging(), c.output.quiet.getValue(),
+                              (fs::path(dir) / fs::path(rawlog).filename()).string());
         writeProvenance(s, tx.staging(), "run", commandLine(argc, argv));
         doReport(registry, tx.staging());
         tx.commit();
@@ -226,8 +261,9 @@ int run(const method::Registry& registry, int argc, char** argv) {
         // The files named in the message are the run's own, removed with the rest of it.
         throw Error(s.iniPath + " (" + dir + " left as it was): " + tx.inFolderTerms(e.what()));
     }
-    std::cout << "report: " << common::run_dir::report(dir) << "\n";
-    return 0;
+    std::cout << "report: " << common::run_dir::report(dir) << "\n"
+              << common::headlineLine(s.method->name, headline) << "\n";
+    return exitCodeOf(headline);
 }
 
 namespace {

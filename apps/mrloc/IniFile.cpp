@@ -4,6 +4,7 @@
 #include <mrloc/common/Error.h>
 #include <mrloc/common/IniLint.h>
 #include <mrloc/common/IniSection.h>
+#include <mrloc/common/Names.h>
 
 #include <algorithm>
 #include <cctype>
@@ -19,26 +20,11 @@ namespace fs = std::filesystem;
 namespace {
 
 /** A section mrloc reads: a registered method's, the framework's, or a robot's. */
-bool ownedByMrloc(const std::string& section, const std::vector<std::string>& known) {
+bool ownedByMrloc(std::string section, const std::vector<std::string>& known) {
+    // MRPT reads section names in any case ([Scenario] is [scenario]), and so does mrloc
+    for (char& c : section) c = char(std::tolower(static_cast<unsigned char>(c)));
     return section.rfind("robot.", 0) == 0 ||
            std::find(known.begin(), known.end(), section) != known.end();
-}
-
-/** Edit distance (insertions, deletions, substitutions, adjacent swaps), case-insensitive. */
-size_t editDistance(const std::string& a, const std::string& b) {
-    const auto lower = [](char c) { return char(std::tolower(static_cast<unsigned char>(c))); };
-    std::vector<std::vector<size_t>> d(a.size() + 1, std::vector<size_t>(b.size() + 1));
-    for (size_t i = 0; i <= a.size(); ++i) d[i][0] = i;
-    for (size_t j = 0; j <= b.size(); ++j) d[0][j] = j;
-    for (size_t i = 1; i <= a.size(); ++i)
-        for (size_t j = 1; j <= b.size(); ++j) {
-            const size_t cost = lower(a[i - 1]) == lower(b[j - 1]) ? 0 : 1;
-            d[i][j] = std::min({d[i - 1][j] + 1, d[i][j - 1] + 1, d[i - 1][j - 1] + cost});
-            if (i > 1 && j > 1 && lower(a[i - 1]) == lower(b[j - 2]) &&
-                lower(a[i - 2]) == lower(b[j - 1]))
-                d[i][j] = std::min(d[i][j], d[i - 2][j - 2] + 1);
-        }
-    return d[a.size()][b.size()];
 }
 
 /** The section of mrloc's that `section` looks like a misspelling of, if any: within one
@@ -46,16 +32,10 @@ size_t editDistance(const std::string& a, const std::string& b) {
  *  programs (MRPT's apps) and are left alone. */
 std::optional<std::string> closeTo(const std::string& section,
                                    const std::vector<std::string>& known) {
-    std::optional<std::string> best;
-    size_t bestDistance = SIZE_MAX;
-    for (const auto& k : known) {
-        const size_t allowed = k.size() >= 6 ? 2 : 1;
-        const size_t d = editDistance(section, k);
-        if (d <= allowed && d < bestDistance) best = k, bestDistance = d;
-    }
+    const auto best = common::nearMiss(section, known);
     // [robto.r1], [Robot.r1]: a robot's section
     const auto dot = section.find('.');
-    if (dot != std::string::npos && editDistance(section.substr(0, dot), "robot") <= 1)
+    if (dot != std::string::npos && common::editDistance(section.substr(0, dot), "robot") <= 1)
         return "robot." + section.substr(dot + 1);
     return best;
 }

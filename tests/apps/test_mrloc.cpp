@@ -312,17 +312,48 @@ TEST(MrlocErrors, MisspeltReportKeyStopsBeforeAnyOutput) {
     EXPECT_FALSE(fs::exists(dir + "/out"));
 }
 
-TEST(MrlocErrors, ARunWithNoEstimateStopsAndWritesNothing) {
-    // The polymap method on a beacon rawlog: no scan, so no robot to estimate.
+TEST(MrlocErrors, ARunThatUsedNoneOfTheLogStopsSaysWhatItHoldsAndWritesNothing) {
+    // The polymap method on a beacon rawlog: no scan. The line says what the log holds and
+    // which method reads it.
     const std::string out = tmp("noestimate");
     const auto r =
         mrlocCmd("localize " + config("polymap_steps") + " " + std::string(MRLOC_SOURCE_DIR) +
                  "/rawlogs/quickstart.rawlog -q --out " + out);
     EXPECT_EQ(r.code, 1);
-    EXPECT_NE(r.output.find("the method 'polymap' produced no estimate (1499 observations read"),
+    EXPECT_NE(r.output.find("the method 'polymap' used none of 0 2-D range scans"),
+              std::string::npos)
+        << r.output;
+    EXPECT_NE(r.output.find("the log holds 298 CObservationBeaconRanges, 1201 CObservationOdometry "
+                            "(method 'beacons' reads CObservationBeaconRanges"),
               std::string::npos)
         << r.output;
     EXPECT_FALSE(fs::exists(out));
+}
+
+TEST(MrlocErrors, RangesFromBeaconsNotInTheMapAreAWarningAndTheHeadlineKeepsOdometryApart) {
+    // beacons_fixed.ini's map has 3 of the quickstart's 4 beacons: 292 of 1164 ranges match
+    // none (counted when this test was written)
+    const std::string out = tmp("partial");
+    const auto r = mrlocCmd("localize " + config("beacons_fixed") + " " +
+                            std::string(MRLOC_SOURCE_DIR) + "/rawlogs/quickstart.rawlog -q --out " +
+                            out);
+    ASSERT_EQ(r.code, 0) << r.output;
+    EXPECT_NE(r.output.find("warning: beacons: 292 ranges from beacons not in the map (of 1164"),
+              std::string::npos)
+        << r.output;
+    const auto m = common::loadJson(out + "/metrics.json");
+    ASSERT_EQ(m["warnings"].size(), 1u);
+    EXPECT_EQ(m["use"]["seen"], 1164);
+    EXPECT_EQ(m["use"]["used"], 872);
+    EXPECT_EQ(m["rawlog_content"]["CObservationBeaconRanges"], 298);
+    const auto& h = m["headline"];
+    EXPECT_TRUE(h["reached"].get<bool>());
+    ASSERT_GE(h["figures"].size(), 4u);
+    EXPECT_EQ(h["figures"][0]["name"], "RMSE");
+    EXPECT_DOUBLE_EQ(h["figures"][0]["value"].get<double>(), m["rmse_m"].get<double>());
+    EXPECT_TRUE(h["figures"].back()["baseline"].get<bool>());
+    // the CLI's last line is the headline
+    EXPECT_NE(r.output.find("beacons: tracked: RMSE 2.17 m"), std::string::npos) << r.output;
 }
 
 TEST(MrlocCli, SwappedArgumentsFoldersAndTextFilesAreSaidInWords) {

@@ -93,6 +93,11 @@ class ToyLocalizer : public common::Localizer {
                                   0, 0, 0, 0)});
     }
     common::Trajectories estimates() const override { return traj_; }
+    common::ObservationUse observationUse() const override {
+        size_t n = 0;
+        for (const auto& [robot, t] : traj_) n += t.size();
+        return {"toy ranges (CObservationRange)", n, n, {}};
+    }
     const ToyOptions& options() const { return o_; }
     void writeOutputs(const std::string& dir, const common::Trajectories&) const override {
         ToyFile{traj_.empty() ? 0 : traj_.begin()->second.size()}.write(dir);
@@ -112,6 +117,12 @@ void registerToy(method::Registry& registry) {
         s.config = sim::ScenarioConfig::load(ini);
         s.payload = std::make_unique<ToyPayload>(localizer.options());
         return s;
+    };
+    m.headline = [](const method::HeadlineOf<ToyLocalizer>& in) {
+        common::Headline h;
+        h.status = "at the toy goal";
+        h.figures = common::trajectoryFigures(in.metrics);
+        return h;
     };
     // What the experiment is handed of the resolved run, written down for the tests: the
     // seed, the scenario's (nullptr for a log recorded elsewhere) and the localizer's goal.
@@ -199,6 +210,7 @@ TEST(ToyMethod, RegistryRefusesDuplicatesAndSectionsOwnedByOthers) {
     thief.scenario = [](const mrpt::config::CConfigFileBase&, const common::Localizer&) {
         return method::Scenario{};
     };
+    thief.headline = [](const method::HeadlineInput&) { return common::Headline{}; };
     EXPECT_THROW(registry.add(thief), Error);
     thief.sections = {"world"};
     EXPECT_THROW(registry.add(thief), Error);

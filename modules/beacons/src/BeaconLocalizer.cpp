@@ -233,6 +233,21 @@ void BeaconLocalizer::fixOnly(const std::string& robot, double t,
     covariances_[robot].push_back(c);
 }
 
+common::ObservationUse BeaconLocalizer::observationUse() const {
+    TrackerStats total;
+    for (const auto& [robot, tr] : trackers_) total += tr.stats();
+    common::ObservationUse use;
+    use.kind = "beacon ranges (CObservationBeaconRanges)";
+    use.seen = total.rangesReceived;
+    use.used = total.rangesUsed;
+    use.unmatched.push_back({"ranges from beacons not in the map", total.rangesUnknownBeacon});
+    if (total.fixFailures > 0)  // counted in epochs: the ranges of an epoch fail together
+        use.unmatched.push_back(
+            {"epochs whose multilateration failed (do the map's beacon positions fit this log?)",
+             total.fixFailures});
+    return use;
+}
+
 nlohmann::json BeaconLocalizer::methodMetrics() const {
     nlohmann::json j;
     TrackerStats total;

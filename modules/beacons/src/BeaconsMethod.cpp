@@ -1,5 +1,6 @@
 #include <mrloc/beacons/BeaconPayload.h>
 #include <mrloc/beacons/BeaconsMethod.h>
+#include <mrloc/beacons/PaperValues.h>
 #include <mrloc/common/Error.h>
 #include <mrloc/report/ReportOptions.h>
 #include <mrpt/core/format.h>
@@ -161,6 +162,36 @@ void beaconsInTopView(const report::RunView& run, report::TopViewContent& view) 
     view.landmarksName = "beacons";
 }
 
+/** The room the run's errors come from, beside the paper's: a sentence when it differs. */
+std::string roomDifference(const sim::ScenarioConfig* scenario, double paperX, double paperY) {
+    if (!scenario) return "a log recorded elsewhere, not the paper's test points";
+    const auto& w = scenario->world;
+    if (std::abs(w.sizeX - paperX) < 0.05 && std::abs(w.sizeY - paperY) < 0.05) return "";
+    return mrpt::format("this room is %.1f x %.1f m; the paper measured in %.1f x %.1f m",
+                        w.sizeX, w.sizeY, paperX, paperY);
+}
+
+/** RMSE, mean and max error, with seed 001's figures beside them (active: section 5.3;
+ *  fixed: Fig. 10 gives no number), and odometry alone apart. */
+common::Headline beaconsHeadline(const method::HeadlineOf<BeaconLocalizer>& in) {
+    common::Headline h;
+    h.status = "tracked";
+    h.figures = common::trajectoryFigures(in.metrics);
+    common::HeadlineFigure mean{"mean error", common::numberAt(in.metrics, "mean_m"), "m", "", "", false};
+    common::HeadlineFigure max{"max error", common::numberAt(in.metrics, "max_m"), "m", "", "", false};
+    if (in.localizer.options().system.activeAiming) {
+        mean.paper = "over 0.030 m (seed 001 sec. 5.3, active beacons)";
+        max.paper = "over 0.060 m (seed 001 sec. 5.3)";
+        mean.differs = max.differs =
+            roomDifference(in.scenario, paper::kActiveRoomX, paper::kActiveRoomY);
+    } else {
+        mean.paper = "Fig. 10, a chart: about twice the active beacons' (seed 001 sec. 5.3)";
+        mean.differs = roomDifference(in.scenario, paper::kFixedRoomX, paper::kFixedRoomY);
+    }
+    h.figures.insert(h.figures.begin() + 1, {mean, max});
+    return h;
+}
+
 }  // namespace
 
 void registerMethod(method::Registry& registry) {
@@ -170,6 +201,9 @@ void registerMethod(method::Registry& registry) {
     // MRPT's range-only localization INIs (ro-localization, pf-localization's RO demo) name
     // no mrloc section: their beacon likelihood section says they are this method's
     m.foreignSections = {"MetricMap_landmarksMap_00_likelihoodOpts"};
+    m.reads = {"CObservationBeaconRanges"};
+    m.exampleConfig = "config/quickstart.ini (a map of your beacons in [beacons])";
+    m.headline = beaconsHeadline;
     m.scenario = [](const mrpt::config::CConfigFileBase& ini, const BeaconLocalizer&) {
         return loadScenario(ini);
     };

@@ -1,5 +1,6 @@
 #include <mrloc/common/Error.h>
 #include <mrloc/common/IniSection.h>
+#include <mrloc/common/Names.h>
 #include <mrpt/config/CConfigFile.h>
 #include <mrpt/system/string_utils.h>
 
@@ -157,8 +158,12 @@ void IniSection::finish() const {
         if (used_.count(k)) continue;
         const bool allowed = std::any_of(prefixes_.begin(), prefixes_.end(),
                                          [&](const auto& p) { return k.rfind(lower(p), 0) == 0; });
-        if (!allowed)
-            fail(key, "unknown key (misspelt? see doc/ini.md for the keys of this section)");
+        if (!allowed) {
+            // every key the section's reader asked for, present or not
+            const auto near = nearMiss(k, std::vector<std::string>(used_.begin(), used_.end()));
+            fail(key, near ? "unknown key (did you mean '" + *near + "'? see doc/ini.md)"
+                           : "unknown key (misspelt? see doc/ini.md for the keys of this section)");
+        }
     }
 }
 

@@ -15,6 +15,7 @@
 #include <chrono>
 #include <filesystem>
 #include <iostream>
+#include <cmath>
 #include <map>
 
 namespace mrloc::common {
@@ -43,6 +44,31 @@ nlohmann::json odometryErrors(const Trajectory& odometry, const Trajectories& wo
     return j;
 }
 
+/** "1201 CObservationOdometry, 292 CObservationBeaconRanges": what a log holds. */
+std::string contentInWords(const std::map<std::string, size_t>& classCounts) {
+    std::string words;
+    for (const auto& [cls, count] : classCounts)
+        words += (words.empty() ? "" : ", ") + std::to_string(count) + " " + cls;
+    return words.empty() ? "no observation" : words;
+}
+
+/** Estimates that stop long before the log does (a robot stuck at a wall, a method that
+ *  lost track): the share of the log's span they cover, per robot, when under 90 %. */
+std::vector<std::string> earlyEnds(const Trajectories& estimates, double logStart, double logEnd) {
+    std::vector<std::string> warnings;
+    const double span = logEnd - logStart;
+    if (!(span > 1.0)) return warnings;  // a snapshot log: nothing to cover
+    for (const auto& [robot, traj] : estimates) {
+        if (traj.size() < 2) continue;  // one estimate per robot (a layout, a start)
+        const double covered = traj.back().t - logStart;
+        if (covered < 0.9 * span)
+            warnings.push_back(mrpt::format(
+                "robot '%s': the estimates stop at %.1f s of the log's %.1f s", robot.c_str(),
+                covered, span));
+    }
+    return warnings;
+}
+
 }  // namespace
 
 LocalizationResult runLocalization(Localizer& localizer, const LocalizationRunOptions& o) {
@@ -55,7 +81,8 @@ LocalizationResult runLocalization(Localizer& localizer, const LocalizationRunOp
     Trajectories odometry;
     std::map<std::string, std::string> odometryLabel;
     ObservationCheck check;
-    std::map<std::string, size_t> unstampedCount, copiesCount;
+    std::map<std::string, size_t> unstampedCount, copiesCount, classCounts;
+    double logStart = INFINITY, logEnd = -INFINITY;
     for (mrpt::obs::CObservation::Ptr obs; reader.next(obs);) {
         // stamped 0 with no sensory frame to take a time from (the last action of MRPT's
         // logs): left out and counted, as no method can place it in time
@@ -75,6 +102,14 @@ LocalizationResult runLocalization(Localizer& localizer, const LocalizationRunOp
         if (check.isCopyOfTheOneBefore(obs)) {  // a log that repeats itself: counted, left out
             ++copiesCount[obs->sensorLabel];
             continue;
+        }
+        {  // "mrpt::obs::CObservationOdometry" -> "CObservationOdometry", as users name it
+            const std::string cls = obs->GetRuntimeClass()->className;
+            ++classCounts[cls.substr(cls.rfind(':') == std::string::npos ? 0 : cls.rfind(':') + 1)];
+        }
+        if (obs->timestamp != INVALID_TIMESTAMP) {
+            const double t = mrpt::Clock::toDouble(obs->timestamp);
+            logStart = std::min(logStart, t), logEnd = std::max(logEnd, t);
         }
         if (const auto odo = std::dynamic_pointer_cast<mrpt::obs::CObservationOdometry>(obs)) {
             const std::string robot = robotOfLabel(odo->sensorLabel);
@@ -122,18 +157,35 @@ LocalizationResult runLocalization(Localizer& localizer, const LocalizationRunOp
     }
     const double wall =
         std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    // seen none, or matched none, of what the method localizes from: not a run of the method
+    const ObservationUse use = localizer.observationUse();
+    if (use.used == 0) {
+        std::string why;
+        for (const auto& [reason, count] : use.unmatched)
+            if (count > 0) why += "; " + std::to_string(count) + " " + reason;
+        const std::string hint = o.fitHint ? o.fitHint(classCounts) : "";
+        throw Error("rawlog " + o.rawlogPath + ": the method '" + o.methodName + "' used none of " +
+                    std::to_string(use.seen) + " " + use.kind + why + "; the log holds " +
+                    contentInWords(classCounts) + (hint.empty() ? "" : " (" + hint + ")"));
+    }
+    std::vector<std::string> warnings;
+    for (const auto& [reason, count] : use.unmatched)
+        if (count > 0)
+            warnings.push_back(std::to_string(count) + " " + reason + " (of " +
+                               std::to_string(use.seen) + " " + use.kind + " in the log)");
     const auto estimates = localizer.estimates();
-    if (estimates.empty())
-        throw Error("rawlog " + o.rawlogPath + ": the method '" + o.methodName +
-                    "' produced no estimate (" + std::to_string(n) +
-                    " observations read; does the rawlog carry what the method needs?)");
-
+    for (auto& w : earlyEnds(estimates, logStart, logEnd)) warnings.push_back(std::move(w));
+    for (const auto& w : warnings) std::cerr << "warning: " << o.methodName << ": " << w << "\n";
     makeDirectories(o.outDir);
     LocalizationResult result;
     auto& metrics = result.metrics;
     metrics["method"] = o.methodName;
     metrics["rawlog"] = o.rawlogShownAs.empty() ? o.rawlogPath : o.rawlogShownAs;
     metrics["observations"] = n;
+    metrics["robots"] = nlohmann::json::object();  // none: a method that found nothing
+    metrics["rawlog_content"] = classCounts;
+    metrics["use"] = toJson(use);
+    metrics["warnings"] = warnings;
     metrics["rawlog_format"] = reader.format() == RawlogFormat::ActionsSensoryFrames
                                    ? "actions+sensory-frames"
                                    : "observations-only";

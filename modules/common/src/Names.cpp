@@ -1,6 +1,9 @@
 #include <mrloc/common/Error.h>
 #include <mrloc/common/Names.h>
 
+#include <algorithm>
+#include <cctype>
+
 #include <cstdio>
 
 namespace mrloc::common {
@@ -72,6 +75,35 @@ void checkSensorLabel(const std::string& label, const std::string& where) {
         throw Error(where + ": sensor label '" + printable(label) + "': its robot part '" +
                     printable(robot) +
                     "' is not a robot name (1 to 64 of A-Z a-z 0-9 _ -, not starting with '-')");
+}
+
+size_t editDistance(const std::string& a, const std::string& b) {
+    const auto lower = [](char c) { return char(std::tolower(static_cast<unsigned char>(c))); };
+    std::vector<std::vector<size_t>> d(a.size() + 1, std::vector<size_t>(b.size() + 1));
+    for (size_t i = 0; i <= a.size(); ++i) d[i][0] = i;
+    for (size_t j = 0; j <= b.size(); ++j) d[0][j] = j;
+    for (size_t i = 1; i <= a.size(); ++i)
+        for (size_t j = 1; j <= b.size(); ++j) {
+            const size_t cost = lower(a[i - 1]) == lower(b[j - 1]) ? 0 : 1;
+            d[i][j] = std::min({d[i - 1][j] + 1, d[i][j - 1] + 1, d[i - 1][j - 1] + cost});
+            if (i > 1 && j > 1 && lower(a[i - 1]) == lower(b[j - 2]) &&
+                lower(a[i - 2]) == lower(b[j - 1]))
+                d[i][j] = std::min(d[i][j], d[i - 2][j - 2] + 1);
+        }
+    return d[a.size()][b.size()];
+}
+
+std::optional<std::string> nearMiss(const std::string& word,
+                                    const std::vector<std::string>& candidates) {
+    if (word.size() > 256) return std::nullopt;  // a stranger's long word: no quadratic table
+    std::optional<std::string> best;
+    size_t bestDistance = SIZE_MAX;
+    for (const auto& c : candidates) {
+        const size_t allowed = c.size() >= 6 ? 2 : 1;
+        const size_t d = editDistance(word, c);
+        if (d <= allowed && d < bestDistance) best = c, bestDistance = d;
+    }
+    return best;
 }
 
 }  // namespace mrloc::common

@@ -277,8 +277,15 @@ void RunTransaction::stageCopyOfFolder() {
                             "disk full?): " +
                             ec.message());
             if (rel.has_parent_path()) continue;
-            if (const auto copied = entryStatus(to.string()))
+            if (const auto copied = entryStatus(to.string())) {
                 carried_[rel.string()] = (unsigned long)copied->st_ino;
+                // held open so that its inode number is not given to a file this step writes
+                // after replacing it (metrics.json written twice): that file would read as
+                // carried, not written. Bounded: a folder of thousands of files keeps 256.
+                if (carriedFds_.size() < 256)
+                    if (const int fd = ::open(to.c_str(), O_RDONLY | O_CLOEXEC); fd >= 0)
+                        carriedFds_.push_back(fd);
+            }
         } else {
             ++links;  // symbolic links, FIFOs, sockets, devices: never followed nor carried
         }
@@ -373,6 +380,7 @@ void RunTransaction::commit() {
 RunTransaction::~RunTransaction() {
     // after commit() the staging path holds the previous run; before, this one's partial
     // outputs: removed either way
+    for (const int fd : carriedFds_) ::close(fd);
     removeTree(staging_.c_str());
     releaseLiveSlot(slot_);
     ::unlink(lockPath_.c_str());

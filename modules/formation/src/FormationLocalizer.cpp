@@ -1,4 +1,5 @@
 #include <mrloc/common/Error.h>
+#include <mrloc/common/Names.h>
 #include <mrloc/formation/DeadReckoning.h>
 #include <mrloc/formation/FormationFiles.h>
 #include <mrloc/formation/FormationLocalizer.h>
@@ -62,6 +63,15 @@ void FormationLocalizer::process(const mrpt::obs::CObservation::Ptr& obs) {
         estimates_[kDeadReckoningRobot].push_back({t, pose3(*deadReckoned_, heading)});
         return;
     }
+    {  // what observationUse counts: the team's kinds of observation, and whose they are
+        const auto comment = std::dynamic_pointer_cast<mrpt::obs::CObservationComment>(obs);
+        const auto [name, sensor] =
+            common::parseSensorLabel(comment ? arrivedLabel(comment->text) : obs->sensorLabel);
+        if (sensor == "obstacles" || sensor == "arrived") {
+            ++teamSeen_;
+            teamUsed_ += team_->indexOf(name).has_value();
+        }
+    }
     const size_t before = team_->moves().size();
     const auto robot = [&]() -> std::optional<size_t> {
         const auto dot = obs->sensorLabel.rfind('.');
@@ -81,6 +91,15 @@ void FormationLocalizer::process(const mrpt::obs::CObservation::Ptr& obs) {
         estimates_[team_->options().names[r]].push_back(
             {t, pose3(team_->believed()[r], team_->believedHeading(r))});
     }
+}
+
+common::ObservationUse FormationLocalizer::observationUse() const {
+    common::ObservationUse use;
+    use.kind = "team scans and arrival messages (<robot>.obstacles, <robot>.arrived)";
+    use.seen = teamSeen_;
+    use.used = teamUsed_;
+    use.unmatched.push_back({"from robots not in [formation] names", teamSeen_ - teamUsed_});
+    return use;
 }
 
 nlohmann::json FormationLocalizer::methodMetrics() const {

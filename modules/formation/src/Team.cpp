@@ -23,12 +23,6 @@ std::optional<std::string> messageRobot(const std::string& text, const std::stri
     return text.substr(head.size(), text.size() - head.size() - tail.size());
 }
 
-/** "formation: <robot> arrived" -> "<robot>.arrived"; anything else -> "". */
-std::string arrivedLabel(const std::string& text) {
-    const auto robot = messageRobot(text, " arrived");
-    return robot ? *robot + ".arrived" : "";
-}
-
 /** The heading a move leaves its robot with: facing away from the anchor, its rear camera
  *  on it (seed 003 Algorithm 1, step 1). */
 double arrivalHeading(const Move& m, const std::vector<TPoint2D>& believed) {
@@ -37,6 +31,11 @@ double arrivalHeading(const Move& m, const std::vector<TPoint2D>& believed) {
 }
 
 }  // namespace
+
+std::string arrivedLabel(const std::string& text) {
+    const auto robot = messageRobot(text, " arrived");
+    return robot ? *robot + ".arrived" : "";
+}
 
 Team::Team(TeamOptions options)
     : options_(std::move(options)),

@@ -24,6 +24,17 @@ void FramesyncLocalizer::process(const mrpt::obs::CObservation::Ptr& obs) {
     team_->process(obs);
 }
 
+common::ObservationUse FramesyncLocalizer::observationUse() const {
+    common::ObservationUse use;
+    use.kind = "sonar readings (CObservationRange, <robot>.sonar)";
+    use.seen = team_->readings();
+    use.used = team_->readings() - team_->unplacedReadings();
+    use.unmatched.push_back({"sonar readings before the robot's first odometry (no pose to place "
+                             "them at)",
+                             team_->unplacedReadings()});
+    return use;
+}
+
 nlohmann::json FramesyncLocalizer::methodMetrics() const {
     nlohmann::json m, robots = nlohmann::json::object();
     size_t walls = 0;

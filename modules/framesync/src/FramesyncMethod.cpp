@@ -263,12 +263,55 @@ report::Html framesyncSection(const report::RunView& run) {
     return out;
 }
 
+/** Seed 004 sec. 5.2's measure: where the robots end, as each sees the other, against the
+ *  truth; the shared frame's beside each robot's own odometry (the baseline), in this run
+ *  and over the experiment's seeds. */
+common::Headline framesyncHeadline(const method::HeadlineOf<FramesyncLocalizer>& in) {
+    common::Headline h;
+    const auto redefinitions = common::numberAt(in.metrics, "framesync/redefinitions");
+    const bool sharing = in.localizer.config().team.sharing;
+    h.reached = !sharing || (redefinitions && *redefinitions > 0);
+    h.status = !sharing  ? "frames kept apart ([framesync] sharing = false)"
+               : h.reached ? "one frame shared"
+                           : "no frame shared (no wall matched between robots; see the walls)";
+    std::string differs;
+    if (!in.scenario)
+        differs = "a log recorded elsewhere, not the paper's corridor";
+    else if (in.scenario->robots.size() != 2)
+        differs = mrpt::format("%zu robots; the paper's experiment has 2",
+                               in.scenario->robots.size());
+    const char* shared = "under 0.10 m (seed 004 sec. 5.2, one run)";
+    const char* own = "about 0.30 m (seed 004 sec. 5.2)";
+    h.figures.push_back({"end discrepancy, shared frame",
+                         common::numberAt(in.metrics, "framesync/end_relative_error_shared_m"), "m",
+                         shared, differs, false});
+    h.figures.push_back({"own odometry",
+                         common::numberAt(in.metrics, "framesync/end_relative_error_odometry_m"),
+                         "m", own, differs, true});
+    if (std::filesystem::exists(FramesyncExperimentFile::path(in.outDir))) {
+        double s = 0, o = 0;
+        size_t n = 0;
+        for (const auto& r : FramesyncExperimentFile::read(in.outDir).runs)
+            if (r.kind == "paper" && std::isfinite(r.sharedError))
+                s += r.sharedError, o += r.odometryError, ++n;
+        if (n) {
+            const std::string over = mrpt::format(" (mean over %zu seeds)", n);
+            h.figures.push_back({"shared frame" + over, s / double(n), "m", shared, differs, false});
+            h.figures.push_back({"own odometry" + over, o / double(n), "m", own, differs, true});
+        }
+    }
+    return h;
+}
+
 }  // namespace
 
 void registerMethod(method::Registry& registry) {
     method::MethodUnit<FramesyncLocalizer> m;
     m.name = "framesync";
     m.sections = {"framesync"};
+    m.reads = {"CObservationRange"};
+    m.exampleConfig = "config/framesync_corridor.ini";
+    m.headline = framesyncHeadline;
     m.scenario = loadScenario;
     m.experiment = framesyncExperiment;  // seed 004 sec. 5.2 over seeds, noises, drifts
     m.work = framesyncWork;

@@ -1,4 +1,5 @@
 #include <mrloc/common/Error.h>
+#include <mrloc/common/Names.h>
 #include <mrloc/method/Registry.h>
 
 #include <algorithm>
@@ -11,8 +12,9 @@ const std::vector<std::string>& frameworkSections() {
 }
 
 void Registry::add(Method m) {
-    if (m.name.empty() || !m.localizer || !m.scenario)
-        throw Error("method '" + m.name + "': a method needs a name, a localizer and a scenario");
+    if (m.name.empty() || !m.localizer || !m.scenario || !m.headline)
+        throw Error("method '" + m.name +
+                    "': a method needs a name, a localizer, a scenario and a headline");
     if (methods_.count(m.name)) throw Error("method '" + m.name + "' registered twice");
     for (const auto& s : m.sections) {
         const auto& fw = frameworkSections();
@@ -31,7 +33,10 @@ const Method& Registry::get(const std::string& name) const {
     if (it == methods_.end()) {
         std::string known;
         for (const auto& n : names()) known += (known.empty() ? "" : ", ") + n;
-        throw Error("unknown localization method '" + name + "' (known: " + known + ")");
+        const auto near = common::nearMiss(name, names());
+        throw Error("unknown localization method '" + name + "' (" +
+                    (near ? "did you mean '" + *near + "'? " : std::string()) + "known: " + known +
+                    ")");
     }
     return it->second;
 }

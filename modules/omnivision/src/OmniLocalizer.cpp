@@ -267,6 +267,15 @@ std::vector<std::optional<Vec2>> OmniLocalizer::truthAtLayout(
     return out;
 }
 
+common::ObservationUse OmniLocalizer::observationUse() const {
+    common::ObservationUse use;
+    use.kind = "omni-directional views (CObservationImage <robot>.omni, CObservationBearingRange "
+               "<robot>.omni_bearings)";
+    for (const auto& [t, views] : views_) use.seen += views.size();
+    use.used = use.seen;
+    return use;
+}
+
 nlohmann::json OmniLocalizer::methodMetrics() const {
     const auto& r = result();
     nlohmann::json j;

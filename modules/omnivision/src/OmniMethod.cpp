@@ -297,12 +297,40 @@ report::Html omnivisionSection(const report::RunView& run) {
            report::Figure{"accuracy.png", "accuracy against noise"}.html() + accuracy.html();
 }
 
+/** Every robot placed or not, and the relative error of the pairwise distances (seed 000's
+ *  solution and the refined one); seed 000 publishes no figure of its own. */
+common::Headline omnivisionHeadline(const method::HeadlineOf<OmniLocalizer>& in) {
+    common::Headline h;
+    size_t unresolved = 0;
+    const auto method = in.metrics.value("omnivision", nlohmann::json::object());
+    if (method.contains("snapshots") && method["snapshots"].is_object())
+        for (const auto& [name, snapshot] : method["snapshots"].items())
+            if (snapshot.contains("unresolved") && snapshot["unresolved"].is_array())
+                unresolved += snapshot["unresolved"].size();
+    h.reached = unresolved == 0;
+    h.status = h.reached ? "every robot identified"
+                         : mrpt::format("%zu robot views unresolved", unresolved);
+    const auto percent = [&](const char* key) -> std::optional<double> {
+        const auto v = common::numberAt(method, std::string(key) + "/median");
+        return v ? std::optional<double>(100 * *v) : std::nullopt;
+    };
+    const char* none = "seed 000 publishes no figure";
+    if (const auto refined = percent("relative_distance_error_refined"))
+        h.figures.push_back({"relative distance error, refined (median)", refined, "%", none, "", false});
+    h.figures.push_back({"relative distance error, seed 000's solution (median)",
+                         percent("relative_distance_error_paper"), "%", none, "", false});
+    return h;
+}
+
 }  // namespace
 
 void registerMethod(method::Registry& registry) {
     method::MethodUnit<OmniLocalizer> m;
     m.name = "omnivision";
     m.sections = {"omnivision"};
+    m.reads = {"CObservationImage", "CObservationBearingRange"};
+    m.exampleConfig = "config/omnivision_5robots.ini";
+    m.headline = omnivisionHeadline;
     m.scenario = loadScenario;
     m.experiment = accuracySweepStep;
     m.work = omnivisionWork;

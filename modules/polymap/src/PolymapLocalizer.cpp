@@ -63,6 +63,7 @@ RobotHypotheses hypothesesFromScan(const PolymapOptions& options, const common::
 void PolymapLocalizer::process(const mrpt::obs::CObservation::Ptr& obs) {
     const auto scan = std::dynamic_pointer_cast<mrpt::obs::CObservation2DRangeScan>(obs);
     if (!scan) return;
+    ++scansSeen_;
     const std::string robot = common::robotOfLabel(scan->sensorLabel);
     if (const auto it = results_.find(robot); it != results_.end()) {
         // A later scan: at the probe the elimination planned (the robot drove there).
@@ -70,9 +71,11 @@ void PolymapLocalizer::process(const mrpt::obs::CObservation::Ptr& obs) {
         if (r.session && r.session->plan()) {
             r.session->observe(*scan);
             r.probeTimes.push_back(mrpt::Clock::toDouble(scan->timestamp));
+            ++scansUsed_;
         }
         return;
     }
+    ++scansUsed_;
     results_[robot] = hypothesesFromScan(options_, map_->polygon, *scan, probeRadius_);
 }
 
@@ -96,6 +99,16 @@ std::map<std::string, common::Trajectory> PolymapLocalizer::estimates() const {
         }
     }
     return out;
+}
+
+common::ObservationUse PolymapLocalizer::observationUse() const {
+    common::ObservationUse use;
+    use.kind = "2-D range scans (CObservation2DRangeScan)";
+    use.seen = scansSeen_;
+    use.used = scansUsed_;
+    // later scans with no probe planned are expected (the robot localized, or waits): not
+    // a mismatch with the map, so not a warning
+    return use;
 }
 
 nlohmann::json PolymapLocalizer::methodMetrics() const {

@@ -229,12 +229,46 @@ report::Html polymapSection(const report::RunView& run) {
     return out;
 }
 
+/** Localized or not (one hypothesis left, per robot), with the hypotheses of the first
+ *  scan, the travel the elimination needed and the start's error against the truth. */
+common::Headline polymapHeadline(const method::HeadlineOf<PolymapLocalizer>& in) {
+    common::Headline h;
+    std::string notLocalized;
+    double hypotheses = 0, travel = 0;
+    bool drove = false;
+    for (const auto& [robot, r] : in.localizer.results()) {
+        hypotheses += double(r.hypotheses.size());
+        const size_t left = r.session ? r.session->live().size() : r.hypotheses.size();
+        if (left != 1)
+            notLocalized += mrpt::format("%srobot '%s': %zu hypotheses %s",
+                                         notLocalized.empty() ? "" : "; ", robot.c_str(), left,
+                                         r.hypotheses.empty() ? "fit the first scan (is this "
+                                                                "the robot's map?)"
+                                         : r.session ? "left"
+                                                     : "from the first scan, no drive to "
+                                                       "eliminate them ([polymap] drive)");
+        if (r.session) {
+            drove = true;
+            for (const auto& p : r.session->visited()) travel += p.path.length;
+        }
+    }
+    h.reached = notLocalized.empty();
+    h.status = h.reached ? "localized" : "not localized: " + notLocalized;
+    h.figures.push_back({"hypotheses from the first scan", hypotheses, "", "", "", false});
+    if (drove) h.figures.push_back({"travel", travel, "m", "", "", false});
+    h.figures.push_back({"start error", common::numberAt(in.metrics, "rmse_m"), "m", "", "", false});
+    return h;
+}
+
 }  // namespace
 
 void registerMethod(method::Registry& registry) {
     method::MethodUnit<PolymapLocalizer> m;
     m.name = "polymap";
     m.sections = {"polymap"};
+    m.reads = {"CObservation2DRangeScan"};
+    m.exampleConfig = "config/polymap_file.ini (your map as a .poly in [polymap] map)";
+    m.headline = polymapHeadline;
     m.scenario = loadScenario;
     m.experiment = eliminationExperiment;  // seed 002 Tables 1-2, Figs. 6-7
     m.work = polymapWork;

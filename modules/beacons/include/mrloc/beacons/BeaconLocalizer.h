@@ -48,6 +48,9 @@ class BeaconLocalizer : public common::Localizer {
     }
     std::optional<mrpt::poses::CPose3D> latestEstimate(const std::string& robot) const override;
     nlohmann::json methodMetrics() const override;
+    /** Beacon ranges: used are those matched to a beacon of the map that reached a fix or
+     *  the filter; the others came from unknown beacons or from epochs whose fix failed. */
+    common::ObservationUse observationUse() const override;
 
     const BeaconOptions& options() const { return options_; }
 

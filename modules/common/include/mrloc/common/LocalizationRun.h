@@ -5,6 +5,8 @@
 #include <mrloc/common/GroundTruthFile.h>
 #include <mrloc/common/Localizer.h>
 
+#include <functional>
+#include <map>
 #include <nlohmann/json.hpp>
 #include <string>
 
@@ -20,6 +22,9 @@ struct LocalizationRunOptions {
     /** The rawlog's path as metrics.json records it, if not rawlogPath (a rawlog simulated
      *  into a staging folder is recorded under the run folder it ends in). */
     std::string rawlogShownAs = {};
+    /** Given the log's observations per MRPT class, which method or INI would fit it (the
+     *  registry's to say): appended to the error of a run that used none of the log. */
+    std::function<std::string(const std::map<std::string, size_t>&)> fitHint = {};
 };
 
 struct LocalizationResult {
@@ -27,8 +32,12 @@ struct LocalizationResult {
     Trajectories truth;      ///< ground truth in the estimates' frame (empty without one)
 };
 
-/** Throws mrloc::Error, before writing anything, when the rawlog is unreadable or the
- *  method produced no estimate for any robot. */
+/** Throws mrloc::Error, before writing anything, when the rawlog is unreadable, the
+ *  method used none of its observations (the message says what the log holds, and
+ *  `fitHint`'s advice). A run with no estimate is written (its headline says what the method
+ *  found instead: polymap's hypotheses). Partial use (observations of
+ *  the method's kind it could not match) and estimates that stop well before the log ends
+ *  are warnings: on stderr and in metrics.json's "warnings". */
 LocalizationResult runLocalization(Localizer& localizer, const LocalizationRunOptions& options);
 
 }  // namespace mrloc::common

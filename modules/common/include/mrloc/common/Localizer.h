@@ -2,6 +2,7 @@
 // What every localization method's estimator offers the apps. A method registers a factory
 // for it in its registerMethod() (mrloc/method/Registry.h); [scenario] method = <name>
 // picks it. Ground truth is handed to the calls that use it, never kept between calls.
+#include <mrloc/common/Outcome.h>
 #include <mrloc/common/Trajectory.h>
 #include <mrpt/config/CConfigFileBase.h>
 #include <mrpt/obs/CObservation.h>
@@ -27,6 +28,10 @@ class Localizer {
     /** Feeds one observation, in rawlog order. Observations the method does not use are
      *  ignored. */
     virtual void process(const mrpt::obs::CObservation::Ptr& obs) = 0;
+    /** What the method took from the log so far: observations of the kind it localizes
+     *  from, how many it matched to its map or robots, why the others were not. A run that
+     *  used none fails (runLocalization); a partial match is a warning. */
+    virtual ObservationUse observationUse() const = 0;
     /** Estimated trajectories, per robot name. */
     virtual Trajectories estimates() const = 0;
     /** The robot's newest estimate, if any: what it reports on board in a closed-loop

@@ -2,7 +2,9 @@
 // Names that come from files (an INI's robots and scenario name, a rawlog's sensor labels)
 // end up in file names, gnuplot scripts and HTML. They are checked where they enter, with
 // one grammar for all of mrloc.
+#include <optional>
 #include <string>
+#include <vector>
 
 namespace mrloc::common {
 
@@ -30,5 +32,12 @@ void checkSensorLabel(const std::string& label, const std::string& where);
 
 /** `s` with every byte outside printable ASCII written as \xNN, quotes kept: for messages. */
 std::string printable(const std::string& s);
+
+/** Edit distance (insertions, deletions, substitutions, adjacent swaps), case-insensitive. */
+size_t editDistance(const std::string& a, const std::string& b);
+/** The candidate `word` looks like a misspelling of: within one edit (two for candidates of
+ *  6 letters or more), any case; the closest if several. "did you mean" messages. */
+std::optional<std::string> nearMiss(const std::string& word,
+                                    const std::vector<std::string>& candidates);
 
 }  // namespace mrloc::common

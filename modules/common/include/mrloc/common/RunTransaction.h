@@ -59,6 +59,7 @@ class RunTransaction {
     int lockFd_ = -1;
     int slot_ = -1;
     std::map<std::string, unsigned long> carried_;  ///< name -> inode of the staged copy
+    std::vector<int> carriedFds_;  ///< the staged copies, open: their inodes stay theirs
 };
 
 /** Installs SIGINT and SIGTERM handlers that remove every live transaction's staging folder

@@ -19,6 +19,9 @@ class FormationLocalizer : public common::Localizer {
     void saveConfig(mrpt::config::CConfigFileBase& target) const override;
     void process(const mrpt::obs::CObservation::Ptr& obs) override;
     common::Trajectories estimates() const override { return estimates_; }
+    /** The team's scans (<robot>.obstacles) and arrival messages (<robot>.arrived): used
+     *  are those of robots in [formation]. */
+    common::ObservationUse observationUse() const override;
     nlohmann::json methodMetrics() const override;
     nlohmann::json truthMetrics(const common::Trajectories& truth) const override;
     void writeOutputs(const std::string& outDir, const common::Trajectories& truth) const override;
@@ -28,6 +31,7 @@ class FormationLocalizer : public common::Localizer {
 
  private:
     FormationConfig config_;
+    size_t teamSeen_ = 0, teamUsed_ = 0;
     std::optional<Team> team_;
     common::Trajectories estimates_;
     std::optional<TPoint2D> deadReckoned_;  ///< the dead-reckoning robot's estimate

@@ -39,6 +39,8 @@ struct MoveEvent {
 
 /** The arrival message's text. */
 std::string arrivalText(const std::string& robot);
+/** An arrival message's text -> "<robot>.arrived" (the label MRPT drops); anything else "". */
+std::string arrivedLabel(const std::string& text);
 /** The text of the message a moving robot sends when its cameras lost the beacons and it
  *  finished the move by the belief (pixel mode), and its test. */
 std::string lostBeaconsText(const std::string& robot);

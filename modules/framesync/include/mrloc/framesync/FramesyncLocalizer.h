@@ -19,6 +19,9 @@ class FramesyncLocalizer : public common::Localizer {
     void saveConfig(mrpt::config::CConfigFileBase& target) const override;
     void process(const mrpt::obs::CObservation::Ptr& obs) override;
     common::Trajectories estimates() const override { return team_->estimates(); }
+    /** Sonar readings: used are those placed on the robot's odometry (a reading before the
+     *  first odometry has no pose to be placed at). */
+    common::ObservationUse observationUse() const override;
     nlohmann::json methodMetrics() const override;
     nlohmann::json truthMetrics(const common::Trajectories& truth) const override;
     void writeOutputs(const std::string& outDir, const common::Trajectories& truth) const override;

@@ -48,6 +48,14 @@ struct ExperimentInput {
     bool quiet = true;  ///< no progress bar (-q, or stderr not a terminal)
 };
 
+/** What a method's headline is computed from, after localization and its experiment. */
+struct HeadlineInput {
+    const common::Localizer& localizer;  ///< configured, after the whole rawlog
+    const sim::ScenarioConfig* scenario;  ///< nullptr for a log recorded elsewhere
+    const nlohmann::json& metrics;        ///< metrics.json as written
+    std::string outDir;                   ///< the run folder: the experiment's files
+};
+
 /** The type-erased form the app and the report use; a method registers a MethodUnit. */
 struct Method {
     std::string name;
@@ -58,7 +66,16 @@ struct Method {
      *  [scenario] method and without any method's own section is this method's if it holds
      *  one of these (and no other method's). */
     std::vector<std::string> foreignSections;
+    /** The MRPT classes the method localizes from ("CObservationBeaconRanges"): a log that
+     *  another method could not use is pointed to this one when it holds them. */
+    std::vector<std::string> reads;
+    /** The shipped INI a user starts from for a log of those classes ("config/quickstart.ini"). */
+    std::string exampleConfig;
     std::function<std::unique_ptr<common::Localizer>()> localizer;
+    /** The method's headline, after localization and its experiment: its own figures, the
+     *  paper's beside them (with a sentence where this run's experiment differs from the
+     *  paper's), baselines apart, and whether it reached its goal. Required. */
+    std::function<common::Headline(const HeadlineInput&)> headline;
     /** Reads the scenario from the INI; throws mrloc::Error naming file, section and key.
      *  The method's localizer, already configured from the same INI, is handed over so
      *  that what it built (a map, say) is not built twice. */
@@ -83,6 +100,15 @@ struct ExperimentOf {
     bool quiet;  ///< no progress bar
 };
 
+/** HeadlineInput with the method's own localizer type. */
+template <class LocalizerT>
+struct HeadlineOf {
+    const LocalizerT& localizer;
+    const sim::ScenarioConfig* scenario;  ///< nullptr for a log recorded elsewhere
+    const nlohmann::json& metrics;
+    const std::string& outDir;
+};
+
 /** A method as it registers: every function takes its own localizer type (and through it
  *  its options), so no method downcasts; Registry::add binds them to the localizer it
  *  creates. */
@@ -91,6 +117,9 @@ struct MethodUnit {
     std::string name;
     std::vector<std::string> sections;         ///< as Method::sections
     std::vector<std::string> foreignSections;  ///< as Method::foreignSections
+    std::vector<std::string> reads;            ///< as Method::reads
+    std::string exampleConfig;                 ///< as Method::exampleConfig
+    std::function<common::Headline(const HeadlineOf<LocalizerT>&)> headline;  ///< as Method's
     std::function<Scenario(const mrpt::config::CConfigFileBase&, const LocalizerT&)> scenario;
     std::function<std::vector<std::string>(const ExperimentOf<LocalizerT>&)> experiment;
     std::function<std::vector<WorkItem>(const LocalizerT&, const sim::ScenarioConfig*)> work;
@@ -132,7 +161,14 @@ void Registry::add(MethodUnit<LocalizerT> unit) {
     m.name = unit.name;
     m.sections = std::move(unit.sections);
     m.foreignSections = std::move(unit.foreignSections);
+    m.reads = std::move(unit.reads);
+    m.exampleConfig = std::move(unit.exampleConfig);
     m.localizer = [] { return std::make_unique<LocalizerT>(); };
+    if (unit.headline)
+        m.headline = [f = std::move(unit.headline), name = unit.name](const HeadlineInput& in) {
+            return f(HeadlineOf<LocalizerT>{localizerOf<LocalizerT>(in.localizer, name),
+                                            in.scenario, in.metrics, in.outDir});
+        };
     if (unit.scenario)
         m.scenario = [f = std::move(unit.scenario), name = unit.name](
                          const mrpt::config::CConfigFileBase& ini, const common::Localizer& l) {

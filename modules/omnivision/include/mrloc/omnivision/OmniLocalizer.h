@@ -45,6 +45,9 @@ class OmniLocalizer : public common::Localizer {
     std::map<std::string, common::CovarianceTrack> covariances() const override;
     common::Trajectories truthInEstimateFrame(
         const common::Trajectories& worldTruth) const override;
+    /** Each robot's view at a time: a panorama (<robot>.omni) or its bearings
+     *  (<robot>.omni_bearings); every one enters the snapshot of its time. */
+    common::ObservationUse observationUse() const override;
     nlohmann::json methodMetrics() const override;
     nlohmann::json truthMetrics(const common::Trajectories& truth) const override;
     /** layout.txt (OmniFiles.h). */

@@ -45,6 +45,9 @@ class PolymapLocalizer : public common::Localizer {
     void saveConfig(mrpt::config::CConfigFileBase& target) const override;
     void process(const mrpt::obs::CObservation::Ptr& obs) override;
     std::map<std::string, common::Trajectory> estimates() const override;
+    /** 2-D scans: the first of each robot (its hypotheses) and those at the probes the
+     *  elimination planned; a scan after the robot is localized is not needed. */
+    common::ObservationUse observationUse() const override;
     nlohmann::json methodMetrics() const override;
     nlohmann::json groundTruthMetrics(const std::string& robot,
                                       const common::Trajectory& gt) const override;
@@ -60,6 +63,7 @@ class PolymapLocalizer : public common::Localizer {
     double probeRadius_ = 0;  ///< from the INI's [scenario] dt and its robot's speed
     std::unique_ptr<GeneratedMap> map_;
     std::map<std::string, RobotHypotheses> results_;
+    size_t scansSeen_ = 0, scansUsed_ = 0;
 };
 
 }  // namespace mrloc::polymap

@@ -1,0 +1,107 @@
+#include <mrloc/common/Error.h>
+#include <mrloc/common/Outcome.h>
+
+#include <cmath>
+#include <sstream>
+
+namespace mrloc::common {
+
+nlohmann::json toJson(const ObservationUse& use) {
+    nlohmann::json j = {{"kind", use.kind}, {"seen", use.seen}, {"used", use.used}};
+    j["unmatched"] = nlohmann::json::object();
+    for (const auto& [reason, count] : use.unmatched) j["unmatched"][reason] = count;
+    return j;
+}
+
+nlohmann::json toJson(const Headline& h) {
+    nlohmann::json j = {{"reached", h.reached}, {"status", h.status}};
+    j["figures"] = nlohmann::json::array();
+    for (const auto& f : h.figures) {
+        nlohmann::json fj = {{"name", f.name}, {"unit", f.unit}, {"baseline", f.baseline}};
+        fj["value"] = f.value ? nlohmann::json(*f.value) : nlohmann::json(nullptr);
+        if (!f.paper.empty()) fj["paper"] = f.paper;
+        if (!f.differs.empty()) fj["differs"] = f.differs;
+        j["figures"].push_back(fj);
+    }
+    return j;
+}
+
+Headline headlineFromJson(const nlohmann::json& j, const std::string& where) {
+    const auto text = [&](const nlohmann::json& o, const char* key) {
+        if (!o.contains(key)) return std::string();
+        if (!o[key].is_string()) throw Error(where + ": headline." + key + ": not a string");
+        return o[key].get<std::string>();
+    };
+    if (!j.is_object() || !j.contains("reached") || !j["reached"].is_boolean() ||
+        !j.contains("figures") || !j["figures"].is_array())
+        throw Error(where + ": headline: not an object with 'reached' and 'figures'");
+    Headline h;
+    h.reached = j["reached"].get<bool>();
+    h.status = text(j, "status");
+    for (const auto& fj : j["figures"]) {
+        if (!fj.is_object()) throw Error(where + ": headline.figures: not an object");
+        HeadlineFigure f;
+        f.name = text(fj, "name");
+        f.unit = text(fj, "unit");
+        f.paper = text(fj, "paper");
+        f.differs = text(fj, "differs");
+        f.baseline = fj.value("baseline", false);
+        if (fj.contains("value") && fj["value"].is_number()) f.value = fj["value"].get<double>();
+        h.figures.push_back(std::move(f));
+    }
+    return h;
+}
+
+std::string figureText(const HeadlineFigure& f) {
+    std::ostringstream s;
+    s << f.name << " ";
+    if (!f.value) return s.str() + "none";
+    s.precision(3);
+    s << *f.value;
+    if (!f.unit.empty()) s << (f.unit == "%" ? "" : " ") << f.unit;
+    return s.str();
+}
+
+std::string headlineLine(const std::string& method, const Headline& h) {
+    std::string line = method + ": " + h.status;
+    std::string own, baselines;
+    for (const auto& f : h.figures)
+        (f.baseline ? baselines : own) += std::string((f.baseline ? baselines : own).empty()
+                                                          ? ""
+                                                          : ", ") +
+                                          figureText(f);
+    if (!own.empty()) line += ": " + own;
+    if (!baselines.empty()) line += "; baseline: " + baselines;
+    return line;
+}
+
+std::optional<double> numberAt(const nlohmann::json& j, const std::string& path) {
+    const nlohmann::json* at = &j;
+    std::istringstream parts(path);
+    for (std::string key; std::getline(parts, key, '/');) {
+        if (!at->is_object() || !at->contains(key)) return std::nullopt;
+        at = &(*at)[key];
+    }
+    if (!at->is_number()) return std::nullopt;
+    const double v = at->get<double>();
+    return std::isfinite(v) ? std::optional<double>(v) : std::nullopt;
+}
+
+std::vector<HeadlineFigure> trajectoryFigures(const nlohmann::json& metrics) {
+    std::vector<HeadlineFigure> figures;
+    figures.push_back({"RMSE", numberAt(metrics, "rmse_m"), "m", "", "", false});
+    // odometry alone over every robot that has it: the RMSE of the pooled errors
+    double sum2 = 0;
+    size_t n = 0;
+    if (metrics.contains("robots") && metrics["robots"].is_object())
+        for (const auto& [robot, r] : metrics["robots"].items())
+            if (const auto rmse = numberAt(r, "odometry/rmse_m"))
+                if (const auto k = numberAt(r, "odometry/n"); k && *k > 0)
+                    sum2 += *rmse * *rmse * *k, n += size_t(*k);
+    if (n)
+        figures.push_back(
+            {"odometry alone RMSE", std::sqrt(sum2 / double(n)), "m", "", "", true});
+    return figures;
+}
+
+}  // namespace mrloc::common

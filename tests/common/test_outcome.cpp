@@ -1,0 +1,67 @@
+// The honest outcome's pieces: the headline as metrics.json holds it, the CLI's line, the
+// trajectory figures with the odometry baseline kept apart, and the "did you mean" lookup.
+#include <gtest/gtest.h>
+#include <mrloc/common/Error.h>
+#include <mrloc/common/Names.h>
+#include <mrloc/common/Outcome.h>
+
+#include <cmath>
+
+namespace {
+
+using namespace mrloc;
+
+TEST(Outcome, HeadlineRoundTripsThroughJson) {
+    common::Headline h;
+    h.reached = false;
+    h.status = "not localized: 3 hypotheses left";
+    h.figures.push_back({"travel", 12.5, "m", "0.978 of cells (seed 002)", "another map", false});
+    h.figures.push_back({"dead reckoning", std::nullopt, "m", "", "", true});
+    const auto back = common::headlineFromJson(common::toJson(h), "here");
+    EXPECT_FALSE(back.reached);
+    EXPECT_EQ(back.status, h.status);
+    ASSERT_EQ(back.figures.size(), 2u);
+    EXPECT_DOUBLE_EQ(*back.figures[0].value, 12.5);
+    EXPECT_EQ(back.figures[0].paper, "0.978 of cells (seed 002)");
+    EXPECT_EQ(back.figures[0].differs, "another map");
+    EXPECT_FALSE(back.figures[1].value.has_value());
+    EXPECT_TRUE(back.figures[1].baseline);
+    EXPECT_THROW(common::headlineFromJson(nlohmann::json::array(), "here"), Error);
+}
+
+TEST(Outcome, TheLineKeepsBaselinesApart) {
+    common::Headline h;
+    h.status = "tracked";
+    h.figures.push_back({"RMSE", 0.0271, "m", "", "", false});
+    h.figures.push_back({"odometry alone RMSE", 0.76, "m", "", "", true});
+    EXPECT_EQ(common::headlineLine("beacons", h),
+              "beacons: tracked: RMSE 0.0271 m; baseline: odometry alone RMSE 0.76 m");
+}
+
+TEST(Outcome, TrajectoryFiguresPoolTheOdometryBaselineByItsCounts) {
+    // two robots: odometry RMSE 1 m over 3 readings and 2 m over 1: pooled sqrt((3+4)/4)
+    const auto metrics = nlohmann::json::parse(R"({"rmse_m": 0.05, "robots": {
+        "r1": {"odometry": {"rmse_m": 1.0, "n": 3}},
+        "r2": {"odometry": {"rmse_m": 2.0, "n": 1}}}})");
+    const auto f = common::trajectoryFigures(metrics);
+    ASSERT_EQ(f.size(), 2u);
+    EXPECT_DOUBLE_EQ(*f[0].value, 0.05);
+    EXPECT_FALSE(f[0].baseline);
+    EXPECT_NEAR(*f[1].value, std::sqrt(7.0 / 4.0), 1e-12);
+    EXPECT_TRUE(f[1].baseline);
+    // no truth: RMSE none, and no baseline invented
+    const auto none = common::trajectoryFigures(nlohmann::json::parse(R"({"rmse_m": null})"));
+    ASSERT_EQ(none.size(), 1u);
+    EXPECT_FALSE(none[0].value.has_value());
+}
+
+TEST(Outcome, NearMissFindsOneOrTwoEditsAndNothingFarther) {
+    const std::vector<std::string> names = {"beacons", "polymap", "formation"};
+    EXPECT_EQ(common::nearMiss("beacon", names).value_or(""), "beacons");
+    EXPECT_EQ(common::nearMiss("Polymap", names).value_or(""), "polymap");
+    EXPECT_EQ(common::nearMiss("fromation", names).value_or(""), "formation");  // a swap
+    EXPECT_FALSE(common::nearMiss("lidar", names).has_value());
+    EXPECT_EQ(common::editDistance("duraton", "duration"), 1u);
+}
+
+}  // namespace
