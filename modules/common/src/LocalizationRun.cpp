@@ -14,8 +14,8 @@
 
 #include <chrono>
 #include <filesystem>
-#include <iostream>
 #include <cmath>
+#include <iostream>
 #include <map>
 
 namespace mrloc::common {
@@ -42,6 +42,13 @@ nlohmann::json odometryErrors(const Trajectory& odometry, const Trajectories& wo
     j.update(statsToJson(computeStats(e)));
     if (!e.empty()) j["final_m"] = e.back();
     return j;
+}
+
+/** "mrpt::obs::CObservationOdometry" -> "CObservationOdometry", as users name it. */
+std::string shortClassName(const mrpt::obs::CObservation& obs) {
+    const std::string cls = obs.GetRuntimeClass()->className;
+    const auto colon = cls.rfind(':');
+    return colon == std::string::npos ? cls : cls.substr(colon + 1);
 }
 
 /** "1201 CObservationOdometry, 292 CObservationBeaconRanges": what a log holds. */
@@ -103,22 +110,18 @@ LocalizationResult runLocalization(Localizer& localizer, const LocalizationRunOp
             ++copiesCount[obs->sensorLabel];
             continue;
         }
-        {  // "mrpt::obs::CObservationOdometry" -> "CObservationOdometry", as users name it
-            const std::string cls = obs->GetRuntimeClass()->className;
-            ++classCounts[cls.substr(cls.rfind(':') == std::string::npos ? 0 : cls.rfind(':') + 1)];
-        }
-        if (obs->timestamp != INVALID_TIMESTAMP) {
-            const double t = mrpt::Clock::toDouble(obs->timestamp);
-            logStart = std::min(logStart, t), logEnd = std::max(logEnd, t);
-        }
+        ++classCounts[shortClassName(*obs)];
+        // only a comment may be unstamped here (the others were left out above)
+        const bool stamped = obs->timestamp != INVALID_TIMESTAMP;
+        const double stamp = stamped ? mrpt::Clock::toDouble(obs->timestamp) : 0.0;
+        if (stamped) logStart = std::min(logStart, stamp), logEnd = std::max(logEnd, stamp);
         if (const auto odo = std::dynamic_pointer_cast<mrpt::obs::CObservationOdometry>(obs)) {
             const std::string robot = robotOfLabel(odo->sensorLabel);
             const std::string sensor = sensorOfLabel(odo->sensorLabel);
             if (sensor == "odom" || sensor == "odometry") {
                 const auto [it, fresh] = odometryLabel.emplace(robot, odo->sensorLabel);
-                if (it->second == odo->sensorLabel && odo->timestamp != INVALID_TIMESTAMP)
-                    odometry[robot].push_back({mrpt::Clock::toDouble(odo->timestamp),
-                                               mrpt::poses::CPose3D(odo->odometry)});
+                if (it->second == odo->sensorLabel && stamped)
+                    odometry[robot].push_back({stamp, mrpt::poses::CPose3D(odo->odometry)});
             }
         }
         try {
