@@ -1,10 +1,24 @@
 #!/usr/bin/env bash
-# The main job: installs what is missing, builds, and runs an INI end to end
-# (simulate -> localize -> report). Default: config/quickstart.ini.
+# The main job: installs what is missing and builds; then, with no argument, the tour: each of
+# the five methods on a short scenario of its own (config/tour.txt) simulated, localized and
+# reported into out/tour/<method>/, and out/tour/index.html with every headline beside the
+# paper's figure. With an INI (and mrloc run's options): that one scenario end to end.
 set -euo pipefail
 cd "$(dirname "$0")"
 scripts/install-deps.sh
 scripts/build.sh
-ini="${1:-config/quickstart.ini}"
-shift || true
-exec build/apps/mrloc/mrloc run "$ini" "$@"
+mrloc=build/apps/mrloc/mrloc
+if [ $# -gt 0 ]; then
+  ini="$1"
+  shift
+  exec "$mrloc" run "$ini" "$@"
+fi
+start=$SECONDS
+while read -r name ini; do
+  case "$name" in '' | '#'*) continue ;; esac
+  echo "tour: $name ($ini)" >&2
+  # the run's last line is its headline
+  "$mrloc" run "$ini" --out "out/tour/$name" --quiet | tail -n 1
+done < config/tour.txt
+"$mrloc" index out/tour >/dev/null
+echo "tour: five methods in $((SECONDS - start)) s; the index: out/tour/index.html"

@@ -9,6 +9,8 @@
 #include <mrloc/common/RunDirectory.h>
 #include <mrloc/common/RunTransaction.h>
 #include <mrloc/common/Version.h>
+#include <mrloc/common/AtomicFile.h>
+#include <mrloc/report/Index.h>
 #include <mrloc/sim/Simulator.h>
 
 #include <cstring>
@@ -18,7 +20,9 @@
 #include <optional>
 #include <thread>
 
+#include "Advice.h"
 #include "IniFile.h"
+#include "MrptTruth.h"
 #include "RunSetup.h"
 
 namespace mrloc::app {
@@ -58,25 +62,6 @@ std::string doSimulate(Setup& s, const std::string& dir, bool quiet) {
     return files.rawlog;
 }
 
-/** Which registered method would use a log of these classes, and the INI to start from:
- *  the advice in the error of a run that used none of its log. */
-std::string fitHintOf(const method::Registry& registry, const std::string& current,
-                      const std::map<std::string, size_t>& classCounts) {
-    std::string hint;
-    for (const auto& name : registry.names()) {
-        if (name == current) continue;
-        const auto& m = registry.get(name);
-        for (const auto& cls : m.reads)
-            if (classCounts.count(cls)) {
-                hint += std::string(hint.empty() ? "" : "; ") + "method '" + name + "' reads " +
-                        cls + (m.exampleConfig.empty() ? "" : ": start from " + m.exampleConfig);
-                break;
-            }
-    }
-    return hint.empty() ? "no mrloc method reads what this log holds (mrloc info lists it)"
-                        : hint;
-}
-
 /** `rawlogShownAs`: the rawlog's path as metrics.json records it (the run folder's, not the
  *  staging folder's, for a rawlog this command simulated). Returns the method's headline,
  *  also written into metrics.json. */
@@ -84,6 +69,15 @@ common::Headline doLocalize(const method::Registry& registry, Setup& s, const st
                             const std::string& dir, bool quiet, const std::string& rawlogShownAs) {
     const std::string& name = s.method->name;
     common::LocalizationRunOptions options{name, rawlog, dir, quiet, s.scenario.groundTruth};
+    if (options.groundTruth.path.empty() && !s.simulation) {
+        // a log recorded elsewhere: its truth where MRPT's apps look for it
+        std::string note;
+        if (const auto found = mrptTruthOf(*s.ini, s.iniPath, rawlog, note)) {
+            options.groundTruth = found->source;
+            options.groundTruthFrom = found->from;
+        }
+        if (!note.empty() && !quiet) std::cerr << "note: " << note << "\n";
+    }
     options.rawlogShownAs = rawlogShownAs;
     options.fitHint = [&registry, &name](const std::map<std::string, size_t>& classes) {
         return fitHintOf(registry, name, classes);
@@ -125,7 +119,48 @@ std::string checkIni(const method::Registry& registry, const std::string& iniPat
     return effectiveIni(loadSetup(registry, iniPath, std::nullopt, false));
 }
 
+namespace {
+
+/** TCLAP's usage errors in one line that names what is wrong ("missing: RAWLOG (rawlog
+ *  file)"), then where to read more; TCLAP's own says "One or more required arguments
+ *  missing!" without naming them. */
+/** TCLAP's "(required)  INI file" without its tag: the message says "missing" already. */
+std::string withoutRequiredTag(std::string description) {
+    const std::string tag = "(required)";
+    if (description.rfind(tag, 0) == 0) description.erase(0, tag.size());
+    const auto text = description.find_first_not_of(' ');
+    return text == std::string::npos ? description : description.substr(text);
+}
+
+class OneLineOutput : public TCLAP::StdOutput {
+ public:
+    void failure(TCLAP::CmdLineInterface& c, TCLAP::ArgException& e) override {
+        const std::string command = "mrloc " + c.getProgramName();
+        std::string missing;
+        for (const TCLAP::Arg* a : c.getArgList())
+            if (a->isRequired() && !a->isSet())
+                missing += (missing.empty() ? "" : ", ") + a->shortID() + " (" +
+                           withoutRequiredTag(a->getDescription()) + ")";
+        std::string what = e.error();
+        if (what.find("required arguments missing") != std::string::npos && !missing.empty())
+            what = "missing " + missing;
+        else if (!e.argId().empty() && e.argId() != " ")
+            what += ": " + e.argId();
+        std::cerr << command << ": " << what << "\n"
+                  << "usage: " << command;
+        for (const TCLAP::Arg* a : c.getArgList())
+            if (a->isRequired()) std::cerr << " " << a->shortID();
+        std::cerr << " [options]   (" << command << " --help)\n";
+    }
+};
+
+}  // namespace
+
 std::optional<int> parseArgs(TCLAP::CmdLine& cmd, int argc, char** argv) {
+    static OneLineOutput output;
+    // TCLAP deletes only the output it made itself, and only when none was set
+    delete cmd.getOutput();
+    cmd.setOutput(&output);
     if (cmd.parse(argc, argv)) return std::nullopt;
     for (int i = 1; i < argc; ++i) {
         const std::string a = argv[i];
@@ -197,7 +232,8 @@ int localize(const method::Registry& registry, int argc, char** argv) {
                   << iniArg.getValue() << " is a rawlog)\n";
         return 2;
     }
-    Setup s = loadSetup(registry, iniArg.getValue(), std::nullopt, false);
+    checkNotAnIni(rawlog.getValue());
+    Setup s = loadSetup(registry, iniArg.getValue(), std::nullopt, false, rawlog.getValue());
     checkWorkOf(s, false, true, o.quiet.getValue());
     const std::string dir = o.dirOr(s.scenario.name);
     common::RunTransaction tx(dir, "localize");
@@ -263,6 +299,22 @@ int run(const method::Registry& registry, int argc, char** argv) {
     return 0;
 }
 
+int index(int argc, char** argv) {
+    TCLAP::CmdLine cmd(
+        "mrloc index: index.html of a folder of run folders (./run.sh's tour): each run's "
+        "headline beside the paper's figure, and a link to its report",
+        ' ', kVersion);
+    TCLAP::UnlabeledValueArg<std::string> dir("folder", "folder of run folders", true, "", "DIR",
+                                              cmd);
+    TCLAP::ValueArg<std::string> title("t", "title", "the page's title", false,
+                                       "mrloc: five methods, five papers", "TEXT", cmd);
+    if (const auto code = parseArgs(cmd, argc, argv)) return *code;
+    if (!fs::is_directory(dir.getValue()))
+        throw Error(common::pathInWords(dir.getValue()) + ": not a folder");
+    std::cout << report::makeIndex(dir.getValue(), title.getValue()) << "\n";
+    return 0;
+}
+
 namespace {
 constexpr const char* kUsage =
     "usage: mrloc <command> [options]   (mrloc <command> --help for details)\n"
@@ -272,7 +324,8 @@ constexpr const char* kUsage =
     "  localize <ini> <rawlog>  run the INI's method on any MRPT rawlog\n"
     "  report <run-dir>         render report.html and pictures of a localize run\n"
     "  run <ini>                simulate, localize and report in a row\n"
-    "  info <rawlog>            per robot and sensor label: class, count, rate, time span\n";
+    "  info <rawlog>            per robot and sensor label: class, count, rate, time span\n"
+    "  index <folder>           index.html of a folder of runs: headlines beside the papers'\n";
 }  // namespace
 
 int main(const method::Registry& registry, int argc, char** argv) {
@@ -288,6 +341,7 @@ int main(const method::Registry& registry, int argc, char** argv) {
         if (command == "report") return report(registry, argc - 1, argv + 1);
         if (command == "run") return run(registry, argc - 1, argv + 1);
         if (command == "info") return info(argc - 1, argv + 1);
+        if (command == "index") return index(argc - 1, argv + 1);
         std::cerr << "mrloc: unknown command '" << command << "'\n" << kUsage;
         return 2;
     } catch (const TCLAP::ArgException& e) {

@@ -16,6 +16,7 @@
 #include <nlohmann/json.hpp>
 
 #include "Commands.h"
+#include "IniFile.h"
 
 namespace mrloc::app {
 
@@ -47,6 +48,7 @@ int info(int argc, char** argv) {
 
     // robot, label, class
     std::map<std::tuple<std::string, std::string, std::string>, Stream> streams;
+    checkNotAnIni(path.getValue());
     common::RawlogReader reader(path.getValue());
     size_t total = 0;
     double first = INFINITY, last = -INFINITY;

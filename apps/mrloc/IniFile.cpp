@@ -52,11 +52,34 @@ bool looksLikeRawlog(const std::string& path) {
     return in.gcount() == 2 && ((head[0] == 0x1f && head[1] == 0x8b) || head[0] == 0x00);
 }
 
+bool looksLikeIni(const std::string& path) {
+    if (looksLikeRawlog(path)) return false;
+    const std::string ext = fs::path(path).extension().string();
+    if (ext == ".ini" || ext == ".cfg") return true;
+    std::ifstream in(path, std::ios::binary);
+    char c = 0;
+    while (in.get(c) && std::isspace(static_cast<unsigned char>(c))) {
+    }
+    return in && (c == '[' || c == ';' || c == '#');
+}
+
+void checkNotAnIni(const std::string& rawlogPath) {
+    if (fs::is_regular_file(rawlogPath) && looksLikeIni(rawlogPath))
+        throw Error("rawlog " + rawlogPath +
+                    ": this is an INI, not a rawlog (give the INI first: mrloc localize <ini> "
+                    "<rawlog>; mrloc simulate <ini> makes a rawlog)");
+}
+
 /** The INI's bytes, as read once: checked, parsed and copied into config.ini from these. */
 std::string readIniText(const std::string& path) {
-    if (fs::is_directory(path)) throw Error("config " + path + ": is a folder; give an INI file");
-    if (!fs::exists(path)) throw Error("config " + path + ": no such file");
+    if (fs::is_directory(path))
+        throw Error("config " + common::pathInWords(path) + ": is a folder; give an INI file");
+    if (!fs::exists(path)) throw Error("config " + common::pathInWords(path) + ": no such file");
     common::checkReadableFile(path, "config", 16u << 20);  // not a FIFO nor /dev/zero
+    if (looksLikeRawlog(path))
+        throw Error("config " + path +
+                    ": this is a rawlog, not an INI (mrloc localize <ini> " + path +
+                    " runs a method on it; mrloc info " + path + " lists what it holds)");
     std::ifstream file(path, std::ios::binary);
     std::stringstream text;
     text << file.rdbuf();

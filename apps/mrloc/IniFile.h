@@ -12,6 +12,11 @@ namespace mrloc::app {
 
 /** A rawlog by its name or its first bytes (gzip's magic, or MRPT's binary archive). */
 bool looksLikeRawlog(const std::string& path);
+/** An INI by its name (.ini, .cfg) or its first line of text ("[section]", "; comment").  */
+bool looksLikeIni(const std::string& path);
+/** Refuses an INI given where a rawlog is expected, with one line saying so: MRPT's reader
+ *  would otherwise call it a corrupt rawlog. */
+void checkNotAnIni(const std::string& rawlogPath);
 
 /** The INI's bytes, as read once: checked, parsed and copied into config.ini from these. */
 std::string readIniText(const std::string& path);

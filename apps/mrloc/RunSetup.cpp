@@ -8,21 +8,50 @@
 #include <mrloc/common/RunDirectory.h>
 #include <mrloc/common/Version.h>
 #include <mrpt/config/CConfigFileMemory.h>
+#include <mrpt/system/os.h>
 
 #include <algorithm>
+#include <ctime>
 #include <filesystem>
+#include <fstream>
 #include <set>
+#include <thread>
 
+#include "Advice.h"
 #include "IniFile.h"
 
 namespace mrloc::app {
 
 namespace fs = std::filesystem;
 
+extern const char* const kCommit;  // BuildInfo.cpp, generated at build time
+
 namespace {
 
+/** "2026-12-02 15:22:35": now, in UTC. */
+std::string utcNow() {
+    const std::time_t now = std::time(nullptr);
+    std::tm utc{};
+    gmtime_r(&now, &utc);
+    char text[32];
+    std::strftime(text, sizeof text, "%Y-%m-%d %H:%M:%S", &utc);
+    return text;
+}
+
+/** The CPU's model name as /proc/cpuinfo gives it; "unknown" elsewhere. */
+std::string cpuModel() {
+    std::ifstream in("/proc/cpuinfo");
+    for (std::string line; std::getline(in, line);)
+        if (line.rfind("model name", 0) == 0)
+            if (const auto from = line.find_first_not_of(" \t:", line.find(':'));
+                line.find(':') != std::string::npos && from != std::string::npos)
+                return common::printable(line.substr(from));
+    return "unknown";
+}
+
 Setup loadSetupUnguarded(const method::Registry& registry, const std::string& iniPath,
-                         std::optional<long> seed, bool needSimulation) {
+                         std::optional<long> seed, bool needSimulation,
+                         const std::string& rawlog) {
     Setup s;
     s.iniPath = iniPath;
     s.iniText = readIniText(iniPath);
@@ -37,7 +66,13 @@ Setup loadSetupUnguarded(const method::Registry& registry, const std::string& in
         s.ini->discardSavingChanges();
     }
     common::checkName(s.scenario.name, s.iniPath + ": [scenario] name");
-    if (s.scenario.method.empty()) s.scenario.method = methodOfSections(registry, *s.ini);
+    if (s.scenario.method.empty()) {
+        // an MRPT app's INI for a task mrloc does not do: say so, and what would fit its log
+        if (const auto app = mrptAppOf(*s.ini))
+            throw Error(foreignIniAdvice(registry, iniPath, *app,
+                                         rawlog.empty() ? rawlogNamedBy(*s.ini, iniPath) : rawlog));
+        s.scenario.method = methodOfSections(registry, *s.ini);
+    }
     s.method = &registry.get(s.scenario.method);
     s.localizer = s.method->localizer();
     s.localizer->configure(*s.ini);
@@ -52,9 +87,9 @@ Setup loadSetupUnguarded(const method::Registry& registry, const std::string& in
 }  // namespace
 
 Setup loadSetup(const method::Registry& registry, const std::string& iniPath,
-                std::optional<long> seed, bool needSimulation) {
+                std::optional<long> seed, bool needSimulation, const std::string& rawlog) {
     try {
-        return loadSetupUnguarded(registry, iniPath, seed, needSimulation);
+        return loadSetupUnguarded(registry, iniPath, seed, needSimulation, rawlog);
     } catch (const Error&) {
         throw;
     } catch (const std::exception& e) {
@@ -122,6 +157,13 @@ void writeProvenance(const Setup& s, const std::string& dir, const std::string& 
     p["seed"] = s.scenario.seed;
     p["version"] = kVersion;
     p["steps"][step] = command;
+    // what made the run, for a reader comparing figures and timings across machines
+    p["commit"] = kCommit;
+    p["mrpt_version"] = mrpt::system::MRPT_getVersion();
+    p["date_utc"] = utcNow();
+    p["cpu"] = cpuModel();
+    p["cores"] = std::max(1u, std::thread::hardware_concurrency());
+    if (step == "simulate" || step == "run") p["simulated"] = true;
     common::saveJson(path, p);
 }
 

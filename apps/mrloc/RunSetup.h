@@ -29,9 +29,10 @@ struct Setup {
 
 /** Everything read from an INI fails as mrloc::Error naming the INI (MRPT's parser throws
  *  its own exceptions, without the file's name). `needSimulation`: build the scenario even
- *  when the INI's [scenario] holds only localize keys. */
+ *  when the INI's [scenario] holds only localize keys. `rawlog`: the log the run will read,
+ *  if any, for the advice given on an MRPT app's INI that mrloc does not replace. */
 Setup loadSetup(const method::Registry& registry, const std::string& iniPath,
-                std::optional<long> seed, bool needSimulation);
+                std::optional<long> seed, bool needSimulation, const std::string& rawlog = "");
 
 /** What the run's steps will cost (method/Work.h): the simulation's steps when `simulating`,
  *  and the method's parts for the steps asked. */

@@ -2,9 +2,11 @@
 // trajectory figures with the odometry baseline kept apart, and the "did you mean" lookup.
 #include <gtest/gtest.h>
 #include <mrloc/common/Error.h>
+#include <mrloc/common/LocalizationRun.h>
 #include <mrloc/common/Names.h>
 #include <mrloc/common/Outcome.h>
 
+#include <algorithm>
 #include <cmath>
 
 namespace {
@@ -62,6 +64,34 @@ TEST(Outcome, NearMissFindsOneOrTwoEditsAndNothingFarther) {
     EXPECT_EQ(common::nearMiss("fromation", names).value_or(""), "formation");  // a swap
     EXPECT_FALSE(common::nearMiss("lidar", names).has_value());
     EXPECT_EQ(common::editDistance("duraton", "duration"), 1u);
+}
+
+
+TEST(Outcome, EstimatesEndingEarlyAreAWarningOnlyWhileTheRobotGoesOnMoving) {
+    // a 100 s log; three robots whose estimates stop at 40 s
+    const auto path = [](double until, double speed) {
+        common::Trajectory t;
+        for (int i = 0; i <= 100; ++i) {
+            const double s = std::min(double(i), until);
+            t.push_back({double(i), mrpt::poses::CPose3D(speed * s, 0, 0, 0, 0, 0)});
+        }
+        return t;
+    };
+    common::Trajectories estimates, odometry;
+    for (const char* r : {"lost", "arrived", "noOdometry"}) estimates[r] = path(40, 0.1);
+    for (auto& [r, t] : estimates) t.resize(41);  // the last estimate at 40 s
+    odometry["lost"] = path(100, 0.1);            // drives on: 6 m after its last estimate
+    odometry["arrived"] = path(40.2, 0.1);        // 2 cm more: standing
+    EXPECT_NEAR(common::odometryTravelAfter(odometry["lost"], 40), 6.0, 1e-9);
+    EXPECT_NEAR(common::odometryTravelAfter(odometry["arrived"], 40), 0.02, 1e-9);
+    const auto w = common::earlyEnds(estimates, odometry, 0, 100);
+    ASSERT_EQ(w.size(), 2u);
+    EXPECT_EQ(w[0], "robot 'lost': the estimates stop at 40.0 s of the log's 100.0 s");
+    EXPECT_EQ(w[1], "robot 'noOdometry': the estimates stop at 40.0 s of the log's 100.0 s");
+    // at 90 % of the span, no warning; a snapshot log (1 s or less), none
+    for (auto& [r, t] : estimates) t = path(95, 0.1);
+    EXPECT_TRUE(common::earlyEnds(estimates, {}, 0, 100).empty());
+    EXPECT_TRUE(common::earlyEnds(estimates, {}, 0, 0.5).empty());
 }
 
 }  // namespace

@@ -40,15 +40,23 @@ TEST(TopView, DrawsPathsAndBeaconsWhereTheyAre) {
         c.groundTruth["r"].push_back(
             {double(i), mrpt::poses::CPose3D(3.1, 0.5 + 0.3 * i, 0, 0, 0, 0)});
     }
+    c.landmarkLabels = {"7"};
+    // odometry alone along y = 2.6, in the robot's dark shade
+    for (int i = 0; i <= 10; ++i)
+        c.odometry["r"].push_back({double(i), mrpt::poses::CPose3D(0.5 + 0.3 * i, 2.6, 0, 0, 0, 0)});
     const std::string png = testing::TempDir() + "/mrloc_topview.png";
     report::renderTopView(c, png, 400, 400);
     mrpt::img::CImage img;
     ASSERT_TRUE(img.loadFromFile(png));
-    ASSERT_EQ(img.getWidth(), 400u);
-    // The view is centred on the room; the scale follows from the fitted zoom:
-    // 400 px span 2.2 * 4 + 0.2 = 9 m / 2 = 4.5 m, so 1 m = 88.9 px, image y grows downwards.
-    const auto px = [](double x) { return int(200 + (x - 2.0) * 400 / 4.5); };
-    const auto py = [](double y) { return int(200 - (y - 2.0) * 400 / 4.5); };
+    // the drawing 400 x 400, the legend in a panel right of it (its longest entry, "r odometry
+    // alone", 16 characters: 48 + 9 x 16 = 192 px)
+    ASSERT_EQ(img.getHeight(), 400u);
+    ASSERT_EQ(img.getWidth(), 592u);
+    // The view is centred on the room; the scale follows from the fitted zoom with its margin:
+    // 400 px span (1.12 * 4 + 0.3) * 1.1 = 5.258 m, so 1 m = 76.1 px, image y grows downwards.
+    const double pxPerM = 400 / ((1.12 * 4 + 0.3) * 1.1);
+    const auto px = [&](double x) { return int(200 + (x - 2.0) * pxPerM); };
+    const auto py = [&](double y) { return int(200 - (y - 2.0) * pxPerM); };
     // The estimate in the robot's colour (violet: blue and red well above green), the truth
     // in its pale version (green channel raised towards white), nothing violet elsewhere.
     const auto violet = [&](int x, int y, int gLo, int gHi) {
@@ -64,11 +72,16 @@ TEST(TopView, DrawsPathsAndBeaconsWhereTheyAre) {
     EXPECT_EQ(violet(px(1.5), py(1.1), 160, 255), 0);  // not pale
     EXPECT_GT(violet(px(3.1), py(2.0), 150, 200), 3);  // the truth, pale
     EXPECT_EQ(violet(px(3.1), py(2.0), 0, 140), 0);
+    EXPECT_GT(countColoured(img, px(1.5), py(2.6), {74, 0, 105}), 3);   // odometry, dark
     EXPECT_GT(countColoured(img, px(0.5), py(3.5), {30, 90, 220}), 3);  // the landmark
     EXPECT_EQ(violet(px(1.5), py(3.0), 0, 255), 0);                     // no path elsewhere
-    // The legend (top right) names the robot and the landmarks; the scale bar (bottom
-    // left) is black on white.
-    EXPECT_GT(countColoured(img, 400 - 30, 20, {255, 255, 255}), 20);
+    // the start: a black ring where the truth begins, (3.1, 0.5)
+    EXPECT_GT(countColoured(img, px(3.1) + 9, py(0.5), {0, 0, 0}), 3);
+    // the landmark's name on white, up and right of it
+    EXPECT_GT(countColoured(img, px(0.5) + 20, py(3.5) - 25, {255, 255, 255}), 20);
+    // The legend is in the panel, clear of the drawing: the landmarks' swatch at its first
+    // row; the scale bar (bottom left) is black on white.
+    EXPECT_GT(countColoured(img, 400 + 18, 14 + 7, {30, 90, 220}), 3);
     EXPECT_GT(countColoured(img, 30, 400 - 16, {0, 0, 0}), 3);
 }
 

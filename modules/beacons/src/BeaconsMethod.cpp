@@ -158,7 +158,10 @@ report::Html receptionSection(const report::RunView& run) {
 
 void beaconsInTopView(const report::RunView& run, report::TopViewContent& view) {
     common::IniSection section(*run.effective, "beacons");
-    for (const auto& [id, p] : readBeaconKeys(section)) view.landmarks.push_back(p);
+    for (const auto& [id, p] : readBeaconKeys(section)) {
+        view.landmarks.push_back(p);
+        view.landmarkLabels.push_back(std::to_string(id));  // as the tables name them
+    }
     view.landmarksName = "beacons";
 }
 
@@ -213,6 +216,7 @@ void registerMethod(method::Registry& registry) {
     m.scenario = [](const mrpt::config::CConfigFileBase& ini, const BeaconLocalizer&) {
         return loadScenario(ini);
     };
+    m.report.subject = "active ultrasonic beacons (seed 001)";
     m.report.html = receptionSection;
     m.report.topView = beaconsInTopView;
     registry.add(std::move(m));

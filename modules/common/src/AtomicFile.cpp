@@ -51,11 +51,19 @@ void makeDirectories(const std::string& dir) {
     if (ec) throw Error("cannot create directory " + dir + ": " + ec.message());
 }
 
+std::string pathInWords(const std::string& path) {
+    std::error_code ec;
+    if (path.empty() || fs::path(path).is_absolute()) return path;
+    const fs::path abs = fs::absolute(path, ec);
+    return ec ? path : path + " (" + abs.lexically_normal().string() + ")";
+}
+
 void checkReadableFile(const std::string& path, const std::string& what, size_t maxBytes) {
     std::error_code ec;
     const auto st = fs::status(path, ec);
-    if (ec || !fs::exists(st)) throw Error(what + " " + path + ": no such file");
-    if (fs::is_directory(st)) throw Error(what + " " + path + ": is a folder, not a file");
+    if (ec || !fs::exists(st)) throw Error(what + " " + pathInWords(path) + ": no such file");
+    if (fs::is_directory(st))
+        throw Error(what + " " + pathInWords(path) + ": is a folder, not a file");
     if (!fs::is_regular_file(st))
         throw Error(what + " " + path + ": not a regular file (a FIFO or a device?)");
     const auto size = fs::file_size(path, ec);

@@ -39,7 +39,7 @@ std::string oneLine(const std::string& what) {
         else
             clean += '?', ++i;
     }
-    message = clean.size() > 400 ? clean.substr(0, 400) + "..." : clean;
+    message = clean.size() > 600 ? clean.substr(0, 600) + "..." : clean;
     const auto b = message.find_first_not_of(' ');
     const auto e = message.find_last_not_of(' ');
     return b == std::string::npos ? std::string() : message.substr(b, e - b + 1);

@@ -59,14 +59,30 @@ std::string contentInWords(const std::map<std::string, size_t>& classCounts) {
     return words.empty() ? "no observation" : words;
 }
 
-/** Estimates that stop long before the log does (a robot stuck at a wall, a method that
- *  lost track): the share of the log's span they cover, per robot, when under 90 %. */
-std::vector<std::string> earlyEnds(const Trajectories& estimates, double logStart, double logEnd) {
+}  // namespace
+
+/** How far the robot's odometry moves after time t (m): 0 when it stands still from then
+ *  on, or has no odometry. */
+double odometryTravelAfter(const Trajectory& odometry, double t) {
+    double travel = 0;
+    for (size_t i = 1; i < odometry.size(); ++i)
+        if (odometry[i].t > t)
+            travel += std::hypot(odometry[i].pose.x() - odometry[i - 1].pose.x(),
+                                 odometry[i].pose.y() - odometry[i - 1].pose.y());
+    return travel;
+}
+
+std::vector<std::string> earlyEnds(const Trajectories& estimates, const Trajectories& odometry,
+                                   double logStart, double logEnd) {
+    constexpr double kStandingTravel = 0.05;  // m of odometry: jitter, not a drive
     std::vector<std::string> warnings;
     const double span = logEnd - logStart;
     if (!(span > 1.0)) return warnings;  // a snapshot log: nothing to cover
     for (const auto& [robot, traj] : estimates) {
         if (traj.size() < 2) continue;  // one estimate per robot (a layout, a start)
+        if (const auto odo = odometry.find(robot);
+            odo != odometry.end() && odometryTravelAfter(odo->second, traj.back().t) < kStandingTravel)
+            continue;
         const double covered = traj.back().t - logStart;
         if (covered < 0.9 * span)
             warnings.push_back(mrpt::format(
@@ -75,8 +91,6 @@ std::vector<std::string> earlyEnds(const Trajectories& estimates, double logStar
     }
     return warnings;
 }
-
-}  // namespace
 
 LocalizationResult runLocalization(Localizer& localizer, const LocalizationRunOptions& o) {
     RawlogReader reader(o.rawlogPath);
@@ -133,7 +147,7 @@ LocalizationResult runLocalization(Localizer& localizer, const LocalizationRunOp
                                      obs->GetRuntimeClass()->className,
                                      mrpt::Clock::toDouble(obs->timestamp), e.what()));
         }
-        progress.update(++n);
+        progress.updateFraction(reader.fractionRead(), ++n);
     }
     progress.finish();
     // one warning per label whose zero stamps took their sensory frame's time
@@ -177,7 +191,7 @@ LocalizationResult runLocalization(Localizer& localizer, const LocalizationRunOp
             warnings.push_back(std::to_string(count) + " " + reason + " (of " +
                                std::to_string(use.seen) + " " + use.kind + " in the log)");
     const auto estimates = localizer.estimates();
-    for (auto& w : earlyEnds(estimates, logStart, logEnd)) warnings.push_back(std::move(w));
+    for (auto& w : earlyEnds(estimates, odometry, logStart, logEnd)) warnings.push_back(std::move(w));
     for (const auto& w : warnings) std::cerr << "warning: " << o.methodName << ": " << w << "\n";
     makeDirectories(o.outDir);
     LocalizationResult result;
@@ -206,11 +220,15 @@ LocalizationResult runLocalization(Localizer& localizer, const LocalizationRunOp
                         "' has no odometry in " + o.rawlogPath + " to time them");
         worldTruth[o.groundTruth.robot] = loadGroundTruth(o.groundTruth, steps);
         metrics["ground_truth_file"] = o.groundTruth.path;
+        metrics["ground_truth_from"] =
+            o.groundTruthFrom.empty() ? "the INI's [scenario] ground_truth" : o.groundTruthFrom;
     } else {
         for (const auto& [robot, traj] : estimates)
             if (const std::string gtPath = groundTruthPath(o.rawlogPath, robot);
                 std::filesystem::exists(gtPath))
                 worldTruth[robot] = loadTum(gtPath);
+        if (!worldTruth.empty())
+            metrics["ground_truth_from"] = "<rawlog>.<robot>.gt.txt beside the rawlog (mrloc's simulator)";
     }
     result.truth = localizer.truthInEstimateFrame(worldTruth);
     std::vector<double> allErrors;

@@ -1,37 +1,89 @@
 #include <mrloc/common/Progress.h>
+#include <mrpt/core/format.h>
 #include <unistd.h>
 
+#include <algorithm>
+#include <cmath>
 #include <cstdio>
 
 namespace mrloc::common {
 
 using Clock = std::chrono::steady_clock;
 
+namespace {
+/** A terminal is redrawn 10 times a second; a log gets a line every 10 s. */
+constexpr auto kTerminalPeriod = std::chrono::milliseconds(100);
+constexpr auto kLogPeriod = std::chrono::seconds(10);
+}  // namespace
+
+std::string durationText(double s) {
+    if (!(s >= 0)) s = 0;
+    const long t = std::lround(s);
+    if (t < 60) return mrpt::format("%ld s", t);
+    if (t < 3600) return mrpt::format("%ld min %02ld s", t / 60, t % 60);
+    return mrpt::format("%ld h %02ld min", t / 3600, (t % 3600) / 60);
+}
+
+std::string progressText(const std::string& label, double fraction, size_t done, size_t total,
+                         double elapsed) {
+    std::string text = label + ": ";
+    if (fraction >= 0) {
+        fraction = std::min(1.0, fraction);
+        text += mrpt::format("%d %%", int(fraction * 100));
+        if (total > 0) text += mrpt::format(" (%zu of %zu)", done, total);
+    } else {
+        text += mrpt::format("%zu so far", done);
+    }
+    text += ", " + durationText(elapsed) + " so far";
+    // too early a rate is mostly start-up: no estimate before 2 % of the work
+    if (fraction >= 0.02 && fraction < 1)
+        text += ", about " + durationText(elapsed * (1 - fraction) / fraction) + " left";
+    return text;
+}
+
 Progress::Progress(std::string label, size_t total, bool quiet)
     : label_(std::move(label)),
       total_(total),
-      enabled_(!quiet && isatty(fileno(stderr))),
+      enabled_(!quiet),
+      terminal_(isatty(fileno(stderr)) != 0),
       start_(Clock::now()),
       lastDraw_(start_) {}
 
 Progress::~Progress() { finish(); }
 
 void Progress::update(size_t done) {
+    show(total_ > 0 ? double(done) / double(total_) : -1.0, done);
+}
+
+void Progress::updateFraction(double fraction, size_t items) {
+    if (!enabled_) return;
+    const size_t total = total_;
+    total_ = 0;  // the items are counted, not their total
+    show(std::clamp(fraction, 0.0, 1.0), items);
+    total_ = total;
+}
+
+void Progress::show(double fraction, size_t done) {
     if (!enabled_) return;
     const auto now = Clock::now();
-    // Only work that has already taken a second gets a bar; redraw at most 10 times a second.
-    if (now - start_ < std::chrono::seconds(1) || now - lastDraw_ < std::chrono::milliseconds(100))
-        return;
+    // Only work that has already taken a second is shown at all.
+    if (now - start_ < std::chrono::seconds(1)) return;
+    if (now - lastDraw_ < (terminal_ ? Clock::duration(kTerminalPeriod) : kLogPeriod)) return;
     lastDraw_ = now;
+    const double elapsed = std::chrono::duration<double>(now - start_).count();
+    const std::string text = progressText(label_, fraction, done, total_, elapsed);
+    if (!terminal_) {
+        std::fprintf(stderr, "mrloc: %s\n", text.c_str());
+        return;
+    }
     shown_ = true;
-    if (total_ > 0) {
+    if (fraction >= 0) {
         const int width = 30;
-        const double f = std::min(1.0, double(done) / double(total_));
-        const int fill = int(f * width);
-        std::fprintf(stderr, "\r%s [%.*s%*s] %3d%%", label_.c_str(), fill,
-                     "##############################", width - fill, "", int(f * 100));
+        const int fill = int(std::min(1.0, fraction) * width);
+        std::fprintf(stderr, "\r\033[K[%.*s%*s] %s", fill, "##############################",
+                     width - fill, "", text.c_str());
     } else {
-        std::fprintf(stderr, "\r%s %zu", label_.c_str(), done);
+        std::fprintf(stderr, "\r\033[K%s", text.c_str());
     }
     std::fflush(stderr);
 }

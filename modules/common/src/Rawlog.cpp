@@ -9,6 +9,8 @@
 #include <mrpt/obs/registerAllClasses.h>
 #include <mrpt/serialization/CArchive.h>
 
+#include <algorithm>
+
 #include <cctype>
 #include <cstring>
 #include <filesystem>
@@ -36,6 +38,11 @@ RawlogReader::RawlogReader(const std::string& path) : path_(path) {
 
 RawlogReader::RawlogReader(const std::string& path, Unchecked) : path_(path) { open(); }
 
+double RawlogReader::fractionRead() const {
+    const double total = double(file_.getTotalBytesCount());
+    return total > 0 ? std::min(1.0, double(file_.getPosition()) / total) : 0.0;
+}
+
 void RawlogReader::open() {
     // Every observation class, also those mrloc never names (a rawlog may hold any):
     // mrpt-maps holds some (CObservationRotatingScan, CObservationPointCloud).
@@ -45,8 +52,9 @@ void RawlogReader::open() {
     const std::string& path = path_;
     std::error_code ec;
     if (std::filesystem::is_directory(path, ec))
-        throw Error("rawlog " + path + ": is a folder; give a rawlog file");
-    if (!std::filesystem::exists(path, ec)) throw Error("rawlog " + path + ": no such file");
+        throw Error("rawlog " + pathInWords(path) + ": is a folder; give a rawlog file");
+    if (!std::filesystem::exists(path, ec))
+        throw Error("rawlog " + pathInWords(path) + ": no such file");
     checkReadableFile(path, "rawlog", SIZE_MAX);  // not a FIFO nor a device
     if (std::filesystem::file_size(path, ec) == 0)
         throw Error("rawlog " + path + ": the file is empty");

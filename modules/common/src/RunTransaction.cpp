@@ -1,5 +1,6 @@
 #include <dirent.h>
 #include <fcntl.h>
+#include <mrloc/common/AtomicFile.h>
 #include <mrloc/common/Error.h>
 #include <mrloc/common/Metrics.h>
 #include <mrloc/common/RunTransaction.h>
@@ -188,6 +189,10 @@ void checkRunFolderPath(const std::string& folder, const std::string& what) {
     if (last.empty() || last == "." || last == ".." || p == "/" || p.filename() == "..")
         throw Error(what + ": '" + folder + "' is not a folder a run can be written to");
     std::error_code ec;
+    if (fs::exists(fs::symlink_status(p, ec)) && !fs::is_directory(fs::status(p, ec)))
+        throw Error(what + ": '" + pathInWords(folder) +
+                    "' is a file, not a folder (a run folder is a folder mrloc writes into: give "
+                    "a new name or an earlier run's folder)");
     const fs::path abs = fs::absolute(p, ec);
     const fs::path cwd = fs::current_path(ec);
     if (!ec) {

@@ -315,6 +315,7 @@ void registerMethod(method::Registry& registry) {
     m.scenario = loadScenario;
     m.experiment = framesyncExperiment;  // seed 004 sec. 5.2 over seeds, noises, drifts
     m.work = framesyncWork;
+    m.report.subject = "one frame shared through walls seen by sonar (seed 004)";
     m.report.html = framesyncSection;  // its own picture (fig. 7): no world top view
     registry.add(std::move(m));
 }

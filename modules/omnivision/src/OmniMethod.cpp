@@ -334,6 +334,7 @@ void registerMethod(method::Registry& registry) {
     m.scenario = loadScenario;
     m.experiment = accuracySweepStep;
     m.work = omnivisionWork;
+    m.report.subject = "relative positions from omni-directional cameras (seed 000)";
     m.report.html = omnivisionSection;  // its own picture: no world top view
     registry.add(std::move(m));
 }

@@ -272,6 +272,7 @@ void registerMethod(method::Registry& registry) {
     m.scenario = loadScenario;
     m.experiment = eliminationExperiment;  // seed 002 Tables 1-2, Figs. 6-7
     m.work = polymapWork;
+    m.report.subject = "minimum-distance localization in a polygon map (seed 002)";
     m.report.html = polymapSection;  // its own picture: no world top view
     registry.add(std::move(m));
 }

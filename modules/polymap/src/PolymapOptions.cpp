@@ -1,3 +1,4 @@
+#include <mrloc/common/AtomicFile.h>
 #include <mrloc/common/Error.h>
 #include <mrloc/common/IniSection.h>
 #include <mrloc/polymap/PolymapOptions.h>
@@ -24,9 +25,9 @@ void PolymapOptions::loadFromConfigFile(const mrpt::config::CConfigFileBase& src
         if (fs::path(mapFile).is_relative() && fs::is_regular_file(ini))
             mapFile = (fs::path(ini).parent_path() / mapFile).lexically_normal().string();
         if (fs::is_directory(mapFile))
-            s.fail("map", "'" + mapFile + "' is a folder, not a .poly file");
+            s.fail("map", "'" + common::pathInWords(mapFile) + "' is a folder, not a .poly file");
         if (!fs::exists(mapFile))
-            s.fail("map", "no such file '" + mapFile +
+            s.fail("map", "no such file '" + common::pathInWords(mapFile) +
                               "' (a relative path is taken from the INI's folder)");
     }
     generator = s.choice("generator", "steps", {"steps", "rooms"});

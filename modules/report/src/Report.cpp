@@ -3,6 +3,7 @@
 #include <mrloc/common/IniSection.h>
 #include <mrloc/common/Metrics.h>
 #include <mrloc/common/Names.h>
+#include <mrloc/common/Outcome.h>
 #include <mrloc/common/RunDirectory.h>
 #include <mrloc/report/Plots.h>
 #include <mrloc/report/Report.h>
@@ -12,6 +13,7 @@
 #include <filesystem>
 #include <fstream>
 #include <map>
+#include <set>
 #include <sstream>
 
 namespace mrloc::report {
@@ -93,22 +95,131 @@ RunView readRun(const std::string& dir) {
     return run;
 }
 
-/** Provenance: what produced this run, from provenance.json (written by the app). */
-Html provenanceSection(const std::string& dir) {
+/** Odometry alone per robot (odometry.<robot>.txt), placed where the robot truly was at its
+ *  first reading (else at its first estimate), as the baseline's errors are computed. */
+common::Trajectories odometryPaths(const RunView& run) {
+    common::Trajectories out;
+    for (const auto& [robot, est] : run.estimates) {
+        const std::string path = common::run_dir::odometry(run.dir, robot);
+        if (!std::filesystem::exists(path) || est.empty()) continue;
+        const auto odo = common::loadTum(path);
+        if (odo.empty()) continue;
+        std::optional<mrpt::poses::CPose3D> start;
+        if (const auto gt = run.truth.find(robot); gt != run.truth.end())
+            start = common::interpolate(gt->second, odo.front().t);
+        if (!start) start = est.front().pose;
+        const mrpt::poses::CPose3D align = *start + (-odo.front().pose);
+        for (const auto& p : odo) out[robot].push_back({p.t, align + p.pose});
+    }
+    return out;
+}
+
+/** provenance.json (written by the app), or an empty object. */
+nlohmann::json provenanceOf(const std::string& dir) {
     const std::string path = common::run_dir::provenance(dir);
-    if (!std::filesystem::exists(path))
-        return paragraph("No provenance.json in this run directory.");
-    const auto p = common::loadJson(path);
+    if (!std::filesystem::exists(path)) return nlohmann::json::object();
+    auto p = common::loadJson(path);
+    return p.is_object() ? p : nlohmann::json::object();
+}
+
+std::string textAt(const nlohmann::json& j, const char* key) {
+    return j.contains(key) ? cellText(j[key]) : std::string();
+}
+
+/** Was the log simulated by mrloc (in this folder, or beside a simulated truth)? */
+bool simulatedRun(const nlohmann::json& provenance, const nlohmann::json& metrics) {
+    if (provenance.value("simulated", false)) return true;
+    return metrics.value("ground_truth_from", "").find("mrloc's simulator") != std::string::npos;
+}
+
+/** What ran: the method, the INI, the rawlog, real or simulated, where the truth came from. */
+Html whatRan(const RunView& run, const Section& section, const nlohmann::json& provenance) {
+    const auto& m = run.metrics;
     Table t;
-    if (p.contains("ini"))
-        t.headedRow("INI",
-                    {code(cellText(p["ini"])) + " (copied: " + link("config.ini", "config.ini") +
-                     "; with every default: " + link("effective.ini", "effective.ini") + ")"});
-    if (p.contains("seed")) t.headedRow("seed", {cellText(p["seed"])});
-    if (p.contains("version")) t.headedRow("mrloc version", {cellText(p["version"])});
+    const std::string method = m.value("method", "?");
+    t.headedRow("method", {code(method) + (section.subject.empty() ? Html() : Html(": " + section.subject))});
+    if (provenance.contains("ini"))
+        t.headedRow("INI", {code(textAt(provenance, "ini")) + " (copied: " +
+                            link("config.ini", "config.ini") + "; with every default: " +
+                            link("effective.ini", "effective.ini") + ")"});
+    t.headedRow("rawlog", {code(m.value("rawlog", "?"))});
+    const bool simulated = simulatedRun(provenance, m);
+    t.headedRow("log", {simulated ? Html("simulated by mrloc, seed " + textAt(provenance, "seed"))
+                                  : Html("recorded elsewhere (not simulated in this run)")});
+    const std::string truthFrom = m.value("ground_truth_from", "");
+    t.headedRow("ground truth",
+                {truthFrom.empty() ? Html("none: the errors below cannot be computed")
+                                   : Html(truthFrom)});
+    return t.html();
+}
+
+/** The headline: the outcome, then each figure beside the paper's, baselines marked. */
+Html headlineBlock(const nlohmann::json& metrics, const std::string& where) {
+    if (!metrics.contains("headline")) return paragraph("No headline in metrics.json.");
+    const auto h = common::headlineFromJson(metrics["headline"], where);
+    Html out = paragraph(bold(h.reached ? "Outcome: " : "Outcome (goal not reached): ") +
+                         Html(h.status));
+    Table t({"figure", "this run", "the paper", "how this run differs from the paper's"});
+    for (const auto& f : h.figures) {
+        std::string value = "none";
+        if (f.value) {
+            std::ostringstream v;
+            v.precision(3);
+            // a no-break space: the number and its unit stay on one line
+            v << *f.value << (f.unit.empty() || f.unit == "%" ? "" : "\u00a0") << f.unit;
+            value = v.str();
+        }
+        t.row({f.baseline ? Html(f.name + " (baseline)") : bold(f.name), value,
+               f.paper.empty() ? "no figure in the paper" : f.paper,
+               f.differs.empty() ? (f.paper.empty() ? "" : "the paper's experiment") : f.differs});
+    }
+    if (t.rows()) out += t.html();
+    std::vector<Html> warnings;
+    if (metrics.contains("warnings") && metrics["warnings"].is_array())
+        for (const auto& w : metrics["warnings"]) warnings.push_back(cellText(w));
+    if (!warnings.empty()) out += paragraph(bold("Warnings:")) + bulletList(warnings);
+    return out;
+}
+
+/** Provenance: what produced this run, from provenance.json. */
+Html provenanceSection(const nlohmann::json& p) {
+    if (p.empty()) return paragraph("No provenance.json in this run directory.");
+    Table t;
+    if (p.contains("date_utc")) t.headedRow("date (UTC)", {textAt(p, "date_utc")});
+    if (p.contains("version"))
+        t.headedRow("mrloc", {"version " + textAt(p, "version") +
+                              (p.contains("commit") ? ", commit " + textAt(p, "commit") : "")});
+    if (p.contains("mrpt_version")) t.headedRow("MRPT", {textAt(p, "mrpt_version")});
+    if (p.contains("cpu"))
+        t.headedRow("machine", {textAt(p, "cpu") + (p.contains("cores") ? ", " + textAt(p, "cores") + " cores" : "")});
     if (p.contains("steps") && p["steps"].is_object())
         for (const auto& [step, command] : p["steps"].items())
             t.headedRow(step + " command", {code(cellText(command))});
+    return t.html();
+}
+
+/** The page's title: [report] title, else the scenario's name and the method's subject. */
+std::string titleOf(const RunView& run, const Section& section, const ReportOptions& options) {
+    if (!options.title.empty()) return options.title;
+    std::string name = run.effective->read_string("scenario", "name", "");
+    if (name.empty()) name = run.metrics.value("method", "mrloc");
+    return section.subject.empty() ? name : name + ": " + section.subject;
+}
+
+/** The generic figures first, in the order a reader asks for them; then the rest. */
+Html orderedMetricsTable(const nlohmann::json& j) {
+    static const std::vector<std::string> first{"rmse_m", "mean_m", "median_m", "p95_m",
+                                                "max_m",  "n",      "observations", "wall_s"};
+    // shown in the top block, or as a table of its own
+    static const std::set<std::string> elsewhere{"method", "rawlog", "ground_truth",
+                                                 "ground_truth_from", "warnings"};
+    Table t;
+    for (const auto& k : first)
+        if (j.contains(k) && !j[k].is_object()) t.headedRow(keyInWords(k), {cellText(j[k])});
+    for (const auto& [k, v] : j.items())
+        if (!v.is_object() && !elsewhere.count(k) &&
+            std::find(first.begin(), first.end(), k) == first.end())
+            t.headedRow(keyInWords(k), {cellText(v)});
     return t.html();
 }
 
@@ -139,6 +250,7 @@ std::string makeReport(const std::string& dir, const Section& section) {
         }
         view.estimates = run.estimates;
         view.groundTruth = run.truth;
+        view.odometry = odometryPaths(run);
         section.topView(run, view);
         renderTopView(view, dir + "/topview.png");
     }
@@ -152,16 +264,19 @@ std::string makeReport(const std::string& dir, const Section& section) {
         }
     }
 
-    const std::string method = metrics.value("method", "?");
-    Html body = heading(1, "mrloc report: " + method) + provenanceSection(dir);
-    ReportOptions paper;
-    paper.loadFromConfigFile(*run.effective, "report");
-    if (!paper.paperCaption.empty() || !paper.paperNote.empty())
-        body += paragraph(bold("Compared with the paper:") + " " + paper.paperCaption +
-                          (paper.paperNote.empty() ? "" : ". " + paper.paperNote));
-    body += paragraph("rawlog: " + code(metrics.value("rawlog", "?")));
+    const auto provenance = provenanceOf(dir);
+    ReportOptions options;
+    options.loadFromConfigFile(*run.effective, "report");
+    const std::string title = titleOf(run, section, options);
+    Html body = heading(1, title) + heading(2, "What ran") + whatRan(run, section, provenance) +
+                heading(2, "Headline") +
+                headlineBlock(metrics, common::run_dir::metrics(dir));
+    if (!options.paperCaption.empty() || !options.paperNote.empty())
+        body += paragraph(bold("Compared with the paper:") + " " + options.paperCaption +
+                          (options.paperNote.empty() ? "" : ". " + options.paperNote));
+    body += heading(2, "Provenance") + provenanceSection(provenance);
     body += heading(2, "Position error against the truth (horizontal, all robots)") +
-            metricsTable(metrics);
+            orderedMetricsTable(metrics);
     Table perRobotTable({"robot", "estimates", "compared", "RMSE (m)", "median (m)",
                          "95th percentile (m)", "max (m)"});
     for (const auto& [robot, r] : metrics["robots"].items()) {
@@ -171,6 +286,7 @@ std::string makeReport(const std::string& dir, const Section& section) {
         perRobotTable.row(std::move(cells));
     }
     body += heading(2, "Per robot") + perRobotTable.html();
+    const std::string method = metrics.value("method", "?");
     if (metrics.contains(method) && metrics[method].is_object() && !metrics[method].empty())
         body += heading(2, "Method figures") + metricsTable(metrics[method]);
     if (section.html) body += section.html(run);
@@ -189,7 +305,7 @@ std::string makeReport(const std::string& dir, const Section& section) {
     else
         body += heading(2, "Error over time") + Figure{"error_time.png", "error over time"}.html() +
                 heading(2, "Error CDF") + Figure{"error_cdf.png", "error CDF"}.html();
-    const std::string page = htmlPage("mrloc report: " + method, body);
+    const std::string page = htmlPage(title, body);
     common::writeFileAtomically(common::run_dir::report(dir), page);
     return common::run_dir::report(dir);
 }

@@ -36,9 +36,9 @@ CSetOfLines::Ptr pathLines(const common::Trajectory& traj, mrpt::img::TColor col
     return lines;
 }
 
-/** A scale bar (a round length near a fifth of the width) bottom left and the legend top
- *  right, on white boxes so that they stay readable over the drawing. */
-void drawScaleAndLegend(mrpt::img::CImage& img, double metresPerPixel, const Legend& legend) {
+/** A scale bar (a round length near a fifth of the width) bottom left, on a white box so
+ *  that it stays readable over the drawing. */
+void drawScale(mrpt::img::CImage& img, double metresPerPixel) {
     const int W = int(img.getWidth()), H = int(img.getHeight());
     img.selectTextFont("9x15");
     const double target = 0.2 * W * metresPerPixel;
@@ -55,18 +55,28 @@ void drawScaleAndLegend(mrpt::img::CImage& img, double metresPerPixel, const Leg
     img.line(16, H - 22, 16, H - 10, black, 2);
     img.line(16 + px, H - 22, 16 + px, H - 10, black, 2);
     img.textOut(16, H - 40, mrpt::format("%g m", bar), black);
-    if (legend.empty()) return;
+}
+
+constexpr int kLegendRow = 18;
+
+/** The width of the legend's panel: its longest entry. */
+int legendWidth(const Legend& legend) {
+    if (legend.empty()) return 0;
     size_t longest = 0;
     for (const auto& [name, c] : legend) longest = std::max(longest, name.size());
-    const int boxW = 40 + 9 * int(longest), rowH = 18;
-    const int x0 = W - boxW - 8, y0 = 8;
-    img.filledRectangle(x0, y0, W - 8, y0 + 8 + rowH * int(legend.size()), white);
-    img.rectangle(x0, y0, W - 8, y0 + 8 + rowH * int(legend.size()), black);
-    int y = y0 + 6;
+    return 48 + 9 * int(longest);
+}
+
+/** The legend in the panel right of the drawing (x0 onwards): it can hide no data. */
+void drawLegend(mrpt::img::CImage& img, int x0, const Legend& legend) {
+    if (legend.empty()) return;
+    img.selectTextFont("9x15");
+    const mrpt::img::TColor black(0, 0, 0);
+    int y = 14;
     for (const auto& [name, colour] : legend) {
-        img.filledRectangle(x0 + 6, y + 4, x0 + 26, y + 10, colour);
-        img.textOut(x0 + 32, y, name, black);
-        y += rowH;
+        img.filledRectangle(x0 + 8, y + 4, x0 + 28, y + 10, colour);
+        img.textOut(x0 + 34, y, name, black);
+        y += kLegendRow;
     }
 }
 
@@ -135,68 +145,124 @@ void renderTopView(const TopViewContent& c, const std::string& pngPath, unsigned
     gridPlane->setColor_u8(200, 200, 200);
     scene.insert(gridPlane);
     Legend legend;
-    // Landmarks (beacons on the ceiling, say) drawn at floor level so paths stay visible.
+    std::vector<WorldLabel> labels;
+    // Landmarks (beacons on the ceiling, say) drawn at floor level so paths stay visible,
+    // each with its name beside it as the tables give it.
     const mrpt::img::TColor landmarkColour{30, 90, 220};
-    for (const auto& b : c.landmarks) {
+    for (size_t k = 0; k < c.landmarks.size(); ++k) {
+        const auto& b = c.landmarks[k];
         auto s = disk(0.06f);
         s->setLocation(b.x, b.y, 0.05);
         s->setColor_u8(landmarkColour);
         scene.insert(s);
+        if (k < c.landmarkLabels.size()) labels.push_back({b.x, b.y, c.landmarkLabels[k]});
     }
     if (!c.landmarks.empty()) legend.emplace_back(c.landmarksName, landmarkColour);
-    // Each robot its colour: the truth pale, the estimates full; a lone estimate (a method
-    // with one per robot) as a marker.
+    // One style for one kind of thing in a picture: paths as lines, unless every robot
+    // stands still (test points), when all are markers.
+    bool allStill = true;
+    for (const auto& [robot, est] : c.estimates) {
+        const auto gt = c.groundTruth.find(robot);
+        allStill = allStill &&
+                   (gt != c.groundTruth.end() ? standsStill(gt->second) : standsStill(est));
+    }
+    const auto marker = [&](const mrpt::poses::CPose3D& p, float radius, float z,
+                            mrpt::img::TColor col) {
+        auto s = disk(radius);
+        s->setLocation(p.x(), p.y(), z);
+        s->setColor_u8(col);
+        scene.insert(s);
+    };
+    // Each robot its colour: the truth pale, odometry alone dark, the estimates full.
+    const mrpt::img::TColor black(0, 0, 0);
+    bool anyStart = false;
     size_t i = 0;
     for (const auto& [robot, est] : c.estimates) {
         const auto colour = robotColour(i++);
         const mrpt::img::TColor pale(uint8_t((colour.R + 2 * 255) / 3),
                                      uint8_t((colour.G + 2 * 255) / 3),
                                      uint8_t((colour.B + 2 * 255) / 3));
-        // A robot that stands still (a test point) is drawn as markers: a line through its
-        // estimates would zig-zag between trials.
+        const mrpt::img::TColor dark(uint8_t(colour.R / 2), uint8_t(colour.G / 2),
+                                     uint8_t(colour.B / 2));
         const auto gt = c.groundTruth.find(robot);
-        const bool still = gt != c.groundTruth.end() ? standsStill(gt->second) : standsStill(est);
-        const auto marker = [&](const mrpt::poses::CPose3D& p, float radius, float z,
-                                mrpt::img::TColor col) {
-            auto s = disk(radius);
-            s->setLocation(p.x(), p.y(), z);
-            s->setColor_u8(col);
-            scene.insert(s);
-        };
-        if (gt != c.groundTruth.end()) {
-            if (still && !gt->second.empty())
+        if (gt != c.groundTruth.end() && !gt->second.empty()) {
+            if (allStill)
                 marker(gt->second.front().pose, 0.05f, 0.02f, pale);
             else
                 scene.insert(pathLines(gt->second, pale, 0.02f));
             legend.emplace_back(robot + " truth", pale);
         }
-        if (still || est.size() == 1)
+        if (const auto odo = c.odometry.find(robot);
+            !allStill && odo != c.odometry.end() && odo->second.size() > 1) {
+            auto lines = pathLines(odo->second, dark, 0.025f);
+            lines->setLineWidth(2.0f);
+            scene.insert(lines);
+            legend.emplace_back(robot + " odometry alone", dark);
+        }
+        if (allStill || est.size() == 1)
             for (const auto& e : est) marker(e.pose, 0.02f, 0.04f, colour);
         else
             scene.insert(pathLines(est, colour, 0.03f));
         legend.emplace_back(robot + " estimate", colour);
+        // the start: where the truth begins, else the estimates
+        if (!allStill) {
+            const auto& from = gt != c.groundTruth.end() && !gt->second.empty() ? gt->second : est;
+            if (!from.empty()) {
+                auto ring = CDisk::Create(0.09f, 0.06f);
+                ring->setLocation(from.front().pose.x(), from.front().pose.y(), 0.06);
+                ring->setColor_u8(black);
+                scene.insert(ring);
+                anyStart = true;
+            }
+        }
     }
+    if (anyStart) legend.emplace_back("start (ring)", black);
     if (c.world && !c.world->obstacles.empty())
         legend.emplace_back("obstacles", mrpt::img::TColor(90, 90, 90));
-    saveTopDown(scene, ext.x0, ext.y0, ext.x1, ext.y1, pngPath, width, height, legend);
+    saveTopDown(scene, ext.x0, ext.y0, ext.x1, ext.y1, pngPath, width, height, legend, labels);
 }
 
 void saveTopDown(mrpt::opengl::COpenGLScene& scene, double x0, double y0, double x1, double y1,
                  const std::string& pngPath, unsigned width, unsigned height,
-                 const Legend& legend) {
+                 const Legend& legend, const std::vector<WorldLabel>& labels) {
     CFBORender render(width, height);
     auto& cam = render.getCamera(scene);
     cam.setOrthogonal(true);
     cam.setElevationDegrees(90);
     cam.setAzimuthDegrees(-90);
-    cam.setPointingAt((x0 + x1) / 2, (y0 + y1) / 2, 0);
+    const double cx = (x0 + x1) / 2, cy = (y0 + y1) / 2;
+    cam.setPointingAt(cx, cy, 0);
     // CFBORender's orthographic view is zoomDistance/2 high (measured); fit with a margin.
     const double aspect = double(width) / double(height);
-    const double zoom = 2.2 * std::max(y1 - y0, (x1 - x0) / aspect) + 0.2;
+    // a margin of 6 % and at least 0.15 m on each side: markers at the extent stay whole
+    const double extent = std::max(y1 - y0, (x1 - x0) / aspect);
+    const double zoom = 2.2 * (1.12 * extent + 0.3);
     cam.setZoomDistance(float(zoom));
-    mrpt::img::CImage img;
-    render.render_RGB(scene, img);
-    drawScaleAndLegend(img, 0.5 * zoom / double(height), legend);
+    mrpt::img::CImage drawing;
+    render.render_RGB(scene, drawing);
+    const double metresPerPixel = 0.5 * zoom / double(height);
+    drawScale(drawing, metresPerPixel);
+    drawing.selectTextFont("10x20");
+    for (const auto& l : labels) {
+        // x to the right and y up from the centre of the picture, as the camera looks down;
+        // the name up and right of its place, on white, kept inside the picture
+        const int w = 10 * int(l.text.size()) + 6, h = 22;
+        const int px = std::clamp(
+            int(std::lround(width / 2.0 + (l.x - cx) / metresPerPixel)) + 14, 0, int(width) - w);
+        const int py = std::clamp(
+            int(std::lround(height / 2.0 - (l.y - cy) / metresPerPixel)) - 14 - h, 0,
+            int(height) - h);
+        drawing.filledRectangle(px, py, px + w, py + h, mrpt::img::TColor(255, 255, 255));
+        drawing.rectangle(px, py, px + w, py + h, mrpt::img::TColor(20, 20, 20));
+        drawing.textOut(px + 3, py + 1, l.text, mrpt::img::TColor(20, 20, 20));
+    }
+    const int panel = legendWidth(legend);
+    const int rowsHeight = 28 + kLegendRow * int(legend.size());
+    mrpt::img::CImage img(int(width) + panel, std::max(int(height), rowsHeight), mrpt::img::CH_RGB);
+    img.filledRectangle(0, 0, int(img.getWidth()) - 1, int(img.getHeight()) - 1,
+                        mrpt::img::TColor(255, 255, 255));
+    img.drawImage(0, 0, drawing);
+    drawLegend(img, int(width), legend);
     common::PendingFile out(pngPath, ".tmp.png");  // CImage picks the format by extension
     if (!img.saveToFile(out.tempPath())) throw Error("cannot write " + pngPath);
     out.commit();

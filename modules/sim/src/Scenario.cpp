@@ -1,3 +1,4 @@
+#include <mrloc/common/AtomicFile.h>
 #include <mrloc/common/Error.h>
 #include <mrloc/common/IniSection.h>
 #include <mrloc/common/Names.h>
@@ -56,7 +57,7 @@ void ScenarioOptions::loadFromConfigFile(const mrpt::config::CConfigFileBase& sr
             groundTruth.path =
                 (fs::path(ini).parent_path() / groundTruth.path).lexically_normal().string();
         if (!fs::is_regular_file(groundTruth.path))
-            s.fail("ground_truth", "no such file '" + groundTruth.path +
+            s.fail("ground_truth", "no such file '" + common::pathInWords(groundTruth.path) +
                                        "' (a relative path is taken from the INI's folder)");
     }
     s.finish();
@@ -107,6 +108,69 @@ void ScenarioOptions::saveToConfigFile(mrpt::config::CConfigFileBase& t,
     t.write(section, "robots", list);
 }
 
+namespace {
+
+/** Obstacles a floor robot cannot pass: boxes reaching below this height (m), and pillars
+ *  (which stand on the floor). A box higher up (a shelf, a beam) is passed under. */
+constexpr double kRobotHeight = 0.3;
+
+/** Does the segment a-b cross the rectangle [lo, hi]? (Liang-Barsky clipping.) */
+bool crossesRectangle(const mrpt::math::TPoint2D& a, const mrpt::math::TPoint2D& b,
+                      const mrpt::math::TPoint2D& lo, const mrpt::math::TPoint2D& hi) {
+    double t0 = 0, t1 = 1;
+    const double d[2] = {b.x - a.x, b.y - a.y}, p0[2] = {a.x, a.y};
+    const double mins[2] = {lo.x, lo.y}, maxs[2] = {hi.x, hi.y};
+    for (int k = 0; k < 2; ++k) {
+        if (std::abs(d[k]) < 1e-12) {
+            if (p0[k] < mins[k] || p0[k] > maxs[k]) return false;
+            continue;
+        }
+        double ta = (mins[k] - p0[k]) / d[k], tb = (maxs[k] - p0[k]) / d[k];
+        if (ta > tb) std::swap(ta, tb);
+        t0 = std::max(t0, ta), t1 = std::min(t1, tb);
+        if (t0 > t1) return false;
+    }
+    return true;
+}
+
+double distanceToSegment(const mrpt::math::TPoint2D& p, const mrpt::math::TPoint2D& a,
+                         const mrpt::math::TPoint2D& b) {
+    const double dx = b.x - a.x, dy = b.y - a.y, len2 = dx * dx + dy * dy;
+    const double t =
+        len2 > 0 ? std::clamp(((p.x - a.x) * dx + (p.y - a.y) * dy) / len2, 0.0, 1.0) : 0.0;
+    return std::hypot(p.x - (a.x + t * dx), p.y - (a.y + t * dy));
+}
+
+/** A route the robot cannot drive: a waypoint outside the room, or a leg (start to the
+ *  first waypoint, waypoint to waypoint, the last back to the first when it loops) through
+ *  an obstacle on the floor. The robot steers straight at each waypoint. */
+void checkRoute(const WorldOptions& world, const RobotOptions& r, const std::string& where) {
+    using mrpt::math::TPoint2D;
+    for (size_t i = 0; i < r.waypoints.size(); ++i)
+        if (!world.contains({r.waypoints[i].x, r.waypoints[i].y, 0}))
+            throw Error(where + " waypoints: waypoint " + std::to_string(i + 1) + " (" +
+                        mrpt::format("%g %g", r.waypoints[i].x, r.waypoints[i].y) +
+                        ") is outside the room (" +
+                        mrpt::format("%g x %g m", world.sizeX, world.sizeY) + ")");
+    std::vector<std::pair<TPoint2D, TPoint2D>> legs;
+    TPoint2D from(r.start.x(), r.start.y());
+    for (const auto& w : r.waypoints) legs.push_back({from, w}), from = w;
+    if (r.loop && r.waypoints.size() > 1) legs.push_back({r.waypoints.back(), r.waypoints.front()});
+    for (size_t i = 0; i < legs.size(); ++i) {
+        const auto& [a, b] = legs[i];
+        const std::string leg = mrpt::format("the leg from (%g %g) to (%g %g)", a.x, a.y, b.x, b.y);
+        for (const auto& box : world.obstacles)
+            if (box.min.z < kRobotHeight &&
+                crossesRectangle(a, b, {box.min.x, box.min.y}, {box.max.x, box.max.y}))
+                throw Error(where + " waypoints: " + leg + " goes through obstacle_" + box.name);
+        for (const auto& p : world.pillars)
+            if (distanceToSegment({p.x, p.y}, a, b) < p.radius)
+                throw Error(where + " waypoints: " + leg + " goes through pillar_" + p.name);
+    }
+}
+
+}  // namespace
+
 ScenarioConfig ScenarioConfig::loadWithoutRobots(const mrpt::config::CConfigFileBase& ini) {
     ScenarioConfig c;
     c.scenario.loadFromConfigFile(ini, "scenario");
@@ -132,6 +196,7 @@ ScenarioConfig ScenarioConfig::load(const mrpt::config::CConfigFileBase& ini,
         r.loadFromConfigFile(ini, section);
         if (!c.world.contains({r.start.x(), r.start.y(), 0}))
             throw Error(common::configOrigin(ini) + ": [" + section + "] start: outside the room");
+        checkRoute(c.world, r, common::configOrigin(ini) + ": [" + section + "]");
         c.robots.push_back(r);
     }
     return c;

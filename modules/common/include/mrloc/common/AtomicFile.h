@@ -35,6 +35,11 @@ class PendingFile {
 /** Creates a directory and its parents; an error names the directory. */
 void makeDirectories(const std::string& dir);
 
+/** A path as an error shows it: a relative one with the absolute path it resolved to,
+ *  "maps/x.poly (/home/u/maps/x.poly)", so that a file looked for in the wrong folder says
+ *  which folder; an absolute one as it is. */
+std::string pathInWords(const std::string& path);
+
 /** Throws mrloc::Error naming `what` unless `path` is a regular file (not a folder, FIFO or
  *  device) of at most `maxBytes` bytes: checked before a user's file is read. */
 void checkReadableFile(const std::string& path, const std::string& what, size_t maxBytes);

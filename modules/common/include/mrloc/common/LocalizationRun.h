@@ -19,6 +19,8 @@ struct LocalizationRunOptions {
     bool quiet = false;
     /** A ground-truth file named in the INI; without one, <rawlog stem>.<robot>.gt.txt. */
     GroundTruthSource groundTruth = {};
+    /** Where `groundTruth` came from, in words (metrics.json "ground_truth_from"). */
+    std::string groundTruthFrom = {};
     /** The rawlog's path as metrics.json records it, if not rawlogPath (a rawlog simulated
      *  into a staging folder is recorded under the run folder it ends in). */
     std::string rawlogShownAs = {};
@@ -26,6 +28,16 @@ struct LocalizationRunOptions {
      *  registry's to say): appended to the error of a run that used none of the log. */
     std::function<std::string(const std::map<std::string, size_t>&)> fitHint = {};
 };
+
+/** Estimates that stop long before the log does while the robot goes on moving (a method
+ *  that lost track): a warning per robot whose estimates cover under 90 % of the log's span
+ *  [logStart, logEnd] (s). A robot whose odometry moves under 5 cm after its last estimate (a
+ *  march that arrived, a robot localized at its last probe) has nothing more to estimate; a
+ *  robot with a single estimate (a layout, a start) covers no span. */
+std::vector<std::string> earlyEnds(const Trajectories& estimates, const Trajectories& odometry,
+                                   double logStart, double logEnd);
+/** How far (m, in the plane) the odometry moves after time t. */
+double odometryTravelAfter(const Trajectory& odometry, double t);
 
 struct LocalizationResult {
     nlohmann::json metrics;  ///< as written to metrics.json

@@ -66,6 +66,9 @@ class RawlogReader {
     const std::map<std::string, size_t>& actions() const { return actions_; }
     /** Serialized objects read so far (MRPT's "rawlog entry" counter). */
     size_t entriesRead() const { return entries_; }
+    /** How much of the file has been read, in [0, 1] (of its compressed bytes, as
+     *  CFileGZInputStream counts them): the progress of a pass over the log. */
+    double fractionRead() const;
     const std::string& path() const { return path_; }
 
  private:

@@ -28,6 +28,9 @@ struct RunView {
 
 /** A method's part of the report. */
 struct Section {
+    /** What the method is, in a few words with its paper ("active ultrasonic beacons,
+     *  seed 001"): the page's title after the scenario's name, and its "what ran" row. */
+    std::string subject;
     /** The section, built from report::Html's nodes (so escaped by construction); it may
      *  render pictures into the run directory. */
     std::function<Html(const RunView&)> html;

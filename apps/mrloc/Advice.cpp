@@ -1,0 +1,90 @@
+#include "Advice.h"
+
+#include <mrloc/common/Rawlog.h>
+
+#include <filesystem>
+
+namespace mrloc::app {
+
+namespace fs = std::filesystem;
+
+std::string fitHintOf(const method::Registry& registry, const std::string& current,
+                      const std::map<std::string, size_t>& classCounts) {
+    std::string hint;
+    for (const auto& name : registry.names()) {
+        if (name == current) continue;
+        const auto& m = registry.get(name);
+        for (const auto& cls : m.reads)
+            if (classCounts.count(cls)) {
+                hint += std::string(hint.empty() ? "" : "; ") + "method '" + name + "' reads " +
+                        cls + (m.exampleConfig.empty() ? "" : ": start from " + m.exampleConfig);
+                break;
+            }
+    }
+    return hint.empty() ? "no mrloc method reads what this log holds (mrloc info lists it)"
+                        : hint;
+}
+
+std::map<std::string, size_t> classesOf(const std::string& rawlogPath) {
+    std::map<std::string, size_t> counts;
+    common::RawlogReader reader(rawlogPath);
+    for (mrpt::obs::CObservation::Ptr obs; reader.next(obs);) {
+        const std::string cls = obs->GetRuntimeClass()->className;
+        const auto colon = cls.rfind(':');
+        ++counts[colon == std::string::npos ? cls : cls.substr(colon + 1)];
+    }
+    return counts;
+}
+
+namespace {
+bool hasSectionStartingWith(const mrpt::config::CConfigFileBase& ini, const std::string& prefix) {
+    std::vector<std::string> sections;
+    ini.getAllSections(sections);
+    for (const auto& s : sections)
+        if (s.rfind(prefix, 0) == 0) return true;
+    return false;
+}
+}  // namespace
+
+std::optional<std::string> mrptAppOf(const mrpt::config::CConfigFileBase& ini) {
+    // the sections MRPT's apps read (MRPT 2.5's config_files/): pf-localization's
+    // [LocalizationExperiment] with a grid map, the SLAM apps' [MappingApplication]
+    if (ini.sectionExists("LocalizationExperiment") &&
+        hasSectionStartingWith(ini, "MetricMap_occupancyGrid"))
+        return std::string(
+            "an INI of MRPT's pf-localization (particle filter on an occupancy grid map); "
+            "mrloc has no grid-map localizer");
+    if (ini.sectionExists("MappingApplication"))
+        return std::string(
+            "an INI of MRPT's SLAM apps (icp-slam, rbpf-slam, kf-slam: [MappingApplication]); "
+            "mrloc localizes on known maps, it does not build them");
+    return std::nullopt;
+}
+
+std::string rawlogNamedBy(const mrpt::config::CConfigFileBase& ini, const std::string& iniPath) {
+    for (const char* section : {"LocalizationExperiment", "ro-localization", "MappingApplication"}) {
+        const std::string named = ini.read_string(section, "rawlog_file", "");
+        if (named.empty()) continue;
+        fs::path p(named);
+        if (p.is_relative()) p = fs::path(iniPath).parent_path() / p;
+        std::error_code ec;
+        if (fs::is_regular_file(p, ec)) return p.lexically_normal().string();
+    }
+    return "";
+}
+
+std::string foreignIniAdvice(const method::Registry& registry, const std::string& iniPath,
+                             const std::string& what, const std::string& rawlog) {
+    std::string line = iniPath + ": " + what;
+    if (rawlog.empty())
+        return line + ". mrloc info <rawlog> lists what a log holds, and mrloc localize "
+                      "<mrloc ini> <rawlog> runs an mrloc method on it";
+    std::string holds;
+    const auto classes = classesOf(rawlog);
+    for (const auto& [cls, count] : classes)
+        holds += (holds.empty() ? "" : ", ") + std::to_string(count) + " " + cls;
+    return line + ". " + rawlog + " holds " + (holds.empty() ? "no observation" : holds) + ": " +
+           fitHintOf(registry, "", classes);
+}
+
+}  // namespace mrloc::app

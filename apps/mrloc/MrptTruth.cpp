@@ -1,0 +1,90 @@
+#include "MrptTruth.h"
+
+#include <mrloc/common/IniSection.h>
+#include <mrpt/core/bits_math.h>
+
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+
+namespace mrloc::app {
+
+namespace fs = std::filesystem;
+
+std::optional<std::string> truthFormatOf(const std::string& path) {
+    std::ifstream in(path);
+    std::string line;
+    for (int lines = 0; lines < 100 && std::getline(in, line); ++lines) {
+        const auto first = line.find_first_not_of(" \t\r");
+        if (first == std::string::npos || line[first] == '%' || line[first] == '#') continue;
+        std::istringstream words(line);
+        size_t n = 0;
+        for (std::string w; words >> w;) ++n;
+        if (n == 4) return std::string("index_x_y_phi");
+        if (n == 6) return std::string("x_y_z_yaw_pitch_roll");
+        if (n == 8) return std::string("tum");
+        return std::nullopt;
+    }
+    return std::nullopt;
+}
+
+namespace {
+
+bool sameFile(const std::string& a, const std::string& b) {
+    std::error_code ec;
+    return fs::equivalent(a, b, ec) && !ec;
+}
+
+/** MRPT's relative paths are the INI's folder's (its apps are run from there). */
+std::string besideIni(const std::string& iniPath, const std::string& named) {
+    fs::path p(named);
+    if (p.is_relative()) p = fs::path(iniPath).parent_path() / p;
+    return p.lexically_normal().string();
+}
+
+/** ro-localization's start, the frame offset of its truth. */
+mrpt::poses::CPose3D mrptStart(const mrpt::config::CConfigFileBase& ini) {
+    if (!ini.keyExists("OdometryEstimation", "odometry_X")) return {};
+    common::IniSection s(ini, "OdometryEstimation");  // MRPT's section: its other keys are its own
+    return mrpt::poses::CPose3D(s.real("odometry_X", 0, -1e6, 1e6), s.real("odometry_Y", 0, -1e6, 1e6),
+                                0, mrpt::DEG2RAD(s.real("odometry_PHI", 0, -360, 360)), 0, 0);
+}
+
+}  // namespace
+
+std::optional<FoundTruth> mrptTruthOf(const mrpt::config::CConfigFileBase& ini,
+                                      const std::string& iniPath, const std::string& rawlog,
+                                      std::string& note) {
+    FoundTruth found;
+    found.source.offset = mrptStart(ini);
+    const std::string named = ini.read_string("ro-localization", "groundTruthFile", "");
+    if (!named.empty()) {
+        const std::string gt = besideIni(iniPath, named);
+        const std::string ownLog =
+            besideIni(iniPath, ini.read_string("ro-localization", "rawlog_file", ""));
+        if (!sameFile(ownLog, rawlog)) {
+            note = "[ro-localization] groundTruthFile " + named + " is the truth of " + ownLog +
+                   ", not of this log: not used";
+        } else if (const auto format = fs::is_regular_file(gt) ? truthFormatOf(gt) : std::nullopt) {
+            found.source.path = gt;
+            found.source.format = *format;
+            found.from = "MRPT's [ro-localization] groundTruthFile (" + named + ")";
+            return found;
+        }
+    }
+    // MRPT's datasets: <stem>_GT.txt beside <stem>.rawlog
+    fs::path stem = fs::path(rawlog);
+    while (stem.has_extension() && (stem.extension() == ".gz" || stem.extension() == ".rawlog"))
+        stem.replace_extension();
+    const std::string beside = stem.string() + "_GT.txt";
+    if (fs::is_regular_file(beside))
+        if (const auto format = truthFormatOf(beside)) {
+            found.source.path = beside;
+            found.source.format = *format;
+            found.from = fs::path(beside).filename().string() + " beside the rawlog (MRPT's naming)";
+            return found;
+        }
+    return std::nullopt;
+}
+
+}  // namespace mrloc::app

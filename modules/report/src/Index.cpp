@@ -1,0 +1,105 @@
+#include <mrloc/common/AtomicFile.h>
+#include <mrloc/common/Error.h>
+#include <mrloc/common/Metrics.h>
+#include <mrloc/common/Names.h>
+#include <mrloc/common/Outcome.h>
+#include <mrloc/common/RunDirectory.h>
+#include <mrloc/report/Html.h>
+#include <mrloc/report/Index.h>
+#include <mrloc/report/Report.h>
+
+#include <algorithm>
+#include <filesystem>
+#include <sstream>
+#include <vector>
+
+namespace mrloc::report {
+
+namespace fs = std::filesystem;
+
+namespace {
+
+/** A run folder's name that is a name (no control character, no hidden file). */
+bool isRunName(const std::string& name) {
+    try {
+        common::checkName(name, "run");
+        return true;
+    } catch (const Error&) {
+        return false;
+    }
+}
+
+/** The INI a run folder was made from, by its file name (provenance.json), or "". */
+std::string iniOf(const std::string& runFolder) {
+    const std::string path = common::run_dir::provenance(runFolder);
+    if (!fs::is_regular_file(path)) return "";
+    const auto p = common::loadJson(path);
+    if (!p.is_object() || !p.contains("ini") || !p["ini"].is_string()) return "";
+    return fs::path(p["ini"].get<std::string>()).filename().string();
+}
+
+std::string valueText(const common::HeadlineFigure& f) {
+    if (!f.value) return "none";
+    std::ostringstream v;
+    v.precision(3);
+    // a no-break space: the number and its unit stay on one line
+    v << *f.value << (f.unit.empty() || f.unit == "%" ? "" : "\u00a0") << f.unit;
+    return v.str();
+}
+
+}  // namespace
+
+std::string makeIndex(const std::string& folder, const std::string& title) {
+    std::vector<std::string> runs;
+    std::error_code ec;
+    for (const auto& entry : fs::directory_iterator(folder, ec)) {
+        // only folders of this folder: a link could point anywhere
+        if (!entry.is_directory() || entry.is_symlink()) continue;
+        const std::string name = entry.path().filename().string();
+        if (isRunName(name) && fs::is_regular_file(common::run_dir::metrics(entry.path().string())))
+            runs.push_back(name);
+    }
+    if (ec) throw Error(folder + ": cannot list: " + ec.message());
+    if (runs.empty()) throw Error(folder + ": no run folder in it (none holds a metrics.json)");
+    std::sort(runs.begin(), runs.end());
+
+    Table t({"run (INI)", "outcome", "figure", "this run", "the paper",
+             "how this run differs from the paper's"});
+    for (const auto& run : runs) {
+        const std::string metricsPath = common::run_dir::metrics(folder + "/" + run);
+        const auto metrics = common::loadJson(metricsPath);
+        const std::string method = metrics.value("method", "?");
+        const bool hasReport = fs::is_regular_file(common::run_dir::report(folder + "/" + run));
+        Html runCell = hasReport ? link(run + "/report.html", run) : Html(run + " (no report)");
+        if (method != run) runCell += Html(" (" + method + ")");
+        if (const std::string ini = iniOf(folder + "/" + run); !ini.empty())
+            runCell += Html(" ") + code(ini);
+        if (!metrics.contains("headline")) {
+            t.row({runCell, "no headline", "", "", "", ""});
+            continue;
+        }
+        const auto h = common::headlineFromJson(metrics["headline"], metricsPath);
+        const Html outcome = h.reached ? Html(h.status) : bold("not reached: " + h.status);
+        bool first = true;
+        for (const auto& f : h.figures) {
+            t.row({first ? runCell : Html(), first ? outcome : Html(),
+                   f.baseline ? Html(f.name + " (baseline)") : bold(f.name), valueText(f),
+                   f.paper.empty() ? "no figure in the paper" : f.paper,
+                   f.differs.empty() ? (f.paper.empty() ? "" : "the paper's experiment")
+                                     : f.differs});
+            first = false;
+        }
+        if (first) t.row({runCell, outcome, "", "", "", ""});
+    }
+    const Html body =
+        heading(1, title) +
+        paragraph("Each run's headline: the method's own figures in bold, the paper's beside "
+                  "them, baselines (odometry alone, dead reckoning) marked and never averaged "
+                  "in. The run's name links its report.") +
+        t.html();
+    const std::string path = folder + "/index.html";
+    common::writeFileAtomically(path, htmlPage(title, body));
+    return path;
+}
+
+}  // namespace mrloc::report
