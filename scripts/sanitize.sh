@@ -26,6 +26,8 @@ long+='|Elimination\.OfficeFloorOfTwentyFourIdenticalRooms|MrlocPolymap\.Driving
 long+='|MrlocFormation\.PatrolRoute|Visibility\.Star5000|Elimination\.FromNoisyScans'
 long+='|FormationMarch\.ErrorDoesNotGrow|FormationAlgorithmOne\.ConvergesFromEveryStart'
 long+='|Visibility\.RandomAndGeneratedMapsUpTo5000'
+# the samples' tests simulate and localize five shipped scenarios again, whole
+long+='|Samples\.EachIsWhatTheSimulatorMakesToday|Samples\.EachLocalizesWithItsIni'
 if [ "${MRLOC_SANITIZE_ALL:-0}" = 1 ]; then
   ctest --output-on-failure -j "$(nproc)" "$@"
 else

@@ -140,7 +140,7 @@ report::Html figureFourteen(const std::string& dir, const FormationExperimentFil
     const std::string png = "formation.fig14." + route + ".png";
     report::runGnuplot(body +
                            "set xlabel 'time (s)'\nset ylabel 'mean position error (m)'\n"
-                           "set key top right\nset yrange [0:*]\nset offsets 0, 0, graph 0.1, 0\n" +
+                           "set key outside right top\nset yrange [0:*]\nset offsets 0, 0, graph 0.1, 0\n" +
                            plot + "\n",
                        dir + "/" + png);
     return report::Figure{png, "error against time, " + routeTitle(route)}.html();
@@ -202,8 +202,8 @@ report::Html experimentSection(const std::string& dir) {
         for (const auto& r : e.robots) xy.emplace_back(double(r.robots), r.error);
         report::runGnuplot(report::dataBlock("n", xy) +
                                "set xlabel 'number of robots N'\nset ylabel 'mean error at the "
-                               "destination (m)'\nset yrange [0:*]\nset xtics 1\nset key bottom "
-                               "right\nplot $n using 1:2 with linespoints lw 2 pt 7 lc rgb "
+                               "destination (m)'\nset yrange [0:*]\nset xtics 1\nset key outside "
+                               "right top\nplot $n using 1:2 with linespoints lw 2 pt 7 lc rgb "
                                "'#1f77b4' title " +
                                report::gnuplotString("formation, " +
                                                      routeTitle(e.table.front().route) + " route") +

@@ -167,7 +167,7 @@ report::Html experimentSection(const std::string& dir) {
             report::dataBlock("s", cs) + report::dataBlock("o", co) +
                 "set xlabel 'distance between the estimates at the end, against the truth (cm)'"
                 "\nset ylabel 'fraction of runs'\nset yrange [0:1.05]\nset xrange [0:*]\n"
-                "set key bottom right\nset arrow from 10, graph 0 to 10, graph 1 nohead dt 2 "
+                "set key outside right top\nset arrow from 10, graph 0 to 10, graph 1 nohead dt 2 "
                 "lc rgb '#2ca02c'\nset arrow from 30, graph 0 to 30, graph 1 nohead dt 2 lc "
                 "rgb '#d62728'\nset label 'seed 004: < 10 cm' at 10.5, graph 0.08 tc rgb "
                 "'#2ca02c'\nset label 'seed 004: about 30 cm' at 30.5, graph 0.16 tc rgb "
@@ -205,7 +205,7 @@ report::Html experimentSection(const std::string& dir) {
                 (noise ? "sonar range noise, standard deviation (cm)"
                        : "odometry drift (factor on the INI''s systematic errors)") +
                 "'\nset ylabel 'mean distance at the end, against the truth (cm)'\nset yrange "
-                "[0:*]\nset offsets graph 0.04, graph 0.04, 0, 0\nset key top left\nplot $o using "
+                "[0:*]\nset offsets graph 0.04, graph 0.04, 0, 0\nset key outside right top\nplot $o using "
                 "1:2 with linespoints lw 2 pt 7 lc rgb "
                 "'#d62728' title 'own odometry', $s using 1:2 with linespoints lw 2 pt 5 lc rgb "
                 "'#1f77b4' title 'shared frame'\n",

@@ -89,7 +89,7 @@ void plotSweep(const EliminationSweepFile& sweep, const std::string& dir) {
                     " using 1:2 with linespoints lw 2 title " + report::gnuplotString(columns[c]);
         }
         body += std::string("set xlabel 'map vertices n'\n") +
-                (travel ? "set ylabel 'mean path d (m)'\nset key bottom right\n"
+                (travel ? "set ylabel 'mean path d (m)'\nset key outside right top\n"
                         : "set ylabel 'mean time t per localization (ms)'\nset logscale y\n") +
                 plot + "\n";
         report::runGnuplot(body,

@@ -91,7 +91,7 @@ void runGnuplot(const std::string& body, const std::string& pngPath, const std::
         std::ofstream s(script.tempPath());
         s << "set terminal pngcairo size " << size << " font 'Sans,11' noenhanced\n"
           << "set output " << gnuplotString(fs::path(out.tempPath()).filename().string()) << "\n"
-          << "set grid\nset key top left\n"
+          << "set grid\nset key outside right top\n"
           << body;
         s.close();
         if (!s) throw Error("cannot write " + script.tempPath() + " (is the disk full?)");
@@ -170,7 +170,7 @@ void plotErrorPerRobot(const RobotErrors& errors, const std::string& pngPath) {
                    "set xrange [-0.5:" +
                    std::to_string(i) +
                    "-0.5]\nset yrange [0:*]\n"
-                   "set xtics rotate by -45\nset key top right\n"
+                   "set xtics rotate by -45\nset key outside right top\n"
                    "plot $e using 1:2:xtic(3) with points pt 7 ps 1.5 lc rgb '#d00000' "
                    "title 'error of the estimate'\n",
                pngPath);
@@ -195,7 +195,7 @@ void plotErrorCdf(const RobotErrors& errors, const std::string& pngPath) {
     if (plot.empty()) throw Error("no errors to plot for " + pngPath);
     runGnuplot(body +
                    "set xlabel 'position error (m)'\nset ylabel 'fraction of estimates'\n"
-                   "set yrange [0:1]\nset key bottom right\n" +
+                   "set yrange [0:1]\nset key outside right top\n" +
                    plot + "\n",
                pngPath);
 }
