@@ -86,9 +86,12 @@ report::Html runPicture(const report::RunView& run, const FramesyncRunFile& f) {
                 report::dataBlock("gt" + n, gt);
         std::string segments;
         for (const auto& w : f.walls)
-            if (w.robot == r)
+            if (w.robot == r) {
                 segments += mrpt::format("%.17g %.17g %.17g %.17g\n", w.wall.a.x, w.wall.a.y,
                                          w.wall.b.x - w.wall.a.x, w.wall.b.y - w.wall.a.y);
+                // the axes hold every wall drawn, not only the paths
+                extend(w.wall.a.x, w.wall.a.y), extend(w.wall.b.x, w.wall.b.y);
+            }
         data += "$walls" + n + " << EOD\n" + segments + "EOD\n";
         const std::string truth =
             gt.empty() ? ""

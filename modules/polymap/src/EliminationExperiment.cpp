@@ -190,7 +190,40 @@ report::Html eliminationTables(const EliminationFile& file, const EliminationTim
                 return worst;
             });
         }
-        return t.html();
+        Html out = t.html();
+        // Where the ranking of the algorithms is not the paper's, say so under the table
+        // rather than leave the reader to find it in the ratios.
+        if (travel && paperColumn[0] >= 0) {
+            int ourLow = -1, ourHigh = -1, paperLow = -1, paperHigh = -1;
+            std::vector<double> ours(file.columns.size()), theirs(file.columns.size());
+            for (size_t c = 0; c < file.columns.size(); ++c) {
+                if (paperColumn[c] < 0) continue;
+                ours[c] = mean(file.columns[c].travel) / first;
+                theirs[c] = paperMean(paperColumn[c]) / paperFirst;
+                const auto pick = [&](int& best, const std::vector<double>& v, bool low) {
+                    if (best < 0 || (low ? v[c] < v[best] : v[c] > v[best])) best = int(c);
+                };
+                pick(ourLow, ours, true), pick(ourHigh, ours, false);
+                pick(paperLow, theirs, true), pick(paperHigh, theirs, false);
+            }
+            const auto name = [&](int c) { return file.columns[size_t(c)].name; };
+            std::string differs;
+            if (ourLow != paperLow)
+                differs += mrpt::format(
+                    "the shortest mean path here is the %s algorithm's (%.3f of column 1), the "
+                    "paper's the %s algorithm's (%.3f)",
+                    name(ourLow).c_str(), ours[ourLow], name(paperLow).c_str(), theirs[paperLow]);
+            if (ourHigh != paperHigh)
+                differs += std::string(differs.empty() ? "" : "; ") +
+                           mrpt::format("the longest here is the %s algorithm's (%.3f), the "
+                                        "paper's the %s algorithm's (%.3f)",
+                                        name(ourHigh).c_str(), ours[ourHigh],
+                                        name(paperHigh).c_str(), theirs[paperHigh]);
+            if (!differs.empty())
+                out += report::paragraph(report::bold("Not the paper's order:") + " " + differs +
+                                         " (doc/polymap.md discusses why).");
+        }
+        return out;
     };
     return report::heading(3, "Elimination: path length per start (seed 002 Table 1)") +
            report::paragraph(
