@@ -77,8 +77,8 @@ TEST(TopView, DrawsPathsAndBeaconsWhereTheyAre) {
     EXPECT_EQ(violet(px(1.5), py(3.0), 0, 255), 0);                     // no path elsewhere
     // the start: a black ring where the truth begins, (3.1, 0.5)
     EXPECT_GT(countColoured(img, px(3.1) + 9, py(0.5), {0, 0, 0}), 3);
-    // the landmark's name on white, up and right of it
-    EXPECT_GT(countColoured(img, px(0.5) + 20, py(3.5) - 25, {255, 255, 255}), 20);
+    // the landmark's name on white, centred above it
+    EXPECT_GT(countColoured(img, px(0.5), py(3.5) - 33, {255, 255, 255}), 20);
     // The legend is in the panel, clear of the drawing: the landmarks' swatch at its first
     // row; the scale bar (bottom left) is black on white.
     EXPECT_GT(countColoured(img, 400 + 18, 14 + 7, {30, 90, 220}), 3);

@@ -232,6 +232,7 @@ LocalizationResult runLocalization(Localizer& localizer, const LocalizationRunOp
     }
     result.truth = localizer.truthInEstimateFrame(worldTruth);
     std::vector<double> allErrors;
+    const auto baselines = localizer.baselineRobots();
     for (const auto& [robot, traj] : estimates) {
         saveTum(run_dir::estimates(o.outDir, robot), traj);
         nlohmann::json r;
@@ -241,7 +242,8 @@ LocalizationResult runLocalization(Localizer& localizer, const LocalizationRunOp
             saveTum(run_dir::groundTruth(o.outDir, robot), gt);
             std::vector<double> e;
             for (const auto& te : positionErrors(traj, gt)) e.push_back(te.error);
-            allErrors.insert(allErrors.end(), e.begin(), e.end());
+            // a baseline's errors are its own figure, not the method's
+            if (!baselines.count(robot)) allErrors.insert(allErrors.end(), e.begin(), e.end());
             r.update(statsToJson(computeStats(e)));
             if (const auto g = localizer.groundTruthMetrics(robot, gt); g.is_object()) r.update(g);
         }
@@ -249,6 +251,7 @@ LocalizationResult runLocalization(Localizer& localizer, const LocalizationRunOp
             saveTum(run_dir::odometry(o.outDir, robot), odo->second);
             r["odometry"] = odometryErrors(odo->second, worldTruth, robot);
         }
+        if (baselines.count(robot)) r["baseline"] = true;
         metrics["robots"][robot] = r;
     }
     for (const auto& [robot, track] : localizer.covariances())

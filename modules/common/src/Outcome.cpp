@@ -52,15 +52,16 @@ Headline headlineFromJson(const nlohmann::json& j, const std::string& where) {
     return h;
 }
 
-std::string figureText(const HeadlineFigure& f) {
+std::string valueText(const HeadlineFigure& f, const std::string& space) {
+    if (!f.value) return "none";
     std::ostringstream s;
-    s << f.name << " ";
-    if (!f.value) return s.str() + "none";
     s.precision(3);
     s << *f.value;
-    if (!f.unit.empty()) s << (f.unit == "%" ? "" : " ") << f.unit;
+    if (!f.unit.empty()) s << (f.unit == "%" ? "" : space) << f.unit;
     return s.str();
 }
+
+std::string figureText(const HeadlineFigure& f) { return f.name + " " + valueText(f); }
 
 std::string headlineLine(const std::string& method, const Headline& h) {
     std::string line = method + ": " + h.status;

@@ -1,5 +1,6 @@
 #include <mrloc/common/Error.h>
 #include <mrloc/common/Metrics.h>
+#include <mrloc/common/Progress.h>
 #include <mrloc/omnivision/Accuracy.h>
 #include <mrloc/omnivision/Refinement.h>
 #include <mrloc/omnivision/RelativeLocation.h>
@@ -30,7 +31,7 @@ Snapshot noisyViews(const std::vector<mrpt::poses::CPose2D>& poses,
 }  // namespace
 
 std::vector<AccuracyPoint> accuracySweep(const AccuracyLayout& truth, int trials,
-                                         unsigned long seed) {
+                                         unsigned long seed, bool quiet) {
     mrpt::random::CRandomGenerator rng(static_cast<uint32_t>(seed));
     std::vector<AccuracyPoint> levels;
     for (double a : {0.05, 0.1, 0.5}) levels.push_back({"angle", a, 0.01});
@@ -40,6 +41,8 @@ std::vector<AccuracyPoint> accuracySweep(const AccuracyLayout& truth, int trials
         return std::hypot(truth.after[i].x() - truth.after[j].x(),
                           truth.after[i].y() - truth.after[j].y());
     };
+    common::Progress progress("omnivision accuracy sweep", levels.size() * size_t(trials), quiet);
+    size_t done = 0;
     for (auto& level : levels) {
         const double sigma = level.angleSigmaDeg * M_PI / 180;
         SearchOptions o;
@@ -47,6 +50,7 @@ std::vector<AccuracyPoint> accuracySweep(const AccuracyLayout& truth, int trials
         o.bearingTolerance = 4 * sigma;
         double paperSum = 0, refinedSum = 0;
         for (int t = 0; t < trials; ++t) {
+            progress.update(done++);
             try {
                 const auto se = noisyViews(truth.after, truth.seenAfter, sigma, rng);
                 const auto ie = identify(se, o);

@@ -169,7 +169,7 @@ std::vector<std::string> accuracySweepStep(const method::ExperimentOf<OmniLocali
     const auto layout = in.localizer.accuracyLayout(in.truth);
     AccuracyFile file;
     file.distanceName = layout.proposed ? "odometer" : "LiDAR";
-    file.points = accuracySweep(layout, o.accuracyTrials, in.seed);
+    file.points = accuracySweep(layout, o.accuracyTrials, in.seed, in.quiet);
     file.write(in.outDir);
     return {AccuracyFile::path(in.outDir)};
 }

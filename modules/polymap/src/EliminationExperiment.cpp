@@ -1,4 +1,5 @@
 #include <mrloc/common/Error.h>
+#include <mrloc/common/Progress.h>
 #include <mrloc/polymap/Elimination.h>
 #include <mrloc/polymap/EliminationExperiment.h>
 #include <mrloc/polymap/PaperTables.h>
@@ -48,8 +49,13 @@ std::pair<EliminationRun, double> timedElimination(const Eliminator& eliminator,
 
 /** Seed 002 Figs. 6-7: steps maps of each `sweep_steps`, their sites the hypotheses, at most
  *  `sweep_starts` starts each, evenly spread. */
-EliminationSweepFile eliminationSweep(const PolymapOptions& o, double tolerance) {
+EliminationSweepFile eliminationSweep(const PolymapOptions& o, double tolerance, bool quiet) {
     EliminationSweepFile sweep;
+    const size_t columns = experimentColumns(o, tolerance).size();
+    // the work grows with n: count it in map sizes' localizations, weighted by n^2
+    double total = 0, done = 0;
+    for (const int steps : o.sweepSteps) total += double(steps) * steps * columns * o.sweepStarts;
+    common::Progress progress("polymap sweep (Figs. 6-7)", 1000, quiet);
     for (const int steps : o.sweepSteps) {
         StepsMapOptions so = o.steps;
         so.steps = steps;
@@ -64,6 +70,8 @@ EliminationSweepFile eliminationSweep(const PolymapOptions& o, double tolerance)
                 row.meanTravel += run.travel / double(count);
                 row.meanSeconds += seconds / double(count);
                 row.notLocalized += run.survivors.size() != 1;
+                done += double(steps) * steps * double(o.sweepStarts) / double(count);
+                progress.update(size_t(1000 * done / total));
             }
             sweep.rows.push_back(row);
         }
@@ -375,6 +383,8 @@ std::vector<std::string> eliminationExperiment(const method::ExperimentOf<Polyma
     // The verification tours' sites: every column's first candidates and its probes.
     std::vector<TPoint2D> firstCandidates;
     std::vector<std::vector<TPoint2D>> probesFrom(positions.size());
+    common::Progress progress("polymap experiment (Tables 1-2)", columns.size() * positions.size(),
+                              in.quiet);
     for (const auto& [name, eo] : columns) {
         const Eliminator eliminator(P, positions, eo);
         EliminationFile::Column col;
@@ -388,6 +398,7 @@ std::vector<std::string> eliminationExperiment(const method::ExperimentOf<Polyma
         }
         times.seconds.emplace_back();
         for (size_t start = 0; start < positions.size(); ++start) {
+            progress.update(file.columns.size() * positions.size() + start);
             const auto [run, seconds] = timedElimination(eliminator, start);
             times.seconds.back().push_back(seconds);
             col.travel.push_back(run.travel);
@@ -404,6 +415,7 @@ std::vector<std::string> eliminationExperiment(const method::ExperimentOf<Polyma
         }
         file.columns.push_back(std::move(col));
     }
+    progress.finish();
     if (all.size() > 1 && all.size() <= kMaxTourHypotheses) {
         const Eliminator eliminator(P, positions, columns.front().second);
         const auto tours = verificationTours(eliminator, firstCandidates, probesFrom);
@@ -427,7 +439,7 @@ std::vector<std::string> eliminationExperiment(const method::ExperimentOf<Polyma
     std::vector<std::string> written{EliminationFile::path(in.outDir),
                                      EliminationTimes::path(in.outDir)};
     if (!o.sweepSteps.empty()) {
-        eliminationSweep(o, r.tolerance).write(in.outDir);
+        eliminationSweep(o, r.tolerance, in.quiet).write(in.outDir);
         written.push_back(EliminationSweepFile::path(in.outDir));
     }
     return written;

@@ -86,8 +86,12 @@ void renderPolygonView(const PolygonViewContent& c, const std::string& pngPath, 
     for (size_t k = 0; k < c.routes.size(); ++k)
         legend.push_back(
             {c.routes[k].label + ": route and probes", kRouteColours[k % kRouteColours.size()]});
+    // each hypothesis numbered as the report's tables number it (#1 first)
+    std::vector<report::WorldLabel> labels;
+    for (size_t k = 0; k < c.hypotheses.size() && c.hypotheses.size() <= 40; ++k)
+        labels.push_back({c.hypotheses[k].x, c.hypotheses[k].y, "#" + std::to_string(k + 1)});
     report::saveTopDown(scene, lo.x - m, lo.y - m, hi.x + m, hi.y + m, pngPath, width, height,
-                        legend);
+                        legend, labels);
 }
 
 }  // namespace mrloc::polymap

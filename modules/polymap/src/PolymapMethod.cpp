@@ -256,6 +256,19 @@ common::Headline polymapHeadline(const method::HeadlineOf<PolymapLocalizer>& in)
     h.status = h.reached ? "localized" : "not localized: " + notLocalized;
     h.figures.push_back({"hypotheses from the first scan", hypotheses, "", "", "", false});
     if (drove) h.figures.push_back({"travel", travel, "m", "", "", false});
+    // the bounds the travel is measured against, when the experiment computed them (seed 002
+    // gives none): the first-separation distance no strategy beats, and the true start's
+    // verification tour, the least travel that rules the others out with the truth known
+    if (drove && std::filesystem::exists(EliminationFile::path(in.outDir))) {
+        const auto file = EliminationFile::read(in.outDir);
+        const auto finite = [](double d) { return std::isfinite(d) ? std::optional(d) : std::nullopt; };
+        h.figures.push_back({"bound: first separation", finite(file.bound), "m",
+                             "none (seed 002 reports no bound)", "", false});
+        if (file.trueStart < file.tour.size())
+            h.figures.push_back({"bound: verification tour (least travel, truth known)",
+                                 finite(file.tour[file.trueStart]), "m",
+                                 "none (seed 002 reports no bound)", "", false});
+    }
     h.figures.push_back({"start error", common::numberAt(in.metrics, "rmse_m"), "m", "", "", false});
     return h;
 }

@@ -38,15 +38,6 @@ std::string iniOf(const std::string& runFolder) {
     return fs::path(p["ini"].get<std::string>()).filename().string();
 }
 
-std::string valueText(const common::HeadlineFigure& f) {
-    if (!f.value) return "none";
-    std::ostringstream v;
-    v.precision(3);
-    // a no-break space: the number and its unit stay on one line
-    v << *f.value << (f.unit.empty() || f.unit == "%" ? "" : "\u00a0") << f.unit;
-    return v.str();
-}
-
 }  // namespace
 
 std::string makeIndex(const std::string& folder, const std::string& title) {
@@ -82,11 +73,9 @@ std::string makeIndex(const std::string& folder, const std::string& title) {
         const Html outcome = h.reached ? Html(h.status) : bold("not reached: " + h.status);
         bool first = true;
         for (const auto& f : h.figures) {
-            t.row({first ? runCell : Html(), first ? outcome : Html(),
-                   f.baseline ? Html(f.name + " (baseline)") : bold(f.name), valueText(f),
-                   f.paper.empty() ? "no figure in the paper" : f.paper,
-                   f.differs.empty() ? (f.paper.empty() ? "" : "the paper's experiment")
-                                     : f.differs});
+            std::vector<Html> cells{first ? runCell : Html(), first ? outcome : Html()};
+            for (auto& c : figureCells(f)) cells.push_back(std::move(c));
+            t.row(std::move(cells));
             first = false;
         }
         if (first) t.row({runCell, outcome, "", "", "", ""});

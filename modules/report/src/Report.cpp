@@ -160,19 +160,7 @@ Html headlineBlock(const nlohmann::json& metrics, const std::string& where) {
     Html out = paragraph(bold(h.reached ? "Outcome: " : "Outcome (goal not reached): ") +
                          Html(h.status));
     Table t({"figure", "this run", "the paper", "how this run differs from the paper's"});
-    for (const auto& f : h.figures) {
-        std::string value = "none";
-        if (f.value) {
-            std::ostringstream v;
-            v.precision(3);
-            // a no-break space: the number and its unit stay on one line
-            v << *f.value << (f.unit.empty() || f.unit == "%" ? "" : "\u00a0") << f.unit;
-            value = v.str();
-        }
-        t.row({f.baseline ? Html(f.name + " (baseline)") : bold(f.name), value,
-               f.paper.empty() ? "no figure in the paper" : f.paper,
-               f.differs.empty() ? (f.paper.empty() ? "" : "the paper's experiment") : f.differs});
-    }
+    for (const auto& f : h.figures) t.row(figureCells(f));
     if (t.rows()) out += t.html();
     std::vector<Html> warnings;
     if (metrics.contains("warnings") && metrics["warnings"].is_array())
@@ -225,6 +213,13 @@ Html orderedMetricsTable(const nlohmann::json& j) {
 
 }  // namespace
 
+std::vector<Html> figureCells(const common::HeadlineFigure& f) {
+    // a no-break space: the number and its unit stay on one line
+    return {f.baseline ? Html(f.name + " (baseline)") : bold(f.name),
+            common::valueText(f, "\u00a0"), f.paper.empty() ? "no figure in the paper" : f.paper,
+            f.differs.empty() ? (f.paper.empty() ? "" : "the paper's experiment") : f.differs};
+}
+
 Html metricsTable(const nlohmann::json& j) {
     Table t;
     for (const auto& [k, v] : j.items())
@@ -275,12 +270,14 @@ std::string makeReport(const std::string& dir, const Section& section) {
         body += paragraph(bold("Compared with the paper:") + " " + options.paperCaption +
                           (options.paperNote.empty() ? "" : ". " + options.paperNote));
     body += heading(2, "Provenance") + provenanceSection(provenance);
-    body += heading(2, "Position error against the truth (horizontal, all robots)") +
+    body += heading(2, "Position error against the truth (horizontal, all robots but the "
+                       "baselines)") +
             orderedMetricsTable(metrics);
     Table perRobotTable({"robot", "estimates", "compared", "RMSE (m)", "median (m)",
                          "95th percentile (m)", "max (m)"});
     for (const auto& [robot, r] : metrics["robots"].items()) {
-        std::vector<Html> cells{robot, cellText(r.value("estimates", 0))};
+        std::vector<Html> cells{r.value("baseline", false) ? Html(robot + " (baseline)") : Html(robot),
+                                cellText(r.value("estimates", 0))};
         for (const char* k : {"n", "rmse_m", "median_m", "p95_m", "max_m"})
             cells.push_back(r.contains(k) ? cellText(r[k]) : "none");
         perRobotTable.row(std::move(cells));

@@ -245,12 +245,12 @@ void saveTopDown(mrpt::opengl::COpenGLScene& scene, double x0, double y0, double
     drawing.selectTextFont("10x20");
     for (const auto& l : labels) {
         // x to the right and y up from the centre of the picture, as the camera looks down;
-        // the name up and right of its place, on white, kept inside the picture
+        // the name centred above its place, on white, kept inside the picture
         const int w = 10 * int(l.text.size()) + 6, h = 22;
         const int px = std::clamp(
-            int(std::lround(width / 2.0 + (l.x - cx) / metresPerPixel)) + 14, 0, int(width) - w);
+            int(std::lround(width / 2.0 + (l.x - cx) / metresPerPixel)) - w / 2, 0, int(width) - w);
         const int py = std::clamp(
-            int(std::lround(height / 2.0 - (l.y - cy) / metresPerPixel)) - 14 - h, 0,
+            int(std::lround(height / 2.0 - (l.y - cy) / metresPerPixel)) - 22 - h, 0,
             int(height) - h);
         drawing.filledRectangle(px, py, px + w, py + h, mrpt::img::TColor(255, 255, 255));
         drawing.rectangle(px, py, px + w, py + h, mrpt::img::TColor(20, 20, 20));

@@ -10,6 +10,7 @@
 #include <map>
 #include <nlohmann/json.hpp>
 #include <optional>
+#include <set>
 #include <string>
 
 namespace mrloc::common {
@@ -34,6 +35,10 @@ class Localizer {
     virtual ObservationUse observationUse() const = 0;
     /** Estimated trajectories, per robot name. */
     virtual Trajectories estimates() const = 0;
+    /** Robots whose estimates are a baseline the method is compared with (formation's
+     *  dead-reckoning robot), not the method's own: shown apart, never pooled into the run's
+     *  error figures. */
+    virtual std::set<std::string> baselineRobots() const { return {}; }
     /** The robot's newest estimate, if any: what it reports on board in a closed-loop
      *  simulation. The default searches estimates(); methods override it to be O(1). */
     virtual std::optional<mrpt::poses::CPose3D> latestEstimate(const std::string& robot) const;

@@ -50,6 +50,9 @@ struct Headline {
 nlohmann::json toJson(const Headline& h);
 /** Reads metrics.json's "headline"; throws mrloc::Error naming `where` for a malformed one. */
 Headline headlineFromJson(const nlohmann::json& j, const std::string& where);
+/** A figure's value to 3 digits with its unit, "0.0123 m" ("none" without a value);
+ *  `space` goes between number and unit (a page keeps them together with a no-break space). */
+std::string valueText(const HeadlineFigure& f, const std::string& space = " ");
 /** A figure as the CLI and the report print it: "RMSE 0.0123 m". */
 std::string figureText(const HeadlineFigure& f);
 /** The CLI's last line: "beacons: localized: RMSE 0.027 m; odometry alone 0.76 m". */

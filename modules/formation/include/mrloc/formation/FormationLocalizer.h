@@ -19,6 +19,8 @@ class FormationLocalizer : public common::Localizer {
     void saveConfig(mrpt::config::CConfigFileBase& target) const override;
     void process(const mrpt::obs::CObservation::Ptr& obs) override;
     common::Trajectories estimates() const override { return estimates_; }
+    /** The dead-reckoning robot: seed 003's baseline, never pooled with the formation. */
+    std::set<std::string> baselineRobots() const override { return {kDeadReckoningRobot}; }
     /** The team's scans (<robot>.obstacles) and arrival messages (<robot>.arrived): used
      *  are those of robots in [formation]. */
     common::ObservationUse observationUse() const override;

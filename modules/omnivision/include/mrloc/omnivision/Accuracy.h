@@ -30,6 +30,6 @@ struct AccuracyPoint {
 
 /** Runs `trials` trials per noise level; deterministic for a seed. */
 std::vector<AccuracyPoint> accuracySweep(const AccuracyLayout& layout, int trials,
-                                         unsigned long seed);
+                                         unsigned long seed, bool quiet = true);
 
 }  // namespace mrloc::omnivision

@@ -4,6 +4,7 @@
 // metrics in tables with heads in words and units, the top view (unless the method draws
 // its own picture), the error plots, and the method's registered section.
 #include <mrloc/common/Localizer.h>
+#include <mrloc/common/Outcome.h>
 #include <mrloc/report/Html.h>
 #include <mrloc/report/TopView.h>
 #include <mrpt/config/CConfigFileMemory.h>
@@ -48,6 +49,10 @@ std::string keyInWords(const std::string& key);
 /** A metrics.json value as a table cell: null "none", booleans "yes"/"no", numbers to 4
  *  significant digits, arrays comma-separated. */
 std::string cellText(const nlohmann::json& value);
+/** A headline figure as four cells: its name (bold, or marked as a baseline), its value with
+ *  its unit, the paper's figure, and how this run's experiment differs from the paper's (the
+ *  report's headline table and the tour's index share them). */
+std::vector<Html> figureCells(const common::HeadlineFigure& figure);
 /** A two-column table of the object's scalar members, keys in words; null reads "none". */
 Html metricsTable(const nlohmann::json& object);
 
