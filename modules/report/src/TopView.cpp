@@ -248,10 +248,11 @@ void saveTopDown(mrpt::opengl::COpenGLScene& scene, double x0, double y0, double
         // the name centred above its place, on white, kept inside the picture
         const int w = 10 * int(l.text.size()) + 6, h = 22;
         const int px = std::clamp(
-            int(std::lround(width / 2.0 + (l.x - cx) / metresPerPixel)) - w / 2, 0, int(width) - w);
+            int(std::lround(width / 2.0 + (l.x - cx) / metresPerPixel)) - w / 2, 0,
+            std::max(0, int(width) - w));
         const int py = std::clamp(
             int(std::lround(height / 2.0 - (l.y - cy) / metresPerPixel)) - 22 - h, 0,
-            int(height) - h);
+            std::max(0, int(height) - h));
         drawing.filledRectangle(px, py, px + w, py + h, mrpt::img::TColor(255, 255, 255));
         drawing.rectangle(px, py, px + w, py + h, mrpt::img::TColor(20, 20, 20));
         drawing.textOut(px + 3, py + 1, l.text, mrpt::img::TColor(20, 20, 20));
