@@ -51,6 +51,14 @@ TEST(Outcome, TrajectoryFiguresPoolTheOdometryBaselineByItsCounts) {
     EXPECT_FALSE(f[0].baseline);
     EXPECT_NEAR(*f[1].value, std::sqrt(7.0 / 4.0), 1e-12);
     EXPECT_TRUE(f[1].baseline);
+    EXPECT_EQ(f[1].name, "odometry alone RMSE");
+    // robots standing on test points: an exact odometry is said to be so, not offered as a
+    // baseline the method failed to beat
+    const auto still = common::trajectoryFigures(nlohmann::json::parse(R"({"rmse_m": 0.05,
+        "robots": {"p1": {"odometry": {"rmse_m": 0.0, "max_m": 0.0, "n": 801}}}})"));
+    ASSERT_EQ(still.size(), 2u);
+    EXPECT_EQ(still[1].name, "odometry alone RMSE (the robots stand still: nothing to drift)");
+    EXPECT_DOUBLE_EQ(*still[1].value, 0.0);
     // no truth: RMSE none, and no baseline invented
     const auto none = common::trajectoryFigures(nlohmann::json::parse(R"({"rmse_m": null})"));
     ASSERT_EQ(none.size(), 1u);

@@ -245,10 +245,12 @@ report::Html formationSection(const report::RunView& run) {
     const std::string state = m.contains("state") && m["state"].is_string()
                                   ? m["state"].get<std::string>()
                                   : std::string("?");
+    const bool arrived = state == "arrived";
     out += report::paragraph(mrpt::format(
-        "%zu moves; the team %s. The last moving robot's error at the destination: %s m "
+        "%zu moves; the team %s. The last moving robot's error %s: %s m "
         "(seed 003 Table 1's measure); the dead-reckoning robot's: %s m.",
-        f.moves.size(), state == "arrived" ? "reached the destination" : ("ended " + state).c_str(),
+        f.moves.size(), arrived ? "reached the destination" : ("ended " + state).c_str(),
+        arrived ? "at the destination" : "at its last move (the destination was never reached)",
         std::isfinite(last) ? mrpt::format("%.3f", last).c_str() : "none",
         std::isfinite(f.deadReckoningFinalError)
             ? mrpt::format("%.3f", f.deadReckoningFinalError).c_str()
