@@ -190,6 +190,19 @@ TEST(FrontDoor, TheIndexShowsEveryRunsHeadlineAndLinksItsReport) {
     EXPECT_TRUE(contains(page, "odometry alone RMSE (baseline)"));
     // polymap_steps drives nothing: its goal is not reached, and the index says so
     EXPECT_TRUE(contains(page, "not reached: not localized")) << page;
+    // a run folder from a stranger: its words are text, never markup; a folder that is a
+    // link is not followed
+    fs::create_directories(tour + "/zz");
+    std::ofstream(tour + "/zz/metrics.json")
+        << R"({"method": "<b>m", "robots": {}, "headline": {"reached": false,
+              "status": "<script>alert(1)</script>", "figures": []}})";
+    fs::create_directory_symlink(tour + "/beacons", tour + "/link");
+    ASSERT_EQ(mrlocCmd("index " + tour).code, 0);
+    const std::string again = slurp(tour + "/index.html");
+    EXPECT_TRUE(contains(again, "&lt;script&gt;alert(1)&lt;/script&gt;")) << again;
+    EXPECT_FALSE(contains(again, "<script>"));
+    EXPECT_TRUE(contains(again, "zz (no report) (&lt;b&gt;m)")) << again;
+    EXPECT_FALSE(contains(again, "link/report.html")) << again;
     // an empty folder has no index
     const std::string empty = tmp("tour_empty");
     fs::create_directories(empty);
