@@ -233,8 +233,13 @@ std::string makeReport(const std::string& dir, const Section& section) {
     RobotErrors errors;
     for (const auto& [robot, est] : run.estimates)
         if (const auto gt = run.truth.find(robot); gt != run.truth.end())
-            if (auto e = common::positionErrors(est, gt->second); !e.empty())
-                errors[robot] = std::move(e);
+            if (auto e = common::positionErrors(est, gt->second); !e.empty()) {
+                // a baseline robot (dead reckoning) is named so in the plots' keys
+                const bool baseline =
+                    metrics["robots"].contains(robot) && metrics["robots"][robot].is_object() &&
+                    metrics["robots"][robot].value("baseline", false);
+                errors[baseline ? robot + " (baseline)" : robot] = std::move(e);
+            }
     const bool topView = bool(section.topView);
     if (topView) {
         TopViewContent view;
