@@ -21,8 +21,7 @@ std::string fitHintOf(const method::Registry& registry, const std::string& curre
                 break;
             }
     }
-    return hint.empty() ? "no mrloc method reads what this log holds (mrloc info lists it)"
-                        : hint;
+    return hint.empty() ? "no mrloc method reads what this log holds (mrloc info lists it)" : hint;
 }
 
 std::map<std::string, size_t> classesOf(const std::string& rawlogPath) {
@@ -62,7 +61,8 @@ std::optional<std::string> mrptAppOf(const mrpt::config::CConfigFileBase& ini) {
 }
 
 std::string rawlogNamedBy(const mrpt::config::CConfigFileBase& ini, const std::string& iniPath) {
-    for (const char* section : {"LocalizationExperiment", "ro-localization", "MappingApplication"}) {
+    for (const char* section :
+         {"LocalizationExperiment", "ro-localization", "MappingApplication"}) {
         const std::string named = ini.read_string(section, "rawlog_file", "");
         if (named.empty()) continue;
         fs::path p(named);
@@ -77,8 +77,9 @@ std::string foreignIniAdvice(const method::Registry& registry, const std::string
                              const std::string& what, const std::string& rawlog) {
     std::string line = iniPath + ": " + what;
     if (rawlog.empty())
-        return line + ". mrloc info <rawlog> lists what a log holds, and mrloc localize "
-                      "<mrloc ini> <rawlog> runs an mrloc method on it";
+        return line +
+               ". mrloc info <rawlog> lists what a log holds, and mrloc localize "
+               "<mrloc ini> <rawlog> runs an mrloc method on it";
     std::string holds;
     const auto classes = classesOf(rawlog);
     for (const auto& [cls, count] : classes)

@@ -2,6 +2,7 @@
 // (common::RunTransaction). Reading the INI is IniFile's, resolving it RunSetup's.
 #include "Commands.h"
 
+#include <mrloc/common/AtomicFile.h>
 #include <mrloc/common/Error.h>
 #include <mrloc/common/LocalizationRun.h>
 #include <mrloc/common/Metrics.h>
@@ -9,7 +10,6 @@
 #include <mrloc/common/RunDirectory.h>
 #include <mrloc/common/RunTransaction.h>
 #include <mrloc/common/Version.h>
-#include <mrloc/common/AtomicFile.h>
 #include <mrloc/report/Index.h>
 #include <mrloc/sim/Simulator.h>
 
@@ -85,8 +85,7 @@ common::Headline doLocalize(const method::Registry& registry, Setup& s, const st
     auto result = common::runLocalization(*s.localizer, options);
     const sim::ScenarioConfig* scenario = s.simulation ? &s.simulation->config : nullptr;
     if (s.method->experiment)
-        s.method->experiment(
-            {*s.localizer, scenario, result.truth, dir, s.scenario.seed, quiet});
+        s.method->experiment({*s.localizer, scenario, result.truth, dir, s.scenario.seed, quiet});
     auto headline = s.method->headline({*s.localizer, scenario, result.metrics, dir});
     if (result.metrics["robots"].empty() && headline.reached) {
         // whatever the method's figures, a run without a single estimate reached nothing

@@ -77,9 +77,8 @@ std::string readIniText(const std::string& path) {
     if (!fs::exists(path)) throw Error("config " + common::pathInWords(path) + ": no such file");
     common::checkReadableFile(path, "config", 16u << 20);  // not a FIFO nor /dev/zero
     if (looksLikeRawlog(path))
-        throw Error("config " + path +
-                    ": this is a rawlog, not an INI (mrloc localize <ini> " + path +
-                    " runs a method on it; mrloc info " + path + " lists what it holds)");
+        throw Error("config " + path + ": this is a rawlog, not an INI (mrloc localize <ini> " +
+                    path + " runs a method on it; mrloc info " + path + " lists what it holds)");
     std::ifstream file(path, std::ios::binary);
     std::stringstream text;
     text << file.rdbuf();

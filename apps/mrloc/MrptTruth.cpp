@@ -46,8 +46,9 @@ std::string besideIni(const std::string& iniPath, const std::string& named) {
 mrpt::poses::CPose3D mrptStart(const mrpt::config::CConfigFileBase& ini) {
     if (!ini.keyExists("OdometryEstimation", "odometry_X")) return {};
     common::IniSection s(ini, "OdometryEstimation");  // MRPT's section: its other keys are its own
-    return mrpt::poses::CPose3D(s.real("odometry_X", 0, -1e6, 1e6), s.real("odometry_Y", 0, -1e6, 1e6),
-                                0, mrpt::DEG2RAD(s.real("odometry_PHI", 0, -360, 360)), 0, 0);
+    return mrpt::poses::CPose3D(s.real("odometry_X", 0, -1e6, 1e6),
+                                s.real("odometry_Y", 0, -1e6, 1e6), 0,
+                                mrpt::DEG2RAD(s.real("odometry_PHI", 0, -360, 360)), 0, 0);
 }
 
 }  // namespace
@@ -81,7 +82,8 @@ std::optional<FoundTruth> mrptTruthOf(const mrpt::config::CConfigFileBase& ini,
         if (const auto format = truthFormatOf(beside)) {
             found.source.path = beside;
             found.source.format = *format;
-            found.from = fs::path(beside).filename().string() + " beside the rawlog (MRPT's naming)";
+            found.from =
+                fs::path(beside).filename().string() + " beside the rawlog (MRPT's naming)";
             return found;
         }
     return std::nullopt;

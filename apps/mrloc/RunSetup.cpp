@@ -50,8 +50,7 @@ std::string cpuModel() {
 }
 
 Setup loadSetupUnguarded(const method::Registry& registry, const std::string& iniPath,
-                         std::optional<long> seed, bool needSimulation,
-                         const std::string& rawlog) {
+                         std::optional<long> seed, bool needSimulation, const std::string& rawlog) {
     Setup s;
     s.iniPath = iniPath;
     s.iniText = readIniText(iniPath);

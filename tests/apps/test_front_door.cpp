@@ -68,8 +68,9 @@ TEST(FrontDoor, ARouteThroughAWallOrOutOfTheRoomIsRefused) {
                                              "waypoints = 2.5 0.5,", "waypoints = 12.5 0.5,");
     auto r = mrlocCmd("run " + outside + " -q --out " + tmp("route1"));
     EXPECT_EQ(r.code, 1);
-    EXPECT_TRUE(contains(r.output, "[robot.r1] waypoints: waypoint 1 (12.5 0.5) is outside the "
-                                   "room (3 x 3 m)"))
+    EXPECT_TRUE(contains(r.output,
+                         "[robot.r1] waypoints: waypoint 1 (12.5 0.5) is outside the "
+                         "room (3 x 3 m)"))
         << r.output;
     EXPECT_FALSE(fs::exists(tmp("route1")));
     const std::string through =
@@ -77,8 +78,9 @@ TEST(FrontDoor, ARouteThroughAWallOrOutOfTheRoomIsRefused) {
                      "waypoints = 2.5 0.5, 0.5 2.5, 2.5 2.5,");
     r = mrlocCmd("run " + through + " -q --out " + tmp("route2"));
     EXPECT_EQ(r.code, 1);
-    EXPECT_TRUE(contains(r.output, "the leg from (2.5 0.5) to (0.5 2.5) goes through "
-                                   "obstacle_pillar"))
+    EXPECT_TRUE(contains(r.output,
+                         "the leg from (2.5 0.5) to (0.5 2.5) goes through "
+                         "obstacle_pillar"))
         << r.output;
     EXPECT_FALSE(fs::exists(tmp("route2")));
 }
@@ -130,14 +132,15 @@ TEST(FrontDoor, AnMrptIniForATaskMrlocDoesNotDoSaysWhatFits) {
     const std::string ini = kMrptConfigs + "/pf-localization/localization_demo.ini";
     if (!fs::exists(ini)) GTEST_SKIP() << "MRPT's INIs (Debian mrpt-common) are not installed";
     const std::string out = tmp("pf_demo");
-    const auto r =
-        mrlocCmd("localize " + ini + " " + kMrptDatasets + "/localization_demo.rawlog -q --out " + out);
+    const auto r = mrlocCmd("localize " + ini + " " + kMrptDatasets +
+                            "/localization_demo.rawlog -q --out " + out);
     EXPECT_EQ(r.code, 1);
     EXPECT_TRUE(contains(r.output, "an INI of MRPT's pf-localization")) << r.output;
     EXPECT_TRUE(contains(r.output, "mrloc has no grid-map localizer")) << r.output;
     EXPECT_TRUE(contains(r.output, "CObservation2DRangeScan")) << r.output;
-    EXPECT_TRUE(contains(r.output, "method 'polymap' reads CObservation2DRangeScan: start from "
-                                   "config/polymap_file.ini"))
+    EXPECT_TRUE(contains(r.output,
+                         "method 'polymap' reads CObservation2DRangeScan: start from "
+                         "config/polymap_file.ini"))
         << r.output;
     EXPECT_FALSE(contains(r.output, "beacon")) << r.output;
     EXPECT_FALSE(fs::exists(out));
@@ -153,7 +156,8 @@ TEST(FrontDoor, TheReportOpensWithWhatRanTheHeadlineAndProvenance) {
     ASSERT_EQ(r.code, 0) << r.output;
     const std::string page = slurp(out + "/report.html");
     // title from the scenario, then the blocks in the order
-    EXPECT_TRUE(contains(page, "<title>quickstart: active ultrasonic beacons")) << page.substr(0, 400);
+    EXPECT_TRUE(contains(page, "<title>quickstart: active ultrasonic beacons"))
+        << page.substr(0, 400);
     const size_t what = page.find("What ran"), headline = page.find("Headline"),
                  provenance = page.find("Provenance"), errors = page.find("Position error");
     ASSERT_NE(what, std::string::npos);
@@ -176,7 +180,8 @@ TEST(FrontDoor, TheReportOpensWithWhatRanTheHeadlineAndProvenance) {
 TEST(FrontDoor, TheIndexShowsEveryRunsHeadlineAndLinksItsReport) {
     const std::string tour = tmp("tour");
     ASSERT_EQ(mrlocCmd("run " + config("quickstart") + " -q --out " + tour + "/beacons").code, 0);
-    ASSERT_EQ(mrlocCmd("run " + config("polymap_steps") + " -q --out " + tour + "/polymap").code, 0);
+    ASSERT_EQ(mrlocCmd("run " + config("polymap_steps") + " -q --out " + tour + "/polymap").code,
+              0);
     const auto r = mrlocCmd("index " + tour);
     ASSERT_EQ(r.code, 0) << r.output;
     const std::string page = slurp(tour + "/index.html");

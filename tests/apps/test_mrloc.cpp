@@ -118,9 +118,8 @@ TEST(MrlocRun, QuickstartEndToEndWithinBound) {
         }
     }
     const std::string page = slurp(out + "/report.html");
-    for (const char* s :
-         {"RMSE (m)", "mrloc</th><td>version ", "quickstart.ini", "<img src='topview.png'",
-          "run command"})
+    for (const char* s : {"RMSE (m)", "mrloc</th><td>version ", "quickstart.ini",
+                          "<img src='topview.png'", "run command"})
         EXPECT_NE(page.find(s), std::string::npos) << s;
     const std::string eff = slurp(out + "/effective.ini");
     for (const char* s : {"[scenario]", "[world]", "[sensors]", "[ultrasonic]", "[robot.r1]",
@@ -342,9 +341,9 @@ TEST(MrlocErrors, RangesFromBeaconsNotInTheMapAreAWarningAndTheHeadlineKeepsOdom
     // beacons_fixed.ini's map has 3 of the quickstart's 4 beacons: 292 of 1164 ranges match
     // none (counted when this test was written)
     const std::string out = tmp("partial");
-    const auto r = mrlocCmd("localize " + config("beacons_fixed") + " " +
-                            std::string(MRLOC_SOURCE_DIR) + "/rawlogs/quickstart.rawlog -q --out " +
-                            out);
+    const auto r =
+        mrlocCmd("localize " + config("beacons_fixed") + " " + std::string(MRLOC_SOURCE_DIR) +
+                 "/rawlogs/quickstart.rawlog -q --out " + out);
     ASSERT_EQ(r.code, 0) << r.output;
     EXPECT_NE(r.output.find("warning: beacons: 292 ranges from beacons not in the map (of 1164"),
               std::string::npos)

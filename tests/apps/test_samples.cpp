@@ -53,8 +53,8 @@ TEST(Samples, EachLocalizesWithItsIniToItsHeadline) {
     for (const auto& s : kSamples) {
         SCOPED_TRACE(s.ini);
         const std::string out = tmp("sample_loc_" + s.ini);
-        const auto r =
-            mrlocCmd("localize " + config(s.ini) + " " + sample(s.ini + ".rawlog") + " -q --out " + out);
+        const auto r = mrlocCmd("localize " + config(s.ini) + " " + sample(s.ini + ".rawlog") +
+                                " -q --out " + out);
         ASSERT_EQ(r.code, 0) << r.output;
         const auto m = common::loadJson(out + "/metrics.json");
         EXPECT_GT(m["use"]["used"].get<size_t>(), 0u);
@@ -76,8 +76,8 @@ TEST(Samples, MrptsRawlogEditReadsEachAsMrlocInfoDoes) {
         while (size_t n = fread(buf, 1, sizeof buf, p)) text.append(buf, n);
         ASSERT_EQ(pclose(p), 0) << text;
         std::smatch objects;
-        ASSERT_TRUE(std::regex_search(text, objects,
-                                      std::regex("Overall number of objects *: *([0-9]+)")))
+        ASSERT_TRUE(
+            std::regex_search(text, objects, std::regex("Overall number of objects *: *([0-9]+)")))
             << text;
         const auto info = mrlocCmd("info --json " + rawlog);
         ASSERT_EQ(info.code, 0) << info.output;

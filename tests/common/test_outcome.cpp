@@ -74,7 +74,6 @@ TEST(Outcome, NearMissFindsOneOrTwoEditsAndNothingFarther) {
     EXPECT_EQ(common::editDistance("duraton", "duration"), 1u);
 }
 
-
 TEST(Outcome, EstimatesEndingEarlyAreAWarningOnlyWhileTheRobotGoesOnMoving) {
     // a 100 s log; three robots whose estimates stop at 40 s
     const auto path = [](double until, double speed) {

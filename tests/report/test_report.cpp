@@ -43,7 +43,8 @@ TEST(TopView, DrawsPathsAndBeaconsWhereTheyAre) {
     c.landmarkLabels = {"7"};
     // odometry alone along y = 2.6, in the robot's dark shade
     for (int i = 0; i <= 10; ++i)
-        c.odometry["r"].push_back({double(i), mrpt::poses::CPose3D(0.5 + 0.3 * i, 2.6, 0, 0, 0, 0)});
+        c.odometry["r"].push_back(
+            {double(i), mrpt::poses::CPose3D(0.5 + 0.3 * i, 2.6, 0, 0, 0, 0)});
     const std::string png = testing::TempDir() + "/mrloc_topview.png";
     report::renderTopView(c, png, 400, 400);
     mrpt::img::CImage img;

@@ -170,8 +170,8 @@ std::string roomDifference(const sim::ScenarioConfig* scenario, double paperX, d
     if (!scenario) return "a log recorded elsewhere, not the paper's test points";
     const auto& w = scenario->world;
     if (std::abs(w.sizeX - paperX) < 0.05 && std::abs(w.sizeY - paperY) < 0.05) return "";
-    return mrpt::format("this room is %.1f x %.1f m; the paper measured in %.1f x %.1f m",
-                        w.sizeX, w.sizeY, paperX, paperY);
+    return mrpt::format("this room is %.1f x %.1f m; the paper measured in %.1f x %.1f m", w.sizeX,
+                        w.sizeY, paperX, paperY);
 }
 
 /** RMSE, mean and max error, with seed 001's figures beside them (active: section 5.3;
@@ -180,8 +180,10 @@ common::Headline beaconsHeadline(const method::HeadlineOf<BeaconLocalizer>& in) 
     common::Headline h;
     h.status = "tracked";
     h.figures = common::trajectoryFigures(in.metrics);
-    common::HeadlineFigure mean{"mean error", common::numberAt(in.metrics, "mean_m"), "m", "", "", false};
-    common::HeadlineFigure max{"max error", common::numberAt(in.metrics, "max_m"), "m", "", "", false};
+    common::HeadlineFigure mean{"mean error", common::numberAt(in.metrics, "mean_m"), "m", "", "",
+                                false};
+    common::HeadlineFigure max{"max error", common::numberAt(in.metrics, "max_m"), "m", "", "",
+                               false};
     if (in.localizer.options().system.activeAiming) {
         mean.paper = "over 0.030 m (seed 001 sec. 5.3, active beacons)";
         max.paper = "over 0.060 m (seed 001 sec. 5.3)";

@@ -13,8 +13,8 @@
 #include <mrpt/obs/CObservationOdometry.h>
 
 #include <chrono>
-#include <filesystem>
 #include <cmath>
+#include <filesystem>
 #include <iostream>
 #include <map>
 
@@ -81,13 +81,14 @@ std::vector<std::string> earlyEnds(const Trajectories& estimates, const Trajecto
     for (const auto& [robot, traj] : estimates) {
         if (traj.size() < 2) continue;  // one estimate per robot (a layout, a start)
         if (const auto odo = odometry.find(robot);
-            odo != odometry.end() && odometryTravelAfter(odo->second, traj.back().t) < kStandingTravel)
+            odo != odometry.end() &&
+            odometryTravelAfter(odo->second, traj.back().t) < kStandingTravel)
             continue;
         const double covered = traj.back().t - logStart;
         if (covered < 0.9 * span)
-            warnings.push_back(mrpt::format(
-                "robot '%s': the estimates stop at %.1f s of the log's %.1f s", robot.c_str(),
-                covered, span));
+            warnings.push_back(
+                mrpt::format("robot '%s': the estimates stop at %.1f s of the log's %.1f s",
+                             robot.c_str(), covered, span));
     }
     return warnings;
 }
@@ -191,7 +192,8 @@ LocalizationResult runLocalization(Localizer& localizer, const LocalizationRunOp
             warnings.push_back(std::to_string(count) + " " + reason + " (of " +
                                std::to_string(use.seen) + " " + use.kind + " in the log)");
     const auto estimates = localizer.estimates();
-    for (auto& w : earlyEnds(estimates, odometry, logStart, logEnd)) warnings.push_back(std::move(w));
+    for (auto& w : earlyEnds(estimates, odometry, logStart, logEnd))
+        warnings.push_back(std::move(w));
     for (const auto& w : warnings) std::cerr << "warning: " << o.methodName << ": " << w << "\n";
     makeDirectories(o.outDir);
     LocalizationResult result;
@@ -228,7 +230,8 @@ LocalizationResult runLocalization(Localizer& localizer, const LocalizationRunOp
                 std::filesystem::exists(gtPath))
                 worldTruth[robot] = loadTum(gtPath);
         if (!worldTruth.empty())
-            metrics["ground_truth_from"] = "<rawlog>.<robot>.gt.txt beside the rawlog (mrloc's simulator)";
+            metrics["ground_truth_from"] =
+                "<rawlog>.<robot>.gt.txt beside the rawlog (mrloc's simulator)";
     }
     result.truth = localizer.truthInEstimateFrame(worldTruth);
     std::vector<double> allErrors;

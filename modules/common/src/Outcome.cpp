@@ -68,10 +68,8 @@ std::string headlineLine(const std::string& method, const Headline& h) {
     std::string line = method + ": " + h.status;
     std::string own, baselines;
     for (const auto& f : h.figures)
-        (f.baseline ? baselines : own) += std::string((f.baseline ? baselines : own).empty()
-                                                          ? ""
-                                                          : ", ") +
-                                          figureText(f);
+        (f.baseline ? baselines : own) +=
+            std::string((f.baseline ? baselines : own).empty() ? "" : ", ") + figureText(f);
     if (!own.empty()) line += ": " + own;
     if (!baselines.empty()) line += "; baseline: " + baselines;
     return line;

@@ -10,7 +10,6 @@
 #include <mrpt/serialization/CArchive.h>
 
 #include <algorithm>
-
 #include <cctype>
 #include <cstring>
 #include <filesystem>

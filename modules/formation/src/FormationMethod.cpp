@@ -138,11 +138,12 @@ report::Html figureFourteen(const std::string& dir, const FormationExperimentFil
                 colour + "' title 'formation, " + mrpt::format("%g", *it) + " rad/s'";
     }
     const std::string png = "formation.fig14." + route + ".png";
-    report::runGnuplot(body +
-                           "set xlabel 'time (s)'\nset ylabel 'mean position error (m)'\n"
-                           "set key outside right top\nset yrange [0:*]\nset offsets 0, 0, graph 0.1, 0\n" +
-                           plot + "\n",
-                       dir + "/" + png);
+    report::runGnuplot(
+        body +
+            "set xlabel 'time (s)'\nset ylabel 'mean position error (m)'\n"
+            "set key outside right top\nset yrange [0:*]\nset offsets 0, 0, graph 0.1, 0\n" +
+            plot + "\n",
+        dir + "/" + png);
     return report::Figure{png, "error against time, " + routeTitle(route)}.html();
 }
 
@@ -290,13 +291,14 @@ report::Html formationSection(const report::RunView& run) {
 common::Headline formationHeadline(const method::HeadlineOf<FormationLocalizer>& in) {
     common::Headline h;
     const auto moves = common::numberAt(in.metrics, "formation/moves");
-    const std::string state = in.metrics.value("formation", nlohmann::json::object())
-                                  .value("state", std::string("?"));
+    const std::string state =
+        in.metrics.value("formation", nlohmann::json::object()).value("state", std::string("?"));
     h.reached = state == "arrived";
     h.status = h.reached ? "at the destination"
-                         : mrpt::format("ended before the destination: after move %.0f, "
-                                        "state '%s'",
-                                        moves.value_or(0), state.c_str());
+                         : mrpt::format(
+                               "ended before the destination: after move %.0f, "
+                               "state '%s'",
+                               moves.value_or(0), state.c_str());
     std::string differs;
     const auto& c = in.localizer.config();
     if (!in.scenario)
@@ -305,16 +307,18 @@ common::Headline formationHeadline(const method::HeadlineOf<FormationLocalizer>&
         differs = "rendered frames of an ideal camera; the paper's are the lab robots' cameras";
     else if (c.routeName == "custom")
         differs = "a route of this INI's; the paper's are its figs. 12-13";
-    const std::string claim = "below dead reckoning's, the gap growing with travel (seed 003 "
-                              "Table 1)";
+    const std::string claim =
+        "below dead reckoning's, the gap growing with travel (seed 003 "
+        "Table 1)";
     const auto own = common::numberAt(in.metrics, "formation/final_error_m");
     const auto dr = common::numberAt(in.metrics, "formation/dead_reckoning_final_error_m");
     if (own && dr && *dr < *own)
         // the paper's claim does not hold on this run: said beside the figure, not left to
         // the reader to spot
-        differs += mrpt::format("%sdead reckoning ends closer here (%.3f m against %.3f m), "
-                                "against the paper's claim",
-                                differs.empty() ? "" : "; ", *dr, *own);
+        differs += mrpt::format(
+            "%sdead reckoning ends closer here (%.3f m against %.3f m), "
+            "against the paper's claim",
+            differs.empty() ? "" : "; ", *dr, *own);
     h.figures.push_back({h.reached ? "error at the destination" : "error at the last move", own,
                          "m", claim, differs, false});
     h.figures.push_back({"dead reckoning", dr, "m", "", "", true});

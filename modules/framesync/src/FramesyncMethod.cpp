@@ -208,7 +208,8 @@ report::Html experimentSection(const std::string& dir) {
                 (noise ? "sonar range noise, standard deviation (cm)"
                        : "odometry drift (factor on the INI''s systematic errors)") +
                 "'\nset ylabel 'mean distance at the end, against the truth (cm)'\nset yrange "
-                "[0:*]\nset offsets graph 0.04, graph 0.04, 0, 0\nset key outside right top\nplot $o using "
+                "[0:*]\nset offsets graph 0.04, graph 0.04, 0, 0\nset key outside right top\nplot "
+                "$o using "
                 "1:2 with linespoints lw 2 pt 7 lc rgb "
                 "'#d62728' title 'own odometry', $s using 1:2 with linespoints lw 2 pt 5 lc rgb "
                 "'#1f77b4' title 'shared frame'\n",
@@ -274,15 +275,15 @@ common::Headline framesyncHeadline(const method::HeadlineOf<FramesyncLocalizer>&
     const auto redefinitions = common::numberAt(in.metrics, "framesync/redefinitions");
     const bool sharing = in.localizer.config().team.sharing;
     h.reached = !sharing || (redefinitions && *redefinitions > 0);
-    h.status = !sharing  ? "frames kept apart ([framesync] sharing = false)"
+    h.status = !sharing    ? "frames kept apart ([framesync] sharing = false)"
                : h.reached ? "one frame shared"
                            : "no frame shared (no wall matched between robots; see the walls)";
     std::string differs;
     if (!in.scenario)
         differs = "a log recorded elsewhere, not the paper's corridor";
     else if (in.scenario->robots.size() != 2)
-        differs = mrpt::format("%zu robots; the paper's experiment has 2",
-                               in.scenario->robots.size());
+        differs =
+            mrpt::format("%zu robots; the paper's experiment has 2", in.scenario->robots.size());
     const char* shared = "under 0.10 m (seed 004 sec. 5.2, one run)";
     const char* own = "about 0.30 m (seed 004 sec. 5.2)";
     h.figures.push_back({"end discrepancy, shared frame",
@@ -299,7 +300,8 @@ common::Headline framesyncHeadline(const method::HeadlineOf<FramesyncLocalizer>&
                 s += r.sharedError, o += r.odometryError, ++n;
         if (n) {
             const std::string over = mrpt::format(" (mean over %zu seeds)", n);
-            h.figures.push_back({"shared frame" + over, s / double(n), "m", shared, differs, false});
+            h.figures.push_back(
+                {"shared frame" + over, s / double(n), "m", shared, differs, false});
             h.figures.push_back({"own odometry" + over, o / double(n), "m", own, differs, true});
         }
     }

@@ -316,7 +316,8 @@ common::Headline omnivisionHeadline(const method::HeadlineOf<OmniLocalizer>& in)
     };
     const char* none = "seed 000 publishes no figure";
     if (const auto refined = percent("relative_distance_error_refined"))
-        h.figures.push_back({"relative distance error, refined (median)", refined, "%", none, "", false});
+        h.figures.push_back(
+            {"relative distance error, refined (median)", refined, "%", none, "", false});
     h.figures.push_back({"relative distance error, seed 000's solution (median)",
                          percent("relative_distance_error_paper"), "%", none, "", false});
     return h;

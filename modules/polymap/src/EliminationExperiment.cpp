@@ -223,10 +223,11 @@ report::Html eliminationTables(const EliminationFile& file, const EliminationTim
                     name(ourLow).c_str(), ours[ourLow], name(paperLow).c_str(), theirs[paperLow]);
             if (ourHigh != paperHigh)
                 differs += std::string(differs.empty() ? "" : "; ") +
-                           mrpt::format("the longest here is the %s algorithm's (%.3f), the "
-                                        "paper's the %s algorithm's (%.3f)",
-                                        name(ourHigh).c_str(), ours[ourHigh],
-                                        name(paperHigh).c_str(), theirs[paperHigh]);
+                           mrpt::format(
+                               "the longest here is the %s algorithm's (%.3f), the "
+                               "paper's the %s algorithm's (%.3f)",
+                               name(ourHigh).c_str(), ours[ourHigh], name(paperHigh).c_str(),
+                               theirs[paperHigh]);
             if (!differs.empty())
                 out += report::paragraph(report::bold("Not the paper's order:") + " " + differs +
                                          " (doc/polymap.md discusses why).");

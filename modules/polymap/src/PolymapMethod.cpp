@@ -244,9 +244,9 @@ common::Headline polymapHeadline(const method::HeadlineOf<PolymapLocalizer>& in)
                                          notLocalized.empty() ? "" : "; ", robot.c_str(), left,
                                          r.hypotheses.empty() ? "fit the first scan (is this "
                                                                 "the robot's map?)"
-                                         : r.session ? "left"
-                                                     : "from the first scan, no drive to "
-                                                       "eliminate them ([polymap] drive)");
+                                         : r.session          ? "left"
+                                                              : "from the first scan, no drive to "
+                                                                "eliminate them ([polymap] drive)");
         if (r.session) {
             drove = true;
             for (const auto& p : r.session->visited()) travel += p.path.length;
@@ -261,15 +261,18 @@ common::Headline polymapHeadline(const method::HeadlineOf<PolymapLocalizer>& in)
     // verification tour, the least travel that rules the others out with the truth known
     if (drove && std::filesystem::exists(EliminationFile::path(in.outDir))) {
         const auto file = EliminationFile::read(in.outDir);
-        const auto finite = [](double d) { return std::isfinite(d) ? std::optional(d) : std::nullopt; };
-        h.figures.push_back({"bound: first separation", finite(file.bound), "m",
-                             "", "", false});  // seed 002 reports no bound
+        const auto finite = [](double d) {
+            return std::isfinite(d) ? std::optional(d) : std::nullopt;
+        };
+        h.figures.push_back({"bound: first separation", finite(file.bound), "m", "", "",
+                             false});  // seed 002 reports no bound
         if (file.trueStart < file.tour.size())
             h.figures.push_back({"bound: verification tour (least travel, truth known)",
-                                 finite(file.tour[file.trueStart]), "m",
-                                 "", "", false});  // seed 002 reports no bound
+                                 finite(file.tour[file.trueStart]), "m", "", "",
+                                 false});  // seed 002 reports no bound
     }
-    h.figures.push_back({"start error", common::numberAt(in.metrics, "rmse_m"), "m", "", "", false});
+    h.figures.push_back(
+        {"start error", common::numberAt(in.metrics, "rmse_m"), "m", "", "", false});
     return h;
 }
 

@@ -146,7 +146,8 @@ std::string htmlPage(const std::string& title, const Html& body) {
     return "<!DOCTYPE html>\n<html><head><meta charset='utf-8'><title>" + escaped(title, false) +
            "</title>\n<style>body{font-family:sans-serif;max-width:1100px;margin:2em auto}"
            "table{border-collapse:collapse;margin:1em 0}th,td{border:1px solid #ccc;"
-           "padding:3px 8px;text-align:left;vertical-align:top}img{max-width:100%;border:1px solid #ddd}</style>"
+           "padding:3px 8px;text-align:left;vertical-align:top}img{max-width:100%;border:1px solid "
+           "#ddd}</style>"
            "</head><body>\n" +
            body.markup() + "</body></html>\n";
 }

@@ -82,9 +82,10 @@ std::string makeIndex(const std::string& folder, const std::string& title) {
     }
     const Html body =
         heading(1, title) +
-        paragraph("Each run's headline: the method's own figures in bold, the paper's beside "
-                  "them, baselines (odometry alone, dead reckoning) marked and never averaged "
-                  "in. The run's name links its report.") +
+        paragraph(
+            "Each run's headline: the method's own figures in bold, the paper's beside "
+            "them, baselines (odometry alone, dead reckoning) marked and never averaged "
+            "in. The run's name links its report.") +
         t.html();
     const std::string path = folder + "/index.html";
     common::writeFileAtomically(path, htmlPage(title, body));

@@ -137,19 +137,21 @@ Html whatRan(const RunView& run, const Section& section, const nlohmann::json& p
     const auto& m = run.metrics;
     Table t;
     const std::string method = m.value("method", "?");
-    t.headedRow("method", {code(method) + (section.subject.empty() ? Html() : Html(": " + section.subject))});
+    t.headedRow("method",
+                {code(method) + (section.subject.empty() ? Html() : Html(": " + section.subject))});
     if (provenance.contains("ini"))
-        t.headedRow("INI", {code(textAt(provenance, "ini")) + " (copied: " +
-                            link("config.ini", "config.ini") + "; with every default: " +
-                            link("effective.ini", "effective.ini") + ")"});
+        t.headedRow(
+            "INI",
+            {code(textAt(provenance, "ini")) + " (copied: " + link("config.ini", "config.ini") +
+             "; with every default: " + link("effective.ini", "effective.ini") + ")"});
     t.headedRow("rawlog", {code(m.value("rawlog", "?"))});
     const bool simulated = simulatedRun(provenance, m);
     t.headedRow("log", {simulated ? Html("simulated by mrloc, seed " + textAt(provenance, "seed"))
                                   : Html("recorded elsewhere (not simulated in this run)")});
     const std::string truthFrom = m.value("ground_truth_from", "");
-    t.headedRow("ground truth",
-                {truthFrom.empty() ? Html("none: the errors below cannot be computed")
-                                   : Html(truthFrom)});
+    t.headedRow(
+        "ground truth",
+        {truthFrom.empty() ? Html("none: the errors below cannot be computed") : Html(truthFrom)});
     return t.html();
 }
 
@@ -157,8 +159,8 @@ Html whatRan(const RunView& run, const Section& section, const nlohmann::json& p
 Html headlineBlock(const nlohmann::json& metrics, const std::string& where) {
     if (!metrics.contains("headline")) return paragraph("No headline in metrics.json.");
     const auto h = common::headlineFromJson(metrics["headline"], where);
-    Html out = paragraph(bold(h.reached ? "Outcome: " : "Outcome (goal not reached): ") +
-                         Html(h.status));
+    Html out =
+        paragraph(bold(h.reached ? "Outcome: " : "Outcome (goal not reached): ") + Html(h.status));
     Table t({"figure", "this run", "the paper", "how this run differs from the paper's"});
     for (const auto& f : h.figures) t.row(figureCells(f));
     if (t.rows()) out += t.html();
@@ -179,7 +181,8 @@ Html provenanceSection(const nlohmann::json& p) {
                               (p.contains("commit") ? ", commit " + textAt(p, "commit") : "")});
     if (p.contains("mrpt_version")) t.headedRow("MRPT", {textAt(p, "mrpt_version")});
     if (p.contains("cpu"))
-        t.headedRow("machine", {textAt(p, "cpu") + (p.contains("cores") ? ", " + textAt(p, "cores") + " cores" : "")});
+        t.headedRow("machine", {textAt(p, "cpu") +
+                                (p.contains("cores") ? ", " + textAt(p, "cores") + " cores" : "")});
     if (p.contains("steps") && p["steps"].is_object())
         for (const auto& [step, command] : p["steps"].items())
             t.headedRow(step + " command", {code(cellText(command))});
@@ -196,7 +199,7 @@ std::string titleOf(const RunView& run, const Section& section, const ReportOpti
 
 /** The generic figures first, in the order a reader asks for them; then the rest. */
 Html orderedMetricsTable(const nlohmann::json& j) {
-    static const std::vector<std::string> first{"rmse_m", "mean_m", "median_m", "p95_m",
+    static const std::vector<std::string> first{"rmse_m", "mean_m", "median_m",     "p95_m",
                                                 "max_m",  "n",      "observations", "wall_s"};
     // shown in the top block, or as a table of its own
     static const std::set<std::string> elsewhere{"method", "rawlog", "ground_truth",
@@ -235,9 +238,9 @@ std::string makeReport(const std::string& dir, const Section& section) {
         if (const auto gt = run.truth.find(robot); gt != run.truth.end())
             if (auto e = common::positionErrors(est, gt->second); !e.empty()) {
                 // a baseline robot (dead reckoning) is named so in the plots' keys
-                const bool baseline =
-                    metrics["robots"].contains(robot) && metrics["robots"][robot].is_object() &&
-                    metrics["robots"][robot].value("baseline", false);
+                const bool baseline = metrics["robots"].contains(robot) &&
+                                      metrics["robots"][robot].is_object() &&
+                                      metrics["robots"][robot].value("baseline", false);
                 errors[baseline ? robot + " (baseline)" : robot] = std::move(e);
             }
     const bool topView = bool(section.topView);
@@ -269,20 +272,21 @@ std::string makeReport(const std::string& dir, const Section& section) {
     options.loadFromConfigFile(*run.effective, "report");
     const std::string title = titleOf(run, section, options);
     Html body = heading(1, title) + heading(2, "What ran") + whatRan(run, section, provenance) +
-                heading(2, "Headline") +
-                headlineBlock(metrics, common::run_dir::metrics(dir));
+                heading(2, "Headline") + headlineBlock(metrics, common::run_dir::metrics(dir));
     if (!options.paperCaption.empty() || !options.paperNote.empty())
         body += paragraph(bold("Compared with the paper:") + " " + options.paperCaption +
                           (options.paperNote.empty() ? "" : ". " + options.paperNote));
     body += heading(2, "Provenance") + provenanceSection(provenance);
-    body += heading(2, "Position error against the truth (horizontal, all robots but the "
-                       "baselines)") +
+    body += heading(2,
+                    "Position error against the truth (horizontal, all robots but the "
+                    "baselines)") +
             orderedMetricsTable(metrics);
     Table perRobotTable({"robot", "estimates", "compared", "RMSE (m)", "median (m)",
                          "95th percentile (m)", "max (m)"});
     for (const auto& [robot, r] : metrics["robots"].items()) {
-        std::vector<Html> cells{r.value("baseline", false) ? Html(robot + " (baseline)") : Html(robot),
-                                cellText(r.value("estimates", 0))};
+        std::vector<Html> cells{
+            r.value("baseline", false) ? Html(robot + " (baseline)") : Html(robot),
+            cellText(r.value("estimates", 0))};
         for (const char* k : {"n", "rmse_m", "median_m", "p95_m", "max_m"})
             cells.push_back(r.contains(k) ? cellText(r[k]) : "none");
         perRobotTable.row(std::move(cells));

@@ -163,8 +163,8 @@ void renderTopView(const TopViewContent& c, const std::string& pngPath, unsigned
     bool allStill = true;
     for (const auto& [robot, est] : c.estimates) {
         const auto gt = c.groundTruth.find(robot);
-        allStill = allStill &&
-                   (gt != c.groundTruth.end() ? standsStill(gt->second) : standsStill(est));
+        allStill =
+            allStill && (gt != c.groundTruth.end() ? standsStill(gt->second) : standsStill(est));
     }
     const auto marker = [&](const mrpt::poses::CPose3D& p, float radius, float z,
                             mrpt::img::TColor col) {
@@ -223,8 +223,8 @@ void renderTopView(const TopViewContent& c, const std::string& pngPath, unsigned
 }
 
 void saveTopDown(mrpt::opengl::COpenGLScene& scene, double x0, double y0, double x1, double y1,
-                 const std::string& pngPath, unsigned width, unsigned height,
-                 const Legend& legend, const std::vector<WorldLabel>& labels) {
+                 const std::string& pngPath, unsigned width, unsigned height, const Legend& legend,
+                 const std::vector<WorldLabel>& labels) {
     CFBORender render(width, height);
     auto& cam = render.getCamera(scene);
     cam.setOrthogonal(true);
@@ -247,12 +247,12 @@ void saveTopDown(mrpt::opengl::COpenGLScene& scene, double x0, double y0, double
         // x to the right and y up from the centre of the picture, as the camera looks down;
         // the name centred above its place, on white, kept inside the picture
         const int w = 10 * int(l.text.size()) + 6, h = 22;
-        const int px = std::clamp(
-            int(std::lround(width / 2.0 + (l.x - cx) / metresPerPixel)) - w / 2, 0,
-            std::max(0, int(width) - w));
-        const int py = std::clamp(
-            int(std::lround(height / 2.0 - (l.y - cy) / metresPerPixel)) - 22 - h, 0,
-            std::max(0, int(height) - h));
+        const int px =
+            std::clamp(int(std::lround(width / 2.0 + (l.x - cx) / metresPerPixel)) - w / 2, 0,
+                       std::max(0, int(width) - w));
+        const int py =
+            std::clamp(int(std::lround(height / 2.0 - (l.y - cy) / metresPerPixel)) - 22 - h, 0,
+                       std::max(0, int(height) - h));
         drawing.filledRectangle(px, py, px + w, py + h, mrpt::img::TColor(255, 255, 255));
         drawing.rectangle(px, py, px + w, py + h, mrpt::img::TColor(20, 20, 20));
         drawing.textOut(px + 3, py + 1, l.text, mrpt::img::TColor(20, 20, 20));

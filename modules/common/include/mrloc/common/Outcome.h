@@ -13,9 +13,10 @@ namespace mrloc::common {
 
 /** The observations of the kind a method localizes from (its sensing, not odometry). */
 struct ObservationUse {
-    std::string kind;  ///< in words, with the MRPT class: "beacon ranges (CObservationBeaconRanges)"
-    size_t seen = 0;   ///< of that kind in the log
-    size_t used = 0;   ///< of those, matched to the method's map or robots and used
+    std::string
+        kind;         ///< in words, with the MRPT class: "beacon ranges (CObservationBeaconRanges)"
+    size_t seen = 0;  ///< of that kind in the log
+    size_t used = 0;  ///< of those, matched to the method's map or robots and used
     /** Why the others were not used: what was counted and why, in words ("ranges from
      *  beacons not in the map"), and the count. */
     std::vector<std::pair<std::string, size_t>> unmatched;
