@@ -1,5 +1,7 @@
 #include "Advice.h"
 
+#include <mrloc/common/AtomicFile.h>
+#include <mrloc/common/LocalizationRun.h>
 #include <mrloc/common/Rawlog.h>
 
 #include <filesystem>
@@ -27,11 +29,8 @@ std::string fitHintOf(const method::Registry& registry, const std::string& curre
 std::map<std::string, size_t> classesOf(const std::string& rawlogPath) {
     std::map<std::string, size_t> counts;
     common::RawlogReader reader(rawlogPath);
-    for (mrpt::obs::CObservation::Ptr obs; reader.next(obs);) {
-        const std::string cls = obs->GetRuntimeClass()->className;
-        const auto colon = cls.rfind(':');
-        ++counts[colon == std::string::npos ? cls : cls.substr(colon + 1)];
-    }
+    for (mrpt::obs::CObservation::Ptr obs; reader.next(obs);)
+        ++counts[common::shortClassName(*obs)];
     return counts;
 }
 
@@ -65,10 +64,9 @@ std::string rawlogNamedBy(const mrpt::config::CConfigFileBase& ini, const std::s
          {"LocalizationExperiment", "ro-localization", "MappingApplication"}) {
         const std::string named = ini.read_string(section, "rawlog_file", "");
         if (named.empty()) continue;
-        fs::path p(named);
-        if (p.is_relative()) p = fs::path(iniPath).parent_path() / p;
+        const std::string path = common::pathFromIni(iniPath, named);
         std::error_code ec;
-        if (fs::is_regular_file(p, ec)) return p.lexically_normal().string();
+        if (fs::is_regular_file(path, ec)) return path;
     }
     return "";
 }
@@ -80,11 +78,8 @@ std::string foreignIniAdvice(const method::Registry& registry, const std::string
         return line +
                ". mrloc info <rawlog> lists what a log holds, and mrloc localize "
                "<mrloc ini> <rawlog> runs an mrloc method on it";
-    std::string holds;
     const auto classes = classesOf(rawlog);
-    for (const auto& [cls, count] : classes)
-        holds += (holds.empty() ? "" : ", ") + std::to_string(count) + " " + cls;
-    return line + ". " + rawlog + " holds " + (holds.empty() ? "no observation" : holds) + ": " +
+    return line + ". " + rawlog + " holds " + common::contentInWords(classes) + ": " +
            fitHintOf(registry, "", classes);
 }
 

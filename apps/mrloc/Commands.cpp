@@ -120,9 +120,6 @@ std::string checkIni(const method::Registry& registry, const std::string& iniPat
 
 namespace {
 
-/** TCLAP's usage errors in one line that names what is wrong ("missing: RAWLOG (rawlog
- *  file)"), then where to read more; TCLAP's own says "One or more required arguments
- *  missing!" without naming them. */
 /** TCLAP's "(required)  INI file" without its tag: the message says "missing" already. */
 std::string withoutRequiredTag(std::string description) {
     const std::string tag = "(required)";
@@ -131,6 +128,9 @@ std::string withoutRequiredTag(std::string description) {
     return text == std::string::npos ? description : description.substr(text);
 }
 
+/** TCLAP's usage errors in one line that names what is wrong ("missing <RAWLOG> (rawlog
+ *  file)"), then the usage; TCLAP's own says "One or more required arguments missing!"
+ *  without naming them. */
 class OneLineOutput : public TCLAP::StdOutput {
  public:
     void failure(TCLAP::CmdLineInterface& c, TCLAP::ArgException& e) override {

@@ -1,5 +1,6 @@
 #include "MrptTruth.h"
 
+#include <mrloc/common/AtomicFile.h>
 #include <mrloc/common/IniSection.h>
 #include <mrpt/core/bits_math.h>
 
@@ -35,13 +36,6 @@ bool sameFile(const std::string& a, const std::string& b) {
     return fs::equivalent(a, b, ec) && !ec;
 }
 
-/** MRPT's relative paths are the INI's folder's (its apps are run from there). */
-std::string besideIni(const std::string& iniPath, const std::string& named) {
-    fs::path p(named);
-    if (p.is_relative()) p = fs::path(iniPath).parent_path() / p;
-    return p.lexically_normal().string();
-}
-
 /** ro-localization's start, the frame offset of its truth. */
 mrpt::poses::CPose3D mrptStart(const mrpt::config::CConfigFileBase& ini) {
     if (!ini.keyExists("OdometryEstimation", "odometry_X")) return {};
@@ -60,9 +54,9 @@ std::optional<FoundTruth> mrptTruthOf(const mrpt::config::CConfigFileBase& ini,
     found.source.offset = mrptStart(ini);
     const std::string named = ini.read_string("ro-localization", "groundTruthFile", "");
     if (!named.empty()) {
-        const std::string gt = besideIni(iniPath, named);
+        const std::string gt = common::pathFromIni(iniPath, named);
         const std::string ownLog =
-            besideIni(iniPath, ini.read_string("ro-localization", "rawlog_file", ""));
+            common::pathFromIni(iniPath, ini.read_string("ro-localization", "rawlog_file", ""));
         if (!sameFile(ownLog, rawlog)) {
             note = "[ro-localization] groundTruthFile " + named + " is the truth of " + ownLog +
                    ", not of this log: not used";

@@ -41,11 +41,12 @@ std::string utcNow() {
 /** The CPU's model name as /proc/cpuinfo gives it; "unknown" elsewhere. */
 std::string cpuModel() {
     std::ifstream in("/proc/cpuinfo");
-    for (std::string line; std::getline(in, line);)
-        if (line.rfind("model name", 0) == 0)
-            if (const auto from = line.find_first_not_of(" \t:", line.find(':'));
-                line.find(':') != std::string::npos && from != std::string::npos)
-                return common::printable(line.substr(from));
+    for (std::string line; std::getline(in, line);) {
+        const auto colon = line.find(':');
+        if (line.rfind("model name", 0) != 0 || colon == std::string::npos) continue;
+        const auto from = line.find_first_not_of(" \t", colon + 1);
+        if (from != std::string::npos) return common::printable(line.substr(from));
+    }
     return "unknown";
 }
 

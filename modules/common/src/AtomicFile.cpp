@@ -58,6 +58,13 @@ std::string pathInWords(const std::string& path) {
     return ec ? path : path + " (" + abs.lexically_normal().string() + ")";
 }
 
+std::string pathFromIni(const std::string& iniPath, const std::string& path) {
+    std::error_code ec;
+    if (path.empty() || !fs::path(path).is_relative() || !fs::is_regular_file(iniPath, ec))
+        return path;
+    return (fs::path(iniPath).parent_path() / path).lexically_normal().string();
+}
+
 void checkReadableFile(const std::string& path, const std::string& what, size_t maxBytes) {
     std::error_code ec;
     const auto st = fs::status(path, ec);

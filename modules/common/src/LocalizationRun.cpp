@@ -44,22 +44,20 @@ nlohmann::json odometryErrors(const Trajectory& odometry, const Trajectories& wo
     return j;
 }
 
-/** "mrpt::obs::CObservationOdometry" -> "CObservationOdometry", as users name it. */
+}  // namespace
+
 std::string shortClassName(const mrpt::obs::CObservation& obs) {
     const std::string cls = obs.GetRuntimeClass()->className;
     const auto colon = cls.rfind(':');
     return colon == std::string::npos ? cls : cls.substr(colon + 1);
 }
 
-/** "1201 CObservationOdometry, 292 CObservationBeaconRanges": what a log holds. */
 std::string contentInWords(const std::map<std::string, size_t>& classCounts) {
     std::string words;
     for (const auto& [cls, count] : classCounts)
         words += (words.empty() ? "" : ", ") + std::to_string(count) + " " + cls;
     return words.empty() ? "no observation" : words;
 }
-
-}  // namespace
 
 /** How far the robot's odometry moves after time t (m): 0 when it stands still from then
  *  on, or has no odometry. */

@@ -52,18 +52,14 @@ Progress::Progress(std::string label, size_t total, bool quiet)
 Progress::~Progress() { finish(); }
 
 void Progress::update(size_t done) {
-    show(total_ > 0 ? double(done) / double(total_) : -1.0, done);
+    show(total_ > 0 ? double(done) / double(total_) : -1.0, done, total_);
 }
 
 void Progress::updateFraction(double fraction, size_t items) {
-    if (!enabled_) return;
-    const size_t total = total_;
-    total_ = 0;  // the items are counted, not their total
-    show(std::clamp(fraction, 0.0, 1.0), items);
-    total_ = total;
+    show(std::clamp(fraction, 0.0, 1.0), items, 0);  // the items are counted, not their total
 }
 
-void Progress::show(double fraction, size_t done) {
+void Progress::show(double fraction, size_t done, size_t total) {
     if (!enabled_) return;
     const auto now = Clock::now();
     // Only work that has already taken a second is shown at all.
@@ -71,7 +67,7 @@ void Progress::show(double fraction, size_t done) {
     if (now - lastDraw_ < (terminal_ ? Clock::duration(kTerminalPeriod) : kLogPeriod)) return;
     lastDraw_ = now;
     const double elapsed = std::chrono::duration<double>(now - start_).count();
-    const std::string text = progressText(label_, fraction, done, total_, elapsed);
+    const std::string text = progressText(label_, fraction, done, total, elapsed);
     if (!terminal_) {
         std::fprintf(stderr, "mrloc: %s\n", text.c_str());
         return;

@@ -20,10 +20,8 @@ void PolymapOptions::loadFromConfigFile(const mrpt::config::CConfigFileBase& src
     if (!mapFile.empty()) {
         // a relative path is the INI's: the file works from any folder, and effective.ini
         // keeps the resolved path
-        const std::string ini = common::configOrigin(src);
         namespace fs = std::filesystem;
-        if (fs::path(mapFile).is_relative() && fs::is_regular_file(ini))
-            mapFile = (fs::path(ini).parent_path() / mapFile).lexically_normal().string();
+        mapFile = common::pathFromIni(common::configOrigin(src), mapFile);
         if (fs::is_directory(mapFile))
             s.fail("map", "'" + common::pathInWords(mapFile) + "' is a folder, not a .poly file");
         if (!fs::exists(mapFile))

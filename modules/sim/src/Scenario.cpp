@@ -6,6 +6,7 @@
 #include <mrpt/config/CConfigFileMemory.h>
 #include <mrpt/core/bits_math.h>
 #include <mrpt/core/format.h>
+#include <mrpt/math/TSegment2D.h>
 #include <mrpt/system/string_utils.h>
 
 #include <algorithm>
@@ -52,10 +53,7 @@ void ScenarioOptions::loadFromConfigFile(const mrpt::config::CConfigFileBase& sr
     groundTruth.offset = mrpt::poses::CPose3D(off[0], off[1], 0, mrpt::DEG2RAD(off[2]), 0, 0);
     if (!groundTruth.path.empty()) {
         namespace fs = std::filesystem;
-        const std::string ini = common::configOrigin(src);
-        if (fs::path(groundTruth.path).is_relative() && fs::is_regular_file(ini))
-            groundTruth.path =
-                (fs::path(ini).parent_path() / groundTruth.path).lexically_normal().string();
+        groundTruth.path = common::pathFromIni(common::configOrigin(src), groundTruth.path);
         if (!fs::is_regular_file(groundTruth.path))
             s.fail("ground_truth", "no such file '" + common::pathInWords(groundTruth.path) +
                                        "' (a relative path is taken from the INI's folder)");
@@ -133,14 +131,6 @@ bool crossesRectangle(const mrpt::math::TPoint2D& a, const mrpt::math::TPoint2D&
     return true;
 }
 
-double distanceToSegment(const mrpt::math::TPoint2D& p, const mrpt::math::TPoint2D& a,
-                         const mrpt::math::TPoint2D& b) {
-    const double dx = b.x - a.x, dy = b.y - a.y, len2 = dx * dx + dy * dy;
-    const double t =
-        len2 > 0 ? std::clamp(((p.x - a.x) * dx + (p.y - a.y) * dy) / len2, 0.0, 1.0) : 0.0;
-    return std::hypot(p.x - (a.x + t * dx), p.y - (a.y + t * dy));
-}
-
 /** A route the robot cannot drive: a waypoint outside the room, or a leg (start to the
  *  first waypoint, waypoint to waypoint, the last back to the first when it loops) through
  *  an obstacle on the floor. The robot steers straight at each waypoint. */
@@ -164,7 +154,7 @@ void checkRoute(const WorldOptions& world, const RobotOptions& r, const std::str
                 crossesRectangle(a, b, {box.min.x, box.min.y}, {box.max.x, box.max.y}))
                 throw Error(where + " waypoints: " + leg + " goes through obstacle_" + box.name);
         for (const auto& p : world.pillars)
-            if (distanceToSegment({p.x, p.y}, a, b) < p.radius)
+            if (mrpt::math::TSegment2D(a, b).distance({p.x, p.y}) < p.radius)
                 throw Error(where + " waypoints: " + leg + " goes through pillar_" + p.name);
     }
 }

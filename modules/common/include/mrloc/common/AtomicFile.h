@@ -40,6 +40,10 @@ void makeDirectories(const std::string& dir);
  *  which folder; an absolute one as it is. */
 std::string pathInWords(const std::string& path);
 
+/** A path named in an INI: a relative one is taken from the INI's folder (so that the INI
+ *  works from any folder, as MRPT's apps read theirs), when `iniPath` is a file. */
+std::string pathFromIni(const std::string& iniPath, const std::string& path);
+
 /** Throws mrloc::Error naming `what` unless `path` is a regular file (not a folder, FIFO or
  *  device) of at most `maxBytes` bytes: checked before a user's file is read. */
 void checkReadableFile(const std::string& path, const std::string& what, size_t maxBytes);

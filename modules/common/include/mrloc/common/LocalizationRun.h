@@ -29,6 +29,11 @@ struct LocalizationRunOptions {
     std::function<std::string(const std::map<std::string, size_t>&)> fitHint = {};
 };
 
+/** "mrpt::obs::CObservationOdometry" -> "CObservationOdometry", as users name it. */
+std::string shortClassName(const mrpt::obs::CObservation& obs);
+/** "1201 CObservationOdometry, 292 CObservationBeaconRanges": what a log holds. */
+std::string contentInWords(const std::map<std::string, size_t>& classCounts);
+
 /** Estimates that stop long before the log does while the robot goes on moving (a method
  *  that lost track): a warning per robot whose estimates cover under 90 % of the log's span
  *  [logStart, logEnd] (s). A robot whose odometry moves under 5 cm after its last estimate (a

@@ -19,10 +19,11 @@ class Progress {
     void finish();
 
  private:
-    void show(double fraction, size_t done);
+    /** `total` 0: the items done are shown without a total. */
+    void show(double fraction, size_t done, size_t total);
 
     std::string label_;
-    size_t total_;
+    const size_t total_;
     bool enabled_;
     bool terminal_;
     bool shown_ = false;
