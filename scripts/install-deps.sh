@@ -19,6 +19,13 @@ packages=(
   mrpt-common            # MRPT's example rawlogs and INIs: tests and fuzzing seeds
   mrpt-apps              # MRPT's own ro-localization / pf-localization: timed beside mrloc localize (doc/framesync.md)
   xvfb                   # xvfb-run: MRPT's apps open a window even when asked for a log
+  # `mrloc import rosbag` (doc/import.md): ROS 1 bags read by librosbag-storage (BSD), the
+  # message types it converts, and the ROS 2 headers Debian's pluginlib-dev (which
+  # rosbag/bag.h includes) wants on the path
+  librosbag-storage-dev libnav-msgs-dev libsensor-msgs-dev libtf2-msgs-dev libgeometry-msgs-dev
+  pluginlib-dev librcpputils-dev libclass-loader-dev libament-index-cpp-dev
+  # the test bag's script (tests/data/rosbag/make_tiny_bag.py), run again by a test
+  python3-rosbag python3-nav-msgs python3-sensor-msgs python3-tf2-msgs python3-geometry-msgs
 )
 
 missing=()

@@ -28,6 +28,11 @@ long+='|FormationMarch\.ErrorDoesNotGrow|FormationAlgorithmOne\.ConvergesFromEve
 long+='|Visibility\.RandomAndGeneratedMapsUpTo5000'
 # the samples' tests simulate and localize five shipped scenarios again, whole
 long+='|Samples\.EachIsWhatTheSimulatorMakesToday|Samples\.EachLocalizesWithItsIni'
+# three of the five rawlog-mutation sweeps (265 s counted one after another); the beacons and
+# polymap sweeps stay sanitized, and fuzz_rawlog fuzzes the same reader
+long+='|Mutations\.FramesyncRawlogIsRefusedOrCountedNeverSilentlyTaken'
+long+='|Mutations\.OmnivisionRawlogIsRefusedOrCountedNeverSilentlyTaken'
+long+='|Mutations\.FormationRawlogIsRefusedOrCountedNeverSilentlyTaken|RealLogs\.BeaconTrackerOnMrclamDataset6'
 if [ "${MRLOC_SANITIZE_ALL:-0}" = 1 ]; then
   ctest --output-on-failure -j "$(nproc)" "$@"
 else

@@ -324,7 +324,9 @@ constexpr const char* kUsage =
     "  report <run-dir>         render report.html and pictures of a localize run\n"
     "  run <ini>                simulate, localize and report in a row\n"
     "  info <rawlog>            per robot and sensor label: class, count, rate, time span\n"
-    "  index <folder>           index.html of a folder of runs: headlines beside the papers'\n";
+    "  index <folder>           index.html of a folder of runs: headlines beside the papers'\n"
+    "  import <format> <in...>  a log recorded by others (libRSF, sonar text, MRCLAM, CARMEN)\n"
+    "                           into a rawlog + ground truth (mrloc import --help)\n";
 }  // namespace
 
 int main(const method::Registry& registry, int argc, char** argv) {
@@ -341,6 +343,7 @@ int main(const method::Registry& registry, int argc, char** argv) {
         if (command == "run") return run(registry, argc - 1, argv + 1);
         if (command == "info") return info(argc - 1, argv + 1);
         if (command == "index") return index(argc - 1, argv + 1);
+        if (command == "import") return import(argc - 1, argv + 1);
         std::cerr << "mrloc: unknown command '" << command << "'\n" << kUsage;
         return 2;
     } catch (const TCLAP::ArgException& e) {

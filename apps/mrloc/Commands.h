@@ -19,6 +19,7 @@ int report(const method::Registry& registry, int argc, char** argv);
 int run(const method::Registry& registry, int argc, char** argv);
 int info(int argc, char** argv);
 int index(int argc, char** argv);
+int import(int argc, char** argv);
 
 /** Reads and validates everything an INI asks for, as `simulate`, `localize` and `run` do
  *  before they write anything (the scenario built when it has [scenario]), and renders its

@@ -64,6 +64,7 @@ void BeaconOptions::loadFromConfigFile(const mrpt::config::CConfigFileBase& src,
         s.real("odometry_sigma_phi_per_m", tracker.odomSigmaPhiPerMetre, 0, 10);
     tracker.randomWalkSigma = s.real("random_walk_sigma", tracker.randomWalkSigma, 0, 100);
     tracker.bootstrapBaseline = s.real("bootstrap_baseline", tracker.bootstrapBaseline, 0.01, 100);
+    rangeWindow = s.real("range_window", rangeWindow, 0, 60);
     tracker.resetAfter = int(s.integer("reset_after", long(tracker.resetAfter), 1, 100000));
     tracker.estimateBias = s.flag("estimate_bias", tracker.estimateBias);
     tracker.biasSigma = s.real("bias_sigma", tracker.biasSigma, 0, 10);
@@ -107,6 +108,7 @@ void BeaconOptions::saveToConfigFile(mrpt::config::CConfigFileBase& t,
     t.write(section, "odometry_sigma_phi_per_m", tracker.odomSigmaPhiPerMetre);
     t.write(section, "random_walk_sigma", tracker.randomWalkSigma);
     t.write(section, "bootstrap_baseline", tracker.bootstrapBaseline);
+    t.write(section, "range_window", rangeWindow);
     t.write(section, "reset_after", tracker.resetAfter);
     t.write(section, "estimate_bias", tracker.estimateBias ? "true" : "false");
     t.write(section, "bias_sigma", tracker.biasSigma);
@@ -150,7 +152,15 @@ void BeaconLocalizer::process(const mrpt::obs::CObservation::Ptr& obs) {
     auto ranges = std::dynamic_pointer_cast<mrpt::obs::CObservationBeaconRanges>(obs);
     if (!ranges) return;
     if (options_.mode == BeaconOptions::Mode::Fixes) {
-        fixOnly(robot, t, *ranges);
+        // ranges read one at a time make a fix from the window (windowed): each fix is then
+        // the window's newest beacons, moved to the newest reading by the odometry
+        const size_t windowBefore = windowEpochs_;
+        const auto epoch = windowed(robot, t, *ranges);
+        if (!epoch) return;
+        const TrackerStats before = trackerOf(robot).stats();
+        fixOnly(robot, t, *epoch);
+        if (windowEpochs_ != windowBefore)
+            countWindowed(before, trackerOf(robot).stats(), ranges->sensedData.size());
         return;
     }
     BeaconTracker& tracker = trackerOf(robot);
@@ -159,13 +169,58 @@ void BeaconLocalizer::process(const mrpt::obs::CObservation::Ptr& obs) {
     // pose at its time (at 0.3 m/s and 20 Hz, up to 15 mm along the path otherwise).
     if (const auto path = odometry_.find(robot); path != odometry_.end())
         if (const auto atStamp = path->second.extrapolate(t)) tracker.onOdometry(*atStamp);
-    if (const auto pose = tracker.onRanges(t, compensateMotion(robot, *ranges))) {
+    const size_t windowBefore = windowEpochs_;
+    const auto epoch = windowed(robot, t, *ranges);
+    if (!epoch) return;
+    const TrackerStats before = tracker.stats();
+    const auto pose = tracker.onRanges(t, *epoch);
+    if (windowEpochs_ != windowBefore)
+        countWindowed(before, tracker.stats(), ranges->sensedData.size());
+    if (pose) {
         addEstimate(robot, t, mrpt::poses::CPose3D(*pose));
         common::StampedCovariance c{t, {}};
         c.cov.fill(NAN);  // before the filter starts: a bootstrap fix, no covariance kept
         if (tracker.initialized()) c.cov = tracker.pdf().cov;
         covariances_[robot].push_back(c);
     }
+}
+
+void BeaconLocalizer::countWindowed(const TrackerStats& before, const TrackerStats& after,
+                                    size_t newRanges) {
+    // a window's ranges go to the tracker in several epochs: each is counted once, as used
+    // when the epoch its own observation completed was used
+    windowCount_.fedReceived += after.rangesReceived - before.rangesReceived;
+    windowCount_.fedUsed += after.rangesUsed - before.rangesUsed;
+    if (after.rangesUsed > before.rangesUsed) windowCount_.used += newRanges;
+}
+
+std::optional<mrpt::obs::CObservationBeaconRanges> BeaconLocalizer::windowed(
+    const std::string& robot, double t, const mrpt::obs::CObservationBeaconRanges& obs) {
+    BeaconTracker& tracker = trackerOf(robot);
+    const size_t unknowns = options_.threeD ? 3 : 2;
+    // a fix with two ranges to spare, as the start-up wants; fewer when the map has fewer
+    const size_t needed = std::max(unknowns + 1, std::min(options_.map.size(), unknowns + 2));
+    if (options_.rangeWindow <= 0) return compensateMotion(robot, obs);
+    const auto path = odometry_.find(robot);
+    const mrpt::poses::CPose2D odo = path != odometry_.end() && path->second.extrapolate(t)
+                                         ? *path->second.extrapolate(t)
+                                         : mrpt::poses::CPose2D();
+    RangeWindow& window = windows_[robot];
+    window.add(t, obs, odo, options_.map);
+    // only an observation too short for any fix goes to the window; seed 001's fixes are one
+    // per epoch, and an epoch that lost a beacon gives none (Table 4's reception): there only
+    // a log of single ranges (UWB) makes its fixes from the window
+    const bool fixes = options_.mode == BeaconOptions::Mode::Fixes;
+    const bool tooShort = obs.sensedData.size() <= unknowns;
+    if (!tooShort || (tracker.initialized() && !fixes) || (fixes && obs.sensedData.size() != 1))
+        return compensateMotion(robot, obs);
+    windowCount_.seen += obs.sensedData.size();
+    auto epoch = window.epoch(t, odo, options_.map, needed, options_.rangeWindow);
+    if (!epoch) return std::nullopt;
+    epoch->sensorLabel = obs.sensorLabel;
+    epoch->stdError = obs.stdError;
+    ++windowEpochs_;
+    return epoch;
 }
 
 mrpt::obs::CObservationBeaconRanges BeaconLocalizer::compensateMotion(
@@ -238,8 +293,8 @@ common::ObservationUse BeaconLocalizer::observationUse() const {
     for (const auto& [robot, tr] : trackers_) total += tr.stats();
     common::ObservationUse use;
     use.kind = "beacon ranges (CObservationBeaconRanges)";
-    use.seen = total.rangesReceived;
-    use.used = total.rangesUsed;
+    use.seen = total.rangesReceived - windowCount_.fedReceived + windowCount_.seen;
+    use.used = total.rangesUsed - windowCount_.fedUsed + windowCount_.used;
     use.unmatched.push_back({"ranges from beacons not in the map", total.rangesUnknownBeacon});
     if (total.fixFailures > 0)  // counted in epochs: the ranges of an epoch fail together
         use.unmatched.push_back(
@@ -264,6 +319,7 @@ nlohmann::json BeaconLocalizer::methodMetrics() const {
     j["multilateration_fixes"] = total.fixes;
     j["fix_failures"] = total.fixFailures;
     j["mirror_resolved"] = total.mirrorResolved;
+    j["window_epochs"] = windowEpochs_;
     j["filter_resets"] = total.resets;
     j["offsets_reopened"] = total.offsetsReopened;  // a beacon kept failing the gate
     for (const auto& [robot, sp] : spacing_) {

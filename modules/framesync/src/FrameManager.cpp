@@ -2,6 +2,7 @@
 #include <mrloc/framesync/FrameManager.h>
 
 #include <cmath>
+#include <map>
 #include <optional>
 
 namespace mrloc::framesync {
@@ -73,7 +74,37 @@ void FrameManager::receive(const WallMessage& m) {
         if (r && (!best || score(*r, options_.match) < score(*best, options_.match)))
             best = r, bestOwn = mine, bestReference = reference;
     }
-    if (best) redefine(*bestOwn, *bestReference, *best);
+    if (best) return redefine(*bestOwn, *bestReference, *best);
+    if (options_.match.general) generalSearch(own ? nullptr : &m);
+}
+
+void FrameManager::generalSearch(const WallMessage* from) {
+    // seed 004 sec. 3: the own walls against one reference robot's (the sender's, or, for an
+    // own wall, each robot of higher priority in turn)
+    std::vector<const WallMessage*> mine;
+    std::map<std::string, std::vector<const WallMessage*>> theirs;
+    for (const auto& w : database_.walls()) {
+        if (w.sender == robot_) {
+            if (!usedOwn_.count(w.id)) mine.push_back(&w);
+        } else if (priority_.higher(w.sender, robot_) && (!from || w.sender == from->sender) &&
+                   !tiedTo_.count(w.sender)) {
+            theirs[w.sender].push_back(&w);
+        }
+    }
+    if (mine.size() < options_.match.generalSupport) return;
+    std::vector<const Wall*> own;
+    for (const auto* w : mine) own.push_back(&w->wall);
+    for (const auto& [sender, walls] : theirs) {
+        std::vector<const Wall*> reference;
+        for (const auto* w : walls) reference.push_back(&w->wall);
+        size_t i = 0, k = 0;
+        const auto r = generalMatch(own, reference, options_.match, &i, &k);
+        // a transform the local tests would have passed is theirs to make
+        if (!r || (std::abs(r->rotation) < options_.match.maxBearing &&
+                   r->shift < options_.match.maxDistance))
+            continue;
+        return redefine(*mine[i], *walls[k], *r);
+    }
 }
 
 void FrameManager::redefine(const WallMessage& own, const WallMessage& reference,
@@ -86,6 +117,7 @@ void FrameManager::redefine(const WallMessage& own, const WallMessage& reference
     e.ownWall = own.id;
     e.referenceWall = reference.id;
     usedOwn_.insert(own.id);
+    tiedTo_.insert(reference.sender);
     correction_ = r.correction + correction_;  // seed 004 sec. 4.4
     pose_ = r.correction + pose_;
     e.version = ++version_;

@@ -69,6 +69,9 @@ void FramesyncConfig::loadFromConfigFile(const mrpt::config::CConfigFileBase& sr
     m.match.maxDistance = s.real("max_distance", m.match.maxDistance, 1e-3, 100);
     m.match.minOverlap = s.real("min_overlap", m.match.minOverlap, 0, 1000);
     m.maxAge = s.real("max_age", m.maxAge, 0.1, 1e6);
+    m.match.general = s.choice("matching", "local", {"local", "general"}) == "general";
+    m.match.generalSupport =
+        size_t(s.integer("general_support", long(m.match.generalSupport), 2, 1000));
     // the simulator's sonars
     rig.mounts.clear();
     for (const auto& key : s.keys()) {
@@ -128,6 +131,8 @@ void FramesyncConfig::saveToConfigFile(mrpt::config::CConfigFileBase& t,
     t.write(section, "max_distance", m.match.maxDistance);
     t.write(section, "min_overlap", m.match.minOverlap);
     t.write(section, "max_age", m.maxAge);
+    t.write(section, "matching", m.match.general ? "general" : "local");
+    t.write(section, "general_support", int(m.match.generalSupport));
     for (const auto& mount : rig.mounts)
         t.write(section, "sonar_" + mount.name,
                 mrpt::format("%g %g %g %g", mount.pose.x(), mount.pose.y(), mount.pose.z(),

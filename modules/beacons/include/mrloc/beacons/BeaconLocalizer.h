@@ -4,6 +4,7 @@
 // in either rawlog format; robots are told apart by the sensor label prefix ("r1.beacons").
 #include <mrloc/beacons/BeaconMap.h>
 #include <mrloc/beacons/BeaconTracker.h>
+#include <mrloc/beacons/RangeWindow.h>
 #include <mrloc/beacons/RfBeacon.h>
 #include <mrloc/common/Localizer.h>
 #include <mrloc/common/OdometryPath.h>
@@ -24,6 +25,9 @@ struct BeaconOptions : public mrpt::config::CLoadableOptions {
     RfBeaconOptions system;  ///< aiming, scheduling and sections (the RF beacon's side)
     /** paper_reception_<id> = % per robot: seed 001 Tables 3/4, for the report. */
     std::map<int, std::vector<double>> paperReception;
+    /** s: ranges read one at a time (too few for a fix) are gathered over this span
+     *  into one epoch until the tracker has started (RangeWindow); 0: never */
+    double rangeWindow = 1.0;
     /** Where range_sigma came from when [beacons] does not give it: MRPT's key, or empty. */
     std::string rangeSigmaFrom;
     /** Where the start pose came from when [beacons] start is absent: MRPT's key, or empty. */
@@ -63,6 +67,19 @@ class BeaconLocalizer : public common::Localizer {
     std::map<std::string, BeaconTracker> trackers_;
     std::map<std::string, common::Trajectory> estimates_;
     std::map<std::string, common::CovarianceTrack> covariances_;
+    /** The epoch the tracker is given: the observation itself, or, while the tracker has not
+     *  started and the observation has fewer ranges than a fix needs, the window's epoch
+     *  (nothing until the window has enough beacons). */
+    std::optional<mrpt::obs::CObservationBeaconRanges> windowed(
+        const std::string& robot, double t, const mrpt::obs::CObservationBeaconRanges& obs);
+    /** The ranges of a window epoch counted once each (observationUse). */
+    void countWindowed(const TrackerStats& before, const TrackerStats& after, size_t newRanges);
+    std::map<std::string, RangeWindow> windows_;
+    size_t windowEpochs_ = 0;  ///< epochs made of ranges read one at a time
+    struct WindowCount {
+        size_t seen = 0, used = 0;            ///< each range once
+        size_t fedReceived = 0, fedUsed = 0;  ///< as the tracker counted them, repeats included
+    } windowCount_;
     /** Ranges as they would have been read at the epoch's time stamp (see doc/beacons.md). */
     mrpt::obs::CObservationBeaconRanges compensateMotion(
         const std::string& robot, const mrpt::obs::CObservationBeaconRanges& obs);

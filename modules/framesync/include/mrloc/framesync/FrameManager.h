@@ -76,6 +76,9 @@ class FrameManager {
     void receive(const WallMessage& message);
     /** Among candidate pairs (own, reference), the best match by the thresholds' share. */
     void redefine(const WallMessage& own, const WallMessage& reference, const Redefinition& r);
+    /** Seed 004 sec. 3, when no pair passed the local tests: generalMatch against the
+     *  sender's walls (`from`), or every higher robot's when the new wall is the robot's own. */
+    void generalSearch(const WallMessage* from);
 
     std::string robot_;
     const PriorityOrder& priority_;
@@ -88,6 +91,10 @@ class FrameManager {
     uint32_t version_ = 0;
     uint64_t announced_ = 0;
     std::set<uint64_t> usedOwn_;  ///< own walls that already redefined the frame once
+    /** Robots whose walls have redefined this frame: from then on what is left between the
+     *  two frames is drift, the local tests' to correct. A second general search could tie
+     *  the frame to a wall one corridor module further (a corridor is self-similar). */
+    std::set<std::string> tiedTo_;
 };
 
 }  // namespace mrloc::framesync

@@ -1,0 +1,124 @@
+#include <mrloc/common/Error.h>
+#include <mrloc/common/Names.h>
+#include <mrloc/logimport/ImportOutput.h>
+#include <mrpt/core/format.h>
+#include <mrpt/system/datetime.h>
+
+#include <filesystem>
+
+namespace mrloc::logimport {
+
+namespace fs = std::filesystem;
+
+namespace {
+
+std::string checkedRawlogPath(const std::string& path) {
+    const fs::path p(path);
+    if (p.extension() != ".rawlog")
+        throw Error("--out " + path + ": the output must be a .rawlog file");
+    const fs::path dir = p.parent_path().empty() ? fs::path(".") : p.parent_path();
+    if (!fs::is_directory(dir))
+        throw Error("--out " + common::pathInWords(path) + ": its folder does not exist");
+    if (fs::is_directory(p)) throw Error("--out " + path + ": is a folder");
+    return path;
+}
+
+}  // namespace
+
+ImportOutput::ImportOutput(const std::string& rawlogPath)
+    : rawlogPath_(checkedRawlogPath(rawlogPath)),
+      stem_(rawlogPath.substr(0, rawlogPath.size() - std::string(".rawlog").size())),
+      writer_(rawlogPath) {
+    summary_.rawlog = rawlogPath;
+}
+
+void ImportOutput::add(const mrpt::obs::CObservation::Ptr& obs, const std::string& where) {
+    const double t = mrpt::Clock::toDouble(obs->timestamp);
+    if (obs->timestamp == INVALID_TIMESTAMP)
+        throw Error(where + ": time 0, which MRPT takes for no time stamp");
+    if (t < lastTime_)
+        throw Error(where + ": time goes back, from " + mrpt::format("%.6f", lastTime_) + " to " +
+                    mrpt::format("%.6f", t) + " s" +
+                    (window_ > 0 ? mrpt::format(" (beyond the %g s reorder window)", window_)
+                                 : std::string()));
+    if (window_ <= 0) return write(obs);
+    held_.emplace(t, obs);  // equal stamps keep their arrival order
+    newest_ = std::max(newest_, t);
+    while (!held_.empty() && held_.begin()->first < newest_ - window_) {
+        lastTime_ = held_.begin()->first;
+        write(held_.begin()->second);
+        held_.erase(held_.begin());
+    }
+}
+
+void ImportOutput::write(const mrpt::obs::CObservation::Ptr& obs) {
+    const double t = mrpt::Clock::toDouble(obs->timestamp);
+    if (window_ <= 0) lastTime_ = t;
+    writer_.write(*obs);
+    auto& s = summary_.streams[{obs->sensorLabel, obs->GetRuntimeClass()->className}];
+    if (s.count++ == 0) s.t0 = t;
+    s.t1 = t;
+    if (summary_.observations++ == 0) summary_.t0 = t;
+    summary_.t1 = t;
+}
+
+void ImportOutput::addGroundTruth(const std::string& robot, double t,
+                                  const mrpt::poses::CPose3D& pose, const std::string& where) {
+    auto& traj = truth_[robot];
+    if (!traj.empty() && t < traj.back().t)
+        throw Error(where + ": ground truth time goes back, from " +
+                    mrpt::format("%.6f", traj.back().t) + " to " + mrpt::format("%.6f", t) + " s");
+    traj.push_back({t, pose});
+}
+
+void ImportOutput::addSideFile(const std::string& suffix, const std::string& content) {
+    sideFiles_.emplace_back(stem_ + suffix, content);
+}
+
+ImportSummary ImportOutput::commit() {
+    for (const auto& [t, obs] : held_) write(obs);
+    held_.clear();
+    if (summary_.observations == 0)
+        throw Error("no observation was converted: nothing to write to " + rawlogPath_);
+    // every file under its temporary name first; then the renames, which do not fail on a
+    // full disk
+    std::vector<std::unique_ptr<common::PendingFile>> pending;
+    for (const auto& [robot, traj] : truth_) {
+        const std::string path = common::groundTruthPath(rawlogPath_, robot);
+        pending.push_back(std::make_unique<common::PendingFile>(path, ".import.tmp"));
+        common::saveTum(pending.back()->tempPath(), traj);
+        summary_.groundTruth[robot] = traj.size();
+    }
+    for (const auto& [path, content] : sideFiles_) {
+        pending.push_back(std::make_unique<common::PendingFile>(path, ".import.tmp"));
+        common::writeFileAtomically(pending.back()->tempPath(), content);
+    }
+    writer_.commit();
+    summary_.files.push_back(rawlogPath_);
+    for (auto& p : pending) {
+        p->commit();
+        summary_.files.push_back(p->finalPath());
+    }
+    return summary_;
+}
+
+std::string summaryText(const ImportSummary& s) {
+    std::string out;
+    for (const auto& f : s.files) out += "wrote " + f + "\n";
+    const auto utc = [](double t) {
+        return mrpt::system::dateTimeToString(mrpt::Clock::fromDouble(t)) + " UTC";
+    };
+    out += mrpt::format("%zu observations from %s to %s (%.3f s)\n", s.observations,
+                        utc(s.t0).c_str(), utc(s.t1).c_str(), s.t1 - s.t0);
+    out +=
+        mrpt::format("%-20s %-34s %9s %10s %10s\n", "label", "class", "count", "start_s", "span_s");
+    for (const auto& [key, c] : s.streams)
+        out += mrpt::format("%-20s %-34s %9zu %10.3f %10.3f\n", key.first.c_str(),
+                            key.second.c_str(), c.count, c.t0 - s.t0, c.t1 - c.t0);
+    for (const auto& [robot, n] : s.groundTruth)
+        out += mrpt::format("ground truth %s: %zu poses\n", robot.c_str(), n);
+    for (const auto& n : s.notes) out += "note: " + n + "\n";
+    return out;
+}
+
+}  // namespace mrloc::logimport

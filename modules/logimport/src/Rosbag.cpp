@@ -1,0 +1,225 @@
+// ROS 1 bags, read with Debian's librosbag-storage (the reading half of librosbag-dev). The
+// conversion runs in a child process (Format::isolated): the ROS reader is not hardened against
+// hostile files, so a crafted bag that crashes it ends the child, not mrloc, and is reported
+// as one line. doc/import.md#rosbag says what maps to what.
+#include <mrloc/common/Error.h>
+#include <mrloc/common/Names.h>
+#include <mrloc/logimport/Format.h>
+#include <mrpt/config/CConfigFile.h>
+#include <mrpt/core/format.h>
+#include <mrpt/obs/CObservation2DRangeScan.h>
+#include <mrpt/obs/CObservationOdometry.h>
+#include <mrpt/obs/CObservationRange.h>
+#include <nav_msgs/Odometry.h>
+#include <rosbag/bag.h>
+#include <rosbag/view.h>
+#include <sensor_msgs/LaserScan.h>
+#include <sensor_msgs/Range.h>
+#include <tf2_msgs/TFMessage.h>
+
+#include <cmath>
+#include <filesystem>
+#include <map>
+
+namespace mrloc::logimport {
+
+namespace {
+
+using mrpt::poses::CPose2D;
+using mrpt::poses::CPose3D;
+
+double yawOf(const geometry_msgs::Quaternion& q) {
+    // the rotation's heading (ROS: z up), as tf2::getYaw does
+    return std::atan2(2 * (q.w * q.z + q.x * q.y), 1 - 2 * (q.y * q.y + q.z * q.z));
+}
+
+CPose3D poseOf(const geometry_msgs::Transform& t) {
+    return CPose3D(
+        mrpt::math::CQuaternionDouble(t.rotation.w, t.rotation.x, t.rotation.y, t.rotation.z),
+        t.translation.x, t.translation.y, t.translation.z);
+}
+
+/** A message's time: its header's stamp, or the bag's receive time when the stamp is 0. */
+double timeOf(const ros::Time& stamp, const rosbag::MessageInstance& m) {
+    return stamp.isZero() ? m.getTime().toSec() : stamp.toSec();
+}
+
+/** Labels of the topics: `[topics] /scan = robot.laser` in the option's INI, or by name. */
+class TopicLabels {
+ public:
+    TopicLabels(const std::string& iniPath, const std::string& robot) : robot_(robot) {
+        if (iniPath.empty()) return;
+        common::checkReadableFile(iniPath, "rosbag topic map", 1 << 20);
+        mrpt::config::CConfigFile ini(iniPath);
+        std::vector<std::string> keys;
+        ini.getAllKeys("topics", keys);
+        if (keys.empty()) throw Error(iniPath + ": no [topics] entry (/topic = robot.sensor)");
+        for (const auto& topic : keys) {
+            const std::string label = ini.read_string("topics", topic, "");
+            common::checkSensorLabel(label, iniPath + ": [topics] " + topic);
+            if (label.find('.') == std::string::npos)
+                throw Error(iniPath + ": [topics] " + topic + ": a label is <robot>.<sensor>");
+            map_[topic] = label;
+        }
+        mapped_ = true;
+    }
+    /** The label, or nothing when a map is given and leaves the topic out. */
+    std::optional<std::string> of(const std::string& topic) const {
+        if (mapped_) {
+            const auto it = map_.find(topic);
+            return it == map_.end() ? std::nullopt : std::optional<std::string>(it->second);
+        }
+        std::string s;
+        for (const char c : topic)
+            if (std::isalnum(static_cast<unsigned char>(c)) || c == '_' || c == '-')
+                s += c;
+            else if (c == '/' && !s.empty())
+                s += '_';
+        if (s.empty()) s = "topic";
+        return robot_ + "." + s.substr(0, 200);
+    }
+
+ private:
+    std::string robot_;
+    std::map<std::string, std::string> map_;
+    bool mapped_ = false;
+};
+
+void convert(const ImportRequest& req, ImportOutput& out) {
+    const auto& o = req.options;
+    const std::string robot = o.text("robot");
+    common::checkRobotName(robot, "--opt robot");
+    const std::string base = o.text("base_frame"), odomFrame = o.text("odom_frame");
+    const TopicLabels labels(o.text("topics"), robot);
+    out.setReorderWindow(o.number("reorder_window"));
+
+    rosbag::Bag bag;
+    bag.open(req.inputs[0], rosbag::bagmode::Read);
+    // the sensors' poses on the robot: /tf_static, base_frame -> sensor frame, read first
+    std::map<std::string, CPose3D> mounts;
+    {
+        rosbag::View statics(bag, rosbag::TopicQuery(std::vector<std::string>{"/tf_static"}));
+        for (const auto& m : statics)
+            if (const auto tf = m.instantiate<tf2_msgs::TFMessage>())
+                for (const auto& t : tf->transforms)
+                    if (t.header.frame_id == base) mounts[t.child_frame_id] = poseOf(t.transform);
+    }
+    std::map<std::string, size_t> unmounted, dropped;
+    const auto mountOf = [&](const std::string& frame) {
+        if (frame == base || frame.empty()) return CPose3D();
+        const auto it = mounts.find(frame);
+        if (it != mounts.end()) return it->second;
+        ++unmounted[common::printable(frame.substr(0, 64))];
+        return CPose3D();
+    };
+    const std::string where = req.inputs[0];
+    rosbag::View view(bag);
+    for (const rosbag::MessageInstance& m : view) {
+        const std::string topic = m.getTopic();
+        if (topic == "/tf_static") continue;
+        const auto label = labels.of(topic);
+        if (!label) {
+            ++dropped[common::printable(topic.substr(0, 64)) + " (not in the topic map)"];
+            continue;
+        }
+        const std::string at = where + ": " + common::printable(topic.substr(0, 64));
+        if (const auto odo = m.instantiate<nav_msgs::Odometry>()) {
+            auto obs = mrpt::obs::CObservationOdometry::Create();
+            obs->sensorLabel = *label;
+            obs->timestamp = mrpt::Clock::fromDouble(timeOf(odo->header.stamp, m));
+            const auto& p = odo->pose.pose;
+            obs->odometry = CPose2D(p.position.x, p.position.y, yawOf(p.orientation));
+            obs->hasVelocities = true;  // ROS: the twist is in the child (body) frame
+            obs->velocityLocal = mrpt::math::TTwist2D(
+                odo->twist.twist.linear.x, odo->twist.twist.linear.y, odo->twist.twist.angular.z);
+            out.add(obs, at);
+        } else if (const auto scan = m.instantiate<sensor_msgs::LaserScan>()) {
+            const size_t n = scan->ranges.size();
+            if (n < 2 || n > 100000 || !(std::abs(scan->angle_increment) > 0) ||
+                !std::isfinite(scan->angle_min) || !std::isfinite(scan->angle_increment))
+                throw Error(at + mrpt::format(": a LaserScan of %zu beams, increment %g rad", n,
+                                              double(scan->angle_increment)));
+            auto obs = mrpt::obs::CObservation2DRangeScan::Create();
+            obs->sensorLabel = *label;
+            obs->timestamp = mrpt::Clock::fromDouble(timeOf(scan->header.stamp, m));
+            // MRPT's beams span `aperture` centred on the sensor's x axis: the sensor turned
+            // to the middle of ROS's [angle_min, angle_max]
+            const double span = (n - 1) * double(scan->angle_increment);
+            obs->aperture = float(std::abs(span));
+            obs->rightToLeft = true;
+            obs->maxRange = std::isfinite(scan->range_max) ? scan->range_max : 1e4f;
+            obs->sensorPose = mountOf(scan->header.frame_id) +
+                              CPose3D(0, 0, 0, double(scan->angle_min) + span / 2, 0, 0);
+            obs->resizeScan(n);
+            for (size_t i = 0; i < n; ++i) {
+                const size_t k = span > 0 ? i : n - 1 - i;  // MRPT's order: right to left
+                const float r = scan->ranges[k];
+                const bool valid = std::isfinite(r) && r >= scan->range_min && r <= scan->range_max;
+                obs->setScanRange(i, valid ? r : 0.0f);
+                obs->setScanRangeValidity(i, valid);
+            }
+            out.add(obs, at);
+        } else if (const auto range = m.instantiate<sensor_msgs::Range>()) {
+            auto obs = mrpt::obs::CObservationRange::Create();
+            obs->sensorLabel = *label;
+            obs->timestamp = mrpt::Clock::fromDouble(timeOf(range->header.stamp, m));
+            obs->minSensorDistance = range->min_range;
+            obs->maxSensorDistance = range->max_range;
+            if (!(range->field_of_view > 0 && range->field_of_view < M_PI))
+                throw Error(at +
+                            mrpt::format(": field of view %g rad", double(range->field_of_view)));
+            obs->sensorConeApperture = range->field_of_view;
+            mrpt::obs::CObservationRange::TMeasurement s;
+            s.sensorPose = mountOf(range->header.frame_id).asTPose();
+            const float r = range->range;
+            // ROS: -inf too close, +inf nothing in range; MRPT's no echo is 0
+            s.sensedDistance =
+                std::isfinite(r) && r >= range->min_range && r <= range->max_range ? r : 0.0f;
+            obs->sensedData.push_back(s);
+            out.add(obs, at);
+        } else if (const auto tf = m.instantiate<tf2_msgs::TFMessage>()) {
+            for (const auto& t : tf->transforms) {
+                if (t.header.frame_id != odomFrame || t.child_frame_id != base) continue;
+                auto obs = mrpt::obs::CObservationOdometry::Create();
+                obs->sensorLabel = robot + ".tf_odometry";
+                obs->timestamp = mrpt::Clock::fromDouble(timeOf(t.header.stamp, m));
+                const CPose3D p = poseOf(t.transform);
+                obs->odometry = CPose2D(p.x(), p.y(), p.yaw());
+                out.add(obs, at);
+            }
+        } else {
+            ++dropped[common::printable(topic.substr(0, 64)) + " (" +
+                      common::printable(m.getDataType().substr(0, 64)) + ")"];
+        }
+    }
+    for (const auto& [what, n] : dropped)
+        out.note(mrpt::format("%zu messages of %s left out", n, what.c_str()));
+    for (const auto& [frame, n] : unmounted)
+        out.note(
+            mrpt::format("%zu messages in frame '%s', which /tf_static does not place on "
+                         "%s: taken at the robot's centre",
+                         n, frame.c_str(), base.c_str()));
+}
+
+}  // namespace
+
+void registerRosbag(FormatRegistry& r) {
+    Format f{"rosbag",
+             "ROS 1 bags: nav_msgs/Odometry -> CObservationOdometry, sensor_msgs/LaserScan -> "
+             "CObservation2DRangeScan, sensor_msgs/Range -> CObservationRange, /tf odom_frame -> "
+             "base_frame -> CObservationOdometry (<robot>.tf_odometry); sensors placed by "
+             "/tf_static",
+             "<file.bag>",
+             1,
+             1,
+             {{"robot", "robot", "the robot's name: labels <robot>.<topic>"},
+              {"topics", "", "an INI whose [topics] maps /topic = robot.sensor (only those)"},
+              {"base_frame", "base_link", "the robot's frame"},
+              {"odom_frame", "odom", "the odometry frame of /tf"},
+              {"reorder_window", "1.0", "s: messages may arrive this far out of stamp order"}},
+             convert};
+    f.isolated = true;
+    r.add(std::move(f));
+}
+
+}  // namespace mrloc::logimport

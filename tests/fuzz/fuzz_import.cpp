@@ -1,0 +1,55 @@
+// Fuzzes the text importers (`mrloc import`): the first byte picks the format (librsf,
+// sonar-text's measurement file beside a fixed pose file, carmen), the rest is the file. Any
+// input must convert or throw mrloc::Error; nothing else may escape, and a conversion that
+// succeeds must have written a rawlog that reads back.
+// (a librsf file starts with "r", 114 % 3 = 0; a sonar text with a digit, "1" % 3 = 1.)
+// fuzz-seeds: data/real/librsf-indoor-uwb/Indoor_UWB_Input.txt
+// data/real/udacity-sonar/measurement.txt fuzz-max-len: 65536
+#include <mrloc/common/Error.h>
+#include <mrloc/common/Rawlog.h>
+#include <mrloc/logimport/Format.h>
+
+#include <cstdlib>
+#include <fstream>
+
+#include "FuzzInput.h"
+
+extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
+    if (size < 1) return 0;
+    namespace li = mrloc::logimport;
+    static const li::FormatRegistry registry = [] {
+        li::FormatRegistry r;
+        li::registerAllFormats(r);
+        return r;
+    }();
+    const std::string& path = mrloc::fuzz::writeInput(data + 1, size - 1, ".txt");
+    static const std::string poses = [] {
+        const std::string p = mrloc::fuzz::inputPath(".poses.txt");
+        std::ofstream(p) << "1000 0 0 0\n1200 60 0 0\n1400 120 0 0\n1600 180 0 0\n"
+                            "1800 240 0 0\n2000 300 0 0\n2200 360 0 0\n";
+        return p;
+    }();
+    const std::string out = mrloc::fuzz::inputPath(".out.rawlog");
+    try {
+        switch (data[0] % 3) {
+            case 0:
+                li::runImport(registry.get("librsf"), {path}, {}, out);
+                break;
+            case 1:
+                li::runImport(registry.get("sonar-text"), {path, poses},
+                              {"bearings=-90,-37.5,-22.5,-7.5,7.5,22.5,37.5,90"}, out);
+                break;
+            default:
+                li::runImport(registry.get("carmen"), {path}, {}, out);
+                break;
+        }
+    } catch (const mrloc::Error&) {
+        return 0;
+    }
+    // what was written must read back (unchecked: the probe forks, too slow per input)
+    mrloc::common::RawlogReader reader(out, mrloc::common::RawlogReader::kUnchecked);
+    size_t n = 0;
+    for (mrpt::obs::CObservation::Ptr o; reader.next(o);) ++n;
+    if (n == 0) std::abort();
+    return 0;
+}
