@@ -2,9 +2,10 @@
 // sonar-text's measurement file beside a fixed pose file, carmen), the rest is the file. Any
 // input must convert or throw mrloc::Error; nothing else may escape, and a conversion that
 // succeeds must have written a rawlog that reads back.
-// (a librsf file starts with "r", 114 % 3 = 0; a sonar text with a digit, "1" % 3 = 1.)
-// fuzz-seeds: data/real/librsf-indoor-uwb/Indoor_UWB_Input.txt
-// data/real/udacity-sonar/measurement.txt fuzz-max-len: 65536
+// (a librsf file starts with "r", 114 % 3 = 0; a sonar text with a digit, "1" % 3 = 1; a
+// CARMEN log with "#", 35 % 3 = 2.)
+// fuzz-seeds: data/real/*/*.txt tests/data/carmen/*.clf
+// fuzz-max-len: 65536
 #include <mrloc/common/Error.h>
 #include <mrloc/common/Rawlog.h>
 #include <mrloc/logimport/Format.h>

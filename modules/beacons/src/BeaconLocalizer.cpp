@@ -194,12 +194,18 @@ void BeaconLocalizer::countWindowed(const TrackerStats& before, const TrackerSta
     if (after.rangesUsed > before.rangesUsed) windowCount_.used += newRanges;
 }
 
+namespace {
+/** Ranges the tracker's fixes take at least (BeaconTracker::fixFrom): 2-D with the height
+ *  known, and 3-D with the mirror solution resolved (seed 001's three beacons) */
+constexpr size_t kFewestForFix = 3;
+}  // namespace
+
 std::optional<mrpt::obs::CObservationBeaconRanges> BeaconLocalizer::windowed(
     const std::string& robot, double t, const mrpt::obs::CObservationBeaconRanges& obs) {
     BeaconTracker& tracker = trackerOf(robot);
     const size_t unknowns = options_.threeD ? 3 : 2;
     // a fix with two ranges to spare, as the start-up wants; fewer when the map has fewer
-    const size_t needed = std::max(unknowns + 1, std::min(options_.map.size(), unknowns + 2));
+    const size_t needed = std::max(kFewestForFix, std::min(options_.map.size(), unknowns + 2));
     if (options_.rangeWindow <= 0) return compensateMotion(robot, obs);
     const auto path = odometry_.find(robot);
     const mrpt::poses::CPose2D odo = path != odometry_.end() && path->second.extrapolate(t)
@@ -209,10 +215,13 @@ std::optional<mrpt::obs::CObservationBeaconRanges> BeaconLocalizer::windowed(
     window.add(t, obs, odo, options_.map);
     // only an observation too short for any fix goes to the window; seed 001's fixes are one
     // per epoch, and an epoch that lost a beacon gives none (Table 4's reception): there only
-    // a log of single ranges (UWB) makes its fixes from the window
+    // a log whose observations never held enough ranges for a fix (UWB's one range at a time)
+    // makes its fixes from the window
     const bool fixes = options_.mode == BeaconOptions::Mode::Fixes;
-    const bool tooShort = obs.sensedData.size() <= unknowns;
-    if (!tooShort || (tracker.initialized() && !fixes) || (fixes && obs.sensedData.size() != 1))
+    size_t& most = mostRanges_[robot];
+    most = std::max(most, obs.sensedData.size());
+    const bool tooShort = obs.sensedData.size() < kFewestForFix;
+    if (!tooShort || (tracker.initialized() && !fixes) || (fixes && most >= kFewestForFix))
         return compensateMotion(robot, obs);
     windowCount_.seen += obs.sensedData.size();
     auto epoch = window.epoch(t, odo, options_.map, needed, options_.rangeWindow);

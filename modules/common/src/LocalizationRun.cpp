@@ -32,7 +32,7 @@ nlohmann::json odometryErrors(const Trajectory& odometry, const Trajectories& wo
     j["readings"] = odometry.size();
     const auto gt = worldTruth.find(robot);
     if (gt == worldTruth.end()) return j;
-    const auto start = interpolate(gt->second, odometry.front().t);
+    const auto start = startPoseOf(gt->second, odometry.front().t);
     if (!start) return j;
     const mrpt::poses::CPose3D align = *start + (-odometry.front().pose);
     Trajectory aligned;

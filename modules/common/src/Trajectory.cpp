@@ -116,4 +116,20 @@ CovarianceTrack loadCovariances(const std::string& path) {
     return track;
 }
 
+std::optional<mrpt::poses::CPose3D> startPoseOf(const Trajectory& truth, double t) {
+    auto start = interpolate(truth, t);
+    if (!start) return start;
+    const bool positionsOnly = std::all_of(truth.begin(), truth.end(), [](const StampedPose& p) {
+        return p.pose.yaw() == 0 && p.pose.pitch() == 0 && p.pose.roll() == 0;
+    });
+    if (!positionsOnly) return start;
+    for (const auto& p : truth)
+        if (p.t >= t && std::hypot(p.pose.x() - start->x(), p.pose.y() - start->y()) > 0.3) {
+            start->setYawPitchRoll(
+                std::atan2(p.pose.y() - start->y(), p.pose.x() - start->x()), 0, 0);
+            return start;
+        }
+    return start;  // it never moves 0.3 m: any heading will do
+}
+
 }  // namespace mrloc::common

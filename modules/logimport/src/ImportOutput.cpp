@@ -62,8 +62,11 @@ void ImportOutput::write(const mrpt::obs::CObservation::Ptr& obs) {
     summary_.t1 = t;
 }
 
-void ImportOutput::addGroundTruth(const std::string& robot, double t,
+void ImportOutput::addGroundTruth(const std::string& robot, double tIn,
                                   const mrpt::poses::CPose3D& pose, const std::string& where) {
+    // the observations' stamps are mrpt::Clock's (100 ns): the truth on the same grid, so
+    // that a first reading and the truth's first pose at one time are at one time
+    const double t = mrpt::Clock::toDouble(mrpt::Clock::fromDouble(tIn));
     auto& traj = truth_[robot];
     if (!traj.empty() && t < traj.back().t)
         throw Error(where + ": ground truth time goes back, from " +

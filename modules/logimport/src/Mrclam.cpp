@@ -132,6 +132,7 @@ void convert(const ImportRequest& req, ImportOutput& out) {
     const auto landmarks = readLandmarks((dir / "Landmark_Groundtruth.dat").string());
     const double duration = req.options.number("duration");
     if (duration < 0) throw Error("--opt duration: must be >= 0 (0: the whole log)");
+    const bool withOdometry = req.options.flag("odometry");
     std::set<int> robots;
     for (const double r : req.options.numbers("robots")) {
         if (r != std::floor(r) || r < 1 || r > kRobots)
@@ -182,9 +183,9 @@ void convert(const ImportRequest& req, ImportOutput& out) {
                 pose = moveArc(pose, it->second.second[0], 0, it->second.second[1],
                                next->t - it->second.first);
             lastCommand[next->robot] = {next->t, next->rows[0]};
-            if (sameTime) {
+            if (sameTime || !withOdometry) {
                 // two commands at one time stamp: the later holds from it; one reading there
-                ++sameTimeCommands;
+                sameTimeCommands += sameTime;
                 next->advance();
                 continue;
             }
@@ -231,6 +232,7 @@ void convert(const ImportRequest& req, ImportOutput& out) {
             mrpt::format("%zu odometry commands at the time stamp of the one before: the "
                          "later holds from there, one reading written",
                          sameTimeCommands));
+    if (!withOdometry) out.note("odometry left out (--opt odometry=no)");
     if (duration > 0) out.note(mrpt::format("the first %g s only (--opt duration)", duration));
     out.addSideFile(".beacons.ini", beaconIni(landmarks));
 }
@@ -247,7 +249,8 @@ void registerMrclam(FormatRegistry& r) {
            1,
            1,
            {{"robots", "1,2,3,4,5", "which robots to import"},
-            {"duration", "0", "s from the log's start to import; 0: all of it"}},
+            {"duration", "0", "s from the log's start to import; 0: all of it"},
+            {"odometry", "yes", "no: leave the odometry out (the camera alone)"}},
            convert});
 }
 

@@ -106,7 +106,7 @@ common::Trajectories odometryPaths(const RunView& run) {
         if (odo.empty()) continue;
         std::optional<mrpt::poses::CPose3D> start;
         if (const auto gt = run.truth.find(robot); gt != run.truth.end())
-            start = common::interpolate(gt->second, odo.front().t);
+            start = common::startPoseOf(gt->second, odo.front().t);
         if (!start) start = est.front().pose;
         const mrpt::poses::CPose3D align = *start + (-odo.front().pose);
         for (const auto& p : odo) out[robot].push_back({p.t, align + p.pose});

@@ -133,6 +133,8 @@ void renderTopView(const TopViewContent& c, const std::string& pngPath, unsigned
         for (const auto& p : t) ext.add(p.pose.x(), p.pose.y());
     for (const auto& [robot, t] : c.estimates)
         for (const auto& p : t) ext.add(p.pose.x(), p.pose.y());
+    for (const auto& [robot, t] : c.odometry)  // drawn whole, however far it drifts
+        for (const auto& p : t) ext.add(p.pose.x(), p.pose.y());
     for (const auto& b : c.landmarks) ext.add(b.x, b.y);
     if (ext.x0 > ext.x1) throw Error("top view: nothing to draw");
 

@@ -75,6 +75,7 @@ class BeaconLocalizer : public common::Localizer {
     /** The ranges of a window epoch counted once each (observationUse). */
     void countWindowed(const TrackerStats& before, const TrackerStats& after, size_t newRanges);
     std::map<std::string, RangeWindow> windows_;
+    std::map<std::string, size_t> mostRanges_;  ///< per robot: the most ranges one observation held
     size_t windowEpochs_ = 0;  ///< epochs made of ranges read one at a time
     struct WindowCount {
         size_t seen = 0, used = 0;            ///< each range once

@@ -40,6 +40,12 @@ Trajectory loadTum(const std::string& path);
  *  covered span. Used to compare estimates with ground truth at the estimates' times. */
 std::optional<mrpt::poses::CPose3D> interpolate(const Trajectory& traj, double t);
 
+/** Where a baseline starts: the truth's pose at t. A truth of positions only (every
+ *  orientation the identity while the path moves: libRSF's point2, TUM files written without
+ *  a heading) gives no heading, so the direction of its first 0.3 m of motion after t stands
+ *  in for it, as a user would set a start. nullopt outside the truth's span. */
+std::optional<mrpt::poses::CPose3D> startPoseOf(const Trajectory& truth, double t);
+
 /** Ground-truth file of a robot beside a rawlog: "x.rawlog" -> "x.<robot>.gt.txt". */
 std::string groundTruthPath(const std::string& rawlogPath, const std::string& robot);
 
