@@ -125,8 +125,8 @@ std::optional<mrpt::poses::CPose3D> startPoseOf(const Trajectory& truth, double 
     if (!positionsOnly) return start;
     for (const auto& p : truth)
         if (p.t >= t && std::hypot(p.pose.x() - start->x(), p.pose.y() - start->y()) > 0.3) {
-            start->setYawPitchRoll(
-                std::atan2(p.pose.y() - start->y(), p.pose.x() - start->x()), 0, 0);
+            start->setYawPitchRoll(std::atan2(p.pose.y() - start->y(), p.pose.x() - start->x()), 0,
+                                   0);
             return start;
         }
     return start;  // it never moves 0.3 m: any heading will do
