@@ -192,6 +192,7 @@ TEST(Import, MrclamExcerptAsItsFilesCountIt) {
     EXPECT_TRUE(s.notes.empty()) << s.notes.front();
     // r1's first measurement (1248444189.599: barcode 14, robot 2, 3.787 m, -0.257 rad; and
     // barcode 90, landmark 15 in Barcodes.dat, 6.758 m, -0.005 rad)
+    bool firstSeen = false;
     for (const auto& o : readAll(dir + "/x.rawlog")) {
         auto camera = std::dynamic_pointer_cast<mrpt::obs::CObservationBearingRange>(o);
         if (!camera || camera->sensorLabel != "r1.camera") continue;
@@ -201,8 +202,10 @@ TEST(Import, MrclamExcerptAsItsFilesCountIt) {
         EXPECT_NEAR(camera->sensedData[0].range, 3.787, 1e-6);
         EXPECT_NEAR(camera->sensedData[0].yaw, -0.257, 1e-6);
         EXPECT_EQ(camera->sensedData[1].landmarkID, 15);
+        firstSeen = true;
         break;
     }
+    EXPECT_TRUE(firstSeen) << "no r1.camera observation";
     // the odometry integrated from the commands: r1's path length over the excerpt equals the
     // sum of |v| dt over the commands (zero-order hold), computed from the file with awk
     double length = 0;
@@ -363,6 +366,7 @@ TEST(Import, RosbagMessagesToTheirClasses) {
         << notes;
     EXPECT_NE(notes.find("3 messages in frame 'sonar_front'"), std::string::npos) << notes;
     double last = 0;
+    size_t odometryChecked = 0, noEchoes = 0;  // the two checks below that pick one reading
     for (const auto& o : readAll(dir + "/b.rawlog")) {
         const double t = mrpt::Clock::toDouble(o->timestamp);
         EXPECT_GE(t, last);  // written in stamp order
@@ -373,6 +377,7 @@ TEST(Import, RosbagMessagesToTheirClasses) {
             EXPECT_NEAR(odo->odometry.phi(), 0.1, 1e-9);
             EXPECT_NEAR(odo->velocityLocal.vx, 1.0, 1e-9);
             EXPECT_NEAR(odo->velocityLocal.omega, 0.5, 1e-9);
+            ++odometryChecked;
         }
         if (auto scan = std::dynamic_pointer_cast<mrpt::obs::CObservation2DRangeScan>(o)) {
             ASSERT_EQ(scan->getScanSize(), 5u);
@@ -390,8 +395,11 @@ TEST(Import, RosbagMessagesToTheirClasses) {
             EXPECT_NEAR(sonar->sensorConeApperture, 0.5, 1e-6);
             const bool third = std::abs(t - 1700000000.61) < 1e-6;
             EXPECT_NEAR(sonar->sensedData.at(0).sensedDistance, third ? 0.0 : 1.5, 1e-6);
+            noEchoes += third;
         }
     }
+    EXPECT_EQ(odometryChecked, 1u);
+    EXPECT_EQ(noEchoes, 1u);
 }
 
 TEST(Import, RosbagTopicsMappedByAnIni) {

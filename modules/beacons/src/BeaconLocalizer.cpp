@@ -202,15 +202,14 @@ constexpr size_t kFewestForFix = 3;
 
 std::optional<mrpt::obs::CObservationBeaconRanges> BeaconLocalizer::windowed(
     const std::string& robot, double t, const mrpt::obs::CObservationBeaconRanges& obs) {
-    BeaconTracker& tracker = trackerOf(robot);
-    const size_t unknowns = options_.threeD ? 3 : 2;
-    // a fix with two ranges to spare, as the start-up wants; fewer when the map has fewer
-    const size_t needed = std::max(kFewestForFix, std::min(options_.map.size(), unknowns + 2));
     if (options_.rangeWindow <= 0) return compensateMotion(robot, obs);
-    const auto path = odometry_.find(robot);
-    const mrpt::poses::CPose2D odo = path != odometry_.end() && path->second.extrapolate(t)
-                                         ? *path->second.extrapolate(t)
-                                         : mrpt::poses::CPose2D();
+    BeaconTracker& tracker = trackerOf(robot);
+    // the odometry at the range's time; a log without odometry stands still (the window's
+    // span bounds what that costs)
+    std::optional<mrpt::poses::CPose2D> atStamp;
+    if (const auto path = odometry_.find(robot); path != odometry_.end())
+        atStamp = path->second.extrapolate(t);
+    const mrpt::poses::CPose2D odo = atStamp.value_or(mrpt::poses::CPose2D());
     RangeWindow& window = windows_[robot];
     window.add(t, obs, odo, options_.map);
     // only an observation too short for any fix goes to the window; seed 001's fixes are one
@@ -224,6 +223,9 @@ std::optional<mrpt::obs::CObservationBeaconRanges> BeaconLocalizer::windowed(
     if (!tooShort || (tracker.initialized() && !fixes) || (fixes && most >= kFewestForFix))
         return compensateMotion(robot, obs);
     windowCount_.seen += obs.sensedData.size();
+    // a fix with two ranges to spare, as the start-up wants; fewer when the map has fewer
+    const size_t unknowns = options_.threeD ? 3 : 2;
+    const size_t needed = std::max(kFewestForFix, std::min(options_.map.size(), unknowns + 2));
     auto epoch = window.epoch(t, odo, options_.map, needed, options_.rangeWindow);
     if (!epoch) return std::nullopt;
     epoch->sensorLabel = obs.sensorLabel;

@@ -1,6 +1,7 @@
 #include <mrloc/beacons/RangeWindow.h>
 
 #include <Eigen/Dense>
+#include <Eigen/Geometry>
 #include <cmath>
 #include <vector>
 
@@ -35,24 +36,22 @@ std::optional<mrpt::obs::CObservationBeaconRanges> RangeWindow::epoch(
         const auto q = rel.composePoint(mrpt::math::TPoint2D(r.sensor.x(), r.sensor.y()));
         rows.push_back({id, r.range, {q.x, q.y}, r.sensor.z() - b.z, {b.x, b.y}, r.sensor});
     }
-    if (rows.size() < needed || rows.empty()) return std::nullopt;
+    if (rows.empty() || rows.size() < needed) return std::nullopt;
 
-    // Gauss-Newton with Levenberg's damping on (x, y, phi): d_i = |p + R(phi) q_i - b_i|
+    // Gauss-Newton with Levenberg's damping on s = (x, y, phi): d_i = |p + R(phi) q_i - b_i|
     // (with the height difference); from the beacons' centroid at four headings, the best kept
+    const auto distance = [](const Eigen::Vector3d& s, const Row& r, const Eigen::Vector2d& q) {
+        const Eigen::Vector2d w = s.head<2>() + Eigen::Rotation2Dd(s[2]) * q;
+        return std::sqrt((w - r.b).squaredNorm() + r.dz * r.dz);
+    };
+    const auto cost = [&](const Eigen::Vector3d& s) {
+        double c = 0;
+        for (const auto& r : rows) c += std::pow(r.range - distance(s, r, r.q), 2);
+        return c;
+    };
     Eigen::Vector2d centroid = Eigen::Vector2d::Zero();
     for (const auto& r : rows) centroid += r.b;
     centroid /= double(rows.size());
-    const auto cost = [&](const Eigen::Vector3d& s) {
-        double c = 0;
-        const double cs = std::cos(s[2]), sn = std::sin(s[2]);
-        for (const auto& r : rows) {
-            const Eigen::Vector2d w(s[0] + cs * r.q.x() - sn * r.q.y(),
-                                    s[1] + sn * r.q.x() + cs * r.q.y());
-            const double d = std::sqrt((w - r.b).squaredNorm() + r.dz * r.dz);
-            c += (r.range - d) * (r.range - d);
-        }
-        return c;
-    };
     Eigen::Vector3d best(centroid.x(), centroid.y(), 0);
     double bestCost = INFINITY;
     for (int k = 0; k < 4; ++k) {
@@ -61,16 +60,12 @@ std::optional<mrpt::obs::CObservationBeaconRanges> RangeWindow::epoch(
         for (int it = 0; it < 50; ++it) {
             Eigen::MatrixXd J(rows.size(), 3);
             Eigen::VectorXd e(rows.size());
-            const double cs = std::cos(s[2]), sn = std::sin(s[2]);
+            const Eigen::Rotation2Dd R(s[2]), dR(s[2] + M_PI / 2);  // dR: d R(phi) / d phi
             for (size_t i = 0; i < rows.size(); ++i) {
                 const auto& r = rows[i];
-                const Eigen::Vector2d w(s[0] + cs * r.q.x() - sn * r.q.y(),
-                                        s[1] + sn * r.q.x() + cs * r.q.y());
-                const Eigen::Vector2d dw = w - r.b;
+                const Eigen::Vector2d dw = s.head<2>() + R * r.q - r.b;
                 const double d = std::max(1e-9, std::sqrt(dw.squaredNorm() + r.dz * r.dz));
-                const Eigen::Vector2d dRq(-sn * r.q.x() - cs * r.q.y(),
-                                          cs * r.q.x() - sn * r.q.y());
-                J.row(i) << dw.x() / d, dw.y() / d, dw.dot(dRq) / d;
+                J.row(i) << dw.x() / d, dw.y() / d, dw.dot(dR * r.q) / d;
                 e[i] = r.range - d;
             }
             Eigen::Matrix3d A = J.transpose() * J;
@@ -88,21 +83,15 @@ std::optional<mrpt::obs::CObservationBeaconRanges> RangeWindow::epoch(
         if (c < bestCost) bestCost = c, best = s;
     }
 
-    // each range as read from the receiver's position now (q = the sensor's own offset)
+    // each range as read from the receiver's position now (the sensor's own offset)
     mrpt::obs::CObservationBeaconRanges out;
     out.timestamp = mrpt::Clock::fromDouble(t);
-    const double cs = std::cos(best[2]), sn = std::sin(best[2]);
-    const auto distance = [&](const Row& r, const Eigen::Vector2d& q) {
-        const Eigen::Vector2d w(best[0] + cs * q.x() - sn * q.y(),
-                                best[1] + sn * q.x() + cs * q.y());
-        return std::sqrt((w - r.b).squaredNorm() + r.dz * r.dz);
-    };
     for (const auto& r : rows) {
         const Eigen::Vector2d here(r.sensor.x(), r.sensor.y());
         mrpt::obs::CObservationBeaconRanges::TMeasurement m;
         m.beaconID = r.id;
         m.sensorLocationOnRobot = r.sensor;
-        m.sensedDistance = float(r.range + distance(r, here) - distance(r, r.q));
+        m.sensedDistance = float(r.range + distance(best, r, here) - distance(best, r, r.q));
         out.sensedData.push_back(m);
     }
     return out;

@@ -1,10 +1,10 @@
 #include <mrloc/common/Error.h>
 #include <mrloc/common/Names.h>
 #include <mrloc/logimport/Format.h>
+#include <mrloc/logimport/TextLog.h>
 #include <sys/wait.h>
 #include <unistd.h>
 
-#include <charconv>
 #include <cmath>
 #include <filesystem>
 #include <iostream>
@@ -43,11 +43,9 @@ const std::string& FormatOptions::text(const std::string& key) const { return va
 
 double FormatOptions::number(const std::string& key) const {
     const std::string& s = text(key);
-    double v = 0;
-    const auto [end, ec] = std::from_chars(s.data(), s.data() + s.size(), v);
-    if (s.empty() || ec != std::errc() || end != s.data() + s.size() || !std::isfinite(v))
-        throw Error("--opt " + key + "=" + common::printable(s) + ": not a finite number");
-    return v;
+    const auto v = parseNumber<double>(s);
+    if (!v) throw Error("--opt " + key + "=" + common::printable(s) + ": not a finite number");
+    return *v;
 }
 
 bool FormatOptions::flag(const std::string& key) const {
@@ -66,12 +64,11 @@ std::vector<double> FormatOptions::numbers(const std::string& key) const {
         const size_t start = i;
         while (i < s.size() && s[i] != ',' && s[i] != ' ') ++i;
         if (i == start) break;
-        double v = 0;
-        const auto [end, ec] = std::from_chars(s.data() + start, s.data() + i, v);
-        if (ec != std::errc() || end != s.data() + i || !std::isfinite(v))
+        const auto v = parseNumber<double>(std::string_view(s).substr(start, i - start));
+        if (!v)
             throw Error("--opt " + key + ": '" + common::printable(s.substr(start, i - start)) +
                         "' is not a finite number");
-        out.push_back(v);
+        out.push_back(*v);
         if (out.size() > 1000) throw Error("--opt " + key + ": more than 1000 numbers");
     }
     return out;
@@ -106,9 +103,9 @@ std::string formatsHelp(const FormatRegistry& registry) {
 
 namespace {
 
-ImportSummary convertAll(const Format& format, const std::vector<std::string>& inputs,
-                         const std::vector<std::string>& options, const std::string& rawlogPath) {
-    ImportRequest request{inputs, FormatOptions(format.name, format.options, options)};
+ImportSummary convertAll(const Format& format, const ImportRequest& request,
+                         const std::string& rawlogPath) {
+    const auto& inputs = request.inputs;
     ImportOutput output(rawlogPath);
     try {
         format.convert(request, output);
@@ -147,9 +144,9 @@ ImportSummary fromJson(const nlohmann::json& j) {
 
 /** convertAll in a child process: its summary or its error comes back through a pipe; a
  *  crash is one line, and the temporary files it left are removed. */
-ImportSummary convertIsolated(const Format& format, const std::vector<std::string>& inputs,
-                              const std::vector<std::string>& options,
+ImportSummary convertIsolated(const Format& format, const ImportRequest& request,
                               const std::string& rawlogPath) {
+    const auto& inputs = request.inputs;
     int fds[2];
     if (pipe(fds) != 0) throw Error("cannot make a pipe to convert " + inputs[0]);
     std::cout.flush(), std::cerr.flush();
@@ -159,7 +156,7 @@ ImportSummary convertIsolated(const Format& format, const std::vector<std::strin
         close(fds[0]);
         std::string reply;
         try {
-            reply = "O" + toJson(convertAll(format, inputs, options, rawlogPath)).dump();
+            reply = "O" + toJson(convertAll(format, request, rawlogPath)).dump();
         } catch (const std::exception& e) {
             reply = "E" + oneLine(e.what());
         }
@@ -203,9 +200,10 @@ ImportSummary runImport(const Format& format, const std::vector<std::string>& in
     if (inputs.size() < format.minInputs || inputs.size() > format.maxInputs)
         throw Error("format '" + format.name + "' reads " + format.inputs + ", not " +
                     std::to_string(inputs.size()) + " input(s)");
-    FormatOptions(format.name, format.options, options);  // option errors before a fork
-    if (format.isolated) return convertIsolated(format, inputs, options, rawlogPath);
-    return convertAll(format, inputs, options, rawlogPath);
+    // the options are checked here, so that their errors come before any fork
+    const ImportRequest request{inputs, FormatOptions(format.name, format.options, options)};
+    if (format.isolated) return convertIsolated(format, request, rawlogPath);
+    return convertAll(format, request, rawlogPath);
 }
 
 void registerAllFormats(FormatRegistry& r) {

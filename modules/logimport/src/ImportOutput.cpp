@@ -4,6 +4,7 @@
 #include <mrpt/core/format.h>
 #include <mrpt/system/datetime.h>
 
+#include <cmath>
 #include <filesystem>
 
 namespace mrloc::logimport {
@@ -33,40 +34,37 @@ ImportOutput::ImportOutput(const std::string& rawlogPath)
 }
 
 void ImportOutput::add(const mrpt::obs::CObservation::Ptr& obs, const std::string& where) {
-    const double t = mrpt::Clock::toDouble(obs->timestamp);
     if (obs->timestamp == INVALID_TIMESTAMP)
         throw Error(where + ": time 0, which MRPT takes for no time stamp");
+    const double t = mrpt::Clock::toDouble(obs->timestamp);
     if (t < lastTime_)
         throw Error(where + ": time goes back, from " + mrpt::format("%.6f", lastTime_) + " to " +
                     mrpt::format("%.6f", t) + " s" +
                     (window_ > 0 ? mrpt::format(" (beyond the %g s reorder window)", window_)
                                  : std::string()));
-    if (window_ <= 0) return write(obs);
     held_.emplace(t, obs);  // equal stamps keep their arrival order
     newest_ = std::max(newest_, t);
-    while (!held_.empty() && held_.begin()->first < newest_ - window_) {
-        lastTime_ = held_.begin()->first;
-        write(held_.begin()->second);
-        held_.erase(held_.begin());
+    writeHeldBefore(window_ > 0 ? newest_ - window_ : INFINITY);
+}
+
+void ImportOutput::writeHeldBefore(double limit) {
+    for (; !held_.empty() && held_.begin()->first < limit; held_.erase(held_.begin())) {
+        const auto& [t, obs] = *held_.begin();
+        lastTime_ = t;
+        writer_.write(*obs);
+        auto& s = summary_.streams[{obs->sensorLabel, obs->GetRuntimeClass()->className}];
+        if (s.count++ == 0) s.t0 = t;
+        s.t1 = t;
+        if (summary_.observations++ == 0) summary_.t0 = t;
+        summary_.t1 = t;
     }
 }
 
-void ImportOutput::write(const mrpt::obs::CObservation::Ptr& obs) {
-    const double t = mrpt::Clock::toDouble(obs->timestamp);
-    if (window_ <= 0) lastTime_ = t;
-    writer_.write(*obs);
-    auto& s = summary_.streams[{obs->sensorLabel, obs->GetRuntimeClass()->className}];
-    if (s.count++ == 0) s.t0 = t;
-    s.t1 = t;
-    if (summary_.observations++ == 0) summary_.t0 = t;
-    summary_.t1 = t;
-}
-
-void ImportOutput::addGroundTruth(const std::string& robot, double tIn,
+void ImportOutput::addGroundTruth(const std::string& robot, double t,
                                   const mrpt::poses::CPose3D& pose, const std::string& where) {
     // the observations' stamps are mrpt::Clock's (100 ns): the truth on the same grid, so
     // that a first reading and the truth's first pose at one time are at one time
-    const double t = mrpt::Clock::toDouble(mrpt::Clock::fromDouble(tIn));
+    t = mrpt::Clock::toDouble(mrpt::Clock::fromDouble(t));
     auto& traj = truth_[robot];
     if (!traj.empty() && t < traj.back().t)
         throw Error(where + ": ground truth time goes back, from " +
@@ -79,8 +77,7 @@ void ImportOutput::addSideFile(const std::string& suffix, const std::string& con
 }
 
 ImportSummary ImportOutput::commit() {
-    for (const auto& [t, obs] : held_) write(obs);
-    held_.clear();
+    writeHeldBefore(INFINITY);
     if (summary_.observations == 0)
         throw Error("no observation was converted: nothing to write to " + rawlogPath_);
     // every file under its temporary name first; then the renames, which do not fail on a

@@ -13,6 +13,7 @@
 #include <cmath>
 #include <filesystem>
 #include <map>
+#include <optional>
 
 namespace mrloc::logimport {
 
@@ -62,10 +63,11 @@ void convert(const ImportRequest& req, ImportOutput& out) {
     // are read whole, then merged by time (a stable sort keeps a type's order at equal times)
     struct Record {
         double t;
-        bool range;
-        double a, b, c, d;  // range2: range, variance, -, -; odom2diff: v, vy, w, -
-        long id;
         size_t line;
+        bool isRange;
+        double range = 0, variance = 0;  ///< range2
+        long anchor = 0;
+        mrpt::math::TTwist2D twist;  ///< odom2diff: forward, lateral, turn
     };
     std::vector<Record> records;
     TextLog log(req.inputs[0], "librsf input");
@@ -92,7 +94,7 @@ void convert(const ImportRequest& req, ImportOutput& out) {
                                       std::hypot(it->second.x - ax, it->second.y - ay)) +
                          it->second.where + " (a map must hold still)");
             variances.push_back(var);
-            records.push_back({t, true, r, var, 0, 0, id, log.lineNumber()});
+            records.push_back({t, log.lineNumber(), true, r, var, id, {}});
         } else if (type == "odom2diff") {
             log.expectAtLeast(6, "odom2diff time v_right v_left v_lateral wheel_base [variances]");
             const double t = log.number(1, "time");
@@ -105,8 +107,8 @@ void convert(const ImportRequest& req, ImportOutput& out) {
             for (const double v : {vr, vl, vy})
                 if (std::abs(v) > 100) log.fail(mrpt::format("a speed of %g m/s cannot be", v));
             // differential drive: v = (vr + vl) / 2, w = (vr - vl) / base
-            records.push_back(
-                {t, false, (vr + vl) / 2, vy, (vr - vl) / base, 0, 0, log.lineNumber()});
+            records.push_back({t, log.lineNumber(), false, 0, 0, 0,
+                               mrpt::math::TTwist2D((vr + vl) / 2, vy, (vr - vl) / base)});
         } else {
             ++dropped[common::printable(std::string(type.substr(0, 32)))];
         }
@@ -115,8 +117,9 @@ void convert(const ImportRequest& req, ImportOutput& out) {
                      [](const Record& a, const Record& b) { return a.t < b.t; });
 
     mrpt::poses::CPose2D odo;
-    double lastOdoTime = NAN;
+    std::optional<double> lastOdoTime;
     CObservationBeaconRanges::Ptr epoch;  // ranges of one time stamp, one observation
+    double epochTime = 0;
     std::string epochWhere;
     const auto flush = [&] {
         if (epoch) out.add(epoch, epochWhere);
@@ -126,25 +129,27 @@ void convert(const ImportRequest& req, ImportOutput& out) {
         return req.inputs[0] + ":" + std::to_string(r.line);
     };
     for (const Record& rec : records) {
-        if (rec.range) {
-            if (epoch && mrpt::Clock::toDouble(epoch->timestamp) != rec.t) flush();
+        if (rec.isRange) {
+            if (epoch && epochTime != rec.t) flush();
             if (!epoch) {
                 epoch = CObservationBeaconRanges::Create();
                 epoch->sensorLabel = robot + ".uwb";
                 epoch->timestamp = mrpt::Clock::fromDouble(rec.t);
                 epoch->maxSensorDistance = 1e4f;
-                epoch->stdError = float(std::sqrt(rec.b));
+                epoch->stdError = float(std::sqrt(rec.variance));
+                epochTime = rec.t;
                 epochWhere = where(rec);
             }
             CObservationBeaconRanges::TMeasurement m;
             m.sensorLocationOnRobot = mrpt::poses::CPoint3D(0, 0, tagZ);
-            m.sensedDistance = float(rec.a);
-            m.beaconID = int32_t(rec.id);
+            m.sensedDistance = float(rec.range);
+            m.beaconID = int32_t(rec.anchor);
             epoch->sensedData.push_back(m);
             continue;
         }
         // the speeds are what the wheels turned at over the interval this reading closes
-        if (!std::isnan(lastOdoTime)) odo = moveArc(odo, rec.a, rec.b, rec.c, rec.t - lastOdoTime);
+        const auto& w = rec.twist;
+        if (lastOdoTime) odo = moveArc(odo, w.vx, w.vy, w.omega, rec.t - *lastOdoTime);
         lastOdoTime = rec.t;
         if (!withOdometry) continue;
         flush();
@@ -153,7 +158,7 @@ void convert(const ImportRequest& req, ImportOutput& out) {
         obs->timestamp = mrpt::Clock::fromDouble(rec.t);
         obs->odometry = odo;
         obs->hasVelocities = true;
-        obs->velocityLocal = mrpt::math::TTwist2D(rec.a, rec.b, rec.c);
+        obs->velocityLocal = w;
         out.add(obs, where(rec));
     }
     flush();

@@ -28,8 +28,10 @@ namespace {
 using mrpt::poses::CPose2D;
 using mrpt::poses::CPose3D;
 
+/** The quaternion's heading (ROS: z up), as tf2::getYaw gives it. Not through MRPT's
+ *  CQuaternion, which refuses a quaternion that is not of unit norm: bags from robots that
+ *  never fill the orientation hold (0, 0, 0, 0), whose heading is read as 0. */
 double yawOf(const geometry_msgs::Quaternion& q) {
-    // the rotation's heading (ROS: z up), as tf2::getYaw does
     return std::atan2(2 * (q.w * q.z + q.x * q.y), 1 - 2 * (q.y * q.y + q.z * q.z));
 }
 

@@ -22,22 +22,24 @@ struct PoseLine {
     std::string where;
 };
 
-double unitOf(const std::string& key, const std::string& value,
-              std::initializer_list<std::pair<const char*, double>> units) {
+/** A unit's name and its size in SI units (m, rad, s). */
+using Unit = std::pair<const char*, double>;
+const std::vector<Unit> kTimeUnits{{"s", 1}, {"ms", 1e-3}, {"us", 1e-6}};
+
+Unit unitOf(const std::string& key, const std::string& value, const std::vector<Unit>& units) {
     std::string names;
-    for (const auto& [name, scale] : units) {
-        if (value == name) return scale;
-        names += (names.empty() ? "" : ", ") + std::string(name);
+    for (const auto& unit : units) {
+        if (value == unit.first) return unit;
+        names += (names.empty() ? "" : ", ") + std::string(unit.first);
     }
     throw Error("--opt " + key + "=" + common::printable(value) + ": expected one of " + names);
 }
 
-/** Seconds per time unit: given, or the one of s, ms, us under which the robot's median speed
- *  over its moving steps is a ground robot's (0.02 to 3 m/s) and the other two's is not. */
-double timeScale(const std::string& option, const std::vector<PoseLine>& poses, double metres,
-                 const std::string& path) {
-    if (option != "auto")
-        return unitOf("time_unit", option, {{"s", 1}, {"ms", 1e-3}, {"us", 1e-6}});
+/** The time unit: given, or the one of s, ms, us under which the robot's median speed over
+ *  its moving steps is a ground robot's (0.02 to 3 m/s) and the other two's is not. */
+Unit timeUnit(const std::string& option, const std::vector<PoseLine>& poses, double metres,
+              const std::string& path) {
+    if (option != "auto") return unitOf("time_unit", option, kTimeUnits);
     std::vector<double> rates;  // distance per time unit, while moving
     for (size_t i = 1; i < poses.size(); ++i) {
         const double d = std::hypot(poses[i].x - poses[i - 1].x, poses[i].y - poses[i - 1].y);
@@ -50,16 +52,15 @@ double timeScale(const std::string& option, const std::vector<PoseLine>& poses, 
                     "--opt time_unit=s|ms|us");
     std::nth_element(rates.begin(), rates.begin() + rates.size() / 2, rates.end());
     const double perUnit = rates[rates.size() / 2];
-    std::vector<std::pair<const char*, double>> fits;
-    for (const auto& [name, scale] : std::initializer_list<std::pair<const char*, double>>{
-             {"s", 1}, {"ms", 1e-3}, {"us", 1e-6}})
-        if (const double speed = perUnit / scale; speed >= 0.02 && speed <= 3)
-            fits.emplace_back(name, scale);
+    std::vector<Unit> fits;
+    for (const auto& unit : kTimeUnits)
+        if (const double speed = perUnit / unit.second; speed >= 0.02 && speed <= 3)
+            fits.push_back(unit);
     if (fits.size() != 1)
         throw Error(path + mrpt::format(": the time unit cannot be inferred (median speed %g m "
                                         "per time unit): give --opt time_unit=s|ms|us",
                                         perUnit));
-    return fits[0].second;
+    return fits[0];
 }
 
 void convert(const ImportRequest& req, ImportOutput& out) {
@@ -73,9 +74,11 @@ void convert(const ImportRequest& req, ImportOutput& out) {
             "(degrees, counter-clockwise from the robot's front)");
     if (bearings.size() > 256) throw Error("--opt bearings: more than 256 sonars");
     const double metres =
-        unitOf("length_unit", o.text("length_unit"), {{"m", 1}, {"cm", 0.01}, {"mm", 0.001}});
+        unitOf("length_unit", o.text("length_unit"), {{"m", 1}, {"cm", 0.01}, {"mm", 0.001}})
+            .second;
     const double radians = unitOf("heading_unit", o.text("heading_unit"),
-                                  {{"rad", 1}, {"deg", M_PI / 180}, {"decideg", M_PI / 1800}});
+                                  {{"rad", 1}, {"deg", M_PI / 180}, {"decideg", M_PI / 1800}})
+                               .second;
     const double minRange = o.number("min_range"), maxRange = o.number("max_range");
     const double cone = mrpt::DEG2RAD(o.number("cone_deg")), ring = o.number("ring_radius");
     const double height = o.number("height");
@@ -104,12 +107,10 @@ void convert(const ImportRequest& req, ImportOutput& out) {
         }
         if (poses.empty()) throw Error(req.inputs[1] + ": no pose");
     }
-    const double seconds = timeScale(o.text("time_unit"), poses, metres, req.inputs[1]);
+    const Unit time = timeUnit(o.text("time_unit"), poses, metres, req.inputs[1]);
+    const double seconds = time.second;
     if (!o.given("time_unit"))
-        out.note(mrpt::format("time unit inferred from the poses' speed: %s", seconds == 1 ? "s"
-                                                                              : seconds == 1e-3
-                                                                                  ? "ms"
-                                                                                  : "us"));
+        out.note(std::string("time unit inferred from the poses' speed: ") + time.first);
 
     size_t nextPose = 0;
     const auto emitPosesUpTo = [&](double t) {

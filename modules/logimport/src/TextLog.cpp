@@ -5,6 +5,7 @@
 
 #include <charconv>
 #include <cmath>
+#include <type_traits>
 
 namespace mrloc::logimport {
 
@@ -62,29 +63,39 @@ std::string_view TextLog::field(size_t i) const {
     return fields_[i];
 }
 
+template <typename T>
+std::optional<T> parseNumber(std::string_view text) {
+    T v{};
+    const auto [end, ec] = std::from_chars(text.data(), text.data() + text.size(), v);
+    if (text.empty() || ec != std::errc() || end != text.data() + text.size()) return std::nullopt;
+    if constexpr (std::is_floating_point_v<T>)
+        if (!std::isfinite(v)) return std::nullopt;
+    return v;
+}
+template std::optional<double> parseNumber<double>(std::string_view);
+template std::optional<long> parseNumber<long>(std::string_view);
+
 double TextLog::number(size_t i, const char* name) const {
     const std::string_view f = field(i);
-    double v = 0;
-    const auto [end, ec] = std::from_chars(f.data(), f.data() + f.size(), v);
-    if (ec != std::errc() || end != f.data() + f.size())
-        fail(std::string(name) + " (field " + std::to_string(i + 1) + ") is '" +
-             common::printable(std::string(f.substr(0, 40))) + "', not a number");
-    if (!std::isfinite(v))
+    if (const auto v = parseNumber<double>(f)) return *v;
+    double any = 0;  // a number that is not finite, or not a number: say which
+    const auto [end, ec] = std::from_chars(f.data(), f.data() + f.size(), any);
+    if (ec == std::errc() && end == f.data() + f.size())
         fail(std::string(name) + " (field " + std::to_string(i + 1) + ") is not finite");
-    return v;
+    fail(std::string(name) + " (field " + std::to_string(i + 1) + ") is '" +
+         common::printable(std::string(f.substr(0, 40))) + "', not a number");
 }
 
 long TextLog::integer(size_t i, const char* name, long lo, long hi) const {
     const std::string_view f = field(i);
-    long v = 0;
-    const auto [end, ec] = std::from_chars(f.data(), f.data() + f.size(), v);
-    if (ec != std::errc() || end != f.data() + f.size())
+    const auto v = parseNumber<long>(f);
+    if (!v)
         fail(std::string(name) + " (field " + std::to_string(i + 1) + ") is '" +
              common::printable(std::string(f.substr(0, 40))) + "', not an integer");
-    if (v < lo || v > hi)
-        fail(std::string(name) + " (field " + std::to_string(i + 1) + ") is " + std::to_string(v) +
+    if (*v < lo || *v > hi)
+        fail(std::string(name) + " (field " + std::to_string(i + 1) + ") is " + std::to_string(*v) +
              ", outside [" + std::to_string(lo) + ", " + std::to_string(hi) + "]");
-    return v;
+    return *v;
 }
 
 void TextLog::expectAtLeast(size_t n, const char* layout) const {

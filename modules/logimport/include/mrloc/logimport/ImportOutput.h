@@ -7,6 +7,7 @@
 #include <mrloc/common/Trajectory.h>
 #include <mrpt/obs/CObservation.h>
 
+#include <cmath>
 #include <map>
 #include <memory>
 #include <string>
@@ -59,8 +60,9 @@ class ImportOutput {
     common::RawlogWriter writer_;
     std::map<std::string, common::Trajectory> truth_;
     std::vector<std::pair<std::string, std::string>> sideFiles_;  ///< path, content
-    void write(const mrpt::obs::CObservation::Ptr& obs);
-    double lastTime_ = -1e300, window_ = 0, newest_ = -1e300;
+    /** Writes the held observations stamped before `limit`, in stamp order. */
+    void writeHeldBefore(double limit);
+    double lastTime_ = -INFINITY, window_ = 0, newest_ = -INFINITY;
     std::multimap<double, mrpt::obs::CObservation::Ptr> held_;  ///< the reorder window
     ImportSummary summary_;
 };

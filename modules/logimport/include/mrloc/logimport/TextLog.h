@@ -3,11 +3,17 @@
 // numbers parsed strictly (a NaN, an infinity or trailing junk is refused), and every error one
 // line naming the file and line.
 #include <fstream>
+#include <optional>
 #include <string>
 #include <string_view>
 #include <vector>
 
 namespace mrloc::logimport {
+
+/** The whole of `text` as a number of type T (double or long): nothing if it is not one, has
+ *  trailing characters, or (a double) is not finite. The one number parser of the importers. */
+template <typename T>
+std::optional<T> parseNumber(std::string_view text);
 
 class TextLog {
  public:
