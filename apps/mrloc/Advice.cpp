@@ -34,24 +34,9 @@ std::map<std::string, size_t> classesOf(const std::string& rawlogPath) {
     return counts;
 }
 
-namespace {
-bool hasSectionStartingWith(const mrpt::config::CConfigFileBase& ini, const std::string& prefix) {
-    std::vector<std::string> sections;
-    ini.getAllSections(sections);
-    for (const auto& s : sections)
-        if (s.rfind(prefix, 0) == 0) return true;
-    return false;
-}
-}  // namespace
-
 std::optional<std::string> mrptAppOf(const mrpt::config::CConfigFileBase& ini) {
-    // the sections MRPT's apps read (MRPT 2.5's config_files/): pf-localization's
-    // [LocalizationExperiment] with a grid map, the SLAM apps' [MappingApplication]
-    if (ini.sectionExists("LocalizationExperiment") &&
-        hasSectionStartingWith(ini, "MetricMap_occupancyGrid"))
-        return std::string(
-            "an INI of MRPT's pf-localization (particle filter on an occupancy grid map); "
-            "mrloc has no grid-map localizer");
+    // the sections MRPT's apps read (MRPT 2.5's config_files/): the SLAM apps'
+    // [MappingApplication] (pf-localization's INIs are polymap's and beacons')
     if (ini.sectionExists("MappingApplication"))
         return std::string(
             "an INI of MRPT's SLAM apps (icp-slam, rbpf-slam, kf-slam: [MappingApplication]); "

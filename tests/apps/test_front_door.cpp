@@ -128,14 +128,15 @@ TEST(FrontDoor, MrptGroundTruthIsPickedUpWhereMrptsAppsLook) {
 }
 
 TEST(FrontDoor, AnMrptIniForATaskMrlocDoesNotDoSaysWhatFits) {
-    const std::string ini = kMrptConfigs + "/pf-localization/localization_demo.ini";
+    // icp-slam builds maps; mrloc localizes on known ones (pf-localization's INIs are
+    // polymap's: tests/apps/test_real_polymap.cpp)
+    const std::string ini = kMrptConfigs + "/icp-slam/icp-slam_demo_classic.ini";
     if (!fs::exists(ini)) GTEST_SKIP() << "MRPT's INIs (Debian mrpt-common) are not installed";
-    const std::string out = tmp("pf_demo");
+    const std::string out = tmp("icp_demo");
     const auto r = mrlocCmd("localize " + ini + " " + kMrptDatasets +
                             "/localization_demo.rawlog -q --out " + out);
     EXPECT_EQ(r.code, 1);
-    EXPECT_TRUE(contains(r.output, "an INI of MRPT's pf-localization")) << r.output;
-    EXPECT_TRUE(contains(r.output, "mrloc has no grid-map localizer")) << r.output;
+    EXPECT_TRUE(contains(r.output, "an INI of MRPT's SLAM apps")) << r.output;
     EXPECT_TRUE(contains(r.output, "CObservation2DRangeScan")) << r.output;
     EXPECT_TRUE(contains(r.output,
                          "method 'polymap' reads CObservation2DRangeScan: start from "
@@ -144,9 +145,9 @@ TEST(FrontDoor, AnMrptIniForATaskMrlocDoesNotDoSaysWhatFits) {
     EXPECT_FALSE(contains(r.output, "beacon")) << r.output;
     EXPECT_FALSE(fs::exists(out));
     // simulate and run find the log the INI names itself
-    const auto s = mrlocCmd("run " + ini + " -q --out " + tmp("pf_demo_run"));
+    const auto s = mrlocCmd("run " + ini + " -q --out " + tmp("icp_demo_run"));
     EXPECT_EQ(s.code, 1);
-    EXPECT_TRUE(contains(s.output, "localization_demo.rawlog holds")) << s.output;
+    EXPECT_TRUE(contains(s.output, "Faculty_one_loop_only.rawlog holds")) << s.output;
 }
 
 TEST(FrontDoor, TheReportOpensWithWhatRanTheHeadlineAndProvenance) {

@@ -60,7 +60,9 @@ TEST(Polygon, InvalidInputIsAClearError) {
 }
 
 TEST(Polygon, PolyFileRoundTripAndErrors) {
-    const auto path = writeTemp("mrloc_square.poly", "# a square\n0 0\n\n2 0 # corner\n2 2\n0 2\n");
+    // comments anywhere; a blank line before the first vertex or after the last is no ring
+    const auto path =
+        writeTemp("mrloc_square.poly", "# a square\n\n0 0\n# here\n2 0 # corner\n2 2\n0 2\n\n");
     const auto P = Polygon::load(path);
     EXPECT_EQ(P.size(), 4u);
     const auto copy = path + ".copy";
@@ -76,6 +78,16 @@ TEST(Polygon, PolyFileRoundTripAndErrors) {
         EXPECT_NE(std::string(e.what()).find("mrloc_bad.poly:3"), std::string::npos) << e.what();
     }
     EXPECT_THROW(Polygon::load("/nonexistent/x.poly"), Error);
+    // a blank line between vertices ends the ring: a second ring is a hole, refused here
+    const auto holes = writeTemp("mrloc_holes.poly", "0 0\n4 0\n4 4\n0 4\n\n1 1\n2 1\n2 2\n");
+    try {
+        Polygon::load(holes);
+        FAIL() << "no error";
+    } catch (const Error& e) {
+        EXPECT_NE(std::string(e.what()).find("mrloc_holes.poly:6: a second ring"),
+                  std::string::npos)
+            << e.what();
+    }
 }
 
 TEST(Polygon, SizeAndCoordinateBounds) {

@@ -2,13 +2,16 @@
 // that loads: any input must give a valid simple polygon or mrloc::Error. A polygon that
 // loads must have positive area, triangulate into n - 2 triangles inside it, and give a
 // visibility polygon from a vertex, an edge midpoint and a triangle's centroid, and a
-// shortest path between two vertices, without an error: the target aborts otherwise.
+// shortest path between two vertices, without an error: the target aborts otherwise. The same
+// input read as rings (polymap's scan localizer: an outer ring and holes) must load or give
+// mrloc::Error, and rings that load must give a wall map whose casts end within the range.
 // fuzz-seeds: maps/*.poly tests/data/bad-inputs/*.poly
 // fuzz-max-len: 65536
 #include <mrloc/common/Error.h>
 #include <mrloc/common/Polygon.h>
 #include <mrloc/polymap/ShortestPath.h>
 #include <mrloc/polymap/Visibility.h>
+#include <mrloc/polymap/WallMap.h>
 
 #include <cstdio>
 #include <cstdlib>
@@ -18,6 +21,16 @@
 
 extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
     const std::string& path = mrloc::fuzz::writeInput(data, size, ".poly");
+    try {
+        const auto walls =
+            mrloc::polymap::wallMapOfRings(mrloc::polymap::loadPolyRings(path), 0.05, 0.1, "fuzz");
+        const auto& v = walls.rings.front();
+        for (int k = 0; k < 16; ++k) {
+            const double r = walls.caster.cast(v[0] * 0.5 + v[v.size() / 2] * 0.5, k * 0.4, 1e7);
+            if (!(r >= 0 && r <= 1e7)) std::abort();
+        }
+    } catch (const mrloc::Error&) {
+    }
     std::optional<mrloc::common::Polygon> P;
     try {
         P = mrloc::common::Polygon::load(path);

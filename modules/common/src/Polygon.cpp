@@ -203,11 +203,21 @@ Polygon Polygon::load(const std::string& path) {
     if (!in) throw Error("polygon map " + path + ": cannot open the file");
     std::vector<TPoint2D> v;
     std::string line;
+    bool ringEnded = false;  // a blank line after vertices: another ring may follow
     for (int lineNo = 1; std::getline(in, line); ++lineNo) {
+        const bool blank = line.find_first_not_of(" \t\r") == std::string::npos;
         if (const auto hash = line.find('#'); hash != std::string::npos) line.erase(hash);
         std::istringstream ls(line);
         std::string first;
-        if (!(ls >> first)) continue;
+        if (!(ls >> first)) {
+            ringEnded = ringEnded || (blank && !v.empty());
+            continue;
+        }
+        if (ringEnded)
+            throw Error(path + ":" + std::to_string(lineNo) +
+                        ": a second ring (a hole) after a blank line; this map needs polymap's "
+                        "scan localizer ([polymap] localizer = scan, doc/polymap.md), the exact "
+                        "one takes a simple polygon");
         ls.clear();
         ls.str(line);
         double x, y;

@@ -20,12 +20,13 @@
 #include <sanitizer/common_interface_defs.h>
 #endif
 
+#include <atomic>
 #include <cstdio>
 #include <cstdlib>
 #include <cstring>
 #include <filesystem>
 #include <fstream>
-#include <atomic>
+#include <functional>
 #include <new>
 #include <thread>
 #include <vector>
@@ -47,7 +48,7 @@ void checkGzipFile(const std::string& path, const std::string& what) {
     std::vector<unsigned char> inBuf(1 << 16), outBuf(1 << 18);
     size_t consumed = 0, inflated = 0;
     unsigned char head[2] = {0, 0};  // the first inflated bytes
-    bool streamEnded = false;  // the last member's trailer was read
+    bool streamEnded = false;        // the last member's trailer was read
     for (;;) {
         in.read(reinterpret_cast<char*>(inBuf.data()), std::streamsize(inBuf.size()));
         const auto got = size_t(in.gcount());
@@ -59,8 +60,10 @@ void checkGzipFile(const std::string& path, const std::string& what) {
                 // gzread reads concatenated members; anything else after a member is junk.
                 if (z.next_in[0] != 0x1f) {
                     inflateEnd(&z);
-                    throw Error(what + " " + path + ": bytes after the end of the gzip stream "
-                                "at byte " + std::to_string(consumed + (got - z.avail_in)));
+                    throw Error(what + " " + path +
+                                ": bytes after the end of the gzip stream "
+                                "at byte " +
+                                std::to_string(consumed + (got - z.avail_in)));
                 }
                 inflateReset(&z);
                 streamEnded = false;
@@ -89,7 +92,8 @@ void checkGzipFile(const std::string& path, const std::string& what) {
                     std::to_string(consumed) + " before its end (truncated file" +
                     (inflated == 0 ? ", no data after the header)" : ")"));
     if (head[0] == 0x1f && head[1] == 0x8b)
-        throw Error(what + " " + path + ": a gzip stream inside a gzip stream (compressed "
+        throw Error(what + " " + path +
+                    ": a gzip stream inside a gzip stream (compressed "
                     "twice? decompress it once with gunzip and read the result)");
 }
 
@@ -120,12 +124,16 @@ size_t memoryLimitOf(const RawlogProbeLimits& limits) {
     return limits.memoryBytes;
 }
 
-[[noreturn]] void runChild(const std::string& path, size_t memoryLimit, double cpuSeconds,
-                           ProbeState* state) {
+/** The child's work: reads and throws; sets state->entriesDone as it goes. */
+using ChildWork = std::function<void(ProbeState*)>;
+
+[[noreturn]] void runChild(const std::string& path, const std::string& what, size_t memoryLimit,
+                           double cpuSeconds, const ChildWork& work, ProbeState* state) {
     // A signal ends the child plainly; the parent, signalled too, removes its own outputs.
     // A crash ends it plainly too: no handler inherited from the parent (a sanitizer's or a
     // fuzzer's, which would report the crash of MRPT's code as the parent's) runs here.
-    for (int sig : {SIGINT, SIGTERM, SIGSEGV, SIGBUS, SIGFPE, SIGILL, SIGABRT}) signal(sig, SIG_DFL);
+    for (int sig : {SIGINT, SIGTERM, SIGSEGV, SIGBUS, SIGFPE, SIGILL, SIGABRT})
+        signal(sig, SIG_DFL);
 #if MRLOC_HAS_SANITIZER
     __sanitizer_set_death_callback(nullptr);
 #endif
@@ -144,17 +152,15 @@ size_t memoryLimitOf(const RawlogProbeLimits& limits) {
     rlimit cpu{rlim_t(cpuSeconds), rlim_t(cpuSeconds) + 5};
     setrlimit(RLIMIT_CPU, &cpu);
     try {
-        RawlogReader reader(path, RawlogReader::kUnchecked);
-        for (mrpt::obs::CObservation::Ptr obs; reader.next(obs);)
-            state->entriesDone = reader.entriesRead();
-        state->entriesDone = reader.entriesRead();
+        work(state);
         state->finished = 1;
         _exit(0);
     } catch (const std::bad_alloc&) {
         std::snprintf(state->message, sizeof state->message,
-                      "rawlog %s: entry %zu needs more than %zu MiB to deserialize (a corrupt "
+                      "%s %s: entry %zu needs more than %zu MiB to deserialize (a corrupt "
                       "size?)",
-                      path.c_str(), size_t(state->entriesDone) + 1, memoryLimit >> 20);
+                      what.c_str(), path.c_str(), size_t(state->entriesDone) + 1,
+                      memoryLimit >> 20);
     } catch (const std::exception& e) {
         std::snprintf(state->message, sizeof state->message, "%s", e.what());
     }
@@ -164,7 +170,12 @@ size_t memoryLimitOf(const RawlogProbeLimits& limits) {
 
 }  // namespace
 
-void probeRawlog(const std::string& path, const RawlogProbeLimits& limits) {
+namespace {
+
+/** Runs `work` on `path` in a child process (see probeRawlog); `what` names the file's kind
+ *  in errors. */
+void probeInChild(const std::string& path, const std::string& what, const ChildWork& work,
+                  const RawlogProbeLimits& limits) {
     const size_t memoryLimit = memoryLimitOf(limits);
     std::error_code ec;
     const double cpuSeconds =
@@ -172,7 +183,7 @@ void probeRawlog(const std::string& path, const RawlogProbeLimits& limits) {
 
     void* shared = mmap(nullptr, sizeof(ProbeState), PROT_READ | PROT_WRITE,
                         MAP_SHARED | MAP_ANONYMOUS, -1, 0);
-    if (shared == MAP_FAILED) throw Error("rawlog " + path + ": cannot map shared memory");
+    if (shared == MAP_FAILED) throw Error(what + " " + path + ": cannot map shared memory");
     auto* state = new (shared) ProbeState{};
     struct Unmap {
         void* p;
@@ -181,8 +192,8 @@ void probeRawlog(const std::string& path, const RawlogProbeLimits& limits) {
 
     std::fflush(nullptr);  // the child must not inherit unwritten output
     const pid_t pid = fork();
-    if (pid < 0) throw Error("rawlog " + path + ": cannot fork to check it");
-    if (pid == 0) runChild(path, memoryLimit, cpuSeconds, state);
+    if (pid < 0) throw Error(what + " " + path + ": cannot fork to check it");
+    if (pid == 0) runChild(path, what, memoryLimit, cpuSeconds, work, state);
 
     // The gzip stream is checked meanwhile, on a second thread (after the fork: a child
     // forked from a threaded process inherits only the forking thread). Its error comes first:
@@ -191,7 +202,7 @@ void probeRawlog(const std::string& path, const RawlogProbeLimits& limits) {
     std::atomic<bool> gzipFailed{false};
     std::thread gzipCheck([&] {
         try {
-            checkGzipFile(path, "rawlog");
+            checkGzipFile(path, what);
         } catch (...) {
             gzipError = std::current_exception();
             gzipFailed.store(true);
@@ -214,7 +225,8 @@ void probeRawlog(const std::string& path, const RawlogProbeLimits& limits) {
     for (;;) {
         const pid_t done = waitpid(pid, &status, WNOHANG);
         if (done == pid) break;
-        if (done < 0 && errno != EINTR) throw Error("rawlog " + path + ": lost the checking process");
+        if (done < 0 && errno != EINTR)
+            throw Error(what + " " + path + ": lost the checking process");
         if (gzipFailed.load()) {  // the child's verdict no longer matters
             kill(pid, SIGKILL);
             waitpid(pid, &status, 0);
@@ -237,17 +249,49 @@ void probeRawlog(const std::string& path, const RawlogProbeLimits& limits) {
 
     const std::string entry = "entry " + std::to_string(state->entriesDone + 1);
     if (overMemory)
-        throw Error("rawlog " + path + ": " + entry + " needs more than " +
+        throw Error(what + " " + path + ": " + entry + " needs more than " +
                     std::to_string(memoryLimit >> 20) + " MiB to deserialize (a corrupt size?)");
     if (WIFSIGNALED(status) && WTERMSIG(status) == SIGXCPU)
-        throw Error("rawlog " + path + ": " + entry + " takes more than " +
+        throw Error(what + " " + path + ": " + entry + " takes more than " +
                     std::to_string(int(cpuSeconds)) + " s of CPU to deserialize (corrupt?)");
     const std::string how = WIFSIGNALED(status)
                                 ? std::string("crashed with ") + strsignal(WTERMSIG(status))
                                 : "failed (exit " + std::to_string(WEXITSTATUS(status)) + ")";
-    throw Error("rawlog " + path + ": " + entry + " is corrupt: MRPT's deserializer " + how +
+    throw Error(what + " " + path + ": " + entry + " is corrupt: MRPT's deserializer " + how +
                 " reading it (or it needs more than " + std::to_string(memoryLimit >> 20) +
                 " MiB)");
+}
+
+}  // namespace
+
+void probeRawlog(const std::string& path, const RawlogProbeLimits& limits) {
+    probeInChild(
+        path, "rawlog",
+        [&path](ProbeState* state) {
+            RawlogReader reader(path, RawlogReader::kUnchecked);
+            for (mrpt::obs::CObservation::Ptr obs; reader.next(obs);)
+                state->entriesDone = reader.entriesRead();
+            state->entriesDone = reader.entriesRead();
+        },
+        limits);
+}
+
+void probeFile(const std::string& path, const std::string& what, const std::function<void()>& read,
+               const RawlogProbeLimits& limits) {
+    probeInChild(
+        path, what,
+        [&](ProbeState*) {
+            try {
+                read();
+            } catch (const std::bad_alloc&) {
+                throw;
+            } catch (const Error&) {
+                throw;
+            } catch (const std::exception& e) {  // MRPT's own words, without the file
+                throw Error(what + " " + path + ": cannot be read: " + oneLine(e.what()));
+            }
+        },
+        limits);
 }
 
 }  // namespace mrloc::common

@@ -282,6 +282,7 @@ report::Html sweepSection(const std::string& dir) {
 std::vector<method::WorkItem> polymapWork(const PolymapLocalizer& localizer,
                                           const sim::ScenarioConfig* scenario) {
     const PolymapOptions& o = localizer.options();
+    if (!localizer.hasPolygon()) return {};  // a grid map: nothing simulated, no experiment
     // Measured (doc/errors.md, "Work") on the steps map of n = 148 vertices: a scan costs
     // 0.4 ms and 1 us per ray, and the rawlog keeps 3.5 bytes per ray (gzip); the randomized
     // algorithm's column of the experiment 1 ms per random point, with the map's 12

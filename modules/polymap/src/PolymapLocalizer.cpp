@@ -1,5 +1,7 @@
 #include <mrloc/common/AtomicFile.h>
 #include <mrloc/common/Error.h>
+#include <mrloc/common/GroundTruthFile.h>
+#include <mrloc/common/Names.h>
 #include <mrloc/common/Rawlog.h>
 #include <mrloc/common/Trajectory.h>
 #include <mrloc/polymap/PolymapFiles.h>
@@ -7,16 +9,36 @@
 #include <mrloc/sim/Robot.h>
 #include <mrloc/sim/Scenario.h>
 #include <mrpt/core/format.h>
+#include <mrpt/math/wrap2pi.h>
 #include <mrpt/obs/CObservation2DRangeScan.h>
+#include <mrpt/obs/CObservationOdometry.h>
+#include <mrpt/poses/CPose2D.h>
 
+#include <algorithm>
 #include <cmath>
+#include <fstream>
 #include <sstream>
 
 namespace mrloc::polymap {
 
 void PolymapLocalizer::configure(const mrpt::config::CConfigFileBase& ini) {
-    options_.loadFromConfigFile(ini, "polymap");
-    map_ = std::make_unique<GeneratedMap>(options_.buildMap());
+    // MRPT's pf-localization INI, unchanged: its map_file, region and grid options
+    if (!ini.sectionExists("polymap") && ini.sectionExists("LocalizationExperiment"))
+        options_.loadFromMrptLocalizationIni(ini);
+    else
+        options_.loadFromConfigFile(ini, "polymap");
+    results_.clear();
+    scanRobots_.clear();
+    scansSeen_ = scansUsed_ = 0;
+    map_.reset();
+    wallMap_.reset();
+    grid_.reset();
+    if (options_.scanMode)
+        configureScanMode();
+    else
+        map_ = std::make_unique<GeneratedMap>(options_.buildMap());
+    options_.trace.insertOptions = nullptr;  // the INI's lifetime ends with this call
+    if (!map_) return;                       // a grid map: nothing to simulate, no exact pipeline
     // the simulator's step and the robot's speed, as checked by the scenario's loader (the
     // defaults of a log recorded elsewhere: no [scenario])
     std::string robot = "r1";
@@ -25,7 +47,55 @@ void PolymapLocalizer::configure(const mrpt::config::CConfigFileBase& ini) {
     probeRadius_ =
         probeRadius(ini.read_double("robot." + robot, "speed", sim::RobotOptions{}.speed),
                     ini.read_double("scenario", "dt", sim::ScenarioOptions{}.dt));
-    results_.clear();
+}
+
+void PolymapLocalizer::configureScanMode() {
+    reference_.clear();
+    if (!options_.referenceFile.empty()) {
+        // TUM (8 columns) or "step x y phi" (4): MRPT's apps' paths
+        std::ifstream in(options_.referenceFile);
+        size_t columns = 0;
+        for (std::string line; columns == 0 && std::getline(in, line);) {
+            const auto first = line.find_first_not_of(" \t\r");
+            if (first == std::string::npos || line[first] == '%' || line[first] == '#') continue;
+            std::istringstream words(line);
+            for (std::string w; words >> w;) ++columns;
+        }
+        if (columns != 4 && columns != 8)
+            throw Error(options_.referenceFile +
+                        ": a reference path is TUM (8 columns) or "
+                        "\"step x y phi\" (4); its first row has " +
+                        std::to_string(columns));
+        common::GroundTruthSource source;
+        source.path = options_.referenceFile;
+        referenceByStep_ = columns == 4;
+        source.format = referenceByStep_ ? "index_x_y_phi" : "tum";
+        std::vector<double> steps(referenceByStep_ ? 1000000 : 0);
+        for (size_t i = 0; i < steps.size(); ++i) steps[i] = double(i);
+        reference_ = common::loadGroundTruth(source, steps);
+    }
+    const std::string& file = options_.mapFile;
+    const double freeResolution = 0.05;  // where the scanner may stand, for a .poly map
+    if (isMrptMapFile(file)) {
+        grid_ =
+            std::make_shared<mrpt::maps::COccupancyGridMap2D>(loadGridMap(file, options_.trace));
+        wallMap_ = std::make_unique<WallMap>(
+            traceGrid(*grid_, options_.trace, "map " + file, &traceStats_));
+        return;
+    }
+    std::vector<std::vector<TPoint2D>> rings;
+    if (!file.empty()) {
+        rings = loadPolyRings(file);
+        if (rings.size() == 1)
+            map_ = std::make_unique<GeneratedMap>(
+                GeneratedMap{common::Polygon::fromVertices(rings[0], file), {}, "map " + file});
+    } else {
+        map_ = std::make_unique<GeneratedMap>(options_.buildMap());
+        rings = {map_->polygon.vertices()};
+    }
+    wallMap_ = std::make_unique<WallMap>(wallMapOfRings(std::move(rings), freeResolution,
+                                                        options_.trace.clearance,
+                                                        map_ ? map_->description : "map " + file));
 }
 
 void PolymapLocalizer::saveConfig(mrpt::config::CConfigFileBase& target) const {
@@ -61,6 +131,7 @@ RobotHypotheses hypothesesFromScan(const PolymapOptions& options, const common::
 }
 
 void PolymapLocalizer::process(const mrpt::obs::CObservation::Ptr& obs) {
+    if (options_.scanMode) return processScanMode(obs);
     const auto scan = std::dynamic_pointer_cast<mrpt::obs::CObservation2DRangeScan>(obs);
     if (!scan) return;
     ++scansSeen_;
@@ -79,7 +150,62 @@ void PolymapLocalizer::process(const mrpt::obs::CObservation::Ptr& obs) {
     results_[robot] = hypothesesFromScan(options_, map_->polygon, *scan, probeRadius_);
 }
 
+void PolymapLocalizer::processScanMode(const mrpt::obs::CObservation::Ptr& obs) {
+    if (const auto odo = std::dynamic_pointer_cast<mrpt::obs::CObservationOdometry>(obs)) {
+        auto& r = scanRobots_[common::robotOfLabel(odo->sensorLabel)];
+        const mrpt::math::TPose2D p = odo->odometry.asTPose();
+        if (r.odometry && r.elimination)
+            r.travelled += std::hypot(p.x - r.odometry->x, p.y - r.odometry->y);
+        r.odometry = p;
+        ++r.stepsWaiting;
+        return;
+    }
+    const auto scan = std::dynamic_pointer_cast<mrpt::obs::CObservation2DRangeScan>(obs);
+    if (!scan) return;
+    ++scansSeen_;
+    auto& r = scanRobots_[common::robotOfLabel(scan->sensorLabel)];
+    const ScanBeamSet beams = beamSetOf(*scan);
+    for (; r.stepsWaiting > 0; --r.stepsWaiting) r.stepTimes.push_back(beams.time);
+    if (!r.elimination) {
+        // seed 002's hypothesis generation, from a real scan
+        auto o = options_.scan;
+        r.tolerance = options_.beamTolerance > 0
+                          ? options_.beamTolerance
+                          : 3 * beams.sigma + 2 * wallMap_->freeCells.resolution + 0.05;
+        o.tolerance = r.tolerance;
+        if (options_.headingKnown) o.heading = options_.heading * M_PI / 180;
+        r.first = globalHypotheses(*wallMap_, beams, o, &r.stats);
+        r.firstTime = beams.time;
+        r.elimination = std::make_shared<PassiveElimination>(*wallMap_, o, r.first, beams.time);
+        r.odometryAtScan = r.odometry;
+        ++scansUsed_;
+        return;
+    }
+    // the motion since the last scan, by odometry (none logged: the robot is taken to stand,
+    // and the refinement's first steps absorb what it moved)
+    mrpt::math::TPose2D motion{0, 0, 0};
+    if (r.odometry && r.odometryAtScan)
+        motion =
+            (mrpt::poses::CPose2D(*r.odometry) - mrpt::poses::CPose2D(*r.odometryAtScan)).asTPose();
+    r.odometryAtScan = r.odometry;
+    r.elimination->update(motion, r.travelled, beams);
+    ++scansUsed_;
+}
+
+std::map<std::string, common::Trajectory> PolymapLocalizer::scanEstimates() const {
+    std::map<std::string, common::Trajectory> out;
+    for (const auto& [robot, r] : scanRobots_) {
+        if (!r.elimination || r.elimination->live().size() != 1) continue;
+        // the one left, from the first scan on: where it was at every scan it lived
+        auto& traj = out[robot];
+        for (const auto& [t, p] : r.elimination->live().front().path)
+            traj.push_back({t, mrpt::poses::CPose3D(p.x, p.y, 0, p.phi, 0, 0)});
+    }
+    return out;
+}
+
 std::map<std::string, common::Trajectory> PolymapLocalizer::estimates() const {
+    if (options_.scanMode) return scanEstimates();
     std::map<std::string, common::Trajectory> out;
     const double heading = options_.heading * M_PI / 180;
     const auto at = [heading](double t, const TPoint2D& p) {
@@ -111,7 +237,122 @@ common::ObservationUse PolymapLocalizer::observationUse() const {
     return use;
 }
 
+common::Trajectory PolymapLocalizer::referencePath(const std::string& robot) const {
+    if (!referenceByStep_) return reference_;
+    common::Trajectory out;
+    const auto it = scanRobots_.find(robot);
+    if (it == scanRobots_.end()) return out;
+    const auto& times = it->second.stepTimes;
+    for (const auto& row : reference_)
+        if (size_t(row.t) < times.size()) out.push_back({times[size_t(row.t)], row.pose});
+    return out;
+}
+
+std::optional<ReferenceComparison> PolymapLocalizer::compareWithReference(
+    const std::string& robot) const {
+    const auto ref = referencePath(robot);
+    const auto estimates = scanEstimates();
+    const auto it = estimates.find(robot);
+    if (ref.empty() || it == estimates.end()) return std::nullopt;
+    ReferenceComparison c;
+    std::vector<double> errors;
+    double headingSum = 0;
+    for (const auto& e : it->second) {
+        if (e.t < ref.front().t - 1e-6 || e.t > ref.back().t + 1e-6) continue;
+        const auto r = common::interpolate(ref, e.t);
+        if (!r) continue;
+        const double d = std::hypot(e.pose.x() - r->x(), e.pose.y() - r->y());
+        const double h = std::abs(mrpt::math::wrapToPi(e.pose.yaw() - r->yaw())) * 180 / M_PI;
+        if (errors.empty()) c.from = e.t - scanRobots_.at(robot).firstTime;
+        errors.push_back(d);
+        headingSum += h;
+        c.headingMax = std::max(c.headingMax, h);
+        c.max = std::max(c.max, d);
+        c.last = d;
+    }
+    if (errors.empty()) return std::nullopt;
+    c.n = errors.size();
+    for (const double d : errors) c.mean += d / double(c.n);
+    c.headingMean = headingSum / double(c.n);
+    std::nth_element(errors.begin(), errors.begin() + long(c.n / 2), errors.end());
+    c.median = errors[c.n / 2];
+    return c;
+}
+
+nlohmann::json PolymapLocalizer::scanMetrics() const {
+    nlohmann::json j;
+    j["localizer"] = "scan";
+    j["map"] = wallMap_->description;
+    j["map_rings"] = wallMap_->rings.size();
+    size_t vertices = 0;
+    for (const auto& ring : wallMap_->rings) vertices += ring.size();
+    j["map_vertices"] = vertices;
+    j["free_cells"] = wallMap_->freeCells.count();
+    if (grid_) {
+        j["grid"] = {{"width", traceStats_.gridWidth},
+                     {"height", traceStats_.gridHeight},
+                     {"resolution_m", traceStats_.resolution},
+                     {"specks_dropped", traceStats_.specksDropped},
+                     {"contour_points", traceStats_.contourPoints},
+                     {"simplify_m", traceStats_.simplify}};
+    }
+    for (const auto& [robot, r] : scanRobots_) {
+        if (!r.elimination) continue;
+        nlohmann::json rj;
+        const auto& e = *r.elimination;
+        rj["hypotheses"] = r.first.size();
+        rj["tolerance_m"] = r.tolerance;
+        rj["heading_known"] = options_.headingKnown;
+        rj["positions_searched"] = r.stats.positions;
+        rj["search_step_m"] = r.stats.positionStep;
+        rj["poses_scored"] = r.stats.poses;
+        rj["refined"] = r.stats.refined;
+        for (const auto& h : r.first)
+            rj["points"].push_back(
+                {h.pose.x, h.pose.y, h.pose.phi, h.score.agreement(), h.score.throughFraction()});
+        rj["scans"] = e.scans;
+        rj["left"] = e.live().size();
+        rj["localized"] = e.live().size() == 1;
+        rj["unique_after_s"] = e.uniqueTime ? nlohmann::json(*e.uniqueTime) : nlohmann::json();
+        rj["unique_after_m"] =
+            e.uniqueDistance ? nlohmann::json(*e.uniqueDistance) : nlohmann::json();
+        rj["travelled_m"] = r.travelled;
+        rj["runner_up_agreement"] = r.stats.runnerUp;
+        if (const auto c = compareWithReference(robot)) {
+            // the reference file's own comment lines (who made it, how): at most 12 of 300
+            std::ifstream in(options_.referenceFile);
+            nlohmann::json notes = nlohmann::json::array();
+            for (std::string line; notes.size() < 12 && std::getline(in, line);) {
+                if (line.empty() || (line[0] != '%' && line[0] != '#')) continue;
+                const auto text = line.find_first_not_of("%# \t");
+                if (text != std::string::npos)
+                    notes.push_back(common::printable(line.substr(text, 300)));
+            }
+            rj["reference"] = {{"notes", notes},
+                               {"name", options_.referenceName},
+                               {"file", options_.referenceFile},
+                               {"compared", c->n},
+                               {"from_s", c->from},
+                               {"mean_m", c->mean},
+                               {"median_m", c->median},
+                               {"max_m", c->max},
+                               {"last_m", c->last},
+                               {"heading_mean_deg", c->headingMean},
+                               {"heading_max_deg", c->headingMax}};
+        }
+        if (!e.live().empty()) {
+            const auto& best = e.live().front();
+            rj["survivor_rank"] = best.rank;
+            rj["final_pose"] = {best.pose.x, best.pose.y, best.pose.phi};
+            rj["final_agreement"] = best.score.agreement();
+        }
+        j["robots"][robot] = rj;
+    }
+    return j;
+}
+
 nlohmann::json PolymapLocalizer::methodMetrics() const {
+    if (options_.scanMode) return scanMetrics();
     nlohmann::json j;
     j["map_vertices"] = map_->polygon.size();
     j["map"] = map_->description;
@@ -164,6 +405,35 @@ nlohmann::json PolymapLocalizer::groundTruthMetrics(const std::string& robot,
 
 void PolymapLocalizer::writeOutputs(const std::string& outDir,
                                     const common::Trajectories& /*truth*/) const {
+    if (options_.scanMode) {
+        savePolyRings(outDir + "/map.traced.poly", wallMap_->rings,
+                      wallMap_->description + (grid_ ? ": the walls traced from the grid, each "
+                                                       "ring a wall's boundary"
+                                                     : ""));
+        if (grid_)
+            renderMap(grid_.get(), *wallMap_, {}, outDir + "/" + kTracePicture,
+                      "Traced map: " + std::to_string(wallMap_->rings.size()) +
+                          " rings over the occupancy grid");
+        const auto estimates = scanEstimates();
+        for (const auto& [robot, r] : scanRobots_) {
+            MapOverlay overlay;
+            for (const auto& h : r.first) overlay.hypotheses.push_back(h.pose);
+            if (const auto e = estimates.find(robot); e != estimates.end()) {
+                auto& path = overlay.paths.emplace_back();
+                path.label = "mrloc (the hypothesis left)";
+                for (const auto& p : e->second) path.points.push_back({p.pose.x(), p.pose.y()});
+            }
+            if (const auto ref = referencePath(robot); !ref.empty()) {
+                auto& path = overlay.paths.emplace_back();
+                path.label = options_.referenceName;
+                for (const auto& p : ref) path.points.push_back({p.pose.x(), p.pose.y()});
+            }
+            overlay.cropToOverlay = true;
+            renderMap(grid_.get(), *wallMap_, overlay, outDir + "/" + scanPicture(robot),
+                      "Robot " + robot + ": hypotheses from the first scan and the path");
+        }
+        return;
+    }
     map_->polygon.save(mapFilePath(outDir), map_->description);
     for (const auto& [robot, r] : results_)
         HypothesesFile{r.time, r.sensed.vertices, r.hypotheses}.write(outDir, robot);

@@ -5,6 +5,7 @@
 #include <mrloc/polymap/PolymapFiles.h>
 #include <mrloc/polymap/PolymapLocalizer.h>
 #include <mrloc/polymap/PolymapMethod.h>
+#include <mrloc/polymap/ScanReport.h>
 #include <mrpt/core/bits_math.h>
 #include <mrpt/core/format.h>
 #include <mrpt/math/wrap2pi.h>
@@ -101,6 +102,15 @@ namespace {
 method::Scenario loadScenario(const mrpt::config::CConfigFileBase& ini,
                               const PolymapLocalizer& polymap) {
     const PolymapOptions& o = polymap.options();
+    if (!polymap.hasPolygon())
+        throw Error(common::configOrigin(ini) +
+                    ": [polymap] map: mrloc's scanner simulates simple polygons; a grid map or a "
+                    "map with holes is localized on a recorded log (mrloc localize <ini> "
+                    "<rawlog>)");
+    if (o.scanMode && o.drive)
+        throw Error(common::configOrigin(ini) +
+                    ": [polymap] drive: the driving robot eliminates with the exact views "
+                    "(localizer = exact)");
     const GeneratedMap& map = polymap.generatedMap();
     const auto start = o.startIn(map);
     method::Scenario s;
@@ -127,6 +137,7 @@ method::Scenario loadScenario(const mrpt::config::CConfigFileBase& ini,
 }
 
 report::Html polymapSection(const report::RunView& run) {
+    if (isScanRun(run.metrics)) return scanSection(run);
     report::Html out = report::heading(2, "Polygon map: hypotheses") +
                        report::paragraph(
                            "The map P; the sensed visibility polygon V at the true start; V "
@@ -232,6 +243,7 @@ report::Html polymapSection(const report::RunView& run) {
 /** Localized or not (one hypothesis left, per robot), with the hypotheses of the first
  *  scan, the travel the elimination needed and the start's error against the truth. */
 common::Headline polymapHeadline(const method::HeadlineOf<PolymapLocalizer>& in) {
+    if (in.localizer.scanMode()) return scanHeadline(in.localizer.methodMetrics());
     common::Headline h;
     std::string notLocalized;
     double hypotheses = 0, travel = 0;
@@ -282,8 +294,13 @@ void registerMethod(method::Registry& registry) {
     method::MethodUnit<PolymapLocalizer> m;
     m.name = "polymap";
     m.sections = {"polymap"};
+    // MRPT's pf-localization INIs (a grid map to localize laser scans in) name no mrloc
+    // section: their occupancy grid's creation options say they are this method's
+    m.foreignSections = {"MetricMap_occupancyGrid_00_creationOpts"};
     m.reads = {"CObservation2DRangeScan"};
-    m.exampleConfig = "config/polymap_file.ini (your map as a .poly in [polymap] map)";
+    m.exampleConfig =
+        "config/polymap_file.ini (your map as a .poly in [polymap] map), or "
+        "config/polymap_localization_demo.ini (a real laser log on an MRPT .simplemap or .gridmap)";
     m.headline = polymapHeadline;
     m.scenario = loadScenario;
     m.experiment = eliminationExperiment;  // seed 002 Tables 1-2, Figs. 6-7

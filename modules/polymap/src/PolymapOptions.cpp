@@ -11,6 +11,38 @@
 
 namespace mrloc::polymap {
 
+void PolymapOptions::loadScanKeys(common::IniSection& s, const std::string& iniPath) {
+    scan.positionStep = s.real("search_step", scan.positionStep, 0.02, 5);
+    scan.headingStep = s.real("heading_step", scan.headingStep, 0.25, 30);
+    scan.maxPositions =
+        size_t(s.integer("search_positions", long(scan.maxPositions), 100, 1000000));
+    beamTolerance = s.real("beam_tolerance", beamTolerance, 0, 5);
+    scan.keepMargin = s.real("keep_margin", scan.keepMargin, 0, 1);
+    scan.minAgreement = s.real("min_agreement", scan.minAgreement, 0.05, 1);
+    scan.maxThrough = s.real("max_through", scan.maxThrough, 0, 1);
+    scan.maxHypotheses = size_t(s.integer("max_hypotheses", long(scan.maxHypotheses), 1, 2000));
+    trace.resolution = s.real("grid_resolution", trace.resolution, 0.01, 1);
+    trace.occupied = s.real("trace_occupied", trace.occupied, 0.01, 0.5);
+    trace.free = s.real("trace_free", trace.free, 0.5, 0.99);
+    trace.speckCells = int(s.integer("speck_cells", trace.speckCells, 1, 10000));
+    trace.simplify = s.real("trace_simplify", trace.simplify, 0, 1);
+    trace.clearance = s.real("free_clearance", trace.clearance, 0, 2);
+    referenceFile = s.text("reference", "");
+    if (!referenceFile.empty()) {
+        referenceFile = common::pathFromIni(iniPath, referenceFile);
+        if (!std::filesystem::is_regular_file(referenceFile))
+            s.fail("reference", "no such file '" + common::pathInWords(referenceFile) + "'");
+    }
+    referenceName = s.text("reference_name", referenceFile.empty() ? "" : "the reference");
+    scan.region.reset();
+    if (s.has("region")) {
+        const auto r = s.requireReals("region", 4);
+        if (!(r[0] < r[1] && r[2] < r[3]))
+            s.fail("region", "expected xmin xmax ymin ymax with xmin < xmax and ymin < ymax");
+        scan.region = std::make_pair(TPoint2D{r[0], r[2]}, TPoint2D{r[1], r[3]});
+    }
+}
+
 void PolymapOptions::loadFromConfigFile(const mrpt::config::CConfigFileBase& src,
                                         const std::string& section) {
     *this = PolymapOptions{};  // every key absent takes the struct's default: written once
@@ -56,8 +88,25 @@ void PolymapOptions::loadFromConfigFile(const mrpt::config::CConfigFileBase& src
         if (s.has("start_site")) s.fail("start_site", "give either start = x y or start_site");
     }
     startSite = (int)s.integer("start_site", long(startSite), 1, 1000000);
-    if (!start && !mapFile.empty()) s.fail("start", "required with a map file (start = x y)");
+    const bool mrptMap = isMrptMapFile(mapFile);
+    const std::string mode = s.choice("localizer", "auto", {"auto", "exact", "scan"});
+    // a .poly with holes (rings after blank lines) needs the scan localizer too
+    const bool holes =
+        !mrptMap && !mapFile.empty() && mode == "auto" && loadPolyRings(mapFile).size() > 1;
+    scanMode = mode == "scan" || (mode == "auto" && (mrptMap || holes));
+    if (!scanMode && mrptMap)
+        s.fail("localizer", "exact needs a .poly map; an MRPT grid map is localized with scan");
+    if (!start && !mapFile.empty() && !scanMode)
+        s.fail("start", "required with a map file (start = x y)");
+    headingKnown = s.has("heading");
     heading = s.real("heading", heading, -360, 360);
+    loadScanKeys(s, common::configOrigin(src));
+    // MRPT's own section for how a simplemap's scans go into the grid, when the INI holds it
+    // (pf-localization's INIs; and effective.ini of a run from one)
+    if (src.sectionExists(kGridInsertSection)) {
+        trace.insertOptions = &src;
+        trace.insertSection = kGridInsertSection;
+    }
     scanRays = (int)s.integer("scan_rays", long(scanRays), 16, 100000);
     scanRangeSigma = s.real("scan_range_sigma", scanRangeSigma, 0, 10);
     scanMaxRange = s.real("scan_max_range", scanMaxRange, 1e-3, 1e6);
@@ -111,6 +160,8 @@ void PolymapOptions::loadFromConfigFile(const mrpt::config::CConfigFileBase& src
         if (scanRate > 0)
             s.fail("drive", "a driving robot scans where it eliminates: set scan_rate = 0");
     }
+    if (scanMode && !elimination.empty())
+        s.fail("elimination", "seed 002's experiment runs on exact views (localizer = exact)");
     s.finish();
 }
 
@@ -142,7 +193,7 @@ void PolymapOptions::saveToConfigFile(mrpt::config::CConfigFileBase& t,
         t.write(section, "start", mrpt::format("%.17g %.17g", start->x, start->y));
     else
         t.write(section, "start_site", startSite);
-    t.write(section, "heading", heading);
+    if (headingKnown || !scanMode) t.write(section, "heading", heading);  // absent: unknown
     t.write(section, "scan_rays", scanRays);
     t.write(section, "scan_range_sigma", scanRangeSigma);
     t.write(section, "scan_max_range", scanMaxRange);
@@ -163,6 +214,72 @@ void PolymapOptions::saveToConfigFile(mrpt::config::CConfigFileBase& t,
     if (!sweep.empty()) t.write(section, "sweep_steps", sweep);
     t.write(section, "sweep_starts", sweepStarts);
     t.write(section, "drive", drive ? strategyName(*drive) : std::string("none"));
+    t.write(section, "localizer", std::string(scanMode ? "scan" : "exact"));
+    if (!scanMode) return;
+    t.write(section, "search_step", scan.positionStep);
+    t.write(section, "heading_step", scan.headingStep);
+    t.write(section, "search_positions", int(scan.maxPositions));
+    t.write(section, "beam_tolerance", beamTolerance);
+    t.write(section, "keep_margin", scan.keepMargin);
+    t.write(section, "min_agreement", scan.minAgreement);
+    t.write(section, "max_through", scan.maxThrough);
+    t.write(section, "max_hypotheses", int(scan.maxHypotheses));
+    t.write(section, "grid_resolution", trace.resolution);
+    t.write(section, "trace_occupied", trace.occupied);
+    t.write(section, "trace_free", trace.free);
+    t.write(section, "speck_cells", trace.speckCells);
+    t.write(section, "trace_simplify", trace.simplify);
+    t.write(section, "free_clearance", trace.clearance);
+    if (!referenceFile.empty()) {
+        t.write(section, "reference", referenceFile);
+        t.write(section, "reference_name", referenceName);
+    }
+    if (scan.region)
+        t.write(section, "region",
+                mrpt::format("%.17g %.17g %.17g %.17g", scan.region->first.x, scan.region->second.x,
+                             scan.region->first.y, scan.region->second.y));
+}
+
+void PolymapOptions::loadFromMrptLocalizationIni(const mrpt::config::CConfigFileBase& ini) {
+    *this = PolymapOptions{};
+    const std::string section = "LocalizationExperiment";
+    origin_ = common::configOrigin(ini) + ": [" + section + "]";
+    const std::string named = ini.read_string(section, "map_file", "");
+    if (named.empty())
+        throw Error(origin_ + " map_file: required (the map pf-localization localizes in)");
+    namespace fs = std::filesystem;
+    mapFile = common::pathFromIni(common::configOrigin(ini), named);
+    if (!fs::is_regular_file(mapFile))
+        throw Error(origin_ + " map_file: no such file '" + common::pathInWords(mapFile) +
+                    "' (a relative path is taken from the INI's folder)");
+    if (!isMrptMapFile(mapFile))
+        throw Error(origin_ + " map_file: '" + common::pathInWords(mapFile) +
+                    "' is not a .gridmap or .simplemap");
+    scanMode = true;
+    // pf-localization's init_PDF box (MRPT's defaults when absent), where it spreads its
+    // particles: the same prior for the search
+    const auto read = [&](const char* key, double def) {
+        const double v = ini.read_double(section, key, def);
+        if (!std::isfinite(v) || std::abs(v) > common::Polygon::kMaxCoordinate)
+            throw Error(origin_ + " " + key + ": " + std::to_string(v) + " is not a coordinate");
+        return v;
+    };
+    const double x0 = read("init_PDF_min_x", -10), x1 = read("init_PDF_max_x", 10);
+    const double y0 = read("init_PDF_min_y", -10), y1 = read("init_PDF_max_y", 10);
+    if (!(x0 < x1 && y0 < y1))
+        throw Error(origin_ + " init_PDF_min_x .. init_PDF_max_y: an empty box");
+    scan.region = std::make_pair(TPoint2D{x0, y0}, TPoint2D{x1, y1});
+    // the grid MRPT builds from a simplemap, with the INI's resolution and insertion options
+    const std::string grid = "MetricMap_occupancyGrid_00_";  // kGridInsertSection's map
+    const double res = ini.read_double(grid + "creationOpts", "resolution", trace.resolution);
+    if (!(res >= 0.01 && res <= 1))
+        throw Error(common::configOrigin(ini) + ": [" + grid +
+                    "creationOpts] resolution: expected 0.01 to 1 m");
+    trace.resolution = res;
+    if (ini.sectionExists(kGridInsertSection)) {
+        trace.insertOptions = &ini;
+        trace.insertSection = kGridInsertSection;
+    }
 }
 
 EliminationOptions PolymapOptions::driveOptions(double tolerance) const {

@@ -44,7 +44,9 @@ class Polygon {
      *  orientations) and reorients clockwise input. `what` names the source
      *  in errors, e.g. "maps/x.poly". Throws mrloc::Error. */
     static Polygon fromVertices(std::vector<TPoint2D> vertices, const std::string& what);
-    /** A .poly file: one "x y" vertex per line; '#' starts a comment; blank lines skipped. */
+    /** A .poly file: one "x y" vertex per line; '#' starts a comment. A blank line after the
+     *  vertices ends the ring: another ring after it (a hole) is refused here, since a simple
+     *  polygon has none (polymap/WallMap.h reads rings). */
     static Polygon load(const std::string& path);
     /** Writes the .poly text (atomically: temporary name, then rename). */
     void save(const std::string& path, const std::string& comment = "") const;

@@ -10,6 +10,7 @@
 //     a crash, an exception or an allocation beyond the cap there is an error naming the
 //     entry, and the parent, which reads the file only after this, never sees it.
 #include <cstddef>
+#include <functional>
 #include <string>
 
 namespace mrloc::common {
@@ -25,6 +26,12 @@ struct RawlogProbeLimits {
 /** Throws mrloc::Error naming `path` (and the entry or byte) if the file is not a complete,
  *  readable rawlog. */
 void probeRawlog(const std::string& path, const RawlogProbeLimits& limits = {});
+
+/** The same isolation for any file MRPT deserializes (a .gridmap, a .simplemap): `read` runs
+ *  in the child, and a crash, an exception or an allocation beyond the cap there is an error
+ *  naming `what` and `path`. A .gz file's stream is checked to its end as well. */
+void probeFile(const std::string& path, const std::string& what, const std::function<void()>& read,
+               const RawlogProbeLimits& limits = {});
 
 /** Checks a gzip stream (all members) to its end; throws mrloc::Error naming `what` and the
  *  compressed byte offset on corruption or truncation. A file without gzip's magic bytes is

@@ -7,7 +7,9 @@
 // on-board part's own code, and once one hypothesis is left estimates the pose at every
 // scan.
 #include <mrloc/common/Localizer.h>
+#include <mrloc/polymap/GridTrace.h>
 #include <mrloc/polymap/PolymapOptions.h>
+#include <mrloc/polymap/ScanLocalizer.h>
 #include <mrpt/obs/CObservation2DRangeScan.h>
 
 #include <map>
@@ -39,6 +41,37 @@ RobotHypotheses hypothesesFromScan(const PolymapOptions& options, const common::
  *  where the simulator's follower stops, plus kArrivalMargin. */
 double probeRadius(double speed, double dt);
 
+/** The pictures the scan localizer writes into the run folder. */
+inline constexpr const char* kTracePicture = "polymap.trace.png";
+inline std::string scanPicture(const std::string& robot) {
+    return "polymap." + robot + ".scan.png";
+}
+
+/** A robot localized from real scans ([polymap] localizer = scan). */
+struct ScanRobot {
+    std::vector<PoseHypothesis> first;  ///< from the first scan, best first
+    SearchStats stats;
+    double tolerance = 0;  ///< the beams' (m)
+    double firstTime = 0;
+    std::shared_ptr<PassiveElimination> elimination;
+    std::optional<mrpt::math::TPose2D> odometry, odometryAtScan;
+    double travelled = 0;  ///< odometry path since the first scan (m)
+    /** A step-indexed reference's time base: step i is the i-th action (odometry reading)
+     *  with the sensory frame after it, as MRPT's apps pair them (getActionObservationPair),
+     *  so its time is that of the first scan after the i-th odometry reading. */
+    std::vector<double> stepTimes;
+    size_t stepsWaiting = 0;  ///< odometry readings not yet followed by a scan
+};
+
+/** The estimates beside a reference path (another localizer's), over the estimates at times
+ *  the reference covers. */
+struct ReferenceComparison {
+    size_t n = 0;
+    double mean = 0, median = 0, max = 0, last = 0;  ///< position (m)
+    double headingMean = 0, headingMax = 0;          ///< deg
+    double from = 0;  ///< the first compared time (s since the first scan)
+};
+
 class PolymapLocalizer : public common::Localizer {
  public:
     void configure(const mrpt::config::CConfigFileBase& ini) override;
@@ -55,11 +88,33 @@ class PolymapLocalizer : public common::Localizer {
 
     const common::Polygon& map() const { return map_->polygon; }
     const GeneratedMap& generatedMap() const { return *map_; }
+    /** False for a grid map or a .poly with holes (scan localizer only): no simulation. */
+    bool hasPolygon() const { return map_ != nullptr; }
     const PolymapOptions& options() const { return options_; }
     const std::map<std::string, RobotHypotheses>& results() const { return results_; }
+    bool scanMode() const { return options_.scanMode; }
+    const WallMap& wallMap() const { return *wallMap_; }
+    const std::map<std::string, ScanRobot>& scanResults() const { return scanRobots_; }
+    const TraceStats& traceStats() const { return traceStats_; }
+    /** The reference path in the log's time (step-indexed rows at the odometry's times). */
+    common::Trajectory referencePath(const std::string& robot) const;
+    std::optional<ReferenceComparison> compareWithReference(const std::string& robot) const;
+    /** The grid a .gridmap / .simplemap map was traced from (nullptr otherwise). */
+    const mrpt::maps::COccupancyGridMap2D* grid() const { return grid_.get(); }
 
  private:
+    void configureScanMode();
+    void processScanMode(const mrpt::obs::CObservation::Ptr& obs);
+    std::map<std::string, common::Trajectory> scanEstimates() const;
+    nlohmann::json scanMetrics() const;
+
     PolymapOptions options_;
+    std::unique_ptr<WallMap> wallMap_;
+    std::shared_ptr<mrpt::maps::COccupancyGridMap2D> grid_;
+    TraceStats traceStats_;
+    std::map<std::string, ScanRobot> scanRobots_;
+    common::Trajectory reference_;  ///< step-indexed: t is the step until mapped
+    bool referenceByStep_ = false;
     double probeRadius_ = 0;  ///< from the INI's [scenario] dt and its robot's speed
     std::unique_ptr<GeneratedMap> map_;
     std::map<std::string, RobotHypotheses> results_;

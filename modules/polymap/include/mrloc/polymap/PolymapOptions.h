@@ -2,9 +2,12 @@
 // Section [polymap]: the map (a .poly file or a generator), the robot's true start and
 // heading, its 360-degree scanner, and the hypothesis tolerances. The simulator gets the
 // map, start and scanner through the app; the localizer reads the same section.
+#include <mrloc/common/IniSection.h>
 #include <mrloc/polymap/Elimination.h>
+#include <mrloc/polymap/GridTrace.h>
 #include <mrloc/polymap/Hypotheses.h>
 #include <mrloc/polymap/MapGenerators.h>
+#include <mrloc/polymap/ScanLocalizer.h>
 #include <mrloc/polymap/ScanPolygon.h>
 #include <mrpt/config/CLoadableOptions.h>
 
@@ -17,6 +20,9 @@ namespace mrloc::polymap {
 /** Upper bounds on the list keys that multiply the experiment's work (doc/errors.md). */
 inline constexpr size_t kMaxListValues = 8;   ///< random_points
 inline constexpr size_t kMaxSweepSteps = 20;  ///< sweep_steps
+/** MRPT's section of a grid's insertion options (pf-localization's INIs): used to build the
+ *  grid of a .simplemap when the INI holds it. */
+inline constexpr const char* kGridInsertSection = "MetricMap_occupancyGrid_00_insertOpts";
 
 struct PolymapOptions : public mrpt::config::CLoadableOptions {
     std::string mapFile;  ///< map = <file.poly> (a relative path: from the INI's folder)
@@ -50,6 +56,24 @@ struct PolymapOptions : public mrpt::config::CLoadableOptions {
      *  localizer replays it from the rawlog (randomized: the first random_points X). */
     std::optional<ProbeStrategy> drive;
 
+    /** localizer = exact | scan (default: scan for a .gridmap, a .simplemap or a .poly with
+     *  holes; exact otherwise). exact: seed 002's visibility polygons, 360-degree scans, a
+     *  simple polygon; scan: real scans of any field of view, unknown heading, passive
+     *  elimination as the robot drives (doc/polymap.md, "Real scans"). */
+    bool scanMode = false;
+    bool headingKnown = false;  ///< the heading key was given
+    ScanLocalizerOptions scan;  ///< search_step, heading_step, beam_tolerance, ...
+    double beamTolerance = 0;   ///< beam_tolerance (m); 0: from the scan and the map
+    GridTraceOptions trace;     ///< grid_resolution, trace_occupied, trace_free, ...
+    /** reference = <file>: another localizer's path to set the estimates beside (MRPT's
+     *  pf-localization or icp-slam on a log without ground truth), TUM or "step x y phi";
+     *  reference_name says whose it is. */
+    std::string referenceFile, referenceName;
+    /** The options of pf-localization's INI ([LocalizationExperiment], its map_file, its
+     *  init_PDF box as the search region, its grid's resolution and insertion options):
+     *  MRPT's demo INI runs unchanged. */
+    void loadFromMrptLocalizationIni(const mrpt::config::CConfigFileBase& ini);
+
     /** The options of the driving robot's elimination, for a scan generated with tolerance. */
     EliminationOptions driveOptions(double tolerance) const;
 
@@ -67,6 +91,7 @@ struct PolymapOptions : public mrpt::config::CLoadableOptions {
     double toleranceFor(double rMax) const;
 
  private:
+    void loadScanKeys(common::IniSection& s, const std::string& iniPath);
     std::string origin_;  ///< file, for errors raised after loading
 };
 

@@ -1,0 +1,80 @@
+#pragma once
+// MRPT's maps as polygon maps: a .gridmap(.gz) (a serialized COccupancyGridMap2D) or a
+// .simplemap(.gz) (poses and scans, from which MRPT builds the occupancy grid) traced into
+// polygon rings with OpenCV (doc/polymap.md, "Maps from MRPT"):
+//  - a cell is occupied when its free probability is below `occupied` (MRPT's grids start at
+//    0.5, unknown), free above `free`;
+//  - occupied blobs smaller than `speckCells` are dropped (a person, a chair leg seen once);
+//  - each blob's boundary is traced (cv::findContours, every ring: walls with rooms inside
+//    them have inner boundaries) and simplified (cv::approxPolyDP) within `simplify` metres;
+//  - the rings are the walls a beam stops at; the free cells, `clearance` from any wall, are
+//    where the scanner may stand.
+#include <mrloc/polymap/WallMap.h>
+#include <mrpt/maps/COccupancyGridMap2D.h>
+#include <mrpt/math/TPose2D.h>
+
+#include <string>
+
+namespace mrpt::config {
+class CConfigFileBase;
+}
+
+namespace mrloc::polymap {
+
+struct GridTraceOptions {
+    double resolution = 0.05;  ///< m: the grid built from a simplemap (a .gridmap has its own)
+    double occupied = 0.4;     ///< free probability below which a cell is a wall
+    double free = 0.6;         ///< free probability above which a cell is free space
+    int speckCells = 4;        ///< occupied blobs of fewer cells are dropped
+    double simplify = 0;       ///< m; 0: half a cell (the contour's own quantization)
+    double clearance = 0.15;   ///< m from a wall where the scanner may stand
+    /** For a simplemap: MRPT's insertion options section of an INI (pf-localization's
+     *  MetricMap_occupancyGrid_00_insertOpts), if any. */
+    const mrpt::config::CConfigFileBase* insertOptions = nullptr;
+    std::string insertSection;
+};
+
+/** What tracing found, for the report. */
+struct TraceStats {
+    int gridWidth = 0, gridHeight = 0;
+    double resolution = 0;
+    size_t occupiedCells = 0, freeCells = 0, specksDropped = 0, rings = 0, vertices = 0;
+    size_t contourPoints = 0;  ///< before simplification
+    double simplify = 0;       ///< the tolerance used (m)
+};
+
+/** Bound on a grid's cells (doc/errors.md): 8000 x 8000 at any resolution. */
+inline constexpr double kMaxGridCells = 64e6;
+
+/** True for the names the grid loader takes: .gridmap, .simplemap, each optionally .gz. */
+bool isMrptMapFile(const std::string& path);
+
+/** Loads a .gridmap(.gz) or builds the grid of a .simplemap(.gz). The file is first read in a
+ *  child process (common::probeFile): a corrupt or hostile file is one line, never a crash.
+ *  Throws mrloc::Error naming the file. */
+mrpt::maps::COccupancyGridMap2D loadGridMap(const std::string& path,
+                                            const GridTraceOptions& options);
+
+/** Traces `grid` into a WallMap (rings = the walls' boundaries, every one a hole in the free
+ *  space). */
+WallMap traceGrid(const mrpt::maps::COccupancyGridMap2D& grid, const GridTraceOptions& options,
+                  const std::string& description, TraceStats* stats = nullptr);
+
+/** What a map picture shows besides the map. */
+struct MapOverlay {
+    std::vector<mrpt::math::TPose2D> hypotheses;  ///< drawn as arrows
+    struct Path {
+        std::string label;
+        std::vector<TPoint2D> points;
+    };
+    std::vector<Path> paths;
+    bool cropToOverlay = false;  ///< the box around the overlay, not the whole map
+};
+
+/** The map as a picture (PNG): the grid in grey (if any), where the scanner may stand tinted,
+ *  the rings in colour, the overlay; a scale bar, the box's coordinates, and the legend in a
+ *  panel beside the map. */
+void renderMap(const mrpt::maps::COccupancyGridMap2D* grid, const WallMap& map,
+               const MapOverlay& overlay, const std::string& pngPath, const std::string& title);
+
+}  // namespace mrloc::polymap

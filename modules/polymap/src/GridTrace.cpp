@@ -1,0 +1,293 @@
+#include <mrloc/common/Error.h>
+#include <mrloc/common/RawlogProbe.h>
+#include <mrloc/polymap/GridTrace.h>
+#include <mrpt/config/CConfigFileBase.h>
+#include <mrpt/core/format.h>
+#include <mrpt/img/CImage.h>
+#include <mrpt/io/CFileGZInputStream.h>
+#include <mrpt/maps/CSimpleMap.h>
+#include <mrpt/serialization/CArchive.h>
+
+#include <algorithm>
+#include <cmath>
+#include <opencv2/imgproc.hpp>
+
+namespace mrloc::polymap {
+
+namespace {
+
+bool endsWith(const std::string& s, const std::string& tail) {
+    return s.size() >= tail.size() && s.compare(s.size() - tail.size(), tail.size(), tail) == 0;
+}
+
+std::string withoutGz(const std::string& path) {
+    return endsWith(path, ".gz") ? path.substr(0, path.size() - 3) : path;
+}
+
+void checkGridSize(const mrpt::maps::COccupancyGridMap2D& grid, const std::string& path) {
+    const double cells = double(grid.getSizeX()) * double(grid.getSizeY());
+    if (cells > kMaxGridCells || grid.getResolution() <= 0 || !std::isfinite(grid.getXMin()) ||
+        !std::isfinite(grid.getYMin()))
+        throw Error(mrpt::format(
+            "map %s: a grid of %u x %u cells of %g m, beyond the %.0f "
+            "cells mrloc takes (doc/errors.md)",
+            path.c_str(), grid.getSizeX(), grid.getSizeY(), grid.getResolution(), kMaxGridCells));
+}
+
+mrpt::maps::COccupancyGridMap2D readGrid(const std::string& path, const GridTraceOptions& o) {
+    mrpt::maps::COccupancyGridMap2D grid;
+    if (endsWith(withoutGz(path), ".gridmap")) {
+        mrpt::io::CFileGZInputStream in(path);
+        mrpt::serialization::archiveFrom(in) >> grid;
+        checkGridSize(grid, path);
+        return grid;
+    }
+    mrpt::maps::CSimpleMap simple;
+    {
+        mrpt::io::CFileGZInputStream in(path);
+        mrpt::serialization::archiveFrom(in) >> simple;
+    }
+    if (simple.empty()) throw Error("map " + path + ": the simplemap holds no observations");
+    // the grid's size follows the poses: bound them before MRPT allocates anything
+    for (size_t i = 0; i < simple.size(); ++i) {
+        const auto& [pose, frame] = simple.get(i);
+        if (!pose || !frame)
+            throw Error(mrpt::format("map %s: entry %zu is empty", path.c_str(), i));
+        const auto mean = pose->getMeanVal();
+        if (!std::isfinite(mean.x()) || !std::isfinite(mean.y()) || std::abs(mean.x()) > 1e5 ||
+            std::abs(mean.y()) > 1e5)
+            throw Error(mrpt::format("map %s: entry %zu's pose (%g, %g) is not a building's",
+                                     path.c_str(), i, mean.x(), mean.y()));
+    }
+    grid = mrpt::maps::COccupancyGridMap2D(-1, 1, -1, 1, float(o.resolution));
+    if (o.insertOptions)
+        grid.insertionOptions.loadFromConfigFile(*o.insertOptions, o.insertSection);
+    grid.loadFromSimpleMap(simple);
+    checkGridSize(grid, path);
+    return grid;
+}
+
+}  // namespace
+
+bool isMrptMapFile(const std::string& path) {
+    const std::string p = withoutGz(path);
+    return endsWith(p, ".gridmap") || endsWith(p, ".simplemap");
+}
+
+mrpt::maps::COccupancyGridMap2D loadGridMap(const std::string& path,
+                                            const GridTraceOptions& options) {
+    if (!isMrptMapFile(path))
+        throw Error("map " + path + ": expected a .gridmap or .simplemap (optionally .gz)");
+    // a stranger's file is deserialized first where a crash or a huge allocation cannot harm
+    common::probeFile(path, "map", [&] { readGrid(path, options); });
+    try {
+        return readGrid(path, options);
+    } catch (const Error&) {
+        throw;
+    } catch (const std::exception& e) {
+        throw Error("map " + path + ": " + oneLine(e.what()));
+    }
+}
+
+WallMap traceGrid(const mrpt::maps::COccupancyGridMap2D& grid, const GridTraceOptions& o,
+                  const std::string& description, TraceStats* stats) {
+    const int w = int(grid.getSizeX()), h = int(grid.getSizeY());
+    const double res = grid.getResolution();
+    cv::Mat occupied = cv::Mat::zeros(h, w, CV_8U), freeMask = cv::Mat::zeros(h, w, CV_8U);
+    for (int y = 0; y < h; ++y)
+        for (int x = 0; x < w; ++x) {
+            const float p = grid.getCell(x, y);
+            occupied.at<uint8_t>(y, x) = p < o.occupied;
+            freeMask.at<uint8_t>(y, x) = p > o.free;
+        }
+    TraceStats s;
+    s.gridWidth = w;
+    s.gridHeight = h;
+    s.resolution = res;
+    s.occupiedCells = size_t(cv::countNonZero(occupied));
+    s.freeCells = size_t(cv::countNonZero(freeMask));
+    // specks: 8-connected occupied blobs of fewer than speckCells cells
+    cv::Mat labels, blobStats, centroids;
+    const int blobs = cv::connectedComponentsWithStats(occupied, labels, blobStats, centroids, 8);
+    std::vector<uint8_t> keep(size_t(blobs), 1);
+    for (int b = 1; b < blobs; ++b)
+        if (blobStats.at<int>(b, cv::CC_STAT_AREA) < o.speckCells) keep[b] = 0, ++s.specksDropped;
+    for (int y = 0; y < h; ++y)
+        for (int x = 0; x < w; ++x)
+            if (!keep[size_t(labels.at<int>(y, x))]) occupied.at<uint8_t>(y, x) = 0;
+    // every boundary of every blob (outer and inner), as chains of boundary cells' centres
+    std::vector<std::vector<cv::Point>> contours;
+    cv::findContours(occupied, contours, cv::RETR_LIST, cv::CHAIN_APPROX_NONE);
+    s.simplify = o.simplify > 0 ? o.simplify : 0.5 * res;
+    const double x0 = grid.getXMin(), y0 = grid.getYMin();
+    std::vector<std::vector<TPoint2D>> rings;
+    for (const auto& c : contours) {
+        s.contourPoints += c.size();
+        std::vector<cv::Point> simple;
+        cv::approxPolyDP(c, simple, s.simplify / res, true);
+        auto& ring = rings.emplace_back();
+        for (const auto& p : simple)
+            ring.push_back({x0 + (p.x + 0.5) * res, y0 + (p.y + 0.5) * res});
+        s.vertices += ring.size();
+        if (rings.size() > kMaxRings || s.vertices > kMaxWallVertices)
+            throw Error(description + mrpt::format(": more than %zu rings or %zu vertices traced",
+                                                   kMaxRings, kMaxWallVertices));
+    }
+    s.rings = rings.size();
+    // walls: every ring's edges (a one-cell-thick wall traces as a ring folded on itself, which
+    // a beam still stops at); the free cells clear of them
+    WallMap map;
+    map.description = description;
+    std::vector<WallSegment> walls;
+    for (const auto& ring : rings) {
+        if (ring.size() == 1) {  // a blob traced to one point: a short wall across it
+            const TPoint2D d{0.25 * res, 0};
+            walls.push_back({ring[0] - d, ring[0] + d});
+            continue;
+        }
+        for (size_t i = 0; i < ring.size(); ++i)
+            walls.push_back({ring[i], ring[(i + 1) % ring.size()]});
+    }
+    cv::Mat notWall = 1 - occupied;
+    cv::Mat dist;
+    cv::distanceTransform(notWall, dist, cv::DIST_L2, cv::DIST_MASK_PRECISE);
+    map.freeCells.min = {x0, y0};
+    map.freeCells.resolution = res;
+    map.freeCells.width = w;
+    map.freeCells.height = h;
+    map.freeCells.free.assign(size_t(w) * h, 0);
+    for (int y = 0; y < h; ++y)
+        for (int x = 0; x < w; ++x)
+            map.freeCells.free[size_t(y) * w + x] =
+                freeMask.at<uint8_t>(y, x) && dist.at<float>(y, x) * res >= o.clearance;
+    map.min = {x0, y0};
+    map.max = {grid.getXMax(), grid.getYMax()};
+    map.caster = RayCaster(std::move(walls), std::max(0.25, 5 * res));
+    map.outer.assign(rings.size(), false);
+    map.rings = std::move(rings);
+    if (stats) *stats = s;
+    return map;
+}
+
+void renderMap(const mrpt::maps::COccupancyGridMap2D* grid, const WallMap& map,
+               const MapOverlay& overlay, const std::string& pngPath, const std::string& title) {
+    // the box drawn: the overlay's (with a margin), else the grid's known part, else the map's
+    TPoint2D lo{INFINITY, INFINITY}, hi{-INFINITY, -INFINITY};
+    const auto grow = [&](const TPoint2D& p) {
+        lo = {std::min(lo.x, p.x), std::min(lo.y, p.y)};
+        hi = {std::max(hi.x, p.x), std::max(hi.y, p.y)};
+    };
+    if (overlay.cropToOverlay) {
+        for (const auto& h : overlay.hypotheses) grow({h.x, h.y});
+        for (const auto& path : overlay.paths)
+            for (const auto& p : path.points) grow(p);
+    }
+    if (!std::isfinite(lo.x) && grid) {
+        const int w = int(grid->getSizeX()), h = int(grid->getSizeY());
+        for (int y = 0; y < h; ++y)
+            for (int x = 0; x < w; ++x)
+                if (std::abs(grid->getCell(x, y) - 0.5f) > 0.05f)
+                    grow({grid->idx2x(x), grid->idx2y(y)});
+    }
+    if (!std::isfinite(lo.x)) lo = map.min, hi = map.max;
+    const double pad = std::max(1.0, 0.05 * std::max(hi.x - lo.x, hi.y - lo.y));
+    lo = lo - TPoint2D{pad, pad};
+    hi = hi + TPoint2D{pad, pad};
+    const double scale = std::min(1400.0 / (hi.x - lo.x), 900.0 / (hi.y - lo.y));  // px per m
+    const int W = std::max(200, int((hi.x - lo.x) * scale)),
+              H = std::max(100, int((hi.y - lo.y) * scale));
+    const int panel = 360, top = 40, bottom = 50;
+    cv::Mat img(H + top + bottom, W + panel, CV_8UC3, cv::Scalar(255, 255, 255));
+    const auto world = [&](int x, int y) {
+        return TPoint2D{lo.x + (x + 0.5) / scale, hi.y - (y + 0.5) / scale};
+    };
+    // the map is drawn on its own image, which clips what lies outside the box
+    cv::Mat view(H, W, CV_8UC3);
+    const auto pix = [&](const TPoint2D& p) {
+        return cv::Point(int(std::clamp((p.x - lo.x) * scale, -1e6, 1e6)),
+                         int(std::clamp((hi.y - p.y) * scale, -1e6, 1e6)));
+    };
+    for (int y = 0; y < H; ++y)
+        for (int x = 0; x < W; ++x) {
+            const TPoint2D p = world(x, y);
+            uint8_t v = 255;
+            if (grid) {
+                const int gx = grid->x2idx(p.x), gy = grid->y2idx(p.y);
+                v = gx >= 0 && gy >= 0 && gx < int(grid->getSizeX()) && gy < int(grid->getSizeY())
+                        ? uint8_t(std::clamp(grid->getCell(gx, gy), 0.f, 1.f) * 255)
+                        : 128;
+            }
+            cv::Vec3b px{v, v, v};
+            if (map.freeCells.at(p)) px = {uint8_t(v * 0.8), v, uint8_t(v * 0.8)};
+            view.at<cv::Vec3b>(y, x) = px;
+        }
+    const cv::Scalar ringColour(40, 40, 230);  // BGR: red
+    for (const auto& ring : map.rings) {
+        std::vector<cv::Point> pts;
+        for (const auto& p : ring) pts.push_back(pix(p));
+        cv::polylines(view, pts, true, ringColour, scale > 40 ? 2 : 1, cv::LINE_AA);
+    }
+    const cv::Scalar pathColours[] = {cv::Scalar(200, 90, 0), cv::Scalar(0, 150, 255),
+                                      cv::Scalar(160, 0, 160)};
+    for (size_t k = 0; k < overlay.paths.size(); ++k) {
+        std::vector<cv::Point> pts;
+        for (const auto& p : overlay.paths[k].points) pts.push_back(pix(p));
+        cv::polylines(view, pts, false, pathColours[k % 3], 2, cv::LINE_AA);
+        if (!pts.empty()) cv::circle(view, pts.front(), 4, pathColours[k % 3], -1, cv::LINE_AA);
+    }
+    const cv::Scalar hypColour(0, 140, 0);
+    const double arrow = std::max(0.6, 18 / scale);  // m
+    for (const auto& h : overlay.hypotheses) {
+        const cv::Point a = pix({h.x, h.y});
+        const cv::Point b = pix({h.x + arrow * std::cos(h.phi), h.y + arrow * std::sin(h.phi)});
+        cv::arrowedLine(view, a, b, hypColour, 2, cv::LINE_AA, 0, 0.35);
+    }
+    view.copyTo(img(cv::Rect(0, top, W, H)));
+    const auto text = [&](const std::string& s, int x, int y, double size = 0.5) {
+        cv::putText(img, s, {x, y}, cv::FONT_HERSHEY_SIMPLEX, size, cv::Scalar(0, 0, 0), 1,
+                    cv::LINE_AA);
+    };
+    text(title, 10, 26, 0.6);
+    // scale bar: a round length near a fifth of the width
+    const double widthM = hi.x - lo.x;
+    double bar = std::pow(10.0, std::floor(std::log10(widthM / 5)));
+    if (bar * 5 <= widthM / 5)
+        bar *= 5;
+    else if (bar * 2 <= widthM / 5)
+        bar *= 2;
+    const int barPx = int(bar * scale), by = top + H + 30;
+    cv::line(img, {10, by}, {10 + barPx, by}, cv::Scalar(0, 0, 0), 3);
+    text(mrpt::format("%g m", bar), 15 + barPx, by + 5);
+    text(mrpt::format("x from %.1f to %.1f m, y from %.1f to %.1f m (the map's frame)", lo.x, hi.x,
+                      lo.y, hi.y),
+         90 + barPx, by + 5, 0.45);
+    // the legend in its own panel right of the map
+    int ly = top + 20;
+    const int lx = W + 20;
+    const auto swatch = [&](const cv::Scalar& c, const std::string& s, int kind) {
+        if (kind == 1)
+            cv::line(img, {lx, ly - 5}, {lx + 24, ly - 5}, c, 2);
+        else if (kind == 2)
+            cv::arrowedLine(img, {lx, ly - 5}, {lx + 24, ly - 5}, c, 2, cv::LINE_AA, 0, 0.35);
+        else {
+            cv::rectangle(img, {lx, ly - 12}, {lx + 24, ly + 2}, c, -1);
+            cv::rectangle(img, {lx, ly - 12}, {lx + 24, ly + 2}, cv::Scalar(0, 0, 0), 1);
+        }
+        text(s, lx + 32, ly, 0.45);
+        ly += 24;
+    };
+    if (grid) {
+        swatch(cv::Scalar(255, 255, 255), "free (grid)", 0);
+        swatch(cv::Scalar(128, 128, 128), "unknown (grid)", 0);
+        swatch(cv::Scalar(0, 0, 0), "occupied (grid)", 0);
+    }
+    swatch(cv::Scalar(204, 255, 204), "where the scanner may stand", 0);
+    swatch(ringColour, grid ? "traced rings (walls)" : "the map's rings (walls)", 1);
+    if (!overlay.hypotheses.empty()) swatch(hypColour, "hypotheses, first scan (heading)", 2);
+    for (size_t k = 0; k < overlay.paths.size(); ++k)
+        swatch(pathColours[k % 3], overlay.paths[k].label + " (dot: start)", 1);
+    mrpt::img::CImage out(img, mrpt::img::SHALLOW_COPY);
+    if (!out.saveToFile(pngPath)) throw Error("cannot write " + pngPath);
+}
+
+}  // namespace mrloc::polymap
