@@ -245,9 +245,10 @@ int localize(const method::Registry& registry, int argc, char** argv) {
     } catch (const Error& e) {
         throw Error(tx.inFolderTerms(e.what()));
     }
-    // exit 0 whether or not the method reached its goal: the headline says which
+    // exit 0 whether or not the method reached its goal (the headline says which), unless it
+    // failed on this input
     std::cout << dir << "\n" << common::headlineLine(s.method->name, headline) << "\n";
-    return 0;
+    return headline.failed ? common::kFailedExit : 0;
 }
 
 int report(const method::Registry& registry, int argc, char** argv) {
@@ -295,7 +296,7 @@ int run(const method::Registry& registry, int argc, char** argv) {
     }
     std::cout << "report: " << common::run_dir::report(dir) << "\n"
               << common::headlineLine(s.method->name, headline) << "\n";
-    return 0;
+    return headline.failed ? common::kFailedExit : 0;
 }
 
 int index(int argc, char** argv) {

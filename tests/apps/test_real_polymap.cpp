@@ -163,3 +163,28 @@ TEST(RealPolymap, HostileMapsAreOneLineAndNothingWritten) {
     std::ofstream(dir + "/cross.poly") << "0 0\n10 0\n10 8\n0 8\n\n9 4\n12 4\n12 5\n9 5\n";
     refused(dir + "/cross.poly", "cross.poly");
 }
+
+TEST(RealPolymap, AScanThatFitsNoPlaceOfTheMapIsAFailedRunExitThree) {
+    // localization_demo's scans against the 20 x 12 m hall: no pose agrees (its 30 m beams
+    // pass through the hall's walls). The run is written, says why, and exits 3.
+    if (!fs::exists(kDemoLog))
+        GTEST_SKIP() << "MRPT's demo log (Debian mrpt-common) is not installed";
+    const std::string dir = tmp("real_polymap_wrong_map");
+    fs::create_directories(dir);
+    std::ofstream(dir + "/w.ini") << "[scenario]\nname = w\nmethod = polymap\n[polymap]\nmap = "
+                                  << MRLOC_SOURCE_DIR << "/maps/hall_with_pillars.poly\n";
+    const auto r = mrlocCmd("localize " + dir + "/w.ini " + kDemoLog + " -q --out " + dir + "/out");
+    EXPECT_EQ(r.code, 3) << r.output;
+    EXPECT_TRUE(holds(r.output, "0 hypotheses fit the first scan (is this the robot's map?"))
+        << r.output;
+    const auto m = nlohmann::json::parse(slurp(dir + "/out/metrics.json"));
+    EXPECT_EQ(m["headline"]["failed"], true);
+    EXPECT_EQ(m["headline"]["reached"], false);
+    // the exact localizer alike: a two-rooms log localized on the steps map
+    const std::string log = dir + "/two_rooms.rawlog";
+    ASSERT_EQ(mrlocCmd("simulate " + config("polymap_file") + " -q --out " + dir + "/sim").code, 0);
+    const auto e = mrlocCmd("localize " + config("polymap_steps") + " " + dir +
+                            "/sim/polymap_file.rawlog -q --out " + dir + "/out2");
+    EXPECT_EQ(e.code, 3) << e.output;
+    EXPECT_TRUE(holds(e.output, "0 hypotheses fit the first scan")) << e.output;
+}

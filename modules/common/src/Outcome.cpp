@@ -15,7 +15,8 @@ nlohmann::json toJson(const ObservationUse& use) {
 }
 
 nlohmann::json toJson(const Headline& h) {
-    nlohmann::json j = {{"reached", h.reached}, {"status", h.status}};
+    nlohmann::json j = {{"reached", h.reached && !h.failed}, {"status", h.status}};
+    if (h.failed) j["failed"] = true;
     j["figures"] = nlohmann::json::array();
     for (const auto& f : h.figures) {
         nlohmann::json fj = {{"name", f.name}, {"unit", f.unit}, {"baseline", f.baseline}};
@@ -38,6 +39,7 @@ Headline headlineFromJson(const nlohmann::json& j, const std::string& where) {
         throw Error(where + ": headline: not an object with 'reached' and 'figures'");
     Headline h;
     h.reached = j["reached"].get<bool>();
+    h.failed = j.value("failed", false) == true;
     h.status = text(j, "status");
     for (const auto& fj : j["figures"]) {
         if (!fj.is_object()) throw Error(where + ": headline.figures: not an object");

@@ -308,8 +308,8 @@ nlohmann::json PolymapLocalizer::scanMetrics() const {
         rj["poses_scored"] = r.stats.poses;
         rj["refined"] = r.stats.refined;
         for (const auto& h : r.first)
-            rj["points"].push_back(
-                {h.pose.x, h.pose.y, h.pose.phi, h.score.agreement(), h.score.throughFraction()});
+            rj["points"].push_back({h.pose.x, h.pose.y, h.pose.phi, h.score.agreement(),
+                                    h.score.throughFraction(), h.score.clutterFraction()});
         rj["scans"] = e.scans;
         rj["left"] = e.live().size();
         rj["localized"] = e.live().size() == 1;

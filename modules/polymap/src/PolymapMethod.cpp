@@ -251,7 +251,15 @@ common::Headline polymapHeadline(const method::HeadlineOf<PolymapLocalizer>& in)
     for (const auto& [robot, r] : in.localizer.results()) {
         hypotheses += double(r.hypotheses.size());
         const size_t left = r.session ? r.session->live().size() : r.hypotheses.size();
-        if (left != 1)
+        // failed, not just short: the scan fits no place of the map, or the elimination has
+        // hypotheses left and no probe that separates them
+        if (r.hypotheses.empty() || (r.session && left > 1 && !r.session->plan())) h.failed = true;
+        if (r.session && left > 1 && !r.session->plan())
+            notLocalized += mrpt::format(
+                "%srobot '%s': no probe separates the %zu hypotheses left (their views agree "
+                "wherever the robot can go under all of them: the overlay region)",
+                notLocalized.empty() ? "" : "; ", robot.c_str(), left);
+        else if (left != 1)
             notLocalized += mrpt::format("%srobot '%s': %zu hypotheses %s",
                                          notLocalized.empty() ? "" : "; ", robot.c_str(), left,
                                          r.hypotheses.empty() ? "fit the first scan (is this "

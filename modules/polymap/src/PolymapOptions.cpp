@@ -20,6 +20,7 @@ void PolymapOptions::loadScanKeys(common::IniSection& s, const std::string& iniP
     scan.keepMargin = s.real("keep_margin", scan.keepMargin, 0, 1);
     scan.minAgreement = s.real("min_agreement", scan.minAgreement, 0.05, 1);
     scan.maxThrough = s.real("max_through", scan.maxThrough, 0, 1);
+    scan.maxClutter = s.real("max_clutter", scan.maxClutter, 0, 1);
     scan.maxHypotheses = size_t(s.integer("max_hypotheses", long(scan.maxHypotheses), 1, 2000));
     trace.resolution = s.real("grid_resolution", trace.resolution, 0.01, 1);
     trace.occupied = s.real("trace_occupied", trace.occupied, 0.01, 0.5);
@@ -223,6 +224,7 @@ void PolymapOptions::saveToConfigFile(mrpt::config::CConfigFileBase& t,
     t.write(section, "keep_margin", scan.keepMargin);
     t.write(section, "min_agreement", scan.minAgreement);
     t.write(section, "max_through", scan.maxThrough);
+    t.write(section, "max_clutter", scan.maxClutter);
     t.write(section, "max_hypotheses", int(scan.maxHypotheses));
     t.write(section, "grid_resolution", trace.resolution);
     t.write(section, "trace_occupied", trace.occupied);

@@ -132,13 +132,15 @@ BeamAgreement scoreScan(const WallMap& map, const ScanBeamSet& beams, const TPos
         const double r = beams.range[i];
         if (std::isnan(r)) continue;
         ++a.returns;
+        // cast to the scan's reach: a shorter beam is clutter only if the map has a wall
+        // farther along
         const double predicted =
-            map.caster.cast(origin, robot.phi + beams.angle[i], r + tolerance + 1e-3);
+            map.caster.cast(origin, robot.phi + beams.angle[i], beams.maxRange);
         const double e = r - predicted;
         if (std::abs(e) <= tolerance)
             ++a.agree;
         else if (e < 0)
-            ++a.shorter;
+            ++a.shorter, a.clutter += predicted < beams.maxRange;
         else
             ++a.through;
         a.cost += std::min(e * e, tol2);
@@ -297,7 +299,8 @@ std::vector<PoseHypothesis> globalHypotheses(const WallMap& map, const ScanBeamS
     const double best = refined.empty() ? 0 : refined.front().score.agreement();
     for (auto& h : refined)
         if (h.score.agreement() >= std::max(o.minAgreement, best - o.keepMargin) &&
-            h.score.throughFraction() <= o.maxThrough && kept.size() < o.maxHypotheses) {
+            h.score.throughFraction() <= o.maxThrough &&
+            h.score.clutterFraction() <= o.maxClutter && kept.size() < o.maxHypotheses) {
             h.rank = kept.size() + 1;
             h.evidence = h.score.agreement();
             kept.push_back(std::move(h));

@@ -51,6 +51,7 @@ common::Headline scanHeadline(const json& polymap) {
                 numberOf(r, "hypotheses").value_or(0) == 0
                     ? "fit the first scan (is this the robot's map? see min_agreement)"
                     : "left at the log's end (it did not drive far enough to tell them apart)");
+        if (numberOf(r, "hypotheses").value_or(0) == 0) h.failed = true;  // not this map
         distance = numberOf(r, "unique_after_m");
         time = numberOf(r, "unique_after_s");
         if (r.contains("reference") && r["reference"].is_object()) {
@@ -115,17 +116,18 @@ report::Html scanSection(const report::RunView& run) {
         if (std::filesystem::exists(run.dir + "/" + scanPicture(robot)))
             out +=
                 report::Figure{scanPicture(robot), "hypotheses and paths of robot " + robot}.html();
-        report::Table table(
-            {"#", "x (m)", "y (m)", "heading (deg)", "beams agreeing", "beams through walls"});
+        report::Table table({"#", "x (m)", "y (m)", "heading (deg)", "beams agreeing",
+                             "beams through walls", "beams short of a wall (clutter)"});
         if (r.contains("points") && r["points"].is_array())
             for (size_t i = 0; i < r["points"].size(); ++i) {
                 const auto& p = r["points"][i];
-                if (!p.is_array() || p.size() < 5) continue;
+                if (!p.is_array() || p.size() < 6) continue;
                 table.row({std::to_string(i + 1), mrpt::format("%.3f", p[0].get<double>()),
                            mrpt::format("%.3f", p[1].get<double>()),
                            mrpt::format("%.1f", p[2].get<double>() * 180 / M_PI),
                            mrpt::format("%.3f", p[3].get<double>()),
-                           mrpt::format("%.3f", p[4].get<double>())});
+                           mrpt::format("%.3f", p[4].get<double>()),
+                           mrpt::format("%.3f", p[5].get<double>())});
             }
         out += table.html();
         const bool localized = r.value("localized", false);

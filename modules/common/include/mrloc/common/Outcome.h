@@ -39,11 +39,19 @@ struct HeadlineFigure {
     bool baseline = false;
 };
 
+/** The exit status of a run whose method failed (Headline::failed; doc/errors.md). */
+inline constexpr int kFailedExit = 3;
+
 /** A method's outcome: did it reach its goal, and its figures. */
 struct Headline {
     /** false: the method found nothing (0 hypotheses, no fix) or the run ended before its
      *  goal; `status` says which (metrics.json, the CLI's last line). */
     bool reached = true;
+    /** The method could not do its job on this input, as opposed to a run that stopped short
+     *  (0 hypotheses fit the robot's scan: not its map; no probe separates the hypotheses
+     *  left). The run folder is written all the same; `mrloc run` and `mrloc localize` then
+     *  exit with kFailedExit so that scripts see it. Implies !reached. */
+    bool failed = false;
     std::string status;  ///< "localized", "not localized: 0 hypotheses fit the first scan", ...
     std::vector<HeadlineFigure> figures;
 };
