@@ -27,7 +27,6 @@ trap 'rm -rf "$work"' EXIT
 # pf-localization's log: "PDF estimation: (x,y,phi_deg), ESS (B.R.)= e tr(cov): c" per step
 pf_reference() {  # <log> <target> <title>
     awk -v title="$3" '
-        /Initial PDF:|Executing ParticleFilter on/ && particles == "" { }
         /PDF estimation:/ {
             s = $0; sub(/.*PDF estimation: \(/, "", s); split(s, a, /[(),]/)
             x = a[1]; y = a[2]; phi = a[3]; sub(/deg/, "", phi)
@@ -50,7 +49,7 @@ sed -e 's/^SHOW_PROGRESS_3D_REAL_TIME.*/SHOW_PROGRESS_3D_REAL_TIME=false/' \
     -e "s#\.\./\.\./datasets#$datasets#" \
     "$configs/pf-localization/localization_demo.ini" > "$work/demo.ini"
 (cd "$work" && pf-localization demo.ini > pf-demo.log 2>&1)
-particles=$(grep -m1 '^particles_count' "$work/demo.ini" | sed 's/.*=\s*//')
+particles=$(grep -m1 '^particles_count' "$work/demo.ini" | sed 's/.*=\s*//' | tr -d '\r')  # MRPT's INI has CRLF lines
 pf_reference "$work/pf-demo.log" "$out/pf-localization.localization_demo.txt" \
     "MRPT's pf-localization on localization_demo.rawlog with localization_demo.ini, $particles particles at the start (KLD-adaptive)"
 
