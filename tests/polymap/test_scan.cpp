@@ -92,3 +92,17 @@ TEST(ScanPolygon, BadScansAreClearErrors) {
     half->aperture = float(M_PI);
     EXPECT_THROW(polymap::visibilityFromScan(*half, 0, {}), Error);
 }
+
+TEST(ScanPolygon, AStepTooShortToSeeDoesNotHideTheTruth) {
+    // Three rooms of map seed 3 (room_steps 4, as config/polymap_rooms.ini's keys give): a
+    // 1/8 m step of the room's ceiling, seen edge-on, is lost from the scan's V, whose two
+    // walls then meet at a corner no vertex of P has. That corner anchored the search and
+    // H was empty (0 hypotheses from the robot's own map); it now neither anchors nor must
+    // match, and every site finds the three rooms.
+    polymap::RoomsMapOptions o;
+    o.rooms = 3;
+    mrpt::random::CRandomGenerator mapRng(3);
+    const auto map = polymap::roomsMap(o, mapRng);
+    // the run's scanner (1440 beams, 5 mm noise) and the tolerance it derived (0.064 m)
+    expectSameHypotheses(map, sim::ScannerOptions{}.rangeSigma, 0.064, 1);
+}

@@ -99,19 +99,29 @@ std::vector<Hypothesis> HypothesisGenerator::generate(const VisibilityPolygon& V
         throw Error(
             "hypothesis generation: the visibility polygon has no corner and no window "
             "end to match against the map");
-    // The anchor: the feature that the fewest map vertices match.
+    // The anchor: the feature that the fewest map vertices match. A feature that no vertex of
+    // the map matches is not a corner of the map: a scan lost a wall too short to see (a
+    // step seen edge-on) and two walls that do not meet in P met in V. It can neither anchor
+    // nor be required to land on a vertex; the comparison of V with V(p) below still judges
+    // the whole view.
     std::vector<size_t> bestMatches;
-    size_t anchor = 0;
+    std::vector<bool> inMap(features.size(), false);
+    size_t anchor = features.size();
     for (size_t f = 0; f < features.size(); ++f) {
         std::vector<size_t> m;
         for (size_t j = 0; j < map_.size(); ++j)
             if (matches(features[f], j)) m.push_back(j);
-        if (f == 0 || m.size() < bestMatches.size()) bestMatches = std::move(m), anchor = f;
-        if (bestMatches.empty()) break;
+        inMap[f] = !m.empty();
+        if (inMap[f] && (anchor == features.size() || m.size() < bestMatches.size()))
+            bestMatches = std::move(m), anchor = f;
     }
     HypothesisStats st;
     st.features = features.size();
     st.proposed = bestMatches.size();
+    if (anchor == features.size()) {  // no feature is the map's: no place fits
+        if (stats) *stats = st;
+        return {};
+    }
 
     TPoint2D lo{std::numeric_limits<double>::infinity(), std::numeric_limits<double>::infinity()};
     TPoint2D hi = -lo;
@@ -126,7 +136,9 @@ std::vector<Hypothesis> HypothesisGenerator::generate(const VisibilityPolygon& V
         // Every feature must land on a matching vertex; their mean offset refines the guess.
         TVector2D sum{0, 0};
         bool all = true;
-        for (const auto& f : features) {
+        for (size_t k = 0; k < features.size(); ++k) {
+            if (!inMap[k]) continue;
+            const auto& f = features[k];
             const auto v = vertexNear(guess + f.at, f);
             if (!v) {
                 all = false;
@@ -135,7 +147,7 @@ std::vector<Hypothesis> HypothesisGenerator::generate(const VisibilityPolygon& V
             sum += map_[*v] - f.at;
         }
         if (!all) continue;
-        TPoint2D p = sum * (1.0 / features.size());
+        TPoint2D p = sum * (1.0 / double(std::count(inMap.begin(), inMap.end(), true)));
         if (const auto loc = triangulation_.locate(p);
             loc.triangle == Triangulation::kNone || !triangulation_[loc.triangle].inside) {
             // Outside: sensing noise may have pushed it out by up to the tolerance.

@@ -41,7 +41,9 @@ std::vector<PoseHypothesis> distinct(std::vector<PoseHypothesis> poses, double d
                                      double angle, size_t limit) {
     std::vector<PoseHypothesis> kept;
     std::unordered_map<int64_t, std::vector<size_t>> cells;  // kept poses by distance-sized cell
-    const auto key = [](int64_t cx, int64_t cy) { return (cx << 32) ^ int64_t(uint32_t(cy)); };
+    const auto key = [](int64_t cx, int64_t cy) {            // unsigned: no shift of a negative
+        return int64_t((uint64_t(cx) << 32) ^ uint64_t(uint32_t(cy)));
+    };
     const auto cellOf = [distance](double v) { return int64_t(std::floor(v / distance)); };
     for (auto& p : poses) {
         bool dup = false;

@@ -102,10 +102,11 @@ double RayCaster::cast(const TPoint2D& o, double angle, double maxRange) const {
 }
 
 bool FreeCells::at(const TPoint2D& p) const {
-    const int x = int(std::floor((p.x - min.x) / resolution));
-    const int y = int(std::floor((p.y - min.y) / resolution));
-    if (x < 0 || y < 0 || x >= width || y >= height) return false;
-    return free[size_t(y) * width + x] != 0;
+    const double fx = std::floor((p.x - min.x) / resolution);
+    const double fy = std::floor((p.y - min.y) / resolution);
+    // compared as doubles first: a far point must not overflow the int conversion
+    if (!(fx >= 0 && fy >= 0 && fx < width && fy < height)) return false;
+    return free[size_t(fy) * size_t(width) + size_t(fx)] != 0;
 }
 
 size_t FreeCells::count() const { return size_t(std::count(free.begin(), free.end(), 1)); }
