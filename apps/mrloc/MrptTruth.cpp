@@ -1,6 +1,7 @@
 #include "MrptTruth.h"
 
 #include <mrloc/common/AtomicFile.h>
+#include <mrloc/common/GroundTruthFile.h>
 #include <mrloc/common/IniSection.h>
 #include <mrpt/core/bits_math.h>
 
@@ -11,23 +12,6 @@
 namespace mrloc::app {
 
 namespace fs = std::filesystem;
-
-std::optional<std::string> truthFormatOf(const std::string& path) {
-    std::ifstream in(path);
-    std::string line;
-    for (int lines = 0; lines < 100 && std::getline(in, line); ++lines) {
-        const auto first = line.find_first_not_of(" \t\r");
-        if (first == std::string::npos || line[first] == '%' || line[first] == '#') continue;
-        std::istringstream words(line);
-        size_t n = 0;
-        for (std::string w; words >> w;) ++n;
-        if (n == 4) return std::string("index_x_y_phi");
-        if (n == 6) return std::string("x_y_z_yaw_pitch_roll");
-        if (n == 8) return std::string("tum");
-        return std::nullopt;
-    }
-    return std::nullopt;
-}
 
 namespace {
 
@@ -60,7 +44,8 @@ std::optional<FoundTruth> mrptTruthOf(const mrpt::config::CConfigFileBase& ini,
         if (!sameFile(ownLog, rawlog)) {
             note = "[ro-localization] groundTruthFile " + named + " is the truth of " + ownLog +
                    ", not of this log: not used";
-        } else if (const auto format = fs::is_regular_file(gt) ? truthFormatOf(gt) : std::nullopt) {
+        } else if (const auto format =
+                       fs::is_regular_file(gt) ? common::groundTruthFormatOf(gt) : std::nullopt) {
             found.source.path = gt;
             found.source.format = *format;
             found.from = "MRPT's [ro-localization] groundTruthFile (" + named + ")";
@@ -73,7 +58,7 @@ std::optional<FoundTruth> mrptTruthOf(const mrpt::config::CConfigFileBase& ini,
         stem.replace_extension();
     const std::string beside = stem.string() + "_GT.txt";
     if (fs::is_regular_file(beside))
-        if (const auto format = truthFormatOf(beside)) {
+        if (const auto format = common::groundTruthFormatOf(beside)) {
             found.source.path = beside;
             found.source.format = *format;
             found.from =

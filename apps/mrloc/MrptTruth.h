@@ -23,8 +23,4 @@ std::optional<FoundTruth> mrptTruthOf(const mrpt::config::CConfigFileBase& ini,
                                       const std::string& iniPath, const std::string& rawlog,
                                       std::string& note);
 
-/** The step-indexed or TUM format of a truth file, by the columns of its first row:
- *  4 "i x y phi", 6 "x y z yaw pitch roll", 8 TUM. nullopt for anything else. */
-std::optional<std::string> truthFormatOf(const std::string& path);
-
 }  // namespace mrloc::app

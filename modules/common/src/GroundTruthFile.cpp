@@ -63,4 +63,21 @@ Trajectory loadGroundTruth(const GroundTruthSource& source, const std::vector<do
     return out;
 }
 
+std::optional<std::string> groundTruthFormatOf(const std::string& path) {
+    std::ifstream in(path);
+    std::string line;
+    for (int lines = 0; lines < 100 && std::getline(in, line); ++lines) {
+        const auto first = line.find_first_not_of(" \t\r");
+        if (first == std::string::npos || line[first] == '%' || line[first] == '#') continue;
+        std::istringstream words(line);
+        size_t n = 0;
+        for (std::string w; words >> w;) ++n;
+        if (n == 4) return std::string("index_x_y_phi");
+        if (n == 6) return std::string("x_y_z_yaw_pitch_roll");
+        if (n == 8) return std::string("tum");
+        return std::nullopt;
+    }
+    return std::nullopt;
+}
+
 }  // namespace mrloc::common

@@ -197,27 +197,29 @@ Polygon Polygon::fromVertices(std::vector<TPoint2D> v, const std::string& what) 
     return P;
 }
 
-Polygon Polygon::load(const std::string& path) {
+std::vector<Polygon::Ring> Polygon::readRings(const std::string& path, size_t maxVertices,
+                                              size_t maxRings) {
     checkReadableFile(path, "polygon map", 64u << 20);  // not a FIFO, a device or a folder
     std::ifstream in(path);
     if (!in) throw Error("polygon map " + path + ": cannot open the file");
-    std::vector<TPoint2D> v;
+    std::vector<Ring> rings(1);
+    size_t vertices = 0;
     std::string line;
-    bool ringEnded = false;  // a blank line after vertices: another ring may follow
     for (int lineNo = 1; std::getline(in, line); ++lineNo) {
         const bool blank = line.find_first_not_of(" \t\r") == std::string::npos;
         if (const auto hash = line.find('#'); hash != std::string::npos) line.erase(hash);
         std::istringstream ls(line);
         std::string first;
         if (!(ls >> first)) {
-            ringEnded = ringEnded || (blank && !v.empty());
+            // a blank line (not a comment line) after vertices ends a ring
+            if (blank && !rings.back().vertices.empty()) {
+                if (rings.size() >= maxRings)
+                    throw Error(path + ":" + std::to_string(lineNo) + ": more than the " +
+                                std::to_string(maxRings) + " rings mrloc takes");
+                rings.emplace_back();
+            }
             continue;
         }
-        if (ringEnded)
-            throw Error(path + ":" + std::to_string(lineNo) +
-                        ": a second ring (a hole) after a blank line; this map needs polymap's "
-                        "scan localizer ([polymap] localizer = scan, doc/polymap.md), the exact "
-                        "one takes a simple polygon");
         ls.clear();
         ls.str(line);
         double x, y;
@@ -225,13 +227,26 @@ Polygon Polygon::load(const std::string& path) {
         if (!(ls >> x >> y) || (ls >> rest))
             throw Error(path + ":" + std::to_string(lineNo) + ": expected \"x y\", got \"" + line +
                         "\"");
-        v.push_back({x, y});
-        if (v.size() > kMaxVertices)
+        if (rings.back().vertices.empty()) rings.back().firstLine = lineNo;
+        rings.back().vertices.push_back({x, y});
+        if (++vertices > maxVertices)
             throw Error(path + ":" + std::to_string(lineNo) + ": more than the " +
-                        std::to_string(kMaxVertices) + " vertices mrloc takes");
+                        std::to_string(maxVertices) + " vertices mrloc takes");
     }
     if (in.bad()) throw Error("polygon map " + path + ": read error");
-    return fromVertices(std::move(v), path);
+    if (rings.back().vertices.empty()) rings.pop_back();
+    return rings;
+}
+
+Polygon Polygon::load(const std::string& path) {
+    auto rings = readRings(path, kMaxVertices, size_t(-1));
+    if (rings.size() > 1)
+        throw Error(path + ":" + std::to_string(rings[1].firstLine) +
+                    ": a second ring (a hole) after a blank line; this map needs polymap's "
+                    "scan localizer ([polymap] localizer = scan, doc/polymap.md), the exact "
+                    "one takes a simple polygon");
+    return fromVertices(rings.empty() ? std::vector<TPoint2D>{} : std::move(rings[0].vertices),
+                        path);
 }
 
 void Polygon::save(const std::string& path, const std::string& comment) const {

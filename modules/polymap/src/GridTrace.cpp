@@ -104,8 +104,6 @@ WallMap traceGrid(const mrpt::maps::COccupancyGridMap2D& grid, const GridTraceOp
     s.gridWidth = w;
     s.gridHeight = h;
     s.resolution = res;
-    s.occupiedCells = size_t(cv::countNonZero(occupied));
-    s.freeCells = size_t(cv::countNonZero(freeMask));
     // specks: 8-connected occupied blobs of fewer than speckCells cells
     cv::Mat labels, blobStats, centroids;
     const int blobs = cv::connectedComponentsWithStats(occupied, labels, blobStats, centroids, 8);
@@ -121,6 +119,7 @@ WallMap traceGrid(const mrpt::maps::COccupancyGridMap2D& grid, const GridTraceOp
     s.simplify = o.simplify > 0 ? o.simplify : 0.5 * res;
     const double x0 = grid.getXMin(), y0 = grid.getYMin();
     std::vector<std::vector<TPoint2D>> rings;
+    size_t vertices = 0;
     for (const auto& c : contours) {
         s.contourPoints += c.size();
         std::vector<cv::Point> simple;
@@ -128,12 +127,11 @@ WallMap traceGrid(const mrpt::maps::COccupancyGridMap2D& grid, const GridTraceOp
         auto& ring = rings.emplace_back();
         for (const auto& p : simple)
             ring.push_back({x0 + (p.x + 0.5) * res, y0 + (p.y + 0.5) * res});
-        s.vertices += ring.size();
-        if (rings.size() > kMaxRings || s.vertices > kMaxWallVertices)
+        vertices += ring.size();
+        if (rings.size() > kMaxRings || vertices > kMaxWallVertices)
             throw Error(description + mrpt::format(": more than %zu rings or %zu vertices traced",
                                                    kMaxRings, kMaxWallVertices));
     }
-    s.rings = rings.size();
     // walls: every ring's edges (a one-cell-thick wall traces as a ring folded on itself, which
     // a beam still stops at); the free cells clear of them
     WallMap map;

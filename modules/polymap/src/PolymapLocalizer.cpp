@@ -51,28 +51,30 @@ void PolymapLocalizer::configure(const mrpt::config::CConfigFileBase& ini) {
 
 void PolymapLocalizer::configureScanMode() {
     reference_.clear();
+    referenceNotes_ = nlohmann::json::array();
     if (!options_.referenceFile.empty()) {
-        // TUM (8 columns) or "step x y phi" (4): MRPT's apps' paths
-        std::ifstream in(options_.referenceFile);
-        size_t columns = 0;
-        for (std::string line; columns == 0 && std::getline(in, line);) {
-            const auto first = line.find_first_not_of(" \t\r");
-            if (first == std::string::npos || line[first] == '%' || line[first] == '#') continue;
-            std::istringstream words(line);
-            for (std::string w; words >> w;) ++columns;
-        }
-        if (columns != 4 && columns != 8)
+        // TUM or "step x y phi": MRPT's apps' paths, told by their columns
+        const auto format = common::groundTruthFormatOf(options_.referenceFile);
+        if (format != "tum" && format != "index_x_y_phi")
             throw Error(options_.referenceFile +
-                        ": a reference path is TUM (8 columns) or "
-                        "\"step x y phi\" (4); its first row has " +
-                        std::to_string(columns));
+                        ": a reference path is TUM (8 columns) or \"step x y phi\" (4)");
         common::GroundTruthSource source;
         source.path = options_.referenceFile;
-        referenceByStep_ = columns == 4;
-        source.format = referenceByStep_ ? "index_x_y_phi" : "tum";
+        source.format = *format;
+        referenceByStep_ = *format == "index_x_y_phi";
+        // a step's time is known only once the log is read (referencePath): until then each
+        // row keeps its step number as its time
         std::vector<double> steps(referenceByStep_ ? 1000000 : 0);
         for (size_t i = 0; i < steps.size(); ++i) steps[i] = double(i);
         reference_ = common::loadGroundTruth(source, steps);
+        // its own comment lines (who made it, how), for the report: at most 12 of 300 bytes
+        std::ifstream in(options_.referenceFile);
+        for (std::string line; referenceNotes_.size() < 12 && std::getline(in, line);) {
+            if (line.empty() || (line[0] != '%' && line[0] != '#')) continue;
+            const auto text = line.find_first_not_of("%# \t");
+            if (text != std::string::npos)
+                referenceNotes_.push_back(common::printable(line.substr(text, 300)));
+        }
     }
     const std::string& file = options_.mapFile;
     const double freeResolution = 0.05;  // where the scanner may stand, for a .poly map
@@ -319,16 +321,7 @@ nlohmann::json PolymapLocalizer::scanMetrics() const {
         rj["travelled_m"] = r.travelled;
         rj["runner_up_agreement"] = r.stats.runnerUp;
         if (const auto c = compareWithReference(robot)) {
-            // the reference file's own comment lines (who made it, how): at most 12 of 300
-            std::ifstream in(options_.referenceFile);
-            nlohmann::json notes = nlohmann::json::array();
-            for (std::string line; notes.size() < 12 && std::getline(in, line);) {
-                if (line.empty() || (line[0] != '%' && line[0] != '#')) continue;
-                const auto text = line.find_first_not_of("%# \t");
-                if (text != std::string::npos)
-                    notes.push_back(common::printable(line.substr(text, 300)));
-            }
-            rj["reference"] = {{"notes", notes},
+            rj["reference"] = {{"notes", referenceNotes_},
                                {"name", options_.referenceName},
                                {"file", options_.referenceFile},
                                {"compared", c->n},

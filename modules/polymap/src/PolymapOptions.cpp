@@ -92,8 +92,8 @@ void PolymapOptions::loadFromConfigFile(const mrpt::config::CConfigFileBase& src
     const bool mrptMap = isMrptMapFile(mapFile);
     const std::string mode = s.choice("localizer", "auto", {"auto", "exact", "scan"});
     // a .poly with holes (rings after blank lines) needs the scan localizer too
-    const bool holes =
-        !mrptMap && !mapFile.empty() && mode == "auto" && loadPolyRings(mapFile).size() > 1;
+    const bool holes = !mrptMap && !mapFile.empty() && mode == "auto" &&
+                       common::Polygon::readRings(mapFile, kMaxWallVertices, kMaxRings).size() > 1;
     scanMode = mode == "scan" || (mode == "auto" && (mrptMap || holes));
     if (!scanMode && mrptMap)
         s.fail("localizer", "exact needs a .poly map; an MRPT grid map is localized with scan");

@@ -142,7 +142,7 @@ BeamAgreement scoreScan(const WallMap& map, const ScanBeamSet& beams, const TPos
         if (std::abs(e) <= tolerance)
             ++a.agree;
         else if (e < 0)
-            ++a.shorter, a.clutter += predicted < beams.maxRange;
+            a.clutter += predicted < beams.maxRange;
         else
             ++a.through;
         a.cost += std::min(e * e, tol2);

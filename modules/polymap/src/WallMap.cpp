@@ -8,7 +8,6 @@
 #include <boost/geometry/geometries/point_xy.hpp>
 #include <boost/geometry/geometries/polygon.hpp>
 #include <cmath>
-#include <fstream>
 #include <limits>
 #include <opencv2/imgproc.hpp>
 #include <sstream>
@@ -124,49 +123,15 @@ std::vector<TPoint2D> validRing(std::vector<TPoint2D> ring, const std::string& w
 }  // namespace
 
 std::vector<std::vector<TPoint2D>> loadPolyRings(const std::string& path) {
-    common::checkReadableFile(path, "polygon map", 64u << 20);
-    std::ifstream in(path);
-    if (!in) throw Error("polygon map " + path + ": cannot open the file");
-    std::vector<std::vector<TPoint2D>> rings(1);
-    std::vector<int> firstLine{0};
-    size_t vertices = 0;
-    std::string line;
-    for (int lineNo = 1; std::getline(in, line); ++lineNo) {
-        std::string data = line;
-        if (const auto hash = data.find('#'); hash != std::string::npos) data.erase(hash);
-        std::istringstream ls(data);
-        std::string first;
-        if (!(ls >> first)) {
-            // a blank line (not a comment line) ends a ring
-            const bool blank = line.find_first_not_of(" \t\r") == std::string::npos;
-            if (blank && !rings.back().empty()) {
-                if (rings.size() >= kMaxRings)
-                    throw Error(path + ":" + std::to_string(lineNo) + ": more than the " +
-                                std::to_string(kMaxRings) + " rings mrloc takes");
-                rings.emplace_back();
-                firstLine.push_back(0);
-            }
-            continue;
-        }
-        ls.clear();
-        ls.str(data);
-        double x, y;
-        std::string rest;
-        if (!(ls >> x >> y) || (ls >> rest))
-            throw Error(path + ":" + std::to_string(lineNo) + ": expected \"x y\", got \"" + line +
-                        "\"");
-        if (rings.back().empty()) firstLine.back() = lineNo;
-        rings.back().push_back({x, y});
-        if (++vertices > kMaxWallVertices)
-            throw Error(path + ":" + std::to_string(lineNo) + ": more than the " +
-                        std::to_string(kMaxWallVertices) + " vertices mrloc takes");
+    const auto read = common::Polygon::readRings(path, kMaxWallVertices, kMaxRings);
+    if (read.empty()) throw Error("polygon map " + path + ": no vertices");
+    std::vector<std::vector<TPoint2D>> rings;
+    std::vector<int> firstLine;
+    for (size_t r = 0; r < read.size(); ++r) {
+        firstLine.push_back(read[r].firstLine);
+        rings.push_back(validRing(read[r].vertices, path + mrpt::format(" (ring %zu, from line %d)",
+                                                                        r + 1, read[r].firstLine)));
     }
-    if (in.bad()) throw Error("polygon map " + path + ": read error");
-    if (rings.back().empty()) rings.pop_back(), firstLine.pop_back();
-    if (rings.empty()) throw Error("polygon map " + path + ": no vertices");
-    for (size_t r = 0; r < rings.size(); ++r)
-        rings[r] = validRing(std::move(rings[r]),
-                             path + mrpt::format(" (ring %zu, from line %d)", r + 1, firstLine[r]));
     if (rings.size() > 1) {
         // holes inside the outer ring, no two rings crossing or touching: Boost.Geometry's
         // validity check of a polygon with holes (its turns are found by a plane sweep over

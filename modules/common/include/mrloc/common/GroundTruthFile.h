@@ -11,6 +11,7 @@
 #include <mrloc/common/Trajectory.h>
 #include <mrpt/poses/CPose3D.h>
 
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -29,5 +30,9 @@ struct GroundTruthSource {
  *  the step-indexed formats. Rows past the last step are left out. Throws mrloc::Error
  *  naming the file and line. */
 Trajectory loadGroundTruth(const GroundTruthSource& source, const std::vector<double>& stepTimes);
+
+/** The step-indexed or TUM format of a truth file, by the columns of its first row:
+ *  4 "i x y phi", 6 "x y z yaw pitch roll", 8 TUM. nullopt for anything else. */
+std::optional<std::string> groundTruthFormatOf(const std::string& path);
 
 }  // namespace mrloc::common

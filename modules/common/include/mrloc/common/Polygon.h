@@ -48,6 +48,15 @@ class Polygon {
      *  vertices ends the ring: another ring after it (a hole) is refused here, since a simple
      *  polygon has none (polymap/WallMap.h reads rings). */
     static Polygon load(const std::string& path);
+    /** A .poly file's rings as written (one "x y" per line, '#' comments, a blank line after
+     *  vertices ends a ring), not validated; each with the line of its first vertex. At most
+     *  maxVertices in all and maxRings; throws mrloc::Error naming the file and line. */
+    struct Ring {
+        std::vector<TPoint2D> vertices;
+        int firstLine = 0;
+    };
+    static std::vector<Ring> readRings(const std::string& path, size_t maxVertices,
+                                       size_t maxRings);
     /** Writes the .poly text (atomically: temporary name, then rename). */
     void save(const std::string& path, const std::string& comment = "") const;
 

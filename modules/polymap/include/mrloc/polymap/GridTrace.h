@@ -38,7 +38,7 @@ struct GridTraceOptions {
 struct TraceStats {
     int gridWidth = 0, gridHeight = 0;
     double resolution = 0;
-    size_t occupiedCells = 0, freeCells = 0, specksDropped = 0, rings = 0, vertices = 0;
+    size_t specksDropped = 0;
     size_t contourPoints = 0;  ///< before simplification
     double simplify = 0;       ///< the tolerance used (m)
 };

@@ -115,7 +115,8 @@ class PolymapLocalizer : public common::Localizer {
     std::map<std::string, ScanRobot> scanRobots_;
     common::Trajectory reference_;  ///< step-indexed: t is the step until mapped
     bool referenceByStep_ = false;
-    double probeRadius_ = 0;  ///< from the INI's [scenario] dt and its robot's speed
+    nlohmann::json referenceNotes_;  ///< the reference file's comment lines
+    double probeRadius_ = 0;         ///< from the INI's [scenario] dt and its robot's speed
     std::unique_ptr<GeneratedMap> map_;
     std::map<std::string, RobotHypotheses> results_;
     size_t scansSeen_ = 0, scansUsed_ = 0;

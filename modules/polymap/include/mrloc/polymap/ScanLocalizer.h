@@ -43,7 +43,7 @@ struct ScanBeamSet {
 ScanBeamSet beamSetOf(const mrpt::obs::CObservation2DRangeScan& scan);
 
 struct BeamAgreement {
-    size_t returns = 0, agree = 0, shorter = 0, through = 0;
+    size_t returns = 0, agree = 0, through = 0;
     /** Shorter beams where the map has a wall farther along (clutter in front of it), as
      *  opposed to beams into space the map leaves empty (unknown beyond the scan's reach). */
     size_t clutter = 0;
