@@ -36,6 +36,8 @@ long+='|Mutations\.FormationRawlogIsRefusedOrCountedNeverSilentlyTaken|RealLogs\
 # polymap's whole-map searches on a real log and on synthetic scans (the Release suite runs
 # them; the sanitized suite runs the same code on localization_demo)
 long+='|RealPolymap\.SenaLogOnIcpSlamsMapBesideIcpSlam|ScanLocalizer\.ClutteredHalfTurnScan'
+# twenty identical rooms, every layout and algorithm (Release; 2-5 rooms stay sanitized)
+long+='|Elimination\.TwentyIdenticalRoomsEveryLayout|MrlocPolymap\.TwentyIdenticalRoomsEveryAlgorithmEnds'
 if [ "${MRLOC_SANITIZE_ALL:-0}" = 1 ]; then
   ctest --output-on-failure -j "$(nproc)" "$@"
 else

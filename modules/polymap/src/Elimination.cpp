@@ -405,19 +405,34 @@ bool Eliminator::separates(const std::vector<size_t>& live, const TPoint2D& at) 
     return false;
 }
 
-std::optional<Probe> Eliminator::chooseProbe(const std::vector<size_t>& live,
-                                             const TPoint2D& at) const {
+std::optional<Probe> Eliminator::chooseProbe(const std::vector<size_t>& live, const TPoint2D& at,
+                                             const std::vector<TPoint2D>& avoid,
+                                             double avoidRadius) const {
     if (live.size() < 2) return std::nullopt;
     const Region region(P_, positionsOf(live));
-    const auto found = candidates(live, region, at, hypotheses_.size() - live.size(),
-                                  options_.strategy, std::max(options_.clearance, 1e-3), 32);
     Probe probe;
-    probe.candidates = found.size();
     probe.oiArea = region.oi.area;
-    // Nearest first by travel inside OI; the first that separates is the probe (step 7).
-    const auto best = region.nearest(
-        at, found, options_.clearance, [&](const TPoint2D& c) { return separates(live, c); },
-        &probe.tested);
+    std::vector<TPoint2D> found;
+    std::optional<std::pair<double, size_t>> best;
+    // Algorithm 2 draws another X points while none separates (a place that tells the
+    // hypotheses apart may be small: a passage's far leg), up to kRandomBatches draws; the
+    // other algorithms' candidates are fixed. Batch b of step s is seeded by s + b * k.
+    const size_t batches = options_.strategy == ProbeStrategy::Randomized ? kRandomBatches : 1;
+    for (size_t batch = 0; batch < batches && !best; ++batch) {
+        found = candidates(live, region, at,
+                           hypotheses_.size() - live.size() + batch * hypotheses_.size(),
+                           options_.strategy, std::max(options_.clearance, 1e-3), 32);
+        probe.candidates += found.size();
+        // Nearest first by travel inside OI; the first that separates is the probe (step 7).
+        best = region.nearest(
+            at, found, options_.clearance,
+            [&](const TPoint2D& c) {
+                for (const auto& a : avoid)
+                    if ((c - a).norm() <= avoidRadius) return false;
+                return separates(live, c);
+            },
+            &probe.tested);
+    }
     if (!best) return std::nullopt;
     probe.at = found[best->second];
     probe.path = region.paths.path(at, probe.at);
@@ -497,11 +512,14 @@ std::vector<size_t> Eliminator::consistentWithScan(const std::vector<size_t>& li
                                                    double heading, double rangeTolerance,
                                                    double searchRadius,
                                                    std::vector<TPoint2D>* refined) const {
-    const ScanBeams beams = beamsOf(scan, heading);
+    // A beam without return agrees where the view reaches at least the max range: at a probe
+    // the robot may look down a corridor longer than its scanner reaches.
+    const ScanBeams beams = beamsOf(scan, heading, true);
     const size_t n = beams.range.size();
-    // How badly the view at displacement x explains the beams: the beams that disagree, and
-    // the sum of their errors capped at 4 tolerances (a score to refine the position by).
-    const auto fit = [&](size_t i, const TPoint2D& x) {
+    // How badly the view at displacement x explains the beams (every `stride`-th): the beams
+    // that disagree, and the sum of their errors capped at 4 tolerances (a score to refine
+    // the position by).
+    const auto fit = [&](size_t i, const TPoint2D& x, size_t stride) {
         VisibilityPolygon V;
         try {
             V = viewOf(i, x);
@@ -511,30 +529,37 @@ std::vector<size_t> Eliminator::consistentWithScan(const std::vector<size_t>& li
         const RadialProfile profile(V);
         size_t disagree = 0;
         double score = 0;
-        for (size_t b = 0; b < n; ++b) {
-            const double e =
-                radialMismatch(profile, beams.angle[b], beams.range[b], beams.step, rangeTolerance);
+        for (size_t b = 0; b < n; b += stride) {
+            const double e = beams.noReturn[b]
+                                 ? std::max(0.0, beams.range[b] - profile.radius(beams.angle[b]))
+                                 : radialMismatch(profile, beams.angle[b], beams.range[b],
+                                                  beams.step, rangeTolerance);
             disagree += e > rangeTolerance;
             score += std::min(e, 4 * rangeTolerance);
         }
         return std::make_pair(disagree, score);
     };
+    const size_t stride = (n + kRefineBeams - 1) / kRefineBeams;
     std::vector<size_t> out;
     for (size_t i : live) {  // seed 002 step 9, on the beams
-        auto [disagree, score] = fit(i, at);
         // Where the robot stopped, if not on the probe: 7 x 7 grids, each a sixth of the last
-        // around its best point (1 cm, then 1.7 mm, then 0.3 mm for a 3 cm radius).
+        // around its best point (1 cm, then 1.7 mm, then 0.3 mm for a 3 cm radius), scored on
+        // a subset of the beams; the verdict is on all of them at the best point.
         TPoint2D best = at;
-        for (double cell = searchRadius / 3; cell > 2e-4; cell /= 6) {
-            const TPoint2D centre = best;
-            for (int gx = -3; gx <= 3; ++gx)
-                for (int gy = -3; gy <= 3; ++gy) {
-                    const TPoint2D x = centre + TPoint2D{double(gx), double(gy)} * cell;
-                    if (gx == 0 && gy == 0) continue;
-                    const auto [d, sc] = fit(i, x);
-                    if (sc < score) disagree = d, score = sc, best = x;
-                }
+        if (searchRadius > 0) {
+            double score = fit(i, at, stride).second;
+            for (double cell = searchRadius / 3; cell > 2e-4; cell /= 6) {
+                const TPoint2D centre = best;
+                for (int gx = -3; gx <= 3; ++gx)
+                    for (int gy = -3; gy <= 3; ++gy) {
+                        const TPoint2D x = centre + TPoint2D{double(gx), double(gy)} * cell;
+                        if (gx == 0 && gy == 0) continue;
+                        const double sc = fit(i, x, stride).second;
+                        if (sc < score) score = sc, best = x;
+                    }
+            }
         }
+        const size_t disagree = fit(i, best, 1).first;
         if (disagree * 100 > n) continue;
         out.push_back(i);
         if (refined) refined->push_back(best);
@@ -556,13 +581,20 @@ void EliminationSession::observe(const mrpt::obs::CObservation2DRangeScan& scan)
     if (!plan_) throw Error("elimination: a scan came with no probe planned");
     const auto& o = eliminator_.options();
     std::vector<TPoint2D> refined;
+    const size_t before = live_.size();
     live_ = eliminator_.consistentWithScan(live_, plan_->at, scan, heading_, o.rangeTolerance,
                                            arrivalRadius_, &refined);
+    if (live_.size() == before)
+        fruitless_.push_back(plan_->at);
+    else
+        fruitless_.clear();  // a new live set: its own probes
     stops_.emplace_back();
     for (size_t k = 0; k < live_.size(); ++k) stops_.back()[live_[k]] = refined[k];
     visited_.push_back(*plan_);
     plan_.reset();
-    if (live_.size() > 1) plan_ = eliminator_.chooseProbe(live_, visited_.back().at);
+    if (live_.size() > 1)
+        plan_ = eliminator_.chooseProbe(live_, visited_.back().at, fruitless_,
+                                        std::max(arrivalRadius_, o.clearance));
 }
 
 EliminationRun eliminateExactly(const Eliminator& eliminator, size_t truth) {

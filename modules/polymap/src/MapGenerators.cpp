@@ -70,6 +70,98 @@ GeneratedMap stepsMap(const StepsMapOptions& o) {
     return {common::Polygon::fromVertices(std::move(v), what), sites, what};
 }
 
+std::string roomsLayoutName(RoomsLayout layout) {
+    switch (layout) {
+        case RoomsLayout::Side:
+            return "side";
+        case RoomsLayout::Row:
+            return "row";
+        case RoomsLayout::Mirrored:
+            return "mirrored";
+    }
+    return "?";
+}
+
+RoomsLayout roomsLayoutFromName(const std::string& name) {
+    for (const auto l : {RoomsLayout::Side, RoomsLayout::Row, RoomsLayout::Mirrored})
+        if (roomsLayoutName(l) == name) return l;
+    throw Error("rooms layout '" + name + "': expected side, row or mirrored");
+}
+
+namespace {
+
+/** The room's shape, shared by every copy: neck position, skyline and the site. */
+struct Room {
+    double neckX = 0;                     ///< the neck's left wall, from the room's left
+    std::vector<double> breaks, heights;  ///< skyline: heights[i] over breaks[i]..breaks[i+1]
+    TPoint2D site;                        ///< from the room's floor at its left wall
+};
+
+Room randomRoom(const RoomsMapOptions& o, mrpt::random::CRandomGenerator& rng) {
+    const double Wr = o.roomWidth;
+    Room room;
+    room.neckX = snap8(rng.drawUniform(0.5, Wr - o.neckWidth - 0.5));
+    room.breaks = {0};
+    for (int i = 1; i < o.roomSteps; ++i) room.breaks.push_back(Wr * i / o.roomSteps);
+    for (size_t i = 1; i < room.breaks.size(); ++i)
+        room.breaks[i] = snap8(room.breaks[i] + rng.drawUniform(-0.3, 0.3) * Wr / o.roomSteps);
+    room.breaks.push_back(Wr);
+    for (int i = 0; i < o.roomSteps; ++i) {
+        double h;
+        do h = snap8(rng.drawUniform(o.roomHeightMin, o.roomHeightMax));
+        while (!room.heights.empty() && std::abs(h - room.heights.back()) < 0.25);
+        room.heights.push_back(h);
+    }
+    room.site = {snap8(rng.drawUniform(0.3, Wr - 0.3)) + 1.0 / 16,
+                 snap8(rng.drawUniform(0.3, o.roomHeightMin - 0.3)) + 1.0 / 16};
+    return room;
+}
+
+/** The skyline of a room whose left wall is at x0 and floor at y0, counter-clockwise (right
+ *  to left), from the top of its right wall to the top of its left wall. */
+void appendSkyline(std::vector<TPoint2D>& v, const Room& room, double x0, double y0) {
+    for (size_t i = room.heights.size(); i-- > 0;)
+        v.insert(v.end(), {{x0 + room.breaks[i + 1], y0 + room.heights[i]},
+                           {x0 + room.breaks[i], y0 + room.heights[i]}});
+}
+
+/** Rooms in a row: room r spans [r * pitch, r * pitch + Wr] from floor y = 0; between room r
+ *  and r + 1 (and beyond both ends, as dead ends) a Z passage: a leg of length hn low on r's
+ *  right wall, a jog up by twice its width, a leg into r + 1 high on its left wall. A sight
+ *  line through one leg climbs at most w * w / hn across the jog, less than the w it would
+ *  need, so no room sees through. */
+GeneratedMap roomsInARow(const RoomsMapOptions& o, const Room& room) {
+    const double Wr = o.roomWidth, hn = o.neckLength;
+    const double w = snap8(std::min(o.neckWidth, (o.roomHeightMin - 0.5) / 3));
+    const double d = 0.25;  // the low leg's floor above the room's floor
+    if (w < 0.125 || hn <= w)
+        throw Error(
+            "rooms map (row): the passages need room_height_min >= 0.875 and neck_length > "
+            "their width");
+    const double pitch = Wr + 2 * hn + w;
+    const int k = o.rooms;
+    const auto X = [&](int r) { return r * pitch; };
+    std::vector<TPoint2D> v;
+    // The floor side, left to right: passage r's lower walls, then room r + 1's floor.
+    for (int r = -1; r < k; ++r) {
+        const double a = X(r) + Wr, b = X(r + 1);
+        v.insert(v.end(), {{a, d}, {a + hn + w, d}, {a + hn + w, d + 2 * w}, {b, d + 2 * w}});
+        if (r + 1 < k) v.insert(v.end(), {{b, 0}, {b + Wr, 0}});
+    }
+    // The ceiling side, right to left: passage r's upper walls, then room r's skyline.
+    for (int r = k - 1; r >= -1; --r) {
+        const double a = X(r) + Wr, b = X(r + 1);
+        v.insert(v.end(), {{b, d + 3 * w}, {a + hn, d + 3 * w}, {a + hn, d + w}, {a, d + w}});
+        if (r >= 0) appendSkyline(v, room, X(r), 0);
+    }
+    std::vector<TPoint2D> sites;
+    for (int r = 0; r < k; ++r) sites.push_back({X(r) + room.site.x, room.site.y});
+    const std::string what = mrpt::format("rooms map (%d rooms in a row)", k);
+    return {common::Polygon::fromVertices(std::move(v), what), sites, what};
+}
+
+}  // namespace
+
 GeneratedMap roomsMap(const RoomsMapOptions& o, mrpt::random::CRandomGenerator& rng) {
     if (o.rooms < 1 || o.roomSteps < 1) throw Error("rooms map: rooms and room steps must be >= 1");
     const double Wr = o.roomWidth, wn = o.neckWidth, hn = o.neckLength, C = o.corridorHeight;
@@ -78,42 +170,43 @@ GeneratedMap roomsMap(const RoomsMapOptions& o, mrpt::random::CRandomGenerator& 
         throw Error(
             "rooms map: need room width >= neck width + 1, room height min > 0.5 <= max, "
             "and positive neck, corridor and gap sizes");
-    // The room: neck position, skyline breaks and heights (shared by every copy).
-    const double nx = snap8(rng.drawUniform(0.5, Wr - wn - 0.5));
-    std::vector<double> breaks{0};
-    for (int i = 1; i < o.roomSteps; ++i) breaks.push_back(Wr * i / o.roomSteps);
-    for (size_t i = 1; i < breaks.size(); ++i)
-        breaks[i] = snap8(breaks[i] + rng.drawUniform(-0.3, 0.3) * Wr / o.roomSteps);
-    breaks.push_back(Wr);
-    std::vector<double> heights;
-    for (int i = 0; i < o.roomSteps; ++i) {
-        double h;
-        do h = snap8(rng.drawUniform(o.roomHeightMin, o.roomHeightMax));
-        while (!heights.empty() && std::abs(h - heights.back()) < 0.25);
-        heights.push_back(h);
-    }
+    const Room room = randomRoom(o, rng);
+    if (o.layout == RoomsLayout::Row) return roomsInARow(o, room);
     const double floorY = C + hn;  // the rooms' floor
-    const TPoint2D site{snap8(rng.drawUniform(0.3, Wr - 0.3)) + 1.0 / 16,
-                        floorY + snap8(rng.drawUniform(0.3, o.roomHeightMin - 0.3)) + 1.0 / 16};
+    const double nx = room.neckX;
 
     // Rays through a neck drift at most wn / hn sideways per metre down; keep the corridor
     // ends out of that cone.
     const double margin = snap8(C * wn / hn + wn + 1);
     const double pitch = Wr + o.roomGap;
     const double left = 0, right = 2 * margin + o.rooms * pitch - o.roomGap + o.rightMargin;
-    std::vector<TPoint2D> v{{left, 0}, {right, 0}, {right, C}};
-    std::vector<TPoint2D> sites;
-    for (int r = o.rooms - 1; r >= 0; --r) {
+    // Room r above the corridor, counter-clockwise (right to left).
+    const auto upper = [&](int r) {
         const double x0 = margin + r * pitch;
-        v.insert(v.end(), {{x0 + nx + wn, C}, {x0 + nx + wn, floorY}, {x0 + Wr, floorY}});
-        for (int i = o.roomSteps - 1; i >= 0; --i)
-            v.insert(v.end(), {{x0 + breaks[i + 1], floorY + heights[i]},
-                               {x0 + breaks[i], floorY + heights[i]}});
-        v.insert(v.end(), {{x0, floorY}, {x0 + nx, floorY}, {x0 + nx, C}});
+        std::vector<TPoint2D> u{{x0 + nx + wn, C}, {x0 + nx + wn, floorY}, {x0 + Wr, floorY}};
+        appendSkyline(u, room, x0, floorY);
+        u.insert(u.end(), {{x0, floorY}, {x0 + nx, floorY}, {x0 + nx, C}});
+        return u;
+    };
+    std::vector<TPoint2D> v{{left, 0}};
+    if (o.layout == RoomsLayout::Mirrored)
+        for (int r = 0; r < o.rooms; ++r) {  // the mirror image in y = C / 2, left to right
+            const auto u = upper(r);
+            for (auto p = u.rbegin(); p != u.rend(); ++p) v.push_back({p->x, C - p->y});
+        }
+    v.insert(v.end(), {{right, 0}, {right, C}});
+    for (int r = o.rooms - 1; r >= 0; --r) {
+        const auto u = upper(r);
+        v.insert(v.end(), u.begin(), u.end());
     }
     v.push_back({left, C});
-    for (int r = 0; r < o.rooms; ++r) sites.push_back({margin + r * pitch + site.x, site.y});
-    const std::string what = mrpt::format("rooms map (%d rooms)", o.rooms);
+    std::vector<TPoint2D> sites;
+    for (int r = 0; r < o.rooms; ++r)
+        sites.push_back({margin + r * pitch + room.site.x, floorY + room.site.y});
+    const std::string what =
+        o.layout == RoomsLayout::Mirrored
+            ? mrpt::format("rooms map (%d rooms and their mirror images)", o.rooms)
+            : mrpt::format("rooms map (%d rooms)", o.rooms);
     return {common::Polygon::fromVertices(std::move(v), what), sites, what};
 }
 

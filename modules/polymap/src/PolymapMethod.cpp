@@ -257,14 +257,21 @@ common::Headline polymapHeadline(const method::HeadlineOf<PolymapLocalizer>& in)
         if (r.session && left > 1 && !r.session->plan())
             notLocalized += mrpt::format(
                 "%srobot '%s': no probe separates the %zu hypotheses left (their views agree "
-                "wherever the robot can go under all of them: the overlay region)",
-                notLocalized.empty() ? "" : "; ", robot.c_str(), left);
+                "wherever the robot can go under all of them, the overlay region, %s)",
+                notLocalized.empty() ? "" : "; ", robot.c_str(), left,
+                r.session->fruitlessProbes() == 0
+                    ? "at the algorithm's candidates"
+                    : mrpt::format("but for %zu probe(s) whose scans could not tell them apart",
+                                   r.session->fruitlessProbes())
+                          .c_str());
         else if (left != 1)
             notLocalized += mrpt::format("%srobot '%s': %zu hypotheses %s",
                                          notLocalized.empty() ? "" : "; ", robot.c_str(), left,
                                          r.hypotheses.empty() ? "fit the first scan (is this "
                                                                 "the robot's map?)"
-                                         : r.session          ? "left"
+                                         : r.session          ? "left, the log ending before "
+                                                                "the next probe (a longer [scenario] "
+                                                                "duration drives on)"
                                                               : "from the first scan, no drive to "
                                                                 "eliminate them ([polymap] drive)");
         if (r.session) {

@@ -72,6 +72,8 @@ void PolymapOptions::loadFromConfigFile(const mrpt::config::CConfigFileBase& src
     steps.corridorHeight = s.real("corridor_height", steps.corridorHeight, 1e-3, 1e4);
     steps.branchWidth = s.real("branch_width", steps.branchWidth, 1e-3, 1e4);
     steps.branchLeg = s.real("branch_leg", steps.branchLeg, 1e-3, 1e4);
+    rooms.layout =
+        roomsLayoutFromName(s.choice("room_layout", "side", {"side", "row", "mirrored"}));
     rooms.rooms = (int)s.integer("rooms", long(rooms.rooms), 1, 1000);
     rooms.roomSteps = (int)s.integer("room_steps", long(rooms.roomSteps), 1, 1000);
     rooms.roomWidth = s.real("room_width", rooms.roomWidth, 1e-3, 1e4);
@@ -181,6 +183,7 @@ void PolymapOptions::saveToConfigFile(mrpt::config::CConfigFileBase& t,
     t.write(section, "corridor_height", steps.corridorHeight);
     t.write(section, "branch_width", steps.branchWidth);
     t.write(section, "branch_leg", steps.branchLeg);
+    t.write(section, "room_layout", roomsLayoutName(rooms.layout));
     t.write(section, "rooms", rooms.rooms);
     t.write(section, "room_steps", rooms.roomSteps);
     t.write(section, "room_width", rooms.roomWidth);

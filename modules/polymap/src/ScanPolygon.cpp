@@ -79,7 +79,8 @@ void splitRun(const std::vector<TPoint2D>& pts, size_t a, size_t b, double tol,
 
 }  // namespace
 
-ScanBeams beamsOf(const mrpt::obs::CObservation2DRangeScan& scan, double heading) {
+ScanBeams beamsOf(const mrpt::obs::CObservation2DRangeScan& scan, double heading,
+                  bool noReturnAllowed) {
     const size_t n = scan.getScanSize();
     const std::string what = "scan '" + scan.sensorLabel + "'";
     if (n < 8) throw Error(what + ": too few beams (" + std::to_string(n) + ")");
@@ -91,16 +92,25 @@ ScanBeams beamsOf(const mrpt::obs::CObservation2DRangeScan& scan, double heading
     const double sign = common::storedFlag(scan.rightToLeft) ? 1 : -1;
     beams.angle.resize(n);
     beams.range.resize(n);
+    beams.noReturn.assign(n, false);
+    if (noReturnAllowed && !(std::isfinite(scan.maxRange) && scan.maxRange > 0))
+        throw Error(what + mrpt::format(": max range is %g", double(scan.maxRange)));
     for (size_t i = 0; i < n; ++i) {
-        if (!scan.getScanRangeValidity(i))
-            throw Error(what + mrpt::format(": beam %zu has no return; the visibility polygon "
-                                            "must be closed (raise the scanner's max range)",
-                                            i));
+        beams.angle[i] = heading + sign * scan.getScanAngle(i);
+        if (!scan.getScanRangeValidity(i)) {
+            if (!noReturnAllowed)
+                throw Error(what + mrpt::format(": beam %zu has no return; the visibility "
+                                                "polygon must be closed (raise the scanner's "
+                                                "max range)",
+                                                i));
+            beams.noReturn[i] = true;
+            beams.range[i] = scan.maxRange;
+            continue;
+        }
         const double r = scan.getScanRange(i);
         if (!std::isfinite(r) || r < 0)
             throw Error(what + mrpt::format(": beam %zu range is %g", i, r));
         beams.range[i] = r;
-        beams.angle[i] = heading + sign * scan.getScanAngle(i);
     }
     return beams;
 }

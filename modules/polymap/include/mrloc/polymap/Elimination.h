@@ -38,6 +38,13 @@ std::string strategyName(ProbeStrategy s);
 /** Parses a name of strategyName(); throws mrloc::Error naming the valid ones. */
 ProbeStrategy strategyFromName(const std::string& name);
 
+/** Beams a stopping point is refined on (consistentWithScan): a 1440-beam scan is refined on
+ *  every fourth beam, which keeps a 20-hypothesis scan under a second. */
+constexpr size_t kRefineBeams = 360;
+
+/** Draws of X random points algorithm 2 makes for one probe before it says none separates. */
+constexpr size_t kRandomBatches = 20;
+
 struct EliminationOptions {
     ProbeStrategy strategy = ProbeStrategy::Windows;
     int randomPoints = 100;  ///< algorithm 2's X (the paper: 100 and 500)
@@ -76,8 +83,13 @@ class Eliminator {
                EliminationOptions options);
 
     /** The next probe for the live hypotheses (indices into the hypotheses), the robot at
-     *  displacement `at`; nothing if no candidate of the strategy separates them. */
-    std::optional<Probe> chooseProbe(const std::vector<size_t>& live, const TPoint2D& at) const;
+     *  displacement `at`; nothing if no candidate of the strategy separates them. Candidates
+     *  within `avoidRadius` of a point of `avoid` are skipped (probes whose real scan
+     *  separated nothing: the views differ there, but by less than a stopped robot's scan
+     *  can tell). */
+    std::optional<Probe> chooseProbe(const std::vector<size_t>& live, const TPoint2D& at,
+                                     const std::vector<TPoint2D>& avoid = {},
+                                     double avoidRadius = 0) const;
     /** The strategy's candidates for the live hypotheses (displacements), and OI: what the
      *  report draws. */
     std::pair<std::vector<TPoint2D>, OverlayRegion> candidatesAndRegion(
@@ -101,9 +113,11 @@ class Eliminator {
      *  beams, not polygons: a wall seen at grazing incidence breaks a scan's polygon into
      *  pieces but leaves its beams right. With searchRadius > 0 the scan may have been taken
      *  up to that far from `at` (a robot stops near its goal, not on it): the position that
-     *  explains the beams best is searched on three nested 7 x 7 grids (to 0.3 mm) and counts;
-     *  `refined` then receives it for each hypothesis kept. Throws mrloc::Error for a scan that is
-     * not a full turn or has a beam without a return (ScanPolygon's beamsOf). */
+     *  explains the beams best is searched on three nested 7 x 7 grids (to 0.3 mm), with at
+     *  most kRefineBeams of the beams (evenly spread: a bounded cost per scan), and counts;
+     *  `refined` then receives it for each hypothesis kept. A beam without a return agrees
+     * where the predicted view reaches the scanner's max range. Throws mrloc::Error for a
+     * scan that is not a full turn (ScanPolygon's beamsOf). */
     std::vector<size_t> consistentWithScan(const std::vector<size_t>& live, const TPoint2D& at,
                                            const mrpt::obs::CObservation2DRangeScan& scan,
                                            double heading, double rangeTolerance,
@@ -168,7 +182,10 @@ class EliminationSession {
                        EliminationOptions options, double heading, double arrivalRadius);
     /** The next probe, or nothing: one hypothesis left, or none separates what is left. */
     const std::optional<Probe>& plan() const { return plan_; }
-    /** A scan taken at plan()'s probe. Throws mrloc::Error if there is no plan. */
+    /** A scan taken at plan()'s probe. A scan that rules nothing out marks its probe
+     *  fruitless: the next plan avoids it (and every fruitless probe since the live set last
+     *  shrank), so a session always ends, with one hypothesis or with no plan left. Throws
+     *  mrloc::Error if there is no plan. */
     void observe(const mrpt::obs::CObservation2DRangeScan& scan);
     const std::vector<size_t>& live() const { return live_; }
     /** The probes reached so far, in order (displacements). */
@@ -177,6 +194,8 @@ class EliminationSession {
      *  explains the scan best); for the hypotheses kept there. */
     TPoint2D stoppedAt(size_t k, size_t i) const { return stops_.at(k).at(i); }
     const Eliminator& eliminator() const { return eliminator_; }
+    /** Probes since the live set last shrank whose scans kept every live hypothesis. */
+    size_t fruitlessProbes() const { return fruitless_.size(); }
 
  private:
     Eliminator eliminator_;
@@ -184,6 +203,7 @@ class EliminationSession {
     std::vector<size_t> live_;
     std::vector<Probe> visited_;
     std::vector<std::map<size_t, TPoint2D>> stops_;
+    std::vector<TPoint2D> fruitless_;  ///< probes whose scan kept every live hypothesis
     std::optional<Probe> plan_;
 };
 

@@ -30,12 +30,30 @@ struct StepsMapOptions {
 };
 GeneratedMap stepsMap(const StepsMapOptions& options);
 
-/** `rooms` copies of one random room (a skyline of `roomSteps` random heights) above a
- *  corridor, each joined to it by a neck. Corridor margins are wide enough that nobody in
- *  a room sees a corridor end; `rightMargin` > 0 lengthens the right one (an asymmetric
- *  join). Coordinates are multiples of 1/8 m. n = 4 + rooms * (6 + 2 * roomSteps). The
- *  site is a random point of the room, the same in every copy. */
+/** How the copies of the room are joined (an office floor's usual arrangements). */
+enum class RoomsLayout {
+    Side,      ///< side by side above one corridor, each through a neck
+    Row,       ///< in a row, each joined to the next by a Z-shaped passage
+    Mirrored,  ///< on both sides of the corridor, those below mirror images of those above
+};
+std::string roomsLayoutName(RoomsLayout layout);
+/** Parses a name of roomsLayoutName(); throws mrloc::Error naming the valid ones. */
+RoomsLayout roomsLayoutFromName(const std::string& name);
+
+/** `rooms` copies of one random room (a skyline of `roomSteps` random heights).
+ *  - Side: above a corridor, each joined to it by a neck. Corridor margins are wide enough
+ *    that nobody in a room sees a corridor end; `rightMargin` > 0 lengthens the right one
+ *    (an asymmetric join). n = 4 + rooms * (6 + 2 * roomSteps).
+ *  - Mirrored: the same, and below the corridor each room's mirror image facing it (the
+ *    mirror images are not congruent to the rooms: the sites are the upper rooms').
+ *  - Row: rooms joined wall to wall by passages of width min(neckWidth, (roomHeightMin -
+ *    0.5) / 3), each with a jog no sight line passes, so every room (the two ends too, which
+ *    have a dead-end passage) looks the same from inside; only a walk through a passage
+ *    tells them apart.
+ *  Coordinates are multiples of 1/8 m. The site is a random point of the room, the same in
+ *  every copy. */
 struct RoomsMapOptions {
+    RoomsLayout layout = RoomsLayout::Side;
     int rooms = 4;
     int roomSteps = 4;
     double roomWidth = 6, roomHeightMin = 2, roomHeightMax = 5;  ///< m

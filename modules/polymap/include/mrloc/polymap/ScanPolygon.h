@@ -22,13 +22,15 @@ struct ScanPolygonOptions {
  *  angle between neighbours. */
 struct ScanBeams {
     std::vector<double> angle, range;
+    std::vector<bool> noReturn;  ///< no wall within the scanner's max range (range = max range)
     double step = 0;
 };
 
 /** Throws mrloc::Error naming the scan if it is not a full turn of at least 8 beams or a
- *  beam has no return or no finite range (V must be closed: set the scanner's max range above
- *  the map's size). */
-ScanBeams beamsOf(const mrpt::obs::CObservation2DRangeScan& scan, double heading);
+ *  beam has no finite range, or, unless `noReturnAllowed`, a beam has no return (V must be
+ *  closed: set the scanner's max range above the map's size). */
+ScanBeams beamsOf(const mrpt::obs::CObservation2DRangeScan& scan, double heading,
+                  bool noReturnAllowed = false);
 
 /** Throws mrloc::Error naming the scan if a beam has no return (V must be closed: set the
  *  scanner's max range above the map's size) or the scan is not a full turn. */
