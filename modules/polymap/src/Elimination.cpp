@@ -9,6 +9,7 @@
 #include <limits>
 #include <queue>
 #include <random>
+#include <set>
 
 namespace mrloc::polymap {
 
@@ -118,15 +119,17 @@ double radialMismatch(const RadialProfile& V, double angle, double range, double
     return e > tolerance ? std::min({e, off(-0.5 * step), off(0.5 * step)}) : e;
 }
 
-/** Over 2 % of `beams` directions see ranges differing by more than `margin`. */
+/** Over 2 % of `beams` directions see ranges differing by more than `margin`, ranges beyond
+ *  `maxRange` being one (the scanner sees no return there). */
 bool beamsTellApart(const VisibilityPolygon& a, const VisibilityPolygon& b, int beams,
-                    double margin) {
+                    double margin, double maxRange) {
     const double step = 2 * M_PI / beams;
     const RadialProfile pa(a), pb(b);
     int differ = 0;
     for (int k = 0; k < beams; ++k) {
-        const double t = k * step;
-        differ += radialMismatch(pb, t, pa.radius(t), step, margin) > margin;
+        const double t = k * step, ra = pa.radius(t);
+        const bool beyond = ra >= maxRange && pb.radius(t) >= maxRange;
+        differ += !beyond && radialMismatch(pb, t, ra, step, margin) > margin;
         if (differ * 50 > beams) return true;
     }
     return false;
@@ -256,83 +259,37 @@ std::vector<TPoint2D> Eliminator::chordCandidates(const Region& region, double c
     return out;
 }
 
-std::vector<TPoint2D> Eliminator::windowCandidates(const std::vector<size_t>& live,
-                                                   const Region& region,
+std::vector<TPoint2D> Eliminator::windowCandidates(const Region& region,
                                                    const TPoint2D& from) const {
+    // Algorithm 4, step 6: the middle points of windows [4] in OI. A window (Koenig, Mitchell,
+    // Mudgal and Tovey 2009; Guibas, Motwani and Raghavan 1997) is an edge of a visibility
+    // polygon that is not on the boundary: the robot would see more through it. The robot's
+    // view inside OI from `from` gives the first windows; from a window's middle the robot
+    // sees the windows behind it, and so on breadth first, until the candidates reach every
+    // part of OI it can walk into (at most kWindowViews views). Middles closer than the
+    // clearance are one.
+    const double merge = std::max(options_.clearance, 1e-6 * (P_.max() - P_.min()).norm());
     std::vector<TPoint2D> out;
-    const double clearance = options_.clearance;
-    // Algorithm 4, step 6: midpoints of OI's windows, the stretches of its boundary
-    // that are a wall of some live copies but not of all (a wall of all tells
-    // nothing). An edge of OI is cut where a copy's wall along it starts or ends;
-    // a window the robot sees in part gives the midpoint of each part it sees.
-    const double extent = (P_.max() - P_.min()).norm();
-    // Walls closer than the sensing tolerance are one wall: it cannot tell them apart.
-    const double onLine = std::max(1e-7 * extent, options_.tolerance);
-    const auto& oi = region.oi;
-    const size_t m = oi.outer.size();
-    std::optional<VisibilityPolygon> seen;
-    try {
-        seen = visibilityPolygon(region.triangles, from);
-    } catch (const Error&) {  // the robot off OI (by rounding): whole windows only
-    }
-    const auto& Pv = P_.vertices();
-    for (size_t e = 0; e < m; ++e) {
-        const TPoint2D &a = oi.outer[e], &b = oi.outer[(e + 1) % m];
-        const double length = (b - a).norm();
-        if (length <= onLine) continue;
-        const TVector2D u = (b - a) * (1 / length);
-        // Where along a-b (0 to 1) a segment lying on its line runs, if it does.
-        const auto along = [&](const TPoint2D& p,
-                               const TPoint2D& q) -> std::optional<std::pair<double, double>> {
-            if (std::abs(common::cross(u, p - a)) > onLine ||
-                std::abs(common::cross(u, q - a)) > onLine)
-                return std::nullopt;
-            double t0 = common::dot(u, p - a) / length, t1 = common::dot(u, q - a) / length;
-            if (t0 > t1) std::swap(t0, t1);
-            t0 = std::max(t0, 0.0), t1 = std::min(t1, 1.0);
-            if (t1 - t0 <= onLine / length) return std::nullopt;
-            return std::make_pair(t0, t1);
-        };
-        std::vector<std::vector<std::pair<double, double>>> walls(live.size());
-        std::vector<double> cuts{0, 1};
-        for (size_t l = 0; l < live.size(); ++l) {
-            const TPoint2D h = hypotheses_[live[l]];
-            for (size_t v = 0; v < Pv.size(); ++v)
-                if (const auto w = along(Pv[v] - h, Pv[(v + 1) % Pv.size()] - h)) {
-                    walls[l].push_back(*w);
-                    cuts.push_back(w->first), cuts.push_back(w->second);
-                }
+    std::set<std::pair<long, long>> taken;  // middles, by cells of the merge size
+    std::vector<TPoint2D> viewpoints{from};
+    for (size_t next = 0; next < viewpoints.size() && next < kWindowViews; ++next) {
+        VisibilityPolygon V;
+        try {
+            V = visibilityPolygon(region.triangles, viewpoints[next]);
+        } catch (const Error&) {  // the robot off OI (by rounding)
+            continue;
         }
-        std::sort(cuts.begin(), cuts.end());
-        std::vector<std::pair<double, double>> parts;  // what the robot sees of a-b
-        if (seen)
-            for (size_t v = 0; v < seen->size(); ++v)
-                if (!seen->isRadial(v))
-                    if (const auto w = along(from + seen->vertices[v],
-                                             from + seen->vertices[(v + 1) % seen->size()]))
-                        parts.push_back(*w);
-        // Stand off the window, inwards (OI is counter-clockwise: its inside is left).
-        const TVector2D inwards{-u.y, u.x};
-        const auto candidate = [&](double t) {
-            const TPoint2D probe = a + (b - a) * t + inwards * std::max(clearance, 1e-6 * length);
-            if (region.clear(probe, clearance)) out.push_back(probe);
-        };
-        for (size_t c = 0; c + 1 < cuts.size(); ++c) {
-            const double t0 = cuts[c], t1 = cuts[c + 1], tm = 0.5 * (t0 + t1);
-            if (t1 - t0 <= onLine / length) continue;
-            size_t walled = 0;
-            for (const auto& w : walls)
-                walled += std::any_of(w.begin(), w.end(), [tm](const auto& i) {
-                    return i.first <= tm && tm <= i.second;
-                });
-            if (walled == 0 || walled == live.size()) continue;
-            bool sawPart = false;
-            for (const auto& [s0, s1] : parts)
-                if (std::min(s1, t1) - std::max(s0, t0) > onLine / length) {
-                    candidate(0.5 * (std::max(s0, t0) + std::min(s1, t1)));
-                    sawPart = true;
-                }
-            if (!sawPart) candidate(tm);
+        for (size_t i = 0; i < V.size(); ++i) {
+            if (!V.isRadial(i)) continue;  // a wall
+            const TPoint2D m =
+                viewpoints[next] + (V.vertices[i] + V.vertices[(i + 1) % V.size()]) * 0.5;
+            // a wall seen edge-on lies on OI's boundary; a window in a gap narrower than the
+            // clearance has no middle the robot may stand on
+            if (!region.clear(m, options_.clearance)) continue;
+            if (!taken.insert({std::lround(m.x / merge), std::lround(m.y / merge)}).second)
+                continue;
+            out.push_back(m);
+            viewpoints.push_back(m);
         }
     }
     return out;
@@ -348,7 +305,7 @@ std::vector<TPoint2D> Eliminator::candidates(const std::vector<size_t>& live, co
         case ProbeStrategy::VisibilityCells:
             return chordCandidates(region, chordSpacing, perChord);
         case ProbeStrategy::Windows:
-            return windowCandidates(live, region, from);
+            return windowCandidates(region, from);
         case ProbeStrategy::Triangulation: {
             // seed 002 algorithm 3, step 7: edge midpoints and centroids of the map's
             // triangles, placed at the origin hypothesis.
@@ -399,7 +356,7 @@ bool Eliminator::separates(const std::vector<size_t>& live, const TPoint2D& at) 
                 // identical views first (cheap), then the beams
                 ? vertexwiseDistance(views.front(), views[k]) > 1e-9 * extent &&
                       beamsTellApart(views.front(), views[k], options_.sensorBeams,
-                                     2 * options_.rangeTolerance)
+                                     2 * options_.rangeTolerance, options_.sensorMaxRange)
                 : !sameView(views.front(), views[k], 2 * options_.tolerance))
             return true;
     return false;

@@ -296,6 +296,7 @@ EliminationOptions PolymapOptions::driveOptions(double tolerance) const {
     o.clearance = clearance;
     o.sensorBeams = scanRays;                      // the scanner the probes are for
     o.rangeTolerance = 6 * scanRangeSigma + 0.01;  // a beam's error bound
+    o.sensorMaxRange = scanMaxRange;
     return o;
 }
 

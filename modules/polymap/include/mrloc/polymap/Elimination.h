@@ -24,6 +24,7 @@
 #include <mrpt/obs/CObservation2DRangeScan.h>
 
 #include <cstdint>
+#include <limits>
 #include <map>
 #include <optional>
 #include <string>
@@ -45,6 +46,9 @@ constexpr size_t kRefineBeams = 360;
 /** Draws of X random points algorithm 2 makes for one probe before it says none separates. */
 constexpr size_t kRandomBatches = 20;
 
+/** Views algorithm 4 expands, breadth first from the robot, to find windows' middles. */
+constexpr size_t kWindowViews = 256;
+
 struct EliminationOptions {
     ProbeStrategy strategy = ProbeStrategy::Windows;
     int randomPoints = 100;  ///< algorithm 2's X (the paper: 100 and 500)
@@ -60,9 +64,12 @@ struct EliminationOptions {
      *  beam within rangeTolerance of the truth, is sure to tell them apart. */
     int sensorBeams = 0;
     double rangeTolerance = 0.04;  ///< m: a beam's range error bound (6 sigma + 1 cm)
+    /** m: the scanner's reach; predicted ranges beyond it are one (no return), so a probe
+     *  whose views differ only farther away does not separate. */
+    double sensorMaxRange = std::numeric_limits<double>::infinity();
     /** Probes keep this far from OI's boundary and from the line of every wall they see (m):
      *  the robot stands off the walls, and sees none edge-on (grazing beams make a scan's
-     *  polygon worthless). Window midpoints move inwards by it. */
+     *  polygon worthless). */
     double clearance = 0.1;
 };
 
@@ -157,9 +164,9 @@ class Eliminator {
      *  checked for clearance (Region::nearest does that for the few it reaches). */
     std::vector<TPoint2D> chordCandidates(const Region& region, double chordSpacing,
                                           int perChord) const;
-    /** Algorithm 4's candidates: midpoints of OI's windows, of the parts seen from `from`. */
-    std::vector<TPoint2D> windowCandidates(const std::vector<size_t>& live, const Region& region,
-                                           const TPoint2D& from) const;
+    /** Algorithm 4's candidates: the middles of the windows of the robot's view in OI from
+     *  `from`, and of the views from those middles, breadth first. */
+    std::vector<TPoint2D> windowCandidates(const Region& region, const TPoint2D& from) const;
     /** The live hypotheses' views at displacement `at` differ (and none sees a wall
      *  edge-on). */
     bool separates(const std::vector<size_t>& live, const TPoint2D& at) const;
