@@ -265,15 +265,19 @@ common::Headline polymapHeadline(const method::HeadlineOf<PolymapLocalizer>& in)
                                    r.session->fruitlessProbes())
                           .c_str());
         else if (left != 1)
-            notLocalized += mrpt::format("%srobot '%s': %zu hypotheses %s",
-                                         notLocalized.empty() ? "" : "; ", robot.c_str(), left,
-                                         r.hypotheses.empty() ? "fit the first scan (is this "
-                                                                "the robot's map?)"
-                                         : r.session          ? "left, the log ending before "
-                                                                "the next probe (a longer [scenario] "
-                                                                "duration drives on)"
-                                                              : "from the first scan, no drive to "
-                                                                "eliminate them ([polymap] drive)");
+            notLocalized += mrpt::format(
+                "%srobot '%s': %zu hypotheses %s", notLocalized.empty() ? "" : "; ", robot.c_str(),
+                left,
+                r.hypotheses.empty()
+                    // a map feature within the tolerance of another blurs into it in the scan
+                    ? mrpt::format("fit the first scan (is this the robot's map? Its openings "
+                                   "and walls must be wider than the scan's tolerance, %.3f m)",
+                                   r.tolerance)
+                          .c_str()
+                    : r.session
+                          ? "left, the log ending before the next probe (a longer [scenario] "
+                            "duration drives on)"
+                          : "from the first scan, no drive to eliminate them ([polymap] drive)");
         if (r.session) {
             drove = true;
             for (const auto& p : r.session->visited()) travel += p.path.length;
