@@ -331,6 +331,18 @@ std::string drivingRoomsIni(const std::string& name, const std::string& strategy
     return path;
 }
 
+/** `mrloc run` of drivingRoomsIni(name, ...) into the run folder tmp("polymap_" + name). */
+struct RoomsRun {
+    Result result;
+    std::string out;
+};
+RoomsRun runDrivingRooms(const std::string& name, const std::string& strategy, int rooms,
+                         const std::string& layout, int site, const std::string& extra = "") {
+    const std::string ini = drivingRoomsIni(name, strategy, rooms, layout, site, extra);
+    const std::string out = tmp("polymap_" + name);
+    return {mrlocCmd("run " + ini + " -q --out " + out), out};
+}
+
 }  // namespace
 
 // Twenty identical rooms side by side, the robot in the tenth: each algorithm drives until the
@@ -340,9 +352,8 @@ std::string drivingRoomsIni(const std::string& name, const std::string& strategy
 // 1.1-1.8 mm; bounds 10 m and 5 mm.
 TEST(MrlocPolymap, TwentyIdenticalRoomsEveryAlgorithmEnds) {
     for (const char* strategy : {"cells", "randomized", "triangulation", "windows"}) {
-        const std::string ini = drivingRoomsIni("rooms20", strategy, 20, "side", 10);
-        const std::string out = tmp(std::string("polymap_rooms20_") + strategy);
-        const auto r = mrlocCmd("run " + ini + " -q --out " + out);
+        const auto [r, out] =
+            runDrivingRooms(std::string("rooms20_") + strategy, strategy, 20, "side", 10);
         ASSERT_EQ(r.code, 0) << strategy << "\n" << r.output;
         const auto m = common::loadJson(out + "/metrics.json");
         const auto& e = m["polymap"]["robots"]["r1"]["elimination"];
@@ -356,10 +367,8 @@ TEST(MrlocPolymap, TwentyIdenticalRoomsEveryAlgorithmEnds) {
 // enter no place where the rooms' views differ, so the run says so and exits 3 (a method
 // that failed on its input), with the report written.
 TEST(MrlocPolymap, IdenticalRoomsBehindNarrowPassagesSayWhy) {
-    const std::string ini =
-        drivingRoomsIni("narrow", "cells", 2, "row", 1, "neck_width = 0.25\nclearance = 0.15\n");
-    const std::string out = tmp("polymap_narrow");
-    const auto r = mrlocCmd("run " + ini + " --out " + out);
+    const auto [r, out] =
+        runDrivingRooms("narrow", "cells", 2, "row", 1, "neck_width = 0.25\nclearance = 0.15\n");
     EXPECT_EQ(r.code, 3) << r.output;
     EXPECT_NE(r.output.find("no probe separates the 2 hypotheses left"), std::string::npos)
         << r.output;
@@ -369,14 +378,11 @@ TEST(MrlocPolymap, IdenticalRoomsBehindNarrowPassagesSayWhy) {
 }
 
 // The same rooms with 0.125 m passages, seen with 1 cm range noise: the passages are within
-// the scan's tolerance (0.09 m here) of the walls beside them, the first scan matches no
+// the scan's tolerance (0.091 m here) of the walls beside them, the first scan matches no
 // place and the headline names the tolerance a map's features must exceed (exit 3). With
 // 2 mm noise the same map gives both rooms (doc/polymap.md, known limit).
 TEST(MrlocPolymap, FeaturesBelowTheScansToleranceAreNamedWhenNothingFits) {
-    const std::string ini =
-        drivingRoomsIni("narrower", "cells", 2, "row", 1, "neck_width = 0.125\n");
-    const std::string out = tmp("polymap_narrower");
-    const auto r = mrlocCmd("run " + ini + " --out " + out);
+    const auto r = runDrivingRooms("narrower", "cells", 2, "row", 1, "neck_width = 0.125\n").result;
     EXPECT_EQ(r.code, 3) << r.output;
     EXPECT_NE(r.output.find("0 hypotheses fit the first scan (is this the robot's map? Its "
                             "openings and walls must be wider than the scan's tolerance, 0.0"),

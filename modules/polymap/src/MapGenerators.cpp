@@ -83,7 +83,7 @@ std::string roomsLayoutName(RoomsLayout layout) {
 }
 
 RoomsLayout roomsLayoutFromName(const std::string& name) {
-    for (const auto l : {RoomsLayout::Side, RoomsLayout::Row, RoomsLayout::Mirrored})
+    for (const auto l : kRoomsLayouts)
         if (roomsLayoutName(l) == name) return l;
     throw Error("rooms layout '" + name + "': expected side, row or mirrored");
 }

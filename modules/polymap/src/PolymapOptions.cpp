@@ -72,8 +72,9 @@ void PolymapOptions::loadFromConfigFile(const mrpt::config::CConfigFileBase& src
     steps.corridorHeight = s.real("corridor_height", steps.corridorHeight, 1e-3, 1e4);
     steps.branchWidth = s.real("branch_width", steps.branchWidth, 1e-3, 1e4);
     steps.branchLeg = s.real("branch_leg", steps.branchLeg, 1e-3, 1e4);
-    rooms.layout =
-        roomsLayoutFromName(s.choice("room_layout", "side", {"side", "row", "mirrored"}));
+    std::vector<std::string> layouts;
+    for (const auto l : kRoomsLayouts) layouts.push_back(roomsLayoutName(l));
+    rooms.layout = roomsLayoutFromName(s.choice("room_layout", "side", layouts));
     rooms.rooms = (int)s.integer("rooms", long(rooms.rooms), 1, 1000);
     rooms.roomSteps = (int)s.integer("room_steps", long(rooms.roomSteps), 1, 1000);
     rooms.roomWidth = s.real("room_width", rooms.roomWidth, 1e-3, 1e4);

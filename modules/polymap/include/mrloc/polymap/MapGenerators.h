@@ -36,6 +36,8 @@ enum class RoomsLayout {
     Row,       ///< in a row, each joined to the next by a Z-shaped passage
     Mirrored,  ///< on both sides of the corridor, those below mirror images of those above
 };
+inline constexpr RoomsLayout kRoomsLayouts[] = {RoomsLayout::Side, RoomsLayout::Row,
+                                                RoomsLayout::Mirrored};
 std::string roomsLayoutName(RoomsLayout layout);
 /** Parses a name of roomsLayoutName(); throws mrloc::Error naming the valid ones. */
 RoomsLayout roomsLayoutFromName(const std::string& name);
