@@ -1,7 +1,8 @@
 // Speed of hypothesis elimination (seed 002 steps 4-10): one whole localization in closed
 // loop with exact views, from every start of the steps map, per probe strategy; the paper's
 // n = 148, k = 12 (its Table 2: 403 s for algorithm 1 down to about 8 s for algorithm 4) and
-// n = 1012, k = 84 (and the sizes between, for Figs. 6-7).
+// n = 1012, k = 84 (and the sizes between, for Figs. 6-7); and on identical rooms with a pillar
+// each (maps with holes).
 // Run: build/tests/bench/bench_elimination --benchmark_repetitions=5
 //      --benchmark_report_aggregates_only=true   (report the medians)
 #include <benchmark/benchmark.h>
@@ -15,15 +16,11 @@ using namespace mrloc;
 
 namespace {
 
-/** Arguments: n (a steps map: 24 s + 4 vertices), strategy (0 cells, 1 randomized X = 100,
- *  2 randomized X = 500, 3 triangulation, 4 windows): the paper's algorithms 1, 2, 2', 3, 4.
- *  One iteration localizes from one start; the starts take turns. */
-void BM_Elimination(benchmark::State& state) {
-    polymap::StepsMapOptions s;
-    s.steps = ((int)state.range(0) - 4) / 24;
-    const auto map = polymap::stepsMap(s);
+/** Localizes from each start of `map` in turn, one per iteration, with the strategy of
+ *  kind (0 cells, 1 randomized X = 100, 2 randomized X = 500, 3 triangulation, 4 windows:
+ *  the paper's algorithms 1, 2, 2', 3, 4). */
+void localizeEveryStart(benchmark::State& state, const polymap::GeneratedMap& map, int kind) {
     polymap::EliminationOptions o;
-    const int kind = (int)state.range(1);
     const polymap::ProbeStrategy strategies[] = {
         polymap::ProbeStrategy::VisibilityCells, polymap::ProbeStrategy::Randomized,
         polymap::ProbeStrategy::Randomized, polymap::ProbeStrategy::Triangulation,
@@ -43,10 +40,18 @@ void BM_Elimination(benchmark::State& state) {
     }
     state.counters["n"] = double(map.polygon.size());
     state.counters["k"] = double(map.sites.size());
+    state.counters["holes"] = double(map.polygon.ringCount() - 1);
     state.counters["path m"] = travel / runs;
     const char* names[] = {"1 cells", "2 randomized X=100", "2' randomized X=500",
                            "3 triangulation (LUT)", "4 windows (LUW)"};
     state.SetLabel(names[kind]);
+}
+
+/** Arguments: n (a steps map: 24 s + 4 vertices), strategy as in localizeEveryStart. */
+void BM_Elimination(benchmark::State& state) {
+    polymap::StepsMapOptions s;
+    s.steps = ((int)state.range(0) - 4) / 24;
+    localizeEveryStart(state, polymap::stepsMap(s), (int)state.range(1));
 }
 
 /** The bound the report divides by: the verification tour from every start (k = 12) over the
@@ -82,10 +87,25 @@ void BM_VerificationTours(benchmark::State& state) {
 
 }  // namespace
 
+/** Arguments: rooms (identical rooms side by side, a 0.5 m pillar in each: a map and an OI
+ *  with holes; map seed 7, 6 ceiling steps), strategy as in localizeEveryStart. */
+void BM_EliminationRoomsWithPillars(benchmark::State& state) {
+    mrpt::random::CRandomGenerator rng(7);
+    polymap::RoomsMapOptions r;
+    r.rooms = (int)state.range(0);
+    r.roomSteps = 6;
+    r.pillar = 0.5;
+    localizeEveryStart(state, polymap::roomsMap(r, rng), (int)state.range(1));
+}
+
 BENCHMARK(BM_VerificationTours)->Arg(76)->Arg(148)->Unit(benchmark::kMillisecond);
 
 BENCHMARK(BM_Elimination)
     ->ArgsProduct({{76, 148, 292, 508, 1012}, {0, 1, 2, 3, 4}})
+    ->Unit(benchmark::kMillisecond);
+
+BENCHMARK(BM_EliminationRoomsWithPillars)
+    ->ArgsProduct({{3, 10}, {0, 1, 3, 4}})
     ->Unit(benchmark::kMillisecond);
 
 BENCHMARK_MAIN();

@@ -1,7 +1,8 @@
 // Speed of the polygon-map geometry (seed 002): the triangulation, visibility by triangular
 // expansion, hypothesis generation, shortest paths and the overlay region, on the steps
 // family (n = 24 s + 4: 148, 988, 1996, 4996 for s = 6, 41, 83, 208 steps, k = 2 s sites) and
-// on star5000.poly (a random star of 5000 vertices).
+// on star5000.poly (a random star of 5000 vertices), and on maps with holes: pillar halls of
+// 100 pillars (10 x 10) of 10 and of 20 vertices each (n = 1004 and 2004, 100 holes).
 // Run: build/tests/bench/bench_polymap --benchmark_repetitions=5
 //      --benchmark_report_aggregates_only=true   (report the medians)
 #include <benchmark/benchmark.h>
@@ -22,10 +23,15 @@ using common::TPoint2D;
 
 namespace {
 
-/** The steps map with n vertices (n = 24 s + 4), or star5000.poly for n = 5000. */
+/** The steps map with n vertices (n = 24 s + 4), star5000.poly for n = 5000, or a hall of
+ *  10 x 10 pillars for n = 1004 (pillars of 10 vertices) and 2004 (of 20). */
 const polymap::GeneratedMap& mapOfSize(int n) {
     static std::map<int, polymap::GeneratedMap> cache;
     if (const auto it = cache.find(n); it != cache.end()) return it->second;
+    if (n == 1004 || n == 2004) {
+        mrpt::random::CRandomGenerator rng(3);
+        return cache.emplace(n, polymap::pillarHall(10, 10, (n - 4) / 100, 2.0, rng)).first->second;
+    }
     if (n == 5000) {
         auto P =
             Polygon::load(std::string(MRLOC_SOURCE_DIR) + "/tests/data/bad-inputs/star5000.poly");
@@ -148,24 +154,60 @@ void BM_OverlayRegion(benchmark::State& state) {
 }  // namespace
 
 BENCHMARK(BM_PolygonBuild)->Arg(148)->Arg(988)->Arg(4996)->Arg(5000)->Unit(benchmark::kMillisecond);
+/** The same with holes: every ring validated, then the sweep over all rings' edges. */
+void BM_PolygonBuildWithHoles(benchmark::State& state) {
+    const auto& P = mapOfSize((int)state.range(0)).polygon;
+    std::vector<std::vector<TPoint2D>> rings;
+    for (size_t r = 0; r < P.ringCount(); ++r) rings.push_back(P.ringVertices(r));
+    for (auto _ : state) benchmark::DoNotOptimize(Polygon::fromRings(rings, "bench"));
+    state.counters["n"] = double(P.size());
+    state.counters["holes"] = double(P.ringCount() - 1);
+}
+BENCHMARK(BM_PolygonBuildWithHoles)->Arg(1004)->Arg(2004)->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_Triangulation)
     ->Arg(148)
+    ->Arg(1004)
+    ->Arg(2004)
     ->Arg(988)
     ->Arg(4996)
     ->Arg(5000)
     ->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_Visibility)
-    ->ArgsProduct({{148, 988, 4996, 5000}, {0, 1, 2}})
+    ->ArgsProduct({{148, 988, 4996, 5000, 1004, 2004}, {0, 1, 2}})
     ->Unit(benchmark::kMicrosecond);
 BENCHMARK(BM_Hypotheses_Exact)
     ->Arg(148)
+    ->Arg(1004)
+    ->Arg(2004)
     ->Arg(988)
     ->Arg(1996)
     ->Arg(4996)
     ->Unit(benchmark::kMillisecond);
-BENCHMARK(BM_Hypotheses_FromScan)->Arg(148)->Arg(988)->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_Hypotheses_FromScan)
+    ->Arg(148)
+    ->Arg(988)
+    ->Arg(1004)
+    ->Arg(2004)
+    ->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_ScanToPolygon)->Unit(benchmark::kMicrosecond);
-BENCHMARK(BM_ShortestPath)->Arg(148)->Arg(988)->Arg(4996)->Arg(5000)->Unit(benchmark::kMicrosecond);
+// with holes the first query builds the reflex vertices' visibility graph (in the
+// constructor: not timed) and each query runs Dijkstra from its start
+BENCHMARK(BM_ShortestPath)
+    ->Arg(148)
+    ->Arg(988)
+    ->Arg(4996)
+    ->Arg(5000)
+    ->Arg(1004)
+    ->Arg(2004)
+    ->Unit(benchmark::kMicrosecond);
+/** Building the shortest-path structure: the dual tree, or with holes the visibility graph. */
+void BM_ShortestPathsBuild(benchmark::State& state) {
+    const auto& P = mapOfSize((int)state.range(0)).polygon;
+    const polymap::Triangulation T(P);
+    for (auto _ : state) benchmark::DoNotOptimize(polymap::ShortestPaths(T));
+    state.counters["n"] = double(P.size());
+}
+BENCHMARK(BM_ShortestPathsBuild)->Arg(148)->Arg(1004)->Arg(2004)->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_OverlayRegion)->Arg(148)->Unit(benchmark::kMillisecond);
 
 BENCHMARK_MAIN();

@@ -1,6 +1,7 @@
 // Fuzzes the .poly reader, the polygon validation behind it, and the geometry built on a map
-// that loads: any input must give a valid simple polygon or mrloc::Error. A polygon that
-// loads must have positive area, triangulate into n - 2 triangles inside it, and give a
+// that loads: any input must give a valid polygon (holes allowed) or mrloc::Error. A polygon
+// that loads must have positive area, triangulate into n + 2h - 2 triangles inside it (h
+// holes), and give a
 // visibility polygon from a vertex, an edge midpoint and a triangle's centroid, and a
 // shortest path between two vertices, without an error: the target aborts otherwise. The same
 // input read as rings (polymap's scan localizer: an outer ring and holes) must load or give
@@ -41,15 +42,14 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
     try {
         using namespace mrloc::polymap;
         const Triangulation T(*P);
-        if (T.insideCount() + 2 != P->size()) std::abort();
+        if (T.insideCount() + 2 != P->size() + 2 * (P->ringCount() - 1)) std::abort();  // Euler
         int inside = 0;
         while (!T[inside].inside) ++inside;
         const auto& tri = T[inside];
         const auto centroid =
             (T.point(tri.v[0]) + T.point(tri.v[1]) + T.point(tri.v[2])) * (1.0 / 3);
         const size_t n = P->size();
-        for (const auto& q :
-             {(*P)[0], ((*P)[n / 2] + (*P)[n / 2 + 1 == n ? 0 : n / 2 + 1]) * 0.5, centroid})
+        for (const auto& q : {(*P)[0], ((*P)[n / 2] + (*P)[P->next(n / 2)]) * 0.5, centroid})
             if (visibilityPolygon(T, q).size() < 3) std::abort();
         const ShortestPaths paths(T);
         if (!(paths.distance((*P)[0], (*P)[n / 2]) >= ((*P)[0] - (*P)[n / 2]).norm() * (1 - 1e-12)))

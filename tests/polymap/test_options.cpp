@@ -59,3 +59,35 @@ TEST(PolymapOptions, EliminationKeys) {
         }
     }
 }
+
+TEST(PolymapOptions, RoomsKeys) {
+    const auto load = [](const std::string& lines) {
+        mrpt::config::CConfigFileMemory ini("[polymap]\ngenerator = rooms\n" + lines);
+        polymap::PolymapOptions o;
+        o.loadFromConfigFile(ini, "polymap");
+        return o;
+    };
+    EXPECT_EQ(load("pillar = 0.5").rooms.pillar, 0.5);
+    EXPECT_EQ(load("").rooms.pillar, 0.0);                               // none by default
+    EXPECT_EQ(load("pillar = 0.5").buildMap().polygon.ringCount(), 5u);  // 4 rooms, 4 pillars
+    // a row has no corridor: its keys are refused, not silently ignored
+    for (const char* bad : {"room_layout = row\nroom_gap = 2",
+                            "room_layout = row\nright_margin = 1", "pillar = -1"}) {
+        try {
+            load(bad);
+            ADD_FAILURE() << bad << ": no error";
+        } catch (const Error& e) {
+            const std::string key = std::string(bad).substr(
+                std::string(bad).rfind('\n') + 1,
+                std::string(bad).rfind(" =") - std::string(bad).rfind('\n') - 1);
+            EXPECT_NE(std::string(e.what()).find(key), std::string::npos) << e.what();
+        }
+    }
+    // a pillar too big for the room: the generator names the bound
+    try {
+        load("pillar = 3").buildMap();
+        ADD_FAILURE() << "no error";
+    } catch (const Error& e) {
+        EXPECT_NE(std::string(e.what()).find("pillar 3 m: at most"), std::string::npos) << e.what();
+    }
+}

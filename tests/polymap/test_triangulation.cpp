@@ -54,6 +54,15 @@ std::vector<std::pair<std::string, Polygon>> testMaps() {
         if (t > 0) comb.push_back({(double)t - 1, 1});
     }
     maps.push_back({"comb", Polygon::fromVertices(comb, "comb")});
+    // holes: 100 pillars of 20 vertices (n = 2004), and rooms with a square pillar each
+    maps.push_back({"hall100", polymap::pillarHall(10, 10, 20, 2.0, rng).polygon});
+    polymap::RoomsMapOptions pillars;
+    pillars.pillar = 0.5;
+    for (const auto layout : polymap::kRoomsLayouts) {
+        pillars.layout = layout;
+        maps.push_back({"rooms with pillars, " + polymap::roomsLayoutName(layout),
+                        polymap::roomsMap(pillars, rng).polygon});
+    }
     return maps;
 }
 
@@ -64,7 +73,8 @@ TEST(Triangulation, InvariantsOnEveryMap) {
         SCOPED_TRACE(name);
         const Triangulation T(P);
         const int n = (int)P.size();
-        EXPECT_EQ(T.insideCount(), P.size() - 2);
+        const size_t holes = P.ringCount() - 1;
+        EXPECT_EQ(T.insideCount(), P.size() + 2 * holes - 2);
         std::set<std::pair<int, int>> edges, constrainedEdges;
         double area = 0;
         size_t inside = 0, localDelaunayViolations = 0;
@@ -90,20 +100,21 @@ TEST(Triangulation, InvariantsOnEveryMap) {
                 const int p = tri.from(i), q = tri.to(i);
                 edges.insert({std::min(p, q), std::max(p, q)});
                 if (tri.constrained[(size_t)i]) {
-                    EXPECT_EQ(q, (p + 1) % n) << "a constrained edge that is not P's";
+                    EXPECT_EQ(q, (int)P.next((size_t)p)) << "a constrained edge that is not P's";
                     constrainedEdges.insert({p, q});
                 } else {
-                    EXPECT_NE(q, (p + 1) % n) << "P's edge " << p << " not constrained";
+                    EXPECT_NE(q, (int)P.next((size_t)p)) << "P's edge " << p << " not constrained";
                     const int u = tri.neighbour[(size_t)i];
                     const int d = T[u].v[(size_t)T.edgeTowards(u, t)];
                     localDelaunayViolations += common::inCircle(a, b, c, T.point(d)) > 0;
                 }
             }
         }
-        EXPECT_EQ(inside, P.size() - 2);
+        EXPECT_EQ(inside, P.size() + 2 * holes - 2);
         EXPECT_EQ(constrainedEdges.size(), P.size());  // every edge of P, once
-        EXPECT_EQ(edges.size(), 2 * P.size() - 3);     // Euler: V - E + F = 1 for a disc
-        EXPECT_EQ(localDelaunayViolations, 0u);        // so constrained Delaunay
+        // Euler: V - E + F = 1 - h for a disc with h holes
+        EXPECT_EQ(edges.size(), 2 * P.size() + 3 * holes - 3);
+        EXPECT_EQ(localDelaunayViolations, 0u);  // so constrained Delaunay
         EXPECT_NEAR(area, P.area(), 1e-12 * std::abs(P.area()));
     }
 }

@@ -23,7 +23,9 @@ namespace {
 double oracle(const Polygon& P, const TPoint2D& q, const TVector2D& dir) {
     const double probe = 1e-7 * (P.max() - P.min()).norm();
     if (P.locate(q + dir * probe, 1e-13) != Polygon::Where::Inside) return 0;
-    return P.rayCast(q, dir, 1e-12).value_or(0);
+    // a wall nearer than 1e-10 of the map's size is the one q stands on (q on an edge is
+    // off it by rounding: a ray at a shallow angle meets it again a few 1e-12 on)
+    return P.rayCast(q, dir, 1e-10 * (P.max() - P.min()).norm()).value_or(0);
 }
 
 /** Largest radial disagreement of V(q) with the oracle over `rays` directions. */
@@ -280,4 +282,46 @@ TEST(Visibility, RadialProfileIsTheRadiusInEveryDirection) {
         }
     }
     EXPECT_GT(checked, 30000u);
+}
+
+TEST(Visibility, HolesAgreeWithRayCastingInsideOnEdgesAndVertices) {
+    // Pillar halls (every pillar a hole) and rooms with a pillar each: triangular expansion
+    // stops at a hole's edges like at the outer ring's. Same oracle and tolerance as above.
+    mrpt::random::CRandomGenerator rng(12);
+    for (int hall = 0; hall < 4; ++hall) {
+        const auto P = polymap::pillarHall(3 + hall, 2 + hall, 5 + 2 * hall, 2.0, rng).polygon;
+        ASSERT_EQ(P.ringCount(), size_t(1 + (3 + hall) * (2 + hall)));
+        for (int k = 0; k < 8; ++k) {
+            const auto q = randomInside(P, rng);
+            EXPECT_LT(worstDisagreement(P, q), 1e-9) << "hall " << hall << " at " << q.asString();
+        }
+        for (size_t i = 3; i < P.size(); i += 5) {  // hole vertices and edges too
+            EXPECT_LT(worstDisagreement(P, P[i]), 1e-9) << "hall " << hall << " vertex " << i;
+            EXPECT_LT(worstDisagreement(P, (P[i] + P[P.next(i)]) * 0.5), 1e-9)
+                << "hall " << hall << " edge " << i;
+        }
+    }
+    polymap::RoomsMapOptions o;
+    o.pillar = 0.5;
+    const auto rooms = polymap::roomsMap(o, rng);
+    ASSERT_EQ(rooms.polygon.ringCount(), size_t(1 + o.rooms));
+    for (const auto& s : rooms.sites) EXPECT_LT(worstDisagreement(rooms.polygon, s), 1e-9);
+}
+
+TEST(Visibility, ASquarePillarsShadowClosedForm) {
+    // A 10 x 8 room, a pillar [4, 5] x [4, 5]; from (2, 4.5) the pillar's near face hides the
+    // wall x = 10 between the shadow lines through (4, 4) and (4, 5), slopes -+0.25: y in
+    // [2.5, 6.5] there.
+    const auto P = Polygon::fromRings(
+        {{{0, 0}, {10, 0}, {10, 8}, {0, 8}}, {{4, 4}, {5, 4}, {5, 5}, {4, 5}}}, "pillar room");
+    const auto V = visibilityPolygon(P, {2, 4.5});
+    EXPECT_NEAR(V.radius({1, 0}), 2.0, 1e-12);  // the pillar's face
+    const TVector2D past{8, 2 + 1e-6};          // just above the upper shadow line
+    EXPECT_NEAR(V.radius(past * (1 / past.norm())), past.norm(), 1e-9);  // the wall x = 10
+    double area = 0;
+    for (size_t i = 0; i < V.size(); ++i)
+        area += common::cross(V.vertices[i], V.vertices[(i + 1) % V.size()]);
+    // the shadow is a trapezoid from x = 4 (height 1) to x = 10 (height 4): 15 m^2, the
+    // pillar's 1 m^2 within it; V is the room less the trapezoid
+    EXPECT_NEAR(0.5 * area, 80 - 15, 1e-9);
 }

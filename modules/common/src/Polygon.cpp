@@ -77,18 +77,21 @@ bool lexLess(const TPoint2D& a, const TPoint2D& b) {
     return a.x < b.x || (a.x == b.x && a.y < b.y);
 }
 
-/** Two non-adjacent edges that cross or touch (within eps), if any: the Shamos-Hoey sweep
+/** Two non-adjacent edges (edge i runs from v[i] to v[next[i]]) that cross or touch (within
+ *  eps), if any: the Shamos-Hoey sweep
  *  (Shamos and Hoey, "Geometric intersection problems", FOCS 1976), O(n log n), ordering the
  *  sweep's edges with exact orientations. Edges closer than eps without touching are found
  *  where the sweep holds them side by side. */
-std::optional<std::pair<size_t, size_t>> touchingEdges(const std::vector<TPoint2D>& v, double eps) {
+std::optional<std::pair<size_t, size_t>> touchingEdges(const std::vector<TPoint2D>& v,
+                                                       const std::vector<size_t>& next,
+                                                       double eps) {
     const size_t n = v.size();
     struct Edge {
         TPoint2D left, right;
     };
     std::vector<Edge> edges(n);
     for (size_t i = 0; i < n; ++i) {
-        const TPoint2D &a = v[i], &b = v[(i + 1) % n];
+        const TPoint2D &a = v[i], &b = v[next[i]];
         edges[i] = lexLess(a, b) ? Edge{a, b} : Edge{b, a};
     }
     // s below t where the sweep meets both; valid while no two edges of the set cross.
@@ -105,7 +108,7 @@ std::optional<std::pair<size_t, size_t>> touchingEdges(const std::vector<TPoint2
         return s < t;
     };
     std::set<size_t, decltype(below)> status(below);
-    const auto adjacent = [n](size_t i, size_t j) { return (i + 1) % n == j || (j + 1) % n == i; };
+    const auto adjacent = [&next](size_t i, size_t j) { return next[i] == j || next[j] == i; };
     const auto touch = [&](size_t i, size_t j) {
         return !adjacent(i, j) &&
                segmentsTouch(edges[i].left, edges[i].right, edges[j].left, edges[j].right, eps);
@@ -186,7 +189,9 @@ Polygon Polygon::fromVertices(std::vector<TPoint2D> v, const std::string& what) 
             throw Error(what + ": " + vertexName(i, v) +
                         " is a collinear duplicate: its two edges overlap (a zero-width spike)");
     }
-    if (const auto meet = touchingEdges(v, eps)) {
+    std::vector<size_t> next(n);
+    for (size_t i = 0; i < n; ++i) next[i] = (i + 1) % n;
+    if (const auto meet = touchingEdges(v, next, eps)) {
         const size_t i = std::min(meet->first, meet->second),
                      j = std::max(meet->first, meet->second);
         throw Error(what + mrpt::format(": the polygon intersects itself: edge %zu-%zu "
@@ -194,6 +199,73 @@ Polygon Polygon::fromVertices(std::vector<TPoint2D> v, const std::string& what) 
                                         i + 1, i + 2, j + 1, (j + 1) % n + 1));
     }
     P.v_ = std::move(v);
+    P.setSingleRing();
+    return P;
+}
+
+void Polygon::setSingleRing() {
+    ringStart_ = {0, v_.size()};
+    ring_.assign(v_.size(), 0);
+}
+
+Polygon Polygon::fromRings(std::vector<std::vector<TPoint2D>> rings, const std::string& what,
+                           size_t maxVertices, const std::vector<int>& ringLines) {
+    if (rings.empty()) throw Error(what + ": no vertices");
+    if (rings.size() == 1) return fromVertices(std::move(rings[0]), what);
+    size_t total = 0;
+    for (const auto& r : rings) total += r.size();
+    if (total > maxVertices)
+        throw Error(what + ": " + std::to_string(total) + " vertices, more than the " +
+                    std::to_string(maxVertices) + " mrloc takes");
+    const auto ringName = [&ringLines](size_t r) {
+        return r < ringLines.size() ? mrpt::format("ring %zu (line %d)", r + 1, ringLines[r])
+                                    : mrpt::format("ring %zu", r + 1);
+    };
+    // each ring on its own: finite, bounded, simple, with area (and counter-clockwise)
+    std::vector<Polygon> parts;
+    for (size_t r = 0; r < rings.size(); ++r)
+        parts.push_back(fromVertices(std::move(rings[r]), what + " (" + ringName(r) + ")"));
+    Polygon P;
+    P.min_ = parts[0].min_;
+    P.max_ = parts[0].max_;
+    P.eps_ = parts[0].eps_;
+    P.ringStart_ = {0};
+    for (size_t r = 0; r < parts.size(); ++r) {
+        auto ring = parts[r].v_;
+        if (r > 0) std::reverse(ring.begin(), ring.end());  // holes clockwise: free space left
+        P.v_.insert(P.v_.end(), ring.begin(), ring.end());
+        P.ring_.insert(P.ring_.end(), ring.size(), uint32_t(r));
+        P.ringStart_.push_back(P.v_.size());
+    }
+    // every hole inside the outer ring and outside the other holes (tested at one vertex:
+    // the sweep below then rules out any crossing); boxes first, so the cost stays near n
+    for (size_t r = 1; r < parts.size(); ++r) {
+        const TPoint2D& at = parts[r].v_[0];
+        if (parts[0].locate(at) != Where::Inside)
+            throw Error(what + ": " + ringName(r) +
+                        mrpt::format(", a hole, is not inside the outer ring (ring 1) at its "
+                                     "vertex (%g %g)",
+                                     at.x, at.y));
+        for (size_t q = 1; q < parts.size(); ++q) {
+            const auto& h = parts[q];
+            if (q == r || at.x < h.min_.x || at.y < h.min_.y || at.x > h.max_.x || at.y > h.max_.y)
+                continue;
+            if (h.locate(at) == Where::Inside)
+                throw Error(what + ": " + ringName(r) + ", a hole, lies inside " + ringName(q) +
+                            ", another hole");
+        }
+    }
+    std::vector<size_t> next(P.v_.size());
+    for (size_t i = 0; i < next.size(); ++i) next[i] = P.next(i);
+    if (const auto meet = touchingEdges(P.v_, next, P.eps_)) {
+        const auto name = [&P, &ringName](size_t e) {
+            return ringName(P.ring_[e]) + mrpt::format(" edge (%g %g)-(%g %g)", P.v_[e].x,
+                                                       P.v_[e].y, P.v_[P.next(e)].x,
+                                                       P.v_[P.next(e)].y);
+        };
+        throw Error(what + ": two rings cross or touch: " + name(meet->first) + " meets " +
+                    name(meet->second));
+    }
     return P;
 }
 
@@ -239,22 +311,32 @@ std::vector<Polygon::Ring> Polygon::readRings(const std::string& path, size_t ma
 }
 
 Polygon Polygon::load(const std::string& path) {
-    auto rings = readRings(path, kMaxVertices, size_t(-1));
-    if (rings.size() > 1)
-        throw Error(path + ":" + std::to_string(rings[1].firstLine) +
-                    ": a second ring (a hole) after a blank line; this map needs polymap's "
-                    "scan localizer ([polymap] localizer = scan, doc/polymap.md), the exact "
-                    "one takes a simple polygon");
-    return fromVertices(rings.empty() ? std::vector<TPoint2D>{} : std::move(rings[0].vertices),
-                        path);
+    auto rings = readRings(path, kMaxVertices, kMaxVertices / 3);
+    if (rings.size() <= 1)
+        return fromVertices(rings.empty() ? std::vector<TPoint2D>{} : std::move(rings[0].vertices),
+                            path);
+    std::vector<std::vector<TPoint2D>> vertices;
+    std::vector<int> lines;
+    for (auto& r : rings) {
+        vertices.push_back(std::move(r.vertices));
+        lines.push_back(r.firstLine);
+    }
+    return fromRings(std::move(vertices), path, kMaxVertices, lines);
 }
 
 void Polygon::save(const std::string& path, const std::string& comment) const {
     std::ostringstream out;
-    out << "# polygon map, " << v_.size() << " vertices, counter-clockwise\n";
+    if (hasHoles())
+        out << "# polygon map, " << v_.size() << " vertices in " << ringCount()
+            << " rings: the outer boundary, then holes, separated by a blank line\n";
+    else
+        out << "# polygon map, " << v_.size() << " vertices, counter-clockwise\n";
     if (!comment.empty()) out << "# " << comment << "\n";
     out.precision(17);
-    for (const auto& p : v_) out << p.x << " " << p.y << "\n";
+    for (size_t i = 0; i < v_.size(); ++i) {
+        if (i > 0 && ring_[i] != ring_[i - 1]) out << "\n";
+        out << v_[i].x << " " << v_[i].y << "\n";
+    }
     writeFileAtomically(path, out.str());
 }
 
@@ -271,8 +353,8 @@ double Polygon::area() const {
 Polygon::Where Polygon::locate(const TPoint2D& p, double tol) const {
     if (tol < 0) tol = eps_;
     bool inside = false;
-    for (size_t i = 0, j = v_.size() - 1; i < v_.size(); j = i++) {
-        const TPoint2D &a = v_[j], &b = v_[i];
+    for (size_t i = 0; i < v_.size(); ++i) {  // even-odd over every ring's edges
+        const TPoint2D &a = v_[prev(i)], &b = v_[i];
         if (distanceToSegment(p, a, b) <= tol) return Where::Boundary;
         if ((a.y > p.y) != (b.y > p.y) && p.x < a.x + (p.y - a.y) * (b.x - a.x) / (b.y - a.y))
             inside = !inside;

@@ -37,21 +37,9 @@ ProbeStrategy strategyFromName(const std::string& name) {
 
 namespace {
 
-/** OI as a simple polygon, for point location and shortest paths inside it: Boost's ring
- *  with the points it repeats (up to rounding) and the zero-width spikes it leaves dropped. */
-common::Polygon polygonOf(const OverlayRegion& oi) {
-    if (!oi.holes.empty())
-        throw Error(
-            mrpt::format("elimination: the overlay region has %zu hole(s), which the "
-                         "shortest paths (in a simple polygon) cannot route around",
-                         oi.holes.size()));
-    std::vector<TPoint2D> ring = oi.outer;
-    TPoint2D lo{INFINITY, INFINITY}, hi{-INFINITY, -INFINITY};
-    for (const auto& p : ring) {
-        lo = {std::min(lo.x, p.x), std::min(lo.y, p.y)};
-        hi = {std::max(hi.x, p.x), std::max(hi.y, p.y)};
-    }
-    const double tol = 1e-8 * (hi - lo).norm();
+/** One ring of OI as Boost gives it, with the points it repeats (up to rounding) and the
+ *  zero-width spikes it leaves dropped. */
+std::vector<TPoint2D> cleanRing(std::vector<TPoint2D> ring, double tol) {
     for (bool changed = true; changed && ring.size() > 3;) {
         changed = false;
         for (size_t i = 0; i < ring.size() && ring.size() > 3; ++i) {
@@ -66,7 +54,29 @@ common::Polygon polygonOf(const OverlayRegion& oi) {
             }
         }
     }
-    return common::Polygon::fromVertices(ring, "elimination: the overlay region");
+    return ring;
+}
+
+/** OI as a polygon (its holes too: pillars, or the walls of P's holes), for point location
+ *  and shortest paths inside it. */
+common::Polygon polygonOf(const OverlayRegion& oi) {
+    TPoint2D lo{INFINITY, INFINITY}, hi{-INFINITY, -INFINITY};
+    for (const auto& p : oi.outer) {
+        lo = {std::min(lo.x, p.x), std::min(lo.y, p.y)};
+        hi = {std::max(hi.x, p.x), std::max(hi.y, p.y)};
+    }
+    const double tol = 1e-8 * (hi - lo).norm();
+    std::vector<std::vector<TPoint2D>> rings{cleanRing(oi.outer, tol)};
+    for (const auto& h : oi.holes) {
+        auto ring = cleanRing(h, tol);
+        // a sliver hole (rounding where two copies' walls meet) has no area to route round
+        double twiceArea = 0;
+        for (size_t i = 0; i < ring.size(); ++i)
+            twiceArea += common::cross(ring[i], ring[(i + 1) % ring.size()]);
+        if (ring.size() >= 3 && std::abs(twiceArea) > tol * (hi - lo).norm())
+            rings.push_back(std::move(ring));
+    }
+    return common::Polygon::fromRings(std::move(rings), "elimination: the overlay region");
 }
 
 /** p lies in T's polygon at least `radius` from its boundary: no edge of the polygon within
@@ -239,7 +249,7 @@ std::vector<TPoint2D> Eliminator::chordCandidates(const Region& region, double c
         for (size_t v = 0; v < m; ++v) {
             if (v == r) continue;
             const TVector2D toV = R[v] - R[r];
-            const bool adjacent = v == (r + 1) % m || r == (v + 1) % m;
+            const bool adjacent = v == region.polygon.next(r) || r == region.polygon.next(v);
             if (!adjacent && Vr.radius(toV * (1 / toV.norm())) < toV.norm() - eps)
                 continue;  // v hidden from r
             const TVector2D d = toV * (-1 / toV.norm());

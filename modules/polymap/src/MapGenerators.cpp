@@ -125,6 +125,25 @@ void appendSkyline(std::vector<TPoint2D>& v, const Room& room, double x0, double
                            {x0 + room.breaks[i], y0 + room.heights[i]}});
 }
 
+/** The pillar of a room whose left wall is at x0 and floor at y0 (empty if none): a square,
+ *  clockwise (a hole), the same spot in every copy. */
+std::vector<TPoint2D> pillarOf(const RoomsMapOptions& o, const Room& room, double x0, double y0) {
+    if (o.pillar <= 0) return {};
+    const double cx =
+        x0 + snap8(room.site.x < o.roomWidth / 2 ? 0.75 * o.roomWidth : 0.25 * o.roomWidth);
+    const double cy = y0 + snap8(o.roomHeightMin / 2), h = o.pillar / 2;
+    return {{cx - h, cy - h}, {cx - h, cy + h}, {cx + h, cy + h}, {cx + h, cy - h}};
+}
+
+/** The map's polygon: the outer ring and the rooms' pillars, if any. */
+common::Polygon withPillars(std::vector<TPoint2D> outer, std::vector<std::vector<TPoint2D>> pillars,
+                            const std::string& what) {
+    std::vector<std::vector<TPoint2D>> rings{std::move(outer)};
+    for (auto& p : pillars)
+        if (!p.empty()) rings.push_back(std::move(p));
+    return common::Polygon::fromRings(std::move(rings), what);
+}
+
 /** Rooms in a row: room r spans [r * pitch, r * pitch + Wr] from floor y = 0; between room r
  *  and r + 1 (and beyond both ends, as dead ends) a Z passage: a leg of length hn low on r's
  *  right wall, a jog up by twice its width, a leg into r + 1 high on its left wall. A sight
@@ -155,9 +174,13 @@ GeneratedMap roomsInARow(const RoomsMapOptions& o, const Room& room) {
         if (r >= 0) appendSkyline(v, room, X(r), 0);
     }
     std::vector<TPoint2D> sites;
-    for (int r = 0; r < k; ++r) sites.push_back({X(r) + room.site.x, room.site.y});
+    std::vector<std::vector<TPoint2D>> pillars;
+    for (int r = 0; r < k; ++r) {
+        sites.push_back({X(r) + room.site.x, room.site.y});
+        pillars.push_back(pillarOf(o, room, X(r), 0));
+    }
     const std::string what = mrpt::format("rooms map (%d rooms in a row)", k);
-    return {common::Polygon::fromVertices(std::move(v), what), sites, what};
+    return {withPillars(std::move(v), std::move(pillars), what), sites, what};
 }
 
 }  // namespace
@@ -170,6 +193,11 @@ GeneratedMap roomsMap(const RoomsMapOptions& o, mrpt::random::CRandomGenerator& 
         throw Error(
             "rooms map: need room width >= neck width + 1, room height min > 0.5 <= max, "
             "and positive neck, corridor and gap sizes");
+    if (o.pillar < 0 || o.pillar > std::min(o.roomHeightMin - 0.25, o.roomWidth / 4))
+        throw Error(
+            mrpt::format("rooms map: pillar %g m: at most room_height_min - 0.25 and a "
+                         "quarter of room_width (%g m)",
+                         o.pillar, std::min(o.roomHeightMin - 0.25, o.roomWidth / 4)));
     const Room room = randomRoom(o, rng);
     if (o.layout == RoomsLayout::Row) return roomsInARow(o, room);
     const double floorY = C + hn;  // the rooms' floor
@@ -201,13 +229,48 @@ GeneratedMap roomsMap(const RoomsMapOptions& o, mrpt::random::CRandomGenerator& 
     }
     v.push_back({left, C});
     std::vector<TPoint2D> sites;
-    for (int r = 0; r < o.rooms; ++r)
+    std::vector<std::vector<TPoint2D>> pillars;
+    for (int r = 0; r < o.rooms; ++r) {
         sites.push_back({margin + r * pitch + room.site.x, floorY + room.site.y});
+        pillars.push_back(pillarOf(o, room, margin + r * pitch, floorY));
+        if (o.layout == RoomsLayout::Mirrored && !pillars.back().empty()) {
+            auto mirrored = pillars.back();  // in y = C / 2; reversed to stay clockwise
+            for (auto& p : mirrored) p.y = C - p.y;
+            pillars.push_back({mirrored.rbegin(), mirrored.rend()});
+        }
+    }
     const std::string what =
         o.layout == RoomsLayout::Mirrored
             ? mrpt::format("rooms map (%d rooms and their mirror images)", o.rooms)
             : mrpt::format("rooms map (%d rooms)", o.rooms);
-    return {common::Polygon::fromVertices(std::move(v), what), sites, what};
+    return {withPillars(std::move(v), std::move(pillars), what), sites, what};
+}
+
+GeneratedMap pillarHall(int columns, int rows, int pillarVertices, double spacing,
+                        mrpt::random::CRandomGenerator& rng) {
+    if (columns < 1 || rows < 1 || pillarVertices < 3 || !(spacing > 0))
+        throw Error("pillar hall: columns, rows >= 1, pillar vertices >= 3, spacing > 0");
+    const double W = (columns + 1) * spacing, H = (rows + 1) * spacing;
+    std::vector<std::vector<TPoint2D>> rings{{{0, 0}, {W, 0}, {W, H}, {0, H}}};
+    for (int i = 1; i <= columns; ++i)
+        for (int j = 1; j <= rows; ++j) {
+            const TPoint2D c{i * spacing + rng.drawUniform(-0.1, 0.1) * spacing,
+                             j * spacing + rng.drawUniform(-0.1, 0.1) * spacing};
+            // a star about c: angles evenly spread, jittered by under half their step, so no
+            // two edges cross
+            std::vector<TPoint2D> ring;
+            const double step = 2 * M_PI / pillarVertices, phase = rng.drawUniform(0.0, step);
+            for (int k = 0; k < pillarVertices; ++k) {
+                const double a = phase + step * (k + rng.drawUniform(-0.3, 0.3));
+                const double r = rng.drawUniform(0.2, 0.45) * spacing;
+                ring.push_back({c.x + r * std::cos(a), c.y + r * std::sin(a)});
+            }
+            rings.push_back(std::move(ring));
+        }
+    const std::string what =
+        mrpt::format("pillar hall (%d x %d pillars of %d vertices)", columns, rows, pillarVertices);
+    return {
+        common::Polygon::fromRings(std::move(rings), what), {{0.1 * spacing, 0.1 * spacing}}, what};
 }
 
 common::Polygon randomStarPolygon(int n, double rMin, double rMax,

@@ -23,10 +23,16 @@ using BMulti = bg::model::multi_polygon<BPolygon>;
 
 namespace {
 
+/** P moved by -by; its holes (stored clockwise, as Boost wants a counter-clockwise
+ *  polygon's inner rings) kept. */
 BPolygon translated(const common::Polygon& P, const TPoint2D& by) {
     BPolygon out;
-    out.outer().reserve(P.size());
-    for (const auto& v : P.vertices()) out.outer().push_back({v.x - by.x, v.y - by.y});
+    for (size_t r = 0; r < P.ringCount(); ++r) {
+        auto& ring = r == 0 ? out.outer() : (out.inners().emplace_back(), out.inners().back());
+        ring.reserve(P.ringEnd(r) - P.ringBegin(r));
+        for (size_t i = P.ringBegin(r); i < P.ringEnd(r); ++i)
+            ring.push_back({P[i].x - by.x, P[i].y - by.y});
+    }
     return out;
 }
 

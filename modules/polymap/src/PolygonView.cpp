@@ -55,7 +55,8 @@ void renderPolygonView(const PolygonViewContent& c, const std::string& pngPath, 
     for (const auto& h : c.hypotheses) scene.insert(outline(c.sensed, h, {240, 140, 20}, 2, 0.01f));
     if (c.truth && !c.sensed.empty())
         scene.insert(outline(c.sensed, *c.truth, {20, 150, 50}, 3, 0.02f));
-    scene.insert(outline(P.vertices(), {0, 0}, {30, 30, 30}, 2, 0.03f));
+    for (size_t r = 0; r < P.ringCount(); ++r)  // the outer boundary and each hole
+        scene.insert(outline(P.ringVertices(r), {0, 0}, {30, 30, 30}, 2, 0.03f));
     for (const auto& h : c.hypotheses) scene.insert(marker(h, 1.6 * dot, {220, 40, 30}, 0.04f));
     if (c.truth) scene.insert(marker(*c.truth, dot, {20, 150, 50}, 0.05f));
     if (!c.overlay.empty()) scene.insert(outline(c.overlay, {0, 0}, {110, 190, 250}, 4, 0.015f));

@@ -88,12 +88,12 @@ void PolymapLocalizer::configureScanMode() {
     std::vector<std::vector<TPoint2D>> rings;
     if (!file.empty()) {
         rings = loadPolyRings(file);
-        if (rings.size() == 1)
-            map_ = std::make_unique<GeneratedMap>(
-                GeneratedMap{common::Polygon::fromVertices(rings[0], file), {}, "map " + file});
+        map_ = std::make_unique<GeneratedMap>(
+            GeneratedMap{common::Polygon::fromRings(rings, file), {}, "map " + file});
     } else {
         map_ = std::make_unique<GeneratedMap>(options_.buildMap());
-        rings = {map_->polygon.vertices()};
+        for (size_t r = 0; r < map_->polygon.ringCount(); ++r)
+            rings.push_back(map_->polygon.ringVertices(r));
     }
     wallMap_ = std::make_unique<WallMap>(wallMapOfRings(std::move(rings), freeResolution,
                                                         options_.trace.clearance,

@@ -84,6 +84,11 @@ void PolymapOptions::loadFromConfigFile(const mrpt::config::CConfigFileBase& src
     rooms.neckLength = s.real("neck_length", rooms.neckLength, 1e-3, 1e4);
     rooms.roomGap = s.real("room_gap", rooms.roomGap, 1e-3, 1e4);
     rooms.rightMargin = s.real("right_margin", rooms.rightMargin, 0, 1e4);
+    if (rooms.layout == RoomsLayout::Row)
+        for (const char* key : {"room_gap", "right_margin"})  // a row has no corridor
+            if (s.has(key))
+                s.fail(key, "not used by room_layout = row (rooms joined wall to wall)");
+    rooms.pillar = s.real("pillar", rooms.pillar, 0, 1e3);
     mapSeed = (unsigned long)s.integer("map_seed", long(mapSeed), 0, 4294967295L);
     start.reset();
     if (s.has("start")) {
@@ -192,8 +197,9 @@ void PolymapOptions::saveToConfigFile(mrpt::config::CConfigFileBase& t,
     t.write(section, "room_height_max", rooms.roomHeightMax);
     t.write(section, "neck_width", rooms.neckWidth);
     t.write(section, "neck_length", rooms.neckLength);
-    t.write(section, "room_gap", rooms.roomGap);
-    t.write(section, "right_margin", rooms.rightMargin);
+    if (rooms.layout != RoomsLayout::Row) t.write(section, "room_gap", rooms.roomGap);
+    if (rooms.layout != RoomsLayout::Row) t.write(section, "right_margin", rooms.rightMargin);
+    t.write(section, "pillar", rooms.pillar);
     if (start)
         t.write(section, "start", mrpt::format("%.17g %.17g", start->x, start->y));
     else

@@ -67,7 +67,7 @@ Triangulation::Triangulation(const common::Polygon& P) : P_(&P) {
     }
     int hint = 0;
     for (int p : order) insertPoint(p, hint);
-    for (int i = 0; i < n; ++i) forceEdge(i, (i + 1) % n);
+    for (int i = 0; i < n; ++i) forceEdge(i, (int)P.next((size_t)i));  // every ring's edges
     markInside();
     makeConstrainedDelaunay();
     buildLocator();
@@ -326,7 +326,8 @@ void Triangulation::forceEdge(int a, int b) {
 }
 
 void Triangulation::markInside() {
-    // Parity of P's edges crossed from the enclosing triangle's corner.
+    // Parity of P's edges crossed from the enclosing triangle's corner (a hole's edges flip
+    // it back to outside).
     std::vector<char> seen(tris_.size(), 0);
     const int start = vertexTriangle_[(size_t)P_->size()];
     std::vector<int> stack{start};
@@ -346,9 +347,11 @@ void Triangulation::markInside() {
             stack.push_back(u);
         }
     }
-    if (insideCount_ + 2 != P_->size())
+    // Euler: n vertices on h + 1 rings give n + 2h - 2 triangles
+    if (insideCount_ + 2 != P_->size() + 2 * (P_->ringCount() - 1))
         throw Error("triangulation: " + std::to_string(insideCount_) + " triangles inside a " +
-                    std::to_string(P_->size()) + "-gon (internal error)");
+                    std::to_string(P_->size()) + "-gon with " +
+                    std::to_string(P_->ringCount() - 1) + " hole(s) (internal error)");
 }
 
 void Triangulation::makeConstrainedDelaunay() {

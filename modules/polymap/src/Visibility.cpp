@@ -91,8 +91,9 @@ struct Seat {
     int firstEdge = -1, lastEdge = -1;     ///< P edges through q (boundary seats only)
 };
 
-/** The P edge, inside triangle t's edge i, that lies on P's boundary: P is
- *  counter-clockwise, so the edge runs from vertex from(i) to from(i) + 1. */
+/** The P edge, inside triangle t's edge i, that lies on P's boundary: the free space lies
+ *  left of every ring's edges (holes run clockwise), so the edge runs from vertex from(i) to
+ *  P.next(from(i)). */
 int polygonEdge(const Tri& T, int t, int i) { return T[t].from(i); }
 
 /** Fan of the inside triangles about vertex w, counter-clockwise, from P's edge w -> w+1 round
@@ -114,9 +115,8 @@ Seat vertexSeat(const Tri& T, int w) {
         const int tri = around[(first + k) % m];
         seat.fan.push_back({tri, T.indexOf(tri, w)});
     }
-    const size_t n = T.polygon().size();
     seat.firstEdge = w;
-    seat.lastEdge = (int)((w + n - 1) % n);
+    seat.lastEdge = (int)T.polygon().prev((size_t)w);
     return seat;
 }
 

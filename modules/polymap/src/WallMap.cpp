@@ -4,17 +4,12 @@
 #include <mrpt/core/format.h>
 
 #include <algorithm>
-#include <boost/geometry.hpp>
-#include <boost/geometry/geometries/point_xy.hpp>
-#include <boost/geometry/geometries/polygon.hpp>
 #include <cmath>
 #include <limits>
 #include <opencv2/imgproc.hpp>
 #include <sstream>
 
 namespace mrloc::polymap {
-
-namespace bg = boost::geometry;
 
 RayCaster::RayCaster(std::vector<WallSegment> walls, double cellSize)
     : walls_(std::move(walls)), cell_(cellSize) {
@@ -112,9 +107,6 @@ size_t FreeCells::count() const { return size_t(std::count(free.begin(), free.en
 
 namespace {
 
-using BPoint = bg::model::d2::point_xy<double>;
-using BPolygon = bg::model::polygon<BPoint>;  // clockwise outer, counter-clockwise holes
-
 std::vector<TPoint2D> validRing(std::vector<TPoint2D> ring, const std::string& what) {
     // the one-ring checks of every .poly: O(n log n), exact orientations
     return common::Polygon::fromVertices(std::move(ring), what).vertices();
@@ -132,34 +124,11 @@ std::vector<std::vector<TPoint2D>> loadPolyRings(const std::string& path) {
         rings.push_back(validRing(read[r].vertices, path + mrpt::format(" (ring %zu, from line %d)",
                                                                         r + 1, read[r].firstLine)));
     }
-    if (rings.size() > 1) {
-        // holes inside the outer ring, no two rings crossing or touching: Boost.Geometry's
-        // validity check of a polygon with holes (its turns are found by a plane sweep over
-        // monotonic sections, O(n log n) in practice)
-        BPolygon poly;
-        for (size_t r = 0; r < rings.size(); ++r) {
-            auto& target =
-                r == 0 ? poly.outer() : (poly.inners().emplace_back(), poly.inners().back());
-            for (const auto& p : rings[r]) target.push_back(BPoint(p.x, p.y));
-        }
-        bg::correct(poly);  // orientation and closure as Boost wants them
-        std::string why;
-        if (!bg::is_valid(poly, why)) {
-            // name the rings: the first hole not within the outer ring, or two that cross
-            for (size_t r = 1; r < rings.size(); ++r) {
-                BPolygon outer, hole;
-                for (const auto& p : rings[0]) outer.outer().push_back(BPoint(p.x, p.y));
-                for (const auto& p : rings[r]) hole.outer().push_back(BPoint(p.x, p.y));
-                bg::correct(outer);
-                bg::correct(hole);
-                if (!bg::within(hole, outer))
-                    throw Error(path + mrpt::format(": ring %zu (line %d), a hole, is not inside "
-                                                    "the outer ring (ring 1)",
-                                                    r + 1, firstLine[r]));
-            }
-            throw Error(path + ": the rings cross or touch each other (" + why + ")");
-        }
-    }
+    // holes inside the outer ring and outside each other, no two rings crossing or touching:
+    // the exact pipeline's own check (common::Polygon::fromRings, one sweep over all edges on
+    // exact orientations; Boost.Geometry's is_valid overflowed its integer rescaling on maps
+    // a fuzzer wrote)
+    if (rings.size() > 1) common::Polygon::fromRings(rings, path, kMaxWallVertices, firstLine);
     return rings;
 }
 

@@ -61,8 +61,21 @@ struct RoomsMapOptions {
     double roomWidth = 6, roomHeightMin = 2, roomHeightMax = 5;  ///< m
     double neckWidth = 1, neckLength = 1.5, corridorHeight = 2.5, roomGap = 1.5;
     double rightMargin = 0;  ///< extra length of the corridor's right end (m)
+    /** > 0: a square pillar of this side (m) in every room, the same spot in each copy (a
+     *  hole in the map): at half room_height_min above the floor, a quarter of the room's
+     *  width from the wall farther from the site. */
+    double pillar = 0;
 };
 GeneratedMap roomsMap(const RoomsMapOptions& options, mrpt::random::CRandomGenerator& rng);
+
+/** A hall with pillars: a width x height rectangle (m) holding columns x rows pillars, each a
+ *  random star-shaped polygon of `pillarVertices` vertices (radii 0.2-0.45 of the spacing,
+ *  angles evenly spread and jittered)
+ *  on a jittered grid: n = 4 + columns * rows * pillarVertices, one hole per pillar. The
+ *  site is the hall's corner nearest the origin, 0.1 of a spacing in. For benches and tests
+ *  of maps with many holes. */
+GeneratedMap pillarHall(int columns, int rows, int pillarVertices, double spacing,
+                        mrpt::random::CRandomGenerator& rng);
 
 /** A random star-shaped simple polygon of n vertices around the origin, radii in
  *  [rMin, rMax] (no self-similarity in general). */

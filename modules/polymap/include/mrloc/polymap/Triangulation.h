@@ -1,5 +1,5 @@
 #pragma once
-// The constrained Delaunay triangulation (CDT) of a simple polygon P, built once per map:
+// The constrained Delaunay triangulation (CDT) of a polygon P, holes allowed, built once per map:
 // the structure that visibility (triangular expansion), shortest paths (the funnel) and
 // point location walk on.
 //
@@ -9,8 +9,9 @@
 // the edges that cross them (Sloan 1993), the triangles inside P are marked, and the edges
 // between two of them are flipped until every one is locally Delaunay, which makes the
 // triangulation of P constrained Delaunay. No Steiner points: P's n vertices give n - 2
-// triangles inside. The triangles outside P (up to the enclosing triangle) are kept, so
-// that a walk reaches any point; they are flagged.
+// triangles inside (n + 2h - 2 with h holes, whose inside is found by the same parity). The
+// triangles outside P (up to the enclosing triangle) are kept, so that a walk reaches any point;
+// they are flagged.
 #include <mrloc/common/Polygon.h>
 
 #include <array>
