@@ -1,8 +1,10 @@
 // Seed 001's active system in closed loop: the RF beacon's scheduling, the channel timing,
 // section handover, and the paper's fixed-versus-active experiment.
 #include <gtest/gtest.h>
+#include <mrloc/beacons/BeaconLocalizer.h>
 #include <mrloc/beacons/BeaconPayload.h>
 #include <mrloc/beacons/BeaconsMethod.h>
+#include <mrloc/beacons/RfBeacon.h>
 #include <mrloc/common/Error.h>
 #include <mrloc/common/Metrics.h>
 #include <mrloc/sim/Simulator.h>
@@ -10,6 +12,7 @@
 
 #include <array>
 #include <fstream>
+#include <iostream>
 #include <map>
 #include <set>
 #include <sstream>
@@ -177,4 +180,55 @@ TEST(Sections, BadSectionKeysAreErrorsNamingTheKey) {
             EXPECT_NE(std::string(e.what()).find("section_"), std::string::npos) << e.what();
         }
     }
+}
+
+// Seed 001's own room (4 x 5.7 m, three active beacons, 5 points x 10 trials, the link
+// model as calibrated on Table 3): the paper's fix (config/beacons_active_large.ini) against
+// mrloc's (config/beacons_paper_room.ini: height known, range residual, delay compensation,
+// four shots per beacon). Measured on seed 1: the paper's method mean 62.8 mm, max 179 mm;
+// mrloc's mean 10.6 mm, max 31.5 mm (the paper's next goal: max under 50 mm; over 10 seeds
+// in doc/beacons.md the maxima are 22.6-39.7 mm). Bounds: 14 and 40 mm, about 1.3 times
+// what seed 1 measured.
+TEST(ActiveBeacons, ThePapersRoomMeetsItsNextGoalWithMrlocsFix) {
+    const auto paper = runClosedLoop(*shippedIni("beacons_active_large.ini"), "paper_room_paper");
+    const auto ours = runClosedLoop(*shippedIni("beacons_paper_room.ini"), "paper_room_mrloc");
+    const auto pooled = [](const ClosedLoopRun& r) {
+        double sum = 0, worst = 0;
+        size_t n = 0;
+        for (const auto& [robot, e] : r.errors) {
+            sum += e.mean * double(e.n), n += e.n;
+            worst = std::max(worst, e.max);
+        }
+        return std::make_tuple(sum / double(n), worst, n);
+    };
+    const auto [paperMean, paperMax, paperN] = pooled(paper);
+    const auto [mean, max, n] = pooled(ours);
+    EXPECT_EQ(n, 50u);  // every trial of every point gave a fix
+    EXPECT_LT(mean, 0.014);
+    EXPECT_LT(max, 0.040);
+    EXPECT_GT(paperMean, 4 * mean);  // measured 5.9 times
+    EXPECT_GT(paperMax, 4 * max);    // 5.7 times
+    for (const char* p : {"p1", "p2", "p3", "p4", "p5"})
+        for (int b : {1, 2, 3}) EXPECT_GE(receptionRate(ours.shots, p, b), 0.9) << p;
+    std::cout << "paper's fix: mean " << paperMean << " max " << paperMax << " m; mrloc's: mean "
+              << mean << " max " << max << " m\n";
+}
+
+TEST(RfBeacon, ShotsPerBeaconRepeatTheSectionAndAgeEachBeaconByItsMeanShot) {
+    // three beacons fired twice, 30 ms apart: beacon 1's shots are the 1st and 4th of 6, so
+    // they were read 150 and 60 ms before the epoch's end: 105 ms on average
+    mrpt::config::CConfigFileMemory ini(
+        "[beacons]\nbeacon_1 = 0 0 2.5\nbeacon_2 = 3 0 2.5\nbeacon_3 = 0 3 2.5\n"
+        "shots_per_beacon = 2\n");
+    beacons::BeaconLocalizer loc;
+    loc.configure(ini);
+    EXPECT_NEAR(loc.options().system.shotAge(1), 0.105, 1e-12);
+    EXPECT_NEAR(loc.options().system.shotAge(3), 0.045, 1e-12);  // shots 3 and 6: 90 and 0 ms
+    beacons::RfBeacon rf(loc.options().system);
+    beacons::RobotReport r;
+    r.robot = "a";
+    const auto e = rf.nextEpoch(0, {r});
+    ASSERT_TRUE(e);
+    EXPECT_EQ(e->beacons, (std::vector<int>{1, 2, 3, 1, 2, 3}));
+    EXPECT_EQ(e->aimPoints.size(), 6u);
 }

@@ -1,4 +1,5 @@
 #include <mrloc/beacons/BeaconLocalizer.h>
+#include <mrloc/beacons/Ultrasonic.h>
 #include <mrloc/common/Error.h>
 #include <mrloc/common/IniSection.h>
 #include <mrloc/common/Rawlog.h>
@@ -73,6 +74,30 @@ void BeaconOptions::loadFromConfigFile(const mrpt::config::CConfigFileBase& src,
     tracker.scaleSigma = s.real("scale_sigma", tracker.scaleSigma, 0, 1);
     map = loadBeaconMap(src, s);
     system.load(s, map);
+    delayCompensation = s.flag("delay_compensation", false);
+    tracker.rangeDelay = nullptr;
+    if (delayCompensation) {
+        // the hardware as [ultrasonic] describes it (its defaults if absent); which way each
+        // head points: at the robot (active), or at its section's aim point (fixed)
+        UltrasonicOptions hardware;
+        hardware.loadFromConfigFile(src, "ultrasonic");
+        const auto link = std::make_shared<const UltrasonicLink>(hardware);
+        std::map<int, Eigen::Vector3d> aimOf;
+        if (!system.activeAiming)
+            for (const auto& section : system.sections.sections())
+                for (int id : section.beacons)
+                    aimOf[id] = {section.aim.x, section.aim.y, section.aim.z};
+        tracker.rangeDelay = [link, aimOf](int id, const Eigen::Vector3d& beacon,
+                                           const Eigen::Vector3d& receiver) {
+            const Eigen::Vector3d toReceiver = receiver - beacon;
+            double offAxis = 0;
+            if (const auto aim = aimOf.find(id); aim != aimOf.end()) {
+                const Eigen::Vector3d axis = aim->second - beacon;
+                offAxis = std::atan2(axis.cross(toReceiver).norm(), axis.dot(toReceiver));
+            }
+            return link->expectedRangeBias(toReceiver.norm(), offAxis);
+        };
+    }
     paperReception.clear();
     for (const auto& [id, key] : s.numberedKeys("paper_reception_")) {
         const auto rates = s.reals(key, {});
@@ -94,6 +119,7 @@ void BeaconOptions::saveToConfigFile(mrpt::config::CConfigFileBase& t,
             : f.mirror == MirrorRule::Above ? "above"
                                             : "nearest");
     t.write(section, "max_iterations", f.maxIterations);
+    t.write(section, "delay_compensation", delayCompensation);
     t.write(section, "max_gdop", f.maxGdop);
     if (tracker.startPose)
         t.write(section, "start",

@@ -344,11 +344,39 @@ std::optional<CPose2D> BeaconTracker::bootstrap(const std::vector<Range>& ranges
     return CPose2D(p.x(), p.y(), mrpt::math::wrapToPi(odo.phi() + headingOffset_));
 }
 
+std::vector<BeaconTracker::Range> BeaconTracker::meanPerBeacon(std::vector<Range> ranges) {
+    // a beacon fired several times in one epoch (shots_per_beacon): one range, their mean
+    std::vector<Range> out;
+    std::vector<int> count;
+    for (const auto& r : ranges) {
+        size_t i = 0;
+        while (i < out.size() && out[i].beaconId != r.beaconId) ++i;
+        if (i == out.size()) {
+            out.push_back(r);
+            count.push_back(1);
+        } else {
+            out[i].range += r.range;
+            ++count[i];
+        }
+    }
+    for (size_t i = 0; i < out.size(); ++i) out[i].range /= count[i];
+    return out;
+}
+
 std::optional<Fix> BeaconTracker::fixOnly(const mrpt::obs::CObservationBeaconRanges& obs) {
     ++stats_.epochs;
-    const auto ranges = usableRanges(obs);
-    stats_.rangesUsed += ranges.size();
-    return fixFrom(ranges, /*robust=*/false);
+    const auto usable = usableRanges(obs);
+    stats_.rangesUsed += usable.size();
+    const auto ranges = meanPerBeacon(usable);
+    auto f = fixFrom(ranges, /*robust=*/false);
+    // Each range less the delay its shot is expected to carry from where the fix puts the
+    // receiver; the delay changes slowly with distance, so two refits settle it.
+    for (int pass = 0; f && o_.rangeDelay && pass < 2; ++pass) {
+        auto corrected = ranges;
+        for (auto& r : corrected) r.range -= o_.rangeDelay(r.beaconId, r.beacon, f->position);
+        if (auto g = fixFrom(corrected, /*robust=*/false, nullptr, /*counted=*/false)) f = g;
+    }
+    return f;
 }
 
 std::optional<CPose2D> BeaconTracker::onRanges(double t,

@@ -11,6 +11,7 @@ void RfBeaconOptions::load(common::IniSection& s, const BeaconMap& map) {
     handoverMargin = s.real("handover_margin", handoverMargin, 0, 1000);
     registrationTime = s.real("registration_time", registrationTime, 0, 1000);
     shotInterval = s.real("shot_interval", shotInterval, 1e-4, 10);
+    shotsPerBeacon = int(s.integer("shots_per_beacon", shotsPerBeacon, 1, 10));
     sections = readSections(s, map);
 }
 
@@ -21,13 +22,18 @@ void RfBeaconOptions::save(mrpt::config::CConfigFileBase& t, const std::string& 
     t.write(section, "handover_margin", handoverMargin);
     t.write(section, "registration_time", registrationTime);
     t.write(section, "shot_interval", shotInterval);
+    t.write(section, "shots_per_beacon", shotsPerBeacon);
     saveSections(sections, t, section);
 }
 
 double RfBeaconOptions::shotAge(int id) const {
     for (const auto& s : sections.sections())
         for (size_t k = 0; k < s.beacons.size(); ++k)
-            if (s.beacons[k] == id) return double(s.beacons.size() - 1 - k) * shotInterval;
+            if (s.beacons[k] == id) {
+                // round j fires it at j n + k of R n shots: the mean age over the R rounds
+                const double n = double(s.beacons.size()), R = shotsPerBeacon;
+                return (R * n - 1 - double(k) - n * (R - 1) / 2) * shotInterval;
+            }
     return 0;
 }
 
@@ -70,9 +76,10 @@ std::optional<RangingEpoch> RfBeacon::nextEpoch(double t,
     RangingEpoch e;
     e.robot = candidates[i].robot;
     e.section = sec.name;
-    e.beacons = sec.beacons;
+    for (int round = 0; round < o_.shotsPerBeacon; ++round)
+        e.beacons.insert(e.beacons.end(), sec.beacons.begin(), sec.beacons.end());
     e.shotInterval = o_.shotInterval;
-    e.aimPoints.assign(sec.beacons.size(), o_.activeAiming ? candidates[i].receiver : sec.aim);
+    e.aimPoints.assign(e.beacons.size(), o_.activeAiming ? candidates[i].receiver : sec.aim);
     return e;
 }
 

@@ -28,6 +28,11 @@ struct BeaconOptions : public mrpt::config::CLoadableOptions {
     /** s: ranges read one at a time (too few for a fix) are gathered over this span
      *  into one epoch until the tracker has started (RangeWindow); 0: never */
     double rangeWindow = 1.0;
+    /** delay_compensation: the fixes subtract the delay the tone decoder is expected to add
+     *  to each shot (the [ultrasonic] link's nominal model at the fix's distance and the
+     *  head's off-axis angle: 0 when heads aim at the robot, from the section's aim point
+     *  when fixed); sets tracker.rangeDelay. */
+    bool delayCompensation = false;
     /** Where range_sigma came from when [beacons] does not give it: MRPT's key, or empty. */
     std::string rangeSigmaFrom;
     /** Where the start pose came from when [beacons] start is absent: MRPT's key, or empty. */
@@ -76,7 +81,7 @@ class BeaconLocalizer : public common::Localizer {
     void countWindowed(const TrackerStats& before, const TrackerStats& after, size_t newRanges);
     std::map<std::string, RangeWindow> windows_;
     std::map<std::string, size_t> mostRanges_;  ///< per robot: the most ranges one observation held
-    size_t windowEpochs_ = 0;  ///< epochs made of ranges read one at a time
+    size_t windowEpochs_ = 0;                   ///< epochs made of ranges read one at a time
     struct WindowCount {
         size_t seen = 0, used = 0;            ///< each range once
         size_t fedReceived = 0, fedUsed = 0;  ///< as the tracker counted them, repeats included

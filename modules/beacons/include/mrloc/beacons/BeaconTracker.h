@@ -23,6 +23,7 @@
 #include <mrpt/poses/CPosePDFGaussian.h>
 
 #include <deque>
+#include <functional>
 #include <map>
 #include <optional>
 
@@ -49,6 +50,11 @@ struct TrackerOptions {
     double biasDrift = 0.002;    ///< random walk of each offset (m/sqrt(s))
     double scaleSigma = 0.01;    ///< prior sd of the common scale; 0 = no scale state
     MultilaterationOptions fix;  ///< for start-up and reset fixes (2-D: knownHeight set per epoch)
+    /** The range error a shot from beacon `id` at `beacon` to a receiver at `receiver` is
+     *  expected to carry (m), subtracted by the fixes of mode = fixes (refit twice from the
+     *  fix before); empty: none (delay_compensation). */
+    std::function<double(int id, const Eigen::Vector3d& beacon, const Eigen::Vector3d& receiver)>
+        rangeDelay;
 };
 
 struct TrackerStats {
@@ -99,6 +105,8 @@ class BeaconTracker {
         Eigen::RowVectorXd H;     ///< d(predicted)/d(state)
     };
     std::vector<Range> usableRanges(const mrpt::obs::CObservationBeaconRanges& obs);
+    /** One range per beacon: the mean of its ranges in the epoch, in first-seen order. */
+    static std::vector<Range> meanPerBeacon(std::vector<Range> ranges);
     Innovation innovationOf(const Range& r) const;
     /** d(fix position)/d(bias states) of a fix at `fix` from `used` (2 x extras). */
     Eigen::MatrixXd fixBiasSensitivity(const Eigen::Vector3d& fix,

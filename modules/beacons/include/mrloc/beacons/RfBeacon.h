@@ -28,10 +28,13 @@ struct RfBeaconOptions {
     double handoverMargin = 0.5;    ///< m; 0 turns handover off
     double registrationTime = 0.5;  ///< s to receive a section's beacon table
     double shotInterval = 0.03;     ///< s between two beacons' shots in an epoch
+    /** shots_per_beacon: rounds of the section's beacons in one epoch (each beacon fires
+     *  this many times; a fix takes each beacon's mean range) */
+    int shotsPerBeacon = 1;
     SectionMap sections;
 
-    /** How long before the end of its epoch beacon `id` fired (its section's firing order
-     *  times shot_interval); 0 for a beacon in no section. */
+    /** How long before the end of its epoch beacon `id` fired, on average over its rounds
+     *  (its section's firing order times shot_interval); 0 for a beacon in no section. */
     double shotAge(int id) const;
 
     void load(common::IniSection& s, const BeaconMap& map);

@@ -54,6 +54,12 @@ class UltrasonicLink {
     std::optional<double> triggerDelay(double marginDb) const;
     /** The range error the trigger delay causes once the calibration is subtracted (m). */
     std::optional<double> rangeBias(double marginDb) const;
+    /** The range error the decoder's delay is expected to add to a shot over `distance` at
+     *  `offAxis` (m): rangeBias averaged over the fading (Simpson's rule from the detection threshold), the shots
+     *  too weak to be heard left out; 0 if none would be. What a receiver that knows its
+     *  hardware (the datasheet's rise time, source level, beam and absorption) subtracts:
+     *  [beacons] delay_compensation. */
+    double expectedRangeBias(double distance, double offAxis) const;
     /** The weakest margin that is still detected (dB). */
     double detectionThresholdDb() const { return minMarginDb_; }
 
