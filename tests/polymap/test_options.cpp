@@ -28,13 +28,20 @@ TEST(PolymapOptions, EffectiveIniRoundTrips) {
     }
 }
 
+namespace {
+
+/** [polymap] options from these INI lines. */
+polymap::PolymapOptions polymapOptionsOf(const std::string& lines) {
+    mrpt::config::CConfigFileMemory ini("[polymap]\n" + lines);
+    polymap::PolymapOptions o;
+    o.loadFromConfigFile(ini, "polymap");
+    return o;
+}
+
+}  // namespace
+
 TEST(PolymapOptions, EliminationKeys) {
-    const auto load = [](const std::string& lines) {
-        mrpt::config::CConfigFileMemory ini("[polymap]\n" + lines);
-        polymap::PolymapOptions o;
-        o.loadFromConfigFile(ini, "polymap");
-        return o;
-    };
+    const auto load = polymapOptionsOf;
     EXPECT_TRUE(load("").elimination.empty());  // none by default
     EXPECT_EQ(load("elimination = all").elimination.size(), 4u);
     EXPECT_EQ(load("elimination = windows cells").elimination,
@@ -62,10 +69,7 @@ TEST(PolymapOptions, EliminationKeys) {
 
 TEST(PolymapOptions, RoomsKeys) {
     const auto load = [](const std::string& lines) {
-        mrpt::config::CConfigFileMemory ini("[polymap]\ngenerator = rooms\n" + lines);
-        polymap::PolymapOptions o;
-        o.loadFromConfigFile(ini, "polymap");
-        return o;
+        return polymapOptionsOf("generator = rooms\n" + lines);
     };
     EXPECT_EQ(load("pillar = 0.5").rooms.pillar, 0.5);
     EXPECT_EQ(load("").rooms.pillar, 0.0);                               // none by default

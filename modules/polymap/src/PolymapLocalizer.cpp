@@ -88,8 +88,13 @@ void PolymapLocalizer::configureScanMode() {
     std::vector<std::vector<TPoint2D>> rings;
     if (!file.empty()) {
         rings = loadPolyRings(file);
-        map_ = std::make_unique<GeneratedMap>(
-            GeneratedMap{common::Polygon::fromRings(rings, file), {}, "map " + file});
+        // the scan localizer takes rings up to kMaxWallVertices in all; the polygon the
+        // simulator casts in (O(n) a beam) only within common::Polygon's bound
+        size_t vertices = 0;
+        for (const auto& r : rings) vertices += r.size();
+        if (vertices <= common::Polygon::kMaxVertices)
+            map_ = std::make_unique<GeneratedMap>(
+                GeneratedMap{common::Polygon::fromRings(rings, file), {}, "map " + file});
     } else {
         map_ = std::make_unique<GeneratedMap>(options_.buildMap());
         for (size_t r = 0; r < map_->polygon.ringCount(); ++r)

@@ -104,9 +104,11 @@ method::Scenario loadScenario(const mrpt::config::CConfigFileBase& ini,
     const PolymapOptions& o = polymap.options();
     if (!polymap.hasPolygon())
         throw Error(common::configOrigin(ini) +
-                    ": [polymap] map: mrloc's scanner simulates polygon maps (.poly, holes "
-                    "included); a grid map is localized on a recorded log (mrloc localize "
-                    "<ini> <rawlog>)");
+                    mrpt::format(": [polymap] map: mrloc's scanner simulates polygon maps (.poly, "
+                                 "holes included) of up to %zu vertices; a grid map or a "
+                                 "larger map is localized on a recorded log (mrloc localize "
+                                 "<ini> <rawlog>)",
+                                 common::Polygon::kMaxVertices));
     if (o.scanMode && o.drive)
         throw Error(common::configOrigin(ini) +
                     ": [polymap] drive: the driving robot eliminates with the exact views "

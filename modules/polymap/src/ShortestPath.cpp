@@ -32,8 +32,13 @@ bool sees(const RadialProfile& V, const TPoint2D& o, const TPoint2D& q, double t
 }  // namespace
 
 struct ShortestPaths::Source {
+    Source(const TPoint2D& a, VisibilityPolygon v) : at(a), view(std::move(v)), seen(view) {}
+    Source(const Source&) = delete;  // seen refers to view
+    Source& operator=(const Source&) = delete;
+
     TPoint2D at;
     VisibilityPolygon view;
+    RadialProfile seen;            ///< view's radius by direction: sorted once, asked per goal
     std::vector<double> distance;  ///< per reflex vertex (infinity: unreachable)
     std::vector<int> previous;     ///< per reflex vertex: the one before it, or -1 (from at)
 };
@@ -113,10 +118,7 @@ GeodesicPath ShortestPaths::graphPath(const TPoint2D& a, const TPoint2D& b) cons
         if (lastSource_ && lastSource_->at == a) source = lastSource_;
     }
     if (!source) {
-        auto s = std::make_shared<Source>();
-        s->at = a;
-        s->view = visibilityPolygon(T_, a);
-        const RadialProfile seen(s->view);
+        auto s = std::make_shared<Source>(a, visibilityPolygon(T_, a));
         const size_t m = reflex_.size();
         s->distance.assign(m, std::numeric_limits<double>::infinity());
         s->previous.assign(m, -1);
@@ -126,7 +128,7 @@ GeodesicPath ShortestPaths::graphPath(const TPoint2D& a, const TPoint2D& b) cons
             const TPoint2D& r = P[reflex_[i]];
             // no tangency asked of a query's own legs: a on an edge (a midpoint, off its line
             // by rounding) would lose the edge's own ends
-            if (sees(seen, a, r, tol)) {
+            if (sees(s->seen, a, r, tol)) {
                 s->distance[i] = (r - a).norm();
                 queue.push({s->distance[i], (int)i});
             }
@@ -147,8 +149,7 @@ GeodesicPath ShortestPaths::graphPath(const TPoint2D& a, const TPoint2D& b) cons
         lastSource_ = source;
     }
     GeodesicPath out;
-    const RadialProfile fromA(source->view);
-    if (sees(fromA, a, b, tol)) {
+    if (sees(source->seen, a, b, tol)) {
         out.points = {a, b};
         if (a == b) out.points.pop_back();
         out.length = (b - a).norm();

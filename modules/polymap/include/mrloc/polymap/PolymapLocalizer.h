@@ -88,7 +88,8 @@ class PolymapLocalizer : public common::Localizer {
 
     const common::Polygon& map() const { return map_->polygon; }
     const GeneratedMap& generatedMap() const { return *map_; }
-    /** False for a grid map or a .poly with holes (scan localizer only): no simulation. */
+    /** False for a grid map or a .poly beyond common::Polygon's vertex bound (scan
+     *  localizer only): no simulation. */
     bool hasPolygon() const { return map_ != nullptr; }
     const PolymapOptions& options() const { return options_; }
     const std::map<std::string, RobotHypotheses>& results() const { return results_; }
