@@ -490,3 +490,52 @@ TEST(MrlocRun, BeaconReportsShowTheDistanceBetweenFixesPerScheduling) {
     EXPECT_LT(spread(mean["beacons_multi_robot"]), 2.0);              // measured 1.49
     EXPECT_GT(spread(mean["beacons_multi_robot_round_robin"]), 5.0);  // measured 7.6
 }
+
+// [beacons_study] after a run of seed 001's room: the method-choice table, coverage, the
+// fewest beacons, a sweep and the agents table reach the report, their pictures are drawn,
+// and the study file holds what the page shows.
+TEST(MrlocRun, BeaconStudyReachesTheReportWithItsPictures) {
+    // a smaller study than the shipped one: one room size, one value per sweep, 2 agents
+    std::string text = slurp(std::string(MRLOC_SOURCE_DIR) + "/config/beacons_paper_room.ini");
+    text = text.substr(0, text.find("[beacons_study]")) +
+           "[beacons_study]\ncoverage_sizes = 6\ncount_sizes = 4\ncount_max = 24\nbeam_angles = "
+           "50\nbeacon_counts = 4\nspeeds = 0.2\nagents = 2\nagents_time = 2\nchoice_trials = 20\n";
+    const std::string ini = testing::TempDir() + "/study_small.ini";
+    std::ofstream(ini) << text;
+    const std::string out = tmp("study");
+    const auto r = mrlocCmd("run " + ini + " -q --out " + out);
+    ASSERT_EQ(r.code, 0) << r.output;
+    const std::string page = slurp(out + "/report.html");
+    for (const char* heading :
+         {"Method choices at this run", "One beacon set over growing rooms",
+          "The fewest beacons that cover a room", "Error against the transducer",
+          "Error against the number of beacons", "Error against the robot", "Agents served"})
+        EXPECT_NE(page.find(heading), std::string::npos) << heading;
+    for (const char* png :
+         {"beacons.study.coverage.png", "beacons.study.count.png", "beacons.study.beam.png",
+          "beacons.study.count_sweep.png", "beacons.study.speed.png", "beacons.study.agents.png"}) {
+        const std::string bytes = slurp(out + "/" + png);
+        EXPECT_GT(bytes.size(), 5000u) << png;
+        EXPECT_EQ(bytes.substr(1, 3), "PNG") << png;
+        EXPECT_NE(page.find(png), std::string::npos) << png;
+    }
+    const auto study = nlohmann::json::parse(slurp(out + "/beacons.study.json"));
+    // the active row of the run's own method: its overall mean is in the page, in mm
+    double sum = 0;
+    int fixes = 0;
+    for (const auto& c : study["choices"])
+        if (c["configured"].get<bool>() && c["aiming"].get<std::string>().rfind("active", 0) == 0)
+            for (const auto& p : c["points"])
+                sum += p["mean_error_m"].get<double>() * p["fixes"].get<int>(),
+                    fixes += p["fixes"].get<int>();
+    ASSERT_EQ(fixes, 100);  // 5 points x 20 trials, every one fixed
+    EXPECT_LT(sum / fixes, 0.015);
+    EXPECT_NE(page.find(mrpt::format("<td>%.1f</td>", 1000 * sum / fixes)), std::string::npos);
+    // 4 x 4 m: 3 active beacons cover it; fixed heads need more
+    ASSERT_EQ(study["counts"].size(), 2u);
+    EXPECT_EQ(study["counts"][1]["fewest"].get<int>(), 3);
+    EXPECT_GT(study["counts"][0]["fewest"].get<int>(), 3);
+    EXPECT_EQ(study["agents"].size(), 5u);
+    // effective.ini keeps the study as run
+    EXPECT_NE(slurp(out + "/effective.ini").find("count_max"), std::string::npos);
+}

@@ -81,22 +81,12 @@ void BeaconOptions::loadFromConfigFile(const mrpt::config::CConfigFileBase& src,
         // head points: at the robot (active), or at its section's aim point (fixed)
         UltrasonicOptions hardware;
         hardware.loadFromConfigFile(src, "ultrasonic");
-        const auto link = std::make_shared<const UltrasonicLink>(hardware);
         std::map<int, Eigen::Vector3d> aimOf;
         if (!system.activeAiming)
             for (const auto& section : system.sections.sections())
                 for (int id : section.beacons)
                     aimOf[id] = {section.aim.x, section.aim.y, section.aim.z};
-        tracker.rangeDelay = [link, aimOf](int id, const Eigen::Vector3d& beacon,
-                                           const Eigen::Vector3d& receiver) {
-            const Eigen::Vector3d toReceiver = receiver - beacon;
-            double offAxis = 0;
-            if (const auto aim = aimOf.find(id); aim != aimOf.end()) {
-                const Eigen::Vector3d axis = aim->second - beacon;
-                offAxis = std::atan2(axis.cross(toReceiver).norm(), axis.dot(toReceiver));
-            }
-            return link->expectedRangeBias(toReceiver.norm(), offAxis);
-        };
+        tracker.rangeDelay = decoderDelayModel(hardware, std::move(aimOf));
     }
     paperReception.clear();
     for (const auto& [id, key] : s.numberedKeys("paper_reception_")) {
@@ -152,10 +142,16 @@ void BeaconOptions::saveToConfigFile(mrpt::config::CConfigFileBase& t,
 
 void BeaconLocalizer::configure(const mrpt::config::CConfigFileBase& ini) {
     options_.loadFromConfigFile(ini, "beacons");
+    study_.load(ini, "beacons_study");
+    if (study_.enabled) {  // the study simulates the run's hardware again
+        studyUltrasonic_.loadFromConfigFile(ini, "ultrasonic");
+        studySensors_.loadFromConfigFile(ini, "sensors");
+    }
 }
 
 void BeaconLocalizer::saveConfig(mrpt::config::CConfigFileBase& target) const {
     options_.saveToConfigFile(target, "beacons");
+    study_.save(target, "beacons_study");
 }
 
 BeaconTracker& BeaconLocalizer::trackerOf(const std::string& robot) {

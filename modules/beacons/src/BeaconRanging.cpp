@@ -96,42 +96,52 @@ double BeaconRanging::beaconBias(int id, double t, mrpt::random::CRandomGenerato
     return bias;
 }
 
-ShotRecord BeaconRanging::shoot(int id, const TPoint3D& rx, double t,
-                                mrpt::random::CRandomGenerator& rng) {
-    const Head& h = heads_.at(id);
-    const TPoint3D& b = beacons_.at(id);
+ShotRecord simulateShot(const UltrasonicLink& link, const SensorOptions& sensors,
+                        const PanTiltHead& head, const PanTiltAngles& angles, int id,
+                        const TPoint3D& rx, const std::function<bool()>& lineOfSight,
+                        const std::function<double()>& beaconBias,
+                        mrpt::random::CRandomGenerator& rng) {
+    const TPoint3D b = head.base();
     ShotRecord r;
     r.beacon = id;
-    r.pan = h.angles.pan;
-    r.tilt = h.angles.tilt;
-    r.offAxis = h.head.offAxisAngle(h.angles, rx);
+    r.pan = angles.pan;
+    r.tilt = angles.tilt;
+    r.offAxis = head.offAxisAngle(angles, rx);
     r.distance = std::sqrt((b - rx).sqrNorm());
     // Every draw is made whatever the branch, so one shot's fate never shifts the random
     // stream of the others.
-    const double fading = rng.drawGaussian1D(0, link_.options().fadingSigmaDb);
-    const double noise = rng.drawGaussian1D(0, sensors_.rangeSigma);
+    const double fading = rng.drawGaussian1D(0, link.options().fadingSigmaDb);
+    const double noise = rng.drawGaussian1D(0, sensors.rangeSigma);
     const double u = rng.drawUniform(0.0, 1.0), v = rng.drawUniform(0.0, 1.0);
-    const double extra = rng.drawUniform(sensors_.outlierMin, sensors_.outlierMax);
-    const double beaconBias =
-        sensors_.biasSigma > 0 || sensors_.biasDrift > 0 ? this->beaconBias(id, t, rng) : 0.0;
+    const double extra = rng.drawUniform(sensors.outlierMin, sensors.outlierMax);
+    const double bias = sensors.biasSigma > 0 || sensors.biasDrift > 0 ? beaconBias() : 0.0;
 
-    r.lineOfSight = world_.lineOfSight(b, rx);
+    r.lineOfSight = lineOfSight();
     double path = r.distance;
     double loss = 0;
     if (!r.lineOfSight) {
-        if (!sensors_.nlosReflect) return r;
+        if (!sensors.nlosReflect) return r;
         path += extra;  // the first echo arrives by a longer, reflected path
         loss = kReflectionLossDb;
     }
-    r.marginDb = link_.marginDb(path, r.offAxis) + fading - loss;
-    if (r.distance > sensors_.rangeMax) return r;
-    const auto bias = link_.rangeBias(r.marginDb);  // late trigger of a weak burst
-    if (!bias) return r;
-    if (r.lineOfSight && u < sensors_.dropout) return r;
-    if (r.lineOfSight && v < sensors_.outlierProbability) path += extra;
+    r.marginDb = link.marginDb(path, r.offAxis) + fading - loss;
+    if (r.distance > sensors.rangeMax) return r;
+    const auto late = link.rangeBias(r.marginDb);  // late trigger of a weak burst
+    if (!late) return r;
+    if (r.lineOfSight && u < sensors.dropout) return r;
+    if (r.lineOfSight && v < sensors.outlierProbability) path += extra;
     r.detected = true;
-    r.range = std::max(0.0, path + *bias + beaconBias + noise);
+    r.range = std::max(0.0, path + *late + bias + noise);
     return r;
+}
+
+ShotRecord BeaconRanging::shoot(int id, const TPoint3D& rx, double t,
+                                mrpt::random::CRandomGenerator& rng) {
+    const Head& h = heads_.at(id);
+    const TPoint3D b = beacons_.at(id);
+    return simulateShot(
+        link_, sensors_, h.head, h.angles, id, rx, [&] { return world_.lineOfSight(b, rx); },
+        [&] { return beaconBias(id, t, rng); }, rng);
 }
 
 mrpt::obs::CObservationBeaconRanges::Ptr BeaconRanging::fireDue(

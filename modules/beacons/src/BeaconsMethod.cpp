@@ -1,4 +1,5 @@
 #include <mrloc/beacons/BeaconPayload.h>
+#include <mrloc/beacons/BeaconStudyReport.h>
 #include <mrloc/beacons/BeaconsMethod.h>
 #include <mrloc/beacons/PaperValues.h>
 #include <mrloc/common/Error.h>
@@ -221,12 +222,38 @@ common::Headline beaconsHeadline(const method::HeadlineOf<BeaconLocalizer>& in) 
     return h;
 }
 
+/** [beacons_study] after localization: the run's room and hardware simulated again. */
+std::vector<std::string> beaconsStudy(const method::ExperimentOf<BeaconLocalizer>& in) {
+    const auto& l = in.localizer;
+    if (!l.study().enabled || !in.scenario) return {};  // a log recorded elsewhere: no room
+    StudySetup setup{l.study(), l.studyUltrasonic(), l.studySensors()};
+    runStudy(setup, l.options(), *in.scenario, in.seed, in.quiet).write(in.outDir);
+    return {BeaconStudyFile::path(in.outDir)};
+}
+
+std::vector<method::WorkItem> beaconsWork(const BeaconLocalizer& l,
+                                          const sim::ScenarioConfig* scenario) {
+    if (!l.study().enabled || !scenario) return {};
+    // Measured (doc/errors.md, "Work"; bench_beacon_study): a trial of 3 or 4 beacons x 4
+    // shots and its 2-D fix with two delay refits, 38-57 us on one core.
+    constexpr double kSecondsPerTrial = 50e-6;
+    method::WorkItem w;
+    w.what = "the beacon study's trials";
+    w.keys =
+        "[beacons_study] trials x test points (grid, sizes) x beacon counts, sweeps and agents";
+    w.seconds =
+        kSecondsPerTrial * l.study().trialsAtMost(scenario->robots.size(), scenario->world.sizeX,
+                                                  scenario->world.sizeY);
+    w.parallel = true;
+    return {w};
+}
+
 }  // namespace
 
 void registerMethod(method::Registry& registry) {
     method::MethodUnit<BeaconLocalizer> m;
     m.name = "beacons";
-    m.sections = {"beacons", "sensors", "ultrasonic"};
+    m.sections = {"beacons", "sensors", "ultrasonic", "beacons_study"};
     // MRPT's range-only localization INIs (ro-localization, pf-localization's RO demo) name
     // no mrloc section: their beacon likelihood section says they are this method's
     m.foreignSections = {"MetricMap_landmarksMap_00_likelihoodOpts"};
@@ -237,7 +264,11 @@ void registerMethod(method::Registry& registry) {
         return loadScenario(ini);
     };
     m.report.subject = "active ultrasonic beacons (seed 001)";
-    m.report.html = receptionSection;
+    m.report.html = [](const report::RunView& run) {
+        return receptionSection(run) + studySection(run.dir);
+    };
+    m.experiment = beaconsStudy;  // issue 30: coverage, beacon count, sweeps, agents
+    m.work = beaconsWork;
     m.report.topView = beaconsInTopView;
     registry.add(std::move(m));
 }

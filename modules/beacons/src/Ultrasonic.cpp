@@ -92,4 +92,19 @@ double UltrasonicLink::expectedRangeBias(double distance, double offAxis) const 
     return sum / weight;
 }
 
+RangeDelay decoderDelayModel(const UltrasonicOptions& hardware,
+                             std::map<int, Eigen::Vector3d> fixedAim) {
+    const auto link = std::make_shared<const UltrasonicLink>(hardware);
+    return [link, aimOf = std::move(fixedAim)](int id, const Eigen::Vector3d& beacon,
+                                               const Eigen::Vector3d& receiver) {
+        const Eigen::Vector3d toReceiver = receiver - beacon;
+        double offAxis = 0;
+        if (const auto aim = aimOf.find(id); aim != aimOf.end()) {
+            const Eigen::Vector3d axis = aim->second - beacon;
+            offAxis = std::atan2(axis.cross(toReceiver).norm(), axis.dot(toReceiver));
+        }
+        return link->expectedRangeBias(toReceiver.norm(), offAxis);
+    };
+}
+
 }  // namespace mrloc::beacons

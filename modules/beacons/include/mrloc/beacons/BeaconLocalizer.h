@@ -3,6 +3,8 @@
 // Runs on any MRPT rawlog that carries CObservationBeaconRanges, with or without odometry,
 // in either rawlog format; robots are told apart by the sensor label prefix ("r1.beacons").
 #include <mrloc/beacons/BeaconMap.h>
+#include <mrloc/beacons/BeaconRanging.h>
+#include <mrloc/beacons/BeaconStudy.h>
 #include <mrloc/beacons/BeaconTracker.h>
 #include <mrloc/beacons/RangeWindow.h>
 #include <mrloc/beacons/RfBeacon.h>
@@ -62,6 +64,11 @@ class BeaconLocalizer : public common::Localizer {
     common::ObservationUse observationUse() const override;
 
     const BeaconOptions& options() const { return options_; }
+    /** [beacons_study] and the hardware it simulates ([ultrasonic], [sensors]); its
+     *  options' `enabled` is false without the section. */
+    const StudyOptions& study() const { return study_; }
+    const UltrasonicOptions& studyUltrasonic() const { return studyUltrasonic_; }
+    const SensorOptions& studySensors() const { return studySensors_; }
 
  private:
     void fixOnly(const std::string& robot, double t,
@@ -69,6 +76,9 @@ class BeaconLocalizer : public common::Localizer {
     BeaconTracker& trackerOf(const std::string& robot);
 
     BeaconOptions options_;
+    StudyOptions study_;
+    UltrasonicOptions studyUltrasonic_;
+    SensorOptions studySensors_;
     std::map<std::string, BeaconTracker> trackers_;
     std::map<std::string, common::Trajectory> estimates_;
     std::map<std::string, common::CovarianceTrack> covariances_;

@@ -36,6 +36,19 @@ struct SensorOptions : public mrpt::config::CLoadableOptions {
                           const std::string& section) const override;
 };
 
+/** One burst from a transmitter whose head is at `angles` to a receiver at `rx`: the link's
+ *  level (distance, off-axis angle, fading), the decoder's trigger or a miss, the TOF noise,
+ *  dropouts and late echoes of [sensors]. `lineOfSight` is asked once, after the draws;
+ *  `beaconBias` (the beacon's own range offset) is asked only when [sensors] gives one. The
+ *  draws are made in one fixed order whatever the branch, so one shot's fate never shifts
+ *  the random stream of the others. Used by the simulator and by the coverage study
+ *  (BeaconStudy.h), so both fire the same physics. */
+ShotRecord simulateShot(const UltrasonicLink& link, const SensorOptions& sensors,
+                        const PanTiltHead& head, const PanTiltAngles& angles, int beacon,
+                        const mrpt::math::TPoint3D& rx, const std::function<bool()>& lineOfSight,
+                        const std::function<double()>& beaconBias,
+                        mrpt::random::CRandomGenerator& rng);
+
 class BeaconRanging {
  public:
     BeaconRanging(const sim::World& world, const BeaconMap& beacons, SensorOptions sensors,

@@ -19,6 +19,7 @@
 #include <mrloc/beacons/BeaconMap.h>
 #include <mrloc/beacons/Multilateration.h>
 #include <mrloc/beacons/StartupTrack.h>
+#include <mrloc/beacons/Ultrasonic.h>
 #include <mrpt/obs/CObservationBeaconRanges.h>
 #include <mrpt/poses/CPosePDFGaussian.h>
 
@@ -53,8 +54,7 @@ struct TrackerOptions {
     /** The range error a shot from beacon `id` at `beacon` to a receiver at `receiver` is
      *  expected to carry (m), subtracted by the fixes of mode = fixes (refit twice from the
      *  fix before); empty: none (delay_compensation). */
-    std::function<double(int id, const Eigen::Vector3d& beacon, const Eigen::Vector3d& receiver)>
-        rangeDelay;
+    RangeDelay rangeDelay;
 };
 
 struct TrackerStats {

@@ -28,6 +28,8 @@ class PanTiltHead {
     /** Frame B: translation O_b, rotation 180 degrees about X (seed 001 eq. 1). */
     const mrpt::poses::CPose3D& frame() const { return frame_; }
     const PanTiltLimits& limits() const { return limits_; }
+    /** The head's position O_b (the transmitter). */
+    mrpt::math::TPoint3D base() const { return {frame_.x(), frame_.y(), frame_.z()}; }
 
     /** The target in frame B, seed 001 eq. (1)-(2): ^B R_p = (^A T_B)^-1 ^A R_p. */
     mrpt::math::TPoint3D inFrame(const mrpt::math::TPoint3D& target) const;

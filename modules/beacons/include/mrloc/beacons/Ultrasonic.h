@@ -21,6 +21,9 @@
 #include <mrloc/beacons/PanTilt.h>
 #include <mrpt/config/CLoadableOptions.h>
 
+#include <Eigen/Core>
+#include <functional>
+#include <map>
 #include <optional>
 
 namespace mrloc::beacons {
@@ -55,9 +58,9 @@ class UltrasonicLink {
     /** The range error the trigger delay causes once the calibration is subtracted (m). */
     std::optional<double> rangeBias(double marginDb) const;
     /** The range error the decoder's delay is expected to add to a shot over `distance` at
-     *  `offAxis` (m): rangeBias averaged over the fading (Simpson's rule from the detection threshold), the shots
-     *  too weak to be heard left out; 0 if none would be. What a receiver that knows its
-     *  hardware (the datasheet's rise time, source level, beam and absorption) subtracts:
+     *  `offAxis` (m): rangeBias averaged over the fading (Simpson's rule from the detection
+     * threshold), the shots too weak to be heard left out; 0 if none would be. What a receiver that
+     * knows its hardware (the datasheet's rise time, source level, beam and absorption) subtracts:
      *  [beacons] delay_compensation. */
     double expectedRangeBias(double distance, double offAxis) const;
     /** The weakest margin that is still detected (dB). */
@@ -68,5 +71,16 @@ class UltrasonicLink {
     double minMarginDb_;
     double calibrationDelay_;
 };
+
+/** The range error a shot from beacon `id` at `beacon` to a receiver at `receiver` is expected
+ *  to carry (m): TrackerOptions::rangeDelay. */
+using RangeDelay =
+    std::function<double(int id, const Eigen::Vector3d& beacon, const Eigen::Vector3d& receiver)>;
+
+/** [beacons] delay_compensation: each shot's expected decoder delay from the hardware's
+ *  nominal model (UltrasonicLink::expectedRangeBias), its off-axis angle 0 for a head aimed
+ *  at the receiver, or from the head's fixed aim point for a beacon in `fixedAim`. */
+RangeDelay decoderDelayModel(const UltrasonicOptions& hardware,
+                             std::map<int, Eigen::Vector3d> fixedAim);
 
 }  // namespace mrloc::beacons
