@@ -206,3 +206,42 @@ TEST(Multilateration, RobustFixOfThousandsOfRangesFindsTheOutlierAmongTheSuspect
     EXPECT_EQ(rejected, 1234);
     EXPECT_LT((f.position - truth).norm(), 1e-3);
 }
+
+TEST(Multilateration, RangesWithTheirOwnSigmaAreWeighted) {
+    // 2-D, four ceiling beacons; beacon 0's range is 5 cm long.
+    const Vector3d truth(1.1, 1.8, 0.5);
+    MultilaterationOptions o;
+    o.knownHeight = 0.5;
+    o.rangeSigma = 0.01;
+    auto m = exactRanges(kCeiling4, truth);
+    m[0].range += 0.05;
+    const Fix plain = multilaterate(m, o);
+    ASSERT_TRUE(plain.ok());
+    // every range given the options' sigma explicitly: the same fix, bit for bit
+    auto same = m;
+    for (auto& r : same) r.sigma = o.rangeSigma;
+    const Fix equal = multilaterate(same, o);
+    EXPECT_EQ(equal.position, plain.position);
+    EXPECT_EQ(equal.covariance, plain.covariance);
+    // the long range said to be 10 times less sure: the fix moves towards the truth, and the
+    // covariance is (sum u u^T / sigma_i^2)^-1 at the solution
+    auto weighted = m;
+    weighted[0].sigma = 0.1;
+    const Fix w = multilaterate(weighted, o);
+    ASSERT_TRUE(w.ok());
+    EXPECT_LT((w.position - truth).head<2>().norm(),
+              0.1 * (plain.position - truth).head<2>().norm());
+    Eigen::Matrix2d info = Eigen::Matrix2d::Zero();
+    for (const auto& r : weighted) {
+        const Vector3d d = w.position - r.beacon;
+        const Eigen::Vector2d u = d.head<2>() / d.norm();
+        const double s = r.sigma > 0 ? r.sigma : o.rangeSigma;
+        info += u * u.transpose() / (s * s);
+    }
+    const Eigen::Matrix2d cov = info.inverse();
+    EXPECT_NEAR(w.covariance(0, 0), cov(0, 0), 1e-12);
+    EXPECT_NEAR(w.covariance(0, 1), cov(0, 1), 1e-12);
+    EXPECT_NEAR(w.covariance(1, 1), cov(1, 1), 1e-12);
+    // the weights do not change the geometry's GDOP
+    EXPECT_NEAR(w.gdop, multilaterate(exactRanges(kCeiling4, w.position), o).gdop, 1e-9);
+}

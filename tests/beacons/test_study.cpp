@@ -190,13 +190,14 @@ TEST(BeaconStudy, ThePapersRoomStudyMeetsTheGoalAndIsDeterministic) {
         EXPECT_GE(p.reception(), 0.98);
         sum += p.meanError * p.fixes, fixes += p.fixes, max = std::max(max, p.maxError);
     }
-    // measured 11.0 mm mean, 34.3 mm max over 500 trials: bounds 13 / 45 mm
+    // measured 10.2 mm mean, 38.4 mm max over 500 trials (seeds 2, 3: 10.0 / 31.0, 10.4 / 33.7):
+    // bounds 13 / 45 mm
     EXPECT_LT(sum / fixes, 0.013);
     EXPECT_LT(max, 0.045);
     double paperSum = 0;
     int paperFixes = 0;
     for (const auto& p : paper->points) paperSum += p.meanError * p.fixes, paperFixes += p.fixes;
-    EXPECT_GT(paperSum / paperFixes, 4 * sum / fixes);  // measured 63 mm: 5.8 times
+    EXPECT_GT(paperSum / paperFixes, 4 * sum / fixes);  // measured 68 mm: 6.7 times
     // fixed heads at the section's aim (the room's centre) reach no corner point
     size_t sectionAimRows = 0;
     for (const auto& c : f.choices)

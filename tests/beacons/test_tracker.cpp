@@ -269,7 +269,7 @@ TEST(BeaconTracker, FixesSubtractTheExpectedDelayAndAverageRepeatedShots) {
     ASSERT_TRUE(off);
     EXPECT_GT(std::hypot(off->position.x() - truth.x(), off->position.y() - truth.y()), 0.01);
     o.rangeDelay = [](int, const Eigen::Vector3d& beacon, const Eigen::Vector3d& receiver) {
-        return 0.01 * (receiver - beacon).norm();
+        return beacons::DelayMoments{0.01 * (receiver - beacon).norm(), 0.0};
     };
     beacons::BeaconTracker compensated(kMap, o);
     const auto f = compensated.fixOnly(obs);
@@ -277,4 +277,30 @@ TEST(BeaconTracker, FixesSubtractTheExpectedDelayAndAverageRepeatedShots) {
     EXPECT_NEAR(f->position.x(), truth.x(), 1e-4);
     EXPECT_NEAR(f->position.y(), truth.y(), 1e-4);
     EXPECT_EQ(compensated.stats().rangesUsed, 8u);  // every shot counted as used
+}
+
+TEST(BeaconTracker, JitterWeightsTrustAWeakBurstsRangeLess) {
+    // Beacon 1's burst arrives weak: its range is 6 cm long beyond the expected delay, and
+    // the delay model says its jitter is 5 cm; the others are exact and steady. Weighted by
+    // that jitter the fix is within a third of the unweighted one's error.
+    const CPose2D truth(1.2, 0.7, 0);
+    const auto obs =
+        testing_beacons::rangesAt(kMap, truth, [](int id, double) { return id == 1 ? 0.06 : 0.0; });
+    beacons::TrackerOptions o;
+    o.rangeSigma = 0.01;
+    o.fix.knownHeight = 0.0;
+    o.rangeDelay = [](int id, const Eigen::Vector3d&, const Eigen::Vector3d&) {
+        return beacons::DelayMoments{0.0, id == 1 ? 0.05 : 0.0};
+    };
+    beacons::BeaconTracker plain(kMap, o);
+    o.jitterWeights = true;
+    beacons::BeaconTracker weighted(kMap, o);
+    const auto a = plain.fixOnly(obs), b = weighted.fixOnly(obs);
+    ASSERT_TRUE(a && b);
+    const double ea = std::hypot(a->position.x() - truth.x(), a->position.y() - truth.y());
+    const double eb = std::hypot(b->position.x() - truth.x(), b->position.y() - truth.y());
+    EXPECT_GT(ea, 0.01);
+    EXPECT_LT(eb, ea / 3);
+    // its covariance grows along that beacon's line: the fix says it is less sure
+    EXPECT_GT(b->covariance.trace(), a->covariance.trace());
 }

@@ -75,6 +75,10 @@ void BeaconOptions::loadFromConfigFile(const mrpt::config::CConfigFileBase& src,
     map = loadBeaconMap(src, s);
     system.load(s, map);
     delayCompensation = s.flag("delay_compensation", false);
+    tracker.jitterWeights = s.flag("jitter_weights", false);
+    if (tracker.jitterWeights && !delayCompensation)
+        s.fail("jitter_weights",
+               "needs delay_compensation = true (the same link model predicts both)");
     tracker.rangeDelay = nullptr;
     if (delayCompensation) {
         // the hardware as [ultrasonic] describes it (its defaults if absent); which way each
@@ -110,6 +114,7 @@ void BeaconOptions::saveToConfigFile(mrpt::config::CConfigFileBase& t,
                                             : "nearest");
     t.write(section, "max_iterations", f.maxIterations);
     t.write(section, "delay_compensation", delayCompensation);
+    t.write(section, "jitter_weights", tracker.jitterWeights);
     t.write(section, "max_gdop", f.maxGdop);
     if (tracker.startPose)
         t.write(section, "start",

@@ -20,6 +20,7 @@ std::string StudyMethod::describe() const {
     std::string out = threeD ? "3-D" : "2-D (height known)";
     out += residual == Residual::Range ? ", range residual" : ", squared residual";
     if (delayCompensation) out += ", delay compensation";
+    if (jitterWeights) out += ", jitter weights";
     out += mrpt::format(", %d shot%s per beacon", shotsPerBeacon, shotsPerBeacon > 1 ? "s" : "");
     return out;
 }
@@ -50,6 +51,7 @@ class TrialRunner {
         o.fix.residual = method.residual;
         o.fix.knownHeight = method.threeD ? std::nullopt : std::optional<double>(0.0);
         o.rangeDelay = nullptr;
+        o.jitterWeights = method.jitterWeights;
         if (method.delayCompensation)
             o.rangeDelay = decoderDelayModel(
                 hw.ultrasonic, room.active ? std::map<int, Eigen::Vector3d>{} : aimsOf(room));
@@ -199,9 +201,10 @@ CoverageResult evaluateCoverage(const StudyRoom& room, const StudyHardware& hw,
     const int missesAllowed = int(std::floor((1.0 - criteria.reception) * trials + 1e-9));
     const auto work = [&] {
         try {
-            TrialRunner runner(room, hw, method);
             for (size_t i; (i = next++) < points.size();) {
                 if (stopAtFailure && failed) return;
+                // a runner per point: nothing a fix leaves behind reaches another point's
+                TrialRunner runner(room, hw, method);
                 PointStats& p = out.points[i];
                 p.at = points[i];
                 mrpt::random::CRandomGenerator rng(mixSeed(seed, i));

@@ -213,7 +213,7 @@ BeaconStudyFile runStudy(const StudySetup& setup, const BeaconOptions& run,
     hw.beaconsPerFix = o.beaconsPerFix;
     hw.tracker = run.tracker;
     const StudyMethod configured{run.threeD, run.tracker.fix.residual, run.delayCompensation,
-                                 run.system.shotsPerBeacon};
+                                 run.system.shotsPerBeacon, run.tracker.jitterWeights};
     const double roomX = scenario.world.sizeX, roomY = scenario.world.sizeY;
     BeaconStudyFile out;
     out.method = configured.describe();
@@ -274,38 +274,35 @@ BeaconStudyFile runStudy(const StudySetup& setup, const BeaconOptions& run,
         const auto shots = std::max(2, configured.shotsPerBeacon);
         std::vector<std::pair<std::string, StudyMethod>> variants{
             {"seed 001's fix (eq. 4-10)", StudyMethod::paper()},
-            {"alone: the height known (2-D)", {false, Residual::SquaredRange, false, 1}},
-            {"alone: range residual", {true, Residual::Range, false, 1}},
-            {"alone: delay compensation", {true, Residual::SquaredRange, true, 1}},
+            {"alone: the height known (2-D)", {false, Residual::SquaredRange, false, 1, false}},
+            {"alone: range residual", {true, Residual::Range, false, 1, false}},
+            {"alone: delay compensation", {true, Residual::SquaredRange, true, 1, false}},
             {mrpt::format("alone: %d shots per beacon", shots),
-             {true, Residual::SquaredRange, false, shots}},
-            {"height + range residual", {false, Residual::Range, false, 1}},
-            {"+ delay compensation", {false, Residual::Range, true, 1}}};
+             {true, Residual::SquaredRange, false, shots, false}},
+            {"height + range residual", {false, Residual::Range, false, 1, false}},
+            {"+ delay compensation", {false, Residual::Range, true, 1, false}},
+            {"+ jitter weights", {false, Residual::Range, true, 1, true}}};
         for (int n = 2; n <= shots; ++n)
-            variants.push_back(
-                {mrpt::format("+ %d shots per beacon", n), {false, Residual::Range, true, n}});
-        const auto same = [](const StudyMethod& a, const StudyMethod& b) {
-            return a.threeD == b.threeD && a.residual == b.residual &&
-                   a.delayCompensation == b.delayCompensation &&
-                   a.shotsPerBeacon == b.shotsPerBeacon;
-        };
+            variants.push_back({mrpt::format("+ %d shots per beacon", n),
+                                {false, Residual::Range, true, n, true}});
         if (std::none_of(variants.begin(), variants.end(),
-                         [&](const auto& v) { return same(v.second, configured); }))
+                         [&](const auto& v) { return v.second == configured; }))
             variants.push_back({"this run's method", configured});
+        // every choice on the same draws (common random numbers): the differences between
+        // rows are the choices', not the draws'
         const auto add = [&](const StudyRoom& room, const std::string& aiming,
                              const std::string& name, const StudyMethod& m) {
             const auto r = evaluateCoverage(room, all, m, points, o.choiceTrials,
-                                            seedFor("choices|" + aiming, all, m), o.criteria);
-            out.choices.push_back({aiming, name + " — " + m.describe(),
-                                   same(m, StudyMethod::paper()), same(m, configured), r.points});
+                                            seedOf(seed, "choices|" + aiming), o.criteria);
+            out.choices.push_back(
+                {aiming, name, m == StudyMethod::paper(), m == configured, r.points});
         };
         for (const auto& [name, m] : variants) add(runActive, kActive, name, m);
         step();
         for (const auto* room : {&runSection, &runDown})
             for (const auto& m : {StudyMethod::paper(), configured})
                 add(*room, room == &runSection ? kSectionAim : kDown,
-                    same(m, StudyMethod::paper()) ? "seed 001's fix (eq. 4-10)"
-                                                  : "this run's method",
+                    m == StudyMethod::paper() ? "seed 001's fix (eq. 4-10)" : "this run's method",
                     m);
         step();
     }

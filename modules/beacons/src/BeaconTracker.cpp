@@ -129,7 +129,7 @@ std::optional<Fix> BeaconTracker::fixFrom(const std::vector<Range>& ranges, bool
                                           std::vector<Range>* used, bool counted) {
     if (ranges.size() < 3) return std::nullopt;
     std::vector<RangeMeasurement> m;
-    for (const auto& r : ranges) m.push_back({r.beacon, r.range});
+    for (const auto& r : ranges) m.push_back({r.beacon, r.range, r.beaconId, r.sigma});
     MultilaterationOptions fo = o_.fix;
     fo.rangeSigma = o_.rangeSigma;
     if (fo.knownHeight) fo.knownHeight = ranges.front().sensorOnRobot.z();  // robot on the floor
@@ -359,7 +359,10 @@ std::vector<BeaconTracker::Range> BeaconTracker::meanPerBeacon(std::vector<Range
             ++count[i];
         }
     }
-    for (size_t i = 0; i < out.size(); ++i) out[i].range /= count[i];
+    for (size_t i = 0; i < out.size(); ++i) {
+        out[i].range /= count[i];
+        out[i].shots = count[i];
+    }
     return out;
 }
 
@@ -373,7 +376,14 @@ std::optional<Fix> BeaconTracker::fixOnly(const mrpt::obs::CObservationBeaconRan
     // receiver; the delay changes slowly with distance, so two refits settle it.
     for (int pass = 0; f && o_.rangeDelay && pass < 2; ++pass) {
         auto corrected = ranges;
-        for (auto& r : corrected) r.range -= o_.rangeDelay(r.beaconId, r.beacon, f->position);
+        for (auto& r : corrected) {
+            const auto delay = o_.rangeDelay(r.beaconId, r.beacon, f->position);
+            r.range -= delay.mean;
+            // a weak burst's delay jitters with the fading: trust its range less
+            if (o_.jitterWeights)
+                r.sigma =
+                    std::sqrt((o_.rangeSigma * o_.rangeSigma + delay.sd * delay.sd) / r.shots);
+        }
         if (auto g = fixFrom(corrected, /*robust=*/false, nullptr, /*counted=*/false)) f = g;
     }
     return f;

@@ -183,11 +183,51 @@ std::string methodDifference(const BeaconOptions& o) {
     if (!o.threeD) parts.push_back("the height known (2-D)");
     if (o.tracker.fix.residual == Residual::Range) parts.push_back("range residual");
     if (o.delayCompensation) parts.push_back("delay compensation");
+    if (o.tracker.jitterWeights) parts.push_back("jitter weights");
     if (o.system.shotsPerBeacon > 1)
         parts.push_back(mrpt::format("%d shots per beacon", o.system.shotsPerBeacon));
     if (parts.empty()) return "";
     std::string out = "mrloc's fix, not the paper's: ";
     for (size_t i = 0; i < parts.size(); ++i) out += (i ? ", " : "") + parts[i];
+    return out;
+}
+
+/** The study's answers to seed 001's two claims: the largest square room one set of beacons
+ *  covers with active heads (its goal: over 6 m), and how many active beacons cover a room
+ *  against fixed ones (its abstract: about half). */
+std::vector<common::HeadlineFigure> studyFigures(const BeaconStudyFile& f) {
+    std::vector<common::HeadlineFigure> out;
+    const std::string how = mrpt::format(
+        "mrloc's simulation (the link calibrated on Table 3): every test point fixed in at least "
+        "%.0f %% of its trials, every error under %.0f mm",
+        100 * f.criteria.reception, 1000 * f.criteria.errorBound);
+    std::optional<double> largest;
+    int beacons = 0;
+    for (const auto& g : f.grids)
+        if (g.part == "coverage" && g.variant.rfind("active", 0) == 0) {
+            beacons = g.beacons;
+            if (g.covers) largest = std::max(largest.value_or(0.0), g.value);
+        }
+    if (beacons > 0)
+        out.push_back(
+            {mrpt::format("side of the largest square room %d active beacons cover", beacons),
+             largest, "m",
+             mrpt::format("goal: over %g m (seed 001 sec. 6)", paper::kGoalCoverageSide), how,
+             false});
+    // the largest room both aimings cover within count_max
+    std::map<double, std::pair<int, int>> counts;  // side -> fixed, active
+    for (const auto& c : f.counts)
+        (c.aiming.rfind("active", 0) == 0 ? counts[c.size].second : counts[c.size].first) =
+            c.fewest;
+    for (auto it = counts.rbegin(); it != counts.rend(); ++it)
+        if (it->second.first > 0 && it->second.second > 0) {
+            out.push_back(
+                {mrpt::format("active / fixed beacons covering %g x %g m", it->first, it->first),
+                 double(it->second.second) / it->second.first, "",
+                 mrpt::format("about %.1f (seed 001 abstract)", paper::kActiveBeaconShare),
+                 how + "; fixed heads point straight down", false});
+            break;
+        }
     return out;
 }
 
@@ -219,6 +259,8 @@ common::Headline beaconsHeadline(const method::HeadlineOf<BeaconLocalizer>& in) 
     if (const auto method = methodDifference(in.localizer.options()); !method.empty())
         for (auto* f : {&mean, &max}) f->differs += (f->differs.empty() ? "" : "; ") + method;
     h.figures.insert(h.figures.begin() + 1, {mean, max});
+    if (std::filesystem::exists(BeaconStudyFile::path(in.outDir)))
+        for (auto& f : studyFigures(BeaconStudyFile::read(in.outDir))) h.figures.push_back(f);
     return h;
 }
 

@@ -126,8 +126,40 @@ double minEigen(const Matrix3d& A, int dims) {
 
 /** Gauss-Newton, seed 001 eq. (8)-(10): x(k+1) = x(k) - F'(x(k))^* F(x(k)). With J of full
  *  column rank the pseudo-inverse is (J^T J)^-1 J^T, applied through the normal equations. */
-int gaussNewton(const std::vector<RangeMeasurement>& m, const Vector3d& centroid, Vector3d& x,
-                int dims, const MultilaterationOptions& o, double& lastStep) {
+/** (rangeSigma / sigma_i)^2 for a range with its own sd, else 1. */
+double weightOf(const RangeMeasurement& m, const MultilaterationOptions& o) {
+    return m.sigma > 0 ? (o.rangeSigma * o.rangeSigma) / (m.sigma * m.sigma) : 1.0;
+}
+
+/** The weighted fix's normal matrices at the solution (multilaterate's loop, each range
+ *  weighted by weightOf): H^T W H, J^T W J and J^T W cov(f) W J. */
+template <class CentredT>
+[[gnu::noinline]] void weightedGeometry(const std::vector<RangeMeasurement>& m, const CentredT& c,
+                                        const Vector3d& x, int dims,
+                                        const MultilaterationOptions& o, Matrix3d& HtWH,
+                                        Matrix3d& JtJ, Matrix3d& JtWJ) {
+    HtWH.setZero();
+    JtJ.setZero();
+    JtWJ.setZero();
+    for (size_t i = 0; i < m.size(); ++i) {
+        const Vector3d d = x - c.b(i);
+        const double n = d.norm();
+        Vector3d u = n > 1e-12 ? Vector3d(d / n) : Vector3d::Zero();
+        Vector3d g = 2.0 * d;
+        if (dims == 2) u.z() = g.z() = 0;
+        const double w = weightOf(m[i], o);
+        const double si2 = m[i].sigma > 0 ? m[i].sigma * m[i].sigma : o.rangeSigma * o.rangeSigma;
+        HtWH += w * u * u.transpose();
+        JtJ += w * g * g.transpose();
+        JtWJ += g * g.transpose() * (w * w * 4.0 * m[i].range * m[i].range * si2);
+    }
+}
+
+/** Gauss-Newton on either residual; Weighted: each row by weightOf (ranges with their own
+ *  sd). */
+template <bool Weighted>
+int gaussNewtonLoop(const std::vector<RangeMeasurement>& m, const Vector3d& centroid, Vector3d& x,
+                    int dims, const MultilaterationOptions& o, double& lastStep) {
     lastStep = 0;
     for (int it = 1; it <= o.maxIterations; ++it) {
         Matrix3d JtJ = Matrix3d::Zero();
@@ -146,8 +178,14 @@ int gaussNewton(const std::vector<RangeMeasurement>& m, const Vector3d& centroid
                 g = d / n;
             }
             if (dims == 2) g.z() = 0;
-            JtJ.noalias() += g * g.transpose();
-            Jtf.noalias() += g * f;
+            if constexpr (Weighted) {
+                const double w = weightOf(mi, o);
+                JtJ.noalias() += w * g * g.transpose();
+                Jtf.noalias() += w * g * f;
+            } else {
+                JtJ.noalias() += g * g.transpose();
+                Jtf.noalias() += g * f;
+            }
         }
         Matrix3d inv;
         if (!invertBlock(JtJ, dims, inv)) return -it;  // J lost rank: degenerate geometry
@@ -158,6 +196,15 @@ int gaussNewton(const std::vector<RangeMeasurement>& m, const Vector3d& centroid
         if (lastStep <= o.tolerance * (1.0 + x.norm())) return it;
     }
     return o.maxIterations;
+}
+
+/** The weighted loop apart, and never inlined, so that the usual unweighted fix keeps its
+ *  code, bit for bit and as fast (inlined, it cost the unweighted fixes 5-9 % in
+ *  bench_multilateration). */
+[[gnu::noinline]] int weightedGaussNewton(const std::vector<RangeMeasurement>& m,
+                                          const Vector3d& centroid, Vector3d& x, int dims,
+                                          const MultilaterationOptions& o, double& lastStep) {
+    return gaussNewtonLoop<true>(m, centroid, x, dims, o, lastStep);
 }
 
 bool finite(const RangeMeasurement& m) {
@@ -244,7 +291,10 @@ Fix multilaterate(const std::vector<RangeMeasurement>& m, const MultilaterationO
     if (planar2d) x.z() = zKnown;
 
     double lastStep = 0;
-    fix.iterations = gaussNewton(m, c.centroid, x, dims, o, lastStep);
+    const bool weighted =
+        std::any_of(m.begin(), m.end(), [](const auto& r) { return r.sigma > 0; });
+    fix.iterations = weighted ? weightedGaussNewton(m, c.centroid, x, dims, o, lastStep)
+                              : gaussNewtonLoop<false>(m, c.centroid, x, dims, o, lastStep);
     if (fix.iterations < 0 || !x.allFinite()) {
         fix.iterations = std::abs(fix.iterations);
         fix.status = FixStatus::IllConditioned;
@@ -252,7 +302,7 @@ Fix multilaterate(const std::vector<RangeMeasurement>& m, const MultilaterationO
     }
 
     // Geometry at the solution: H has the unit line-of-sight vectors as rows.
-    Matrix3d HtH = Matrix3d::Zero();
+    Matrix3d HtH = Matrix3d::Zero(), HtWH = Matrix3d::Zero();  // geometry; weighted
     Matrix3d JtJ = Matrix3d::Zero(), JtWJ = Matrix3d::Zero();  // squared-range covariance
     double sumRes2 = 0;
     const double s2 = o.rangeSigma * o.rangeSigma;
@@ -268,6 +318,7 @@ Fix multilaterate(const std::vector<RangeMeasurement>& m, const MultilaterationO
         // f_i = |x - x_i|^2 - r_i^2 moves by 2 r_i dr_i for a range error dr_i.
         JtWJ += g * g.transpose() * (4.0 * m[i].range * m[i].range * s2);
     }
+    if (weighted) weightedGeometry(m, c, x, dims, o, HtWH, JtJ, JtWJ);
     fix.position = x + c.centroid;
     fix.rmsResidual = std::sqrt(sumRes2 / double(m.size()));
     if (mirrored) {
@@ -284,7 +335,12 @@ Fix multilaterate(const std::vector<RangeMeasurement>& m, const MultilaterationO
     }
     fix.gdop = std::sqrt(G.trace());
     if (o.residual == Residual::Range) {
-        fix.covariance = s2 * G;
+        Matrix3d Gw = G;  // (sum u u^T / sigma_i^2)^-1 = s2 (H^T W H)^-1
+        if (weighted && !invertBlock(HtWH, dims, Gw)) {
+            fix.status = FixStatus::IllConditioned;
+            return fix;
+        }
+        fix.covariance = s2 * Gw;
     } else {
         // First-order propagation through the pseudo-inverse of eq. (10): J^+ cov(f) J^+^T.
         Matrix3d Ai;

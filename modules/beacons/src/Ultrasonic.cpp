@@ -73,23 +73,27 @@ std::optional<double> UltrasonicLink::rangeBias(double margin) const {
     return o_.speedOfSound * (*d - calibrationDelay_);
 }
 
-double UltrasonicLink::expectedRangeBias(double distance, double offAxis) const {
-    // E[bias(margin + F) | heard], F ~ N(0, fading_sigma): Simpson's rule over the levels
-    // that are heard, from the detection threshold (the bias is steep there) to 5 sigma up
+DelayMoments UltrasonicLink::rangeBiasMoments(double distance, double offAxis) const {
+    // E[bias(margin + F) | heard] and its second moment, F ~ N(0, fading_sigma): Simpson's
+    // rule over the levels that are heard, from the detection threshold (the bias is steep
+    // there) to 5 sigma up
     const double mean = marginDb(distance, offAxis), sigma = o_.fadingSigmaDb;
-    if (!(sigma > 0)) return rangeBias(mean).value_or(0.0);
+    if (!(sigma > 0)) return {rangeBias(mean).value_or(0.0), 0.0};
     const double lo = std::max(-5.0, (minMarginDb_ - mean) / sigma) + 1e-9, hi = 5.0;
-    if (!(lo < hi)) return 0.0;
+    if (!(lo < hi)) return {};
     constexpr int kIntervals = 200;  // even, for Simpson
     const double h = (hi - lo) / kIntervals;
-    double sum = 0, weight = 0;
+    double sum = 0, sum2 = 0, weight = 0;
     for (int k = 0; k <= kIntervals; ++k) {
         const double z = lo + h * k;
         const double w = (k == 0 || k == kIntervals ? 1 : k % 2 ? 4 : 2) * std::exp(-0.5 * z * z);
-        sum += w * rangeBias(mean + sigma * z).value_or(0.0);
+        const double b = rangeBias(mean + sigma * z).value_or(0.0);
+        sum += w * b;
+        sum2 += w * b * b;
         weight += w;
     }
-    return sum / weight;
+    const double m = sum / weight;
+    return {m, std::sqrt(std::max(0.0, sum2 / weight - m * m))};
 }
 
 RangeDelay decoderDelayModel(const UltrasonicOptions& hardware,
@@ -103,7 +107,7 @@ RangeDelay decoderDelayModel(const UltrasonicOptions& hardware,
             const Eigen::Vector3d axis = aim->second - beacon;
             offAxis = std::atan2(axis.cross(toReceiver).norm(), axis.dot(toReceiver));
         }
-        return link->expectedRangeBias(toReceiver.norm(), offAxis);
+        return link->rangeBiasMoments(toReceiver.norm(), offAxis);
     };
 }
 

@@ -36,8 +36,14 @@ struct StudyMethod {
     Residual residual = Residual::Range;
     bool delayCompensation = false;
     int shotsPerBeacon = 1;
+    bool jitterWeights = false;
     /** Seed 001's fix (eq. 4-10): 3-D, squared residual, one shot, no compensation. */
-    static StudyMethod paper() { return {true, Residual::SquaredRange, false, 1}; }
+    static StudyMethod paper() { return {true, Residual::SquaredRange, false, 1, false}; }
+    bool operator==(const StudyMethod& o) const {
+        return threeD == o.threeD && residual == o.residual &&
+               delayCompensation == o.delayCompensation && shotsPerBeacon == o.shotsPerBeacon &&
+               jitterWeights == o.jitterWeights;
+    }
     /** "3-D squared, 1 shot" style words for tables. */
     std::string describe() const;
 };

@@ -55,6 +55,9 @@ struct TrackerOptions {
      *  expected to carry (m), subtracted by the fixes of mode = fixes (refit twice from the
      *  fix before); empty: none (delay_compensation). */
     RangeDelay rangeDelay;
+    /** With rangeDelay: the refits weight each range by the jitter its shot is expected to
+     *  carry, sd^2 = (rangeSigma^2 + delay sd^2) / shots averaged (jitter_weights). */
+    bool jitterWeights = false;
 };
 
 struct TrackerStats {
@@ -98,6 +101,8 @@ class BeaconTracker {
         Eigen::Vector3d beacon, sensorOnRobot;
         double range;
         int beaconId;
+        int shots = 1;     ///< averaged into `range` (shots_per_beacon)
+        double sigma = 0;  ///< its own sd for a weighted fix (m); 0: rangeSigma
     };
     struct Innovation {
         bool valid = false;

@@ -17,6 +17,9 @@ struct RangeMeasurement {
     Eigen::Vector3d beacon;  ///< beacon position (m)
     double range = 0;        ///< measured distance (m)
     int beaconId = -1;
+    /** This range's own standard deviation (m), for a fix that weights each range by it;
+     *  0: MultilaterationOptions::rangeSigma, as every range without one. */
+    double sigma = 0;
 };
 
 enum class Residual {

@@ -28,6 +28,12 @@
 
 namespace mrloc::beacons {
 
+/** The range error a shot's decoder delay adds, over the fading: its mean and spread (m). */
+struct DelayMoments {
+    double mean = 0;
+    double sd = 0;
+};
+
 struct UltrasonicOptions : public mrpt::config::CLoadableOptions {
     double speedOfSound = 343;           ///< m/s
     double beamAngle = 50 * M_PI / 180;  ///< full beam width at -6 dB (rad)
@@ -62,7 +68,12 @@ class UltrasonicLink {
      * threshold), the shots too weak to be heard left out; 0 if none would be. What a receiver that
      * knows its hardware (the datasheet's rise time, source level, beam and absorption) subtracts:
      *  [beacons] delay_compensation. */
-    double expectedRangeBias(double distance, double offAxis) const;
+    double expectedRangeBias(double distance, double offAxis) const {
+        return rangeBiasMoments(distance, offAxis).mean;
+    }
+    /** expectedRangeBias and the standard deviation of rangeBias over the heard shots: the
+     *  jitter a weak burst adds ([beacons] jitter_weights). */
+    DelayMoments rangeBiasMoments(double distance, double offAxis) const;
     /** The weakest margin that is still detected (dB). */
     double detectionThresholdDb() const { return minMarginDb_; }
 
@@ -73,9 +84,9 @@ class UltrasonicLink {
 };
 
 /** The range error a shot from beacon `id` at `beacon` to a receiver at `receiver` is expected
- *  to carry (m): TrackerOptions::rangeDelay. */
-using RangeDelay =
-    std::function<double(int id, const Eigen::Vector3d& beacon, const Eigen::Vector3d& receiver)>;
+ *  to carry, and its spread (m): TrackerOptions::rangeDelay. */
+using RangeDelay = std::function<DelayMoments(int id, const Eigen::Vector3d& beacon,
+                                              const Eigen::Vector3d& receiver)>;
 
 /** [beacons] delay_compensation: each shot's expected decoder delay from the hardware's
  *  nominal model (UltrasonicLink::expectedRangeBias), its off-axis angle 0 for a head aimed
