@@ -59,6 +59,11 @@ void checkWorkOf(const Setup& s, bool simulating, bool localizing, bool quiet) {
 std::string doSimulate(Setup& s, const std::string& dir, bool quiet) {
     const auto files =
         sim::simulateToFiles(s.simulation->config, dir, quiet, s.simulation->payload.get());
+    // The payload's on-board parts (formation's camera among them) go now, while their EGL
+    // context lives: MRPT's CFBORender terminates the EGL display every renderer shares
+    // when it is destroyed, so a camera that outlived the experiment's cameras or the
+    // report's renderer threw from its destructor at exit (exit 134, issue 31).
+    s.simulation->payload.reset();
     return files.rawlog;
 }
 

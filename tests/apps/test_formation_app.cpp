@@ -254,3 +254,23 @@ TEST(MrlocFormation, PatrolRouteEndsWhereItStartsAndDeadReckoningDrivesAllOfIt) 
     EXPECT_GT(f["dead_reckoning_final_error_m"].get<double>(), 1.0);
     EXPECT_LT(f["final_error_m"].get<double>(), 0.6);
 }
+
+// A pixel march whose camera outlives other renderers (the experiment's camera starts, the
+// report's) ends with exit 0: MRPT's CFBORender terminates the EGL display every renderer
+// shares when it is destroyed, and the march's camera, destroyed at exit, threw "OpenGL
+// error: invalid value" from its destructor (exit 134, issue 31). It fails on the build
+// before the fix.
+TEST(MrlocFormation, APixelMarchCutShortWithCameraStartsExitsCleanly) {
+    std::string ini = writeIniFrom(config("formation_pixel"), "formation_pixel_teardown",
+                                   "runs            = 0", "runs = 1\ncamera_starts = 27\n#");
+    ini = writeIniFrom(ini, "formation_pixel_teardown", "duration          = 300",
+                       "duration = 40\n#");
+    const std::string out = tmp("formation_pixel_teardown");
+    const auto r = mrlocCmd("run " + ini + " -q --out " + out);
+    ASSERT_EQ(r.code, 0) << r.output;
+    EXPECT_NE(r.output.find("formation: ended before the destination: after move 1"),
+              std::string::npos)
+        << r.output;
+    EXPECT_EQ(r.output.find("OpenGL error"), std::string::npos) << r.output;
+    EXPECT_TRUE(std::filesystem::exists(out + "/report.html"));
+}

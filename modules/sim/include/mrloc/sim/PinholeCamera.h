@@ -3,6 +3,11 @@
 // pose and intrinsics, and the scene it looks at: the world's floor, walls and obstacles,
 // to which a method adds each robot's markers. Seed 000's omni panorama (four views) and
 // seed 003's front and rear cameras are all such views.
+//
+// Lifetime: MRPT 2.5's CFBORender terminates the EGL display every renderer shares when it is
+// destroyed, and a renderer destroyed after that throws from its destructor. So a camera
+// must go before any renderer created after it does (the app releases a simulation's
+// payload, and its cameras, as soon as the simulation ends).
 #include <mrloc/sim/World.h>
 #include <mrpt/img/CImage.h>
 #include <mrpt/img/TCamera.h>
