@@ -29,12 +29,7 @@ std::unique_ptr<mrpt::config::CConfigFileMemory> studyIni(const std::string& ext
 
 /** A square room of `side` with `n` spread beacons on a 2.5 m ceiling. */
 StudyRoom spreadRoom(double side, int n, bool active) {
-    StudyRoom r;
-    r.sizeX = r.sizeY = side;
-    r.beacons = spreadBeacons(side, side, 2.5, n);
-    r.active = active;
-    r.fixedAim = straightDown(r.beacons);
-    return r;
+    return beacons::spreadRoom(side, side, 2.5, n, active);
 }
 
 /** The paper room's hardware as config/beacons_paper_room.ini gives it. */

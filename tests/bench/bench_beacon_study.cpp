@@ -11,12 +11,7 @@ using namespace mrloc::beacons;
 namespace {
 
 StudyRoom roomOf(double side, int beacons, bool active) {
-    StudyRoom r;
-    r.sizeX = r.sizeY = side;
-    r.beacons = spreadBeacons(side, side, 2.5, beacons);
-    r.active = active;
-    r.fixedAim = straightDown(r.beacons);
-    return r;
+    return spreadRoom(side, side, 2.5, beacons, active);
 }
 
 StudyHardware hardware() {

@@ -336,6 +336,16 @@ double planarGdop(const BeaconMap& beacons, const std::vector<int>& ids, const T
 
 }  // namespace
 
+StudyRoom spreadRoom(double sizeX, double sizeY, double ceiling, int n, bool active) {
+    StudyRoom r;
+    r.sizeX = sizeX;
+    r.sizeY = sizeY;
+    r.beacons = spreadBeacons(sizeX, sizeY, ceiling, n);
+    r.active = active;
+    r.fixedAim = straightDown(r.beacons);
+    return r;
+}
+
 AgentsResult serveAgents(const StudyRoom& room, const StudyHardware& hw, const StudyMethod& method,
                          int agents, Channel channel, double seconds, int layouts, uint64_t seed,
                          double errorBound) {
@@ -368,6 +378,10 @@ AgentsResult serveAgents(const StudyRoom& room, const StudyHardware& hw, const S
         }
         std::vector<size_t> fixes(size_t(agents), 0);
         std::vector<double> lastServed(size_t(agents), -1);
+        // the GDOP of each agent's own loudest set: agents stand still, so once per layout
+        std::vector<double> ownGdop;
+        for (const auto& p : at)
+            ownGdop.push_back(planarGdop(room.beacons, runner.loudest(p, perFix), p));
         for (double t = 0; t < seconds;) {
             // longest waiting first, ties by index
             std::vector<size_t> order(static_cast<size_t>(agents));
@@ -382,9 +396,7 @@ AgentsResult serveAgents(const StudyRoom& room, const StudyHardware& hw, const S
                 auto mine = runner.loudest(at[a], perFix, taken);
                 // the leftovers of other agents may be in a line: not taken if the fix would
                 // be much weaker than from the agent's own loudest set
-                if (!taken.empty() &&
-                    planarGdop(room.beacons, mine, at[a]) >
-                        1.5 * planarGdop(room.beacons, runner.loudest(at[a], perFix), at[a]))
+                if (!taken.empty() && planarGdop(room.beacons, mine, at[a]) > 1.5 * ownGdop[a])
                     continue;
                 mine.erase(std::remove_if(mine.begin(), mine.end(),
                                           [&](int id) {

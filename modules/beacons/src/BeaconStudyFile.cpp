@@ -237,13 +237,7 @@ BeaconStudyFile runStudy(const StudySetup& setup, const BeaconOptions& run,
     };
 
     const auto spread = [&](double x, double y, int n, bool active) {
-        StudyRoom r;
-        r.sizeX = x;
-        r.sizeY = y;
-        r.beacons = spreadBeacons(x, y, o.ceiling, n);
-        r.active = active;
-        r.fixedAim = straightDown(r.beacons);
-        return r;
+        return spreadRoom(x, y, o.ceiling, n, active);
     };
     StudyRoom runActive;
     runActive.sizeX = roomX;

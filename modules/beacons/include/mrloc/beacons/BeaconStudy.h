@@ -128,6 +128,10 @@ BeaconMap spreadBeacons(double sizeX, double sizeY, double ceiling, int n);
 /** Fixed heads of a coverage layout: each straight down (its Voronoi cell's centre). */
 std::map<int, Eigen::Vector3d> straightDown(const BeaconMap& beacons);
 
+/** A sizeX x sizeY room with `n` spread beacons on the ceiling, heads active or, fixed,
+ *  straight down. */
+StudyRoom spreadRoom(double sizeX, double sizeY, double ceiling, int n, bool active);
+
 /** How the RF beacon shares the ultrasonic channel between agents. */
 enum class Channel {
     Shared,        ///< one agent per epoch, in turn (mrloc's simulator)
