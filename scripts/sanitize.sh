@@ -40,6 +40,15 @@ long+='|Mutations\.FormationRawlogIsRefusedOrCountedNeverSilentlyTaken|RealLogs\
 long+='|RealPolymap\.SenaLogOnIcpSlamsMapBesideIcpSlam|ScanLocalizer\.ClutteredHalfTurnScan'
 # twenty identical rooms, every layout and algorithm (Release; 2-5 rooms stay sanitized)
 long+='|Elimination\.TwentyIdenticalRoomsEveryLayout|MrlocPolymap\.TwentyIdenticalRoomsEveryAlgorithmEnds'
+# whole runs whose code other sanitized tests already cover, and checks of process behaviour
+# (byte-identical repeats, folder locks, an interrupted re-run) that sanitizers add nothing to
+long+='|MrlocPolymap\.RoomsWithPillarsLocalizeFromAGeneratedMapAndFromItsPolyFile'
+long+='|MrlocPolymap\.PaperExperimentOnTheSteps76MapLocalizesFromEveryStart'
+long+='|MrlocPolymap\.AFastRobotWithLongStepsIsFoundAtItsProbes|MrlocFramesync\.TeamOfFour'
+long+='|FormationAlgorithmOne\.MidpointRuleConvergesWithBeaconsFacingAnyWay'
+long+='|RunFolder\.AnInterruptedReRunLeavesThePreviousRunByteIdentical'
+long+='|RunFolder\.ASecondMrlocOnTheSameFolderIsRefused|Samples\.MrptsRawlogEditReadsEachAsMrlocInfoDoes'
+long+='|MrlocOmnivision\.ConventionalMethodAndByteIdenticalRepeats|MrlocRun\.SameIniAndSeedGiveByteIdenticalOutputs'
 if [ "${MRLOC_SANITIZE_ALL:-0}" = 1 ]; then
   ctest --output-on-failure -j "$(nproc)" "$@"
 else
