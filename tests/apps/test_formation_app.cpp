@@ -179,15 +179,17 @@ TEST(MrlocFormation, PixelModeMarchIsSteeredByTheCamerasAndTheMidpointRuleBeatsT
     EXPECT_EQ(m["formation"]["camera_lost_moves"], 0);
     const auto run = formation::FormationRunFile::read(out);
     ASSERT_EQ(run.moves.size(), 11u);
-    // Measured: each step within 5.8 mm laterally and 7.2 mm longitudinally of the vertex a
-    // perfect triangle on the real beacons gives; the last mover 42 mm off. Bounds with a
-    // margin of about 2 (15 mm, 0.07 m): the maneuvers' 2 % errors change with the seed.
+    // Measured with the 640 x 200 camera (f = 242.5 px: a pixel is twice the angle of the
+    // 1280 x 720 camera's, which kept each step within 7.2 mm): each step within 24 mm of the
+    // vertex a perfect triangle on the real beacons gives; the last mover 67 mm off. Bounds
+    // with a margin of about 1.5 (35 mm, 0.1 m): the maneuvers' 2 % errors change with the
+    // seed.
     for (const auto& mv : run.moves) {
-        EXPECT_LT(std::abs(mv.lateral), 0.015) << mv.robot << " " << mv.time;
-        EXPECT_LT(std::abs(mv.longitudinal), 0.015) << mv.robot << " " << mv.time;
+        EXPECT_LT(std::abs(mv.lateral), 0.035) << mv.robot << " " << mv.time;
+        EXPECT_LT(std::abs(mv.longitudinal), 0.035) << mv.robot << " " << mv.time;
     }
     const double midpoint = m["formation"]["final_error_m"].get<double>();
-    EXPECT_LT(midpoint, 0.07);
+    EXPECT_LT(midpoint, 0.1);
     // Frames went to the rawlog: each a CObservationBearingRange of the tags seen.
     const auto info = mrlocCmd("info " + out + "/formation_pixel.rawlog");
     EXPECT_NE(info.output.find("f1.front"), std::string::npos) << info.output;
@@ -204,7 +206,7 @@ TEST(MrlocFormation, PixelModeMarchIsSteeredByTheCamerasAndTheMidpointRuleBeatsT
         ASSERT_EQ(mrlocCmd("run " + ini + " -q --out " + far).code, 0);
         const auto j = common::loadJson(far + "/metrics.json")["formation"];
         EXPECT_EQ(j["camera_lost_moves"], 0) << j.dump(2);
-        EXPECT_LT(j["final_error_m"].get<double>(), 0.07);
+        EXPECT_LT(j["final_error_m"].get<double>(), 0.1);
     }
     // ... and `mrloc localize` on it reaches the same moves.
     const std::string again = tmp("formation_pixel_replay");
@@ -216,8 +218,9 @@ TEST(MrlocFormation, PixelModeMarchIsSteeredByTheCamerasAndTheMidpointRuleBeatsT
 
     // The paper's lateral condition (d_m1 = d_m2) puts the vertex twice the anchor's error
     // the other way; chained, the errors grow faster at every move. On a 19.5 m route (25
-    // moves) measured: the last mover 0.93 m off with the paper's rule (1.34 m at worst on the
-    // way), 0.146 m with the midpoint rule.
+    // moves) measured with the 1280 x 720 camera: the last mover 0.93 m off with the paper's
+    // rule (1.34 m at worst on the way), 0.146 m with the midpoint rule; with the 640 x 200
+    // camera 0.63 m (after 14 moves) and 0.151 m.
     const auto longer = [&](const std::string& rule) {
         std::string ini =
             writeIniFrom(config("formation_pixel"), "formation_pixel_" + rule,
@@ -225,12 +228,16 @@ TEST(MrlocFormation, PixelModeMarchIsSteeredByTheCamerasAndTheMidpointRuleBeatsT
         ini = writeIniFrom(ini, "formation_pixel_" + rule, "1.5 0.65   10.5 0.65",
                            "1.5 0.65 21 0.65");
         ini = writeIniFrom(ini, "formation_pixel_" + rule, "duration          = 300",
-                           "duration = 900");
+                           "duration = 1800");
         ini = writeIniFrom(ini, "formation_pixel_" + rule, "size       = 17 8 1", "size = 29 8 1");
         const std::string dir = tmp("formation_pixel_" + rule);
         EXPECT_EQ(mrlocCmd("run " + ini + " -q --out " + dir).code, 0);
         const auto j = common::loadJson(dir + "/metrics.json")["formation"];
-        EXPECT_EQ(j["moves"], 25) << rule;
+        // the midpoint rule arrives; the paper's falls behind (with the 640 x 200 camera it
+        // had built 14 of the 25 triangles, 0.63 m off, when the 1800 s ran out)
+        if (rule == "midpoint") {
+            EXPECT_EQ(j["moves"], 25);
+        }
         return j["final_error_m"].get<double>();
     };
     const double ours = longer("midpoint"), paper = longer("paper");

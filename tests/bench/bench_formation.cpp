@@ -6,6 +6,7 @@
 #include <mrloc/formation/AlgorithmOne.h>
 #include <mrloc/formation/March.h>
 #include <mrloc/formation/Markers.h>
+#include <mrloc/formation/PixelMarch.h>
 #include <mrloc/formation/Routes.h>
 #include <mrloc/sim/PinholeCamera.h>
 
@@ -41,7 +42,11 @@ void BM_TableOneMonteCarlo(benchmark::State& state) {
 void BM_RenderAndDetect(benchmark::State& state) {
     formation::MarkerOptions o;
     const auto step = formation::buildingStep(1.5, o);
-    sim::PinholeCamera camera(formation::cameraIntrinsics(485));
+    const double scale = double(state.range(1)) / 1280;
+    auto k = formation::cameraIntrinsics(485);
+    k.ncols = uint32_t(state.range(1)), k.nrows = uint32_t(std::lround(720 * scale));
+    k.setIntrinsicParamsFromValues(485 * scale, 485 * scale, k.ncols / 2.0, k.nrows / 2.0);
+    sim::PinholeCamera camera(k);
     const auto pose =
         sim::cameraPoseLooking({step.vertex.x(), step.vertex.y(), o.tagHeight}, M_PI / 2);
     // 0: none, 1: ArUco, 2: AprilTag 3 (decimation 2), 3: AprilTag 3 at full resolution (the
@@ -80,14 +85,59 @@ void BM_AlgorithmOne(benchmark::State& state) {
     state.counters["frames per run"] = double(frames) / double(state.iterations());
 }
 
+/** A camera of the pixel mode's field of view (f = 485 px at 1280 x 720) at `width` px. */
+mrpt::img::TCamera scaledCamera(long width, long rows = 0) {
+    const double scale = double(width) / 1280;
+    auto k = formation::cameraIntrinsics(485);
+    k.ncols = uint32_t(width), k.nrows = uint32_t(rows > 0 ? rows : std::lround(720 * scale));
+    k.setIntrinsicParamsFromValues(485 * scale, 485 * scale, k.ncols / 2.0, k.nrows / 2.0);
+    return k;
+}
+
+/** A whole pixel march (4 robots) along a route of seed 003: every frame rendered, searched
+ *  and decided on. Args: route (0 many turns, 1 patrol), camera width (px), seed. */
+void BM_PixelMarch(benchmark::State& state) {
+    const auto route = formation::route(state.range(0) == 0 ? "many_turns" : "patrol");
+    formation::PixelMarchOptions o;
+    o.camera.intrinsics = scaledCamera(state.range(1), state.range(4));
+    o.camera.algorithmOne.lateral = formation::AlgorithmOneOptions::Lateral::Midpoint;
+    o.camera.algorithmOne.together = state.range(3) != 0;
+    sim::PinholeCamera camera(o.camera.intrinsics);
+    size_t frames = 0, moves = 0, lost = 0;
+    double error = 0, rotation = 0;
+    for (auto _ : state) {
+        mrpt::random::CRandomGenerator rng(uint32_t(state.range(2)));
+        const auto r = formation::pixelMarch(4, route, {}, o, camera, rng);
+        frames += r.frames, moves += r.march.moves.size(), lost += r.lostMoves;
+        error = r.march.finalError();
+        rotation = r.rotation.empty() ? 0 : r.rotation.back() * 180 / M_PI;
+    }
+    const double n = double(state.iterations());
+    state.counters["frames/s"] = benchmark::Counter(double(frames), benchmark::Counter::kIsRate);
+    state.counters["frames"] = double(frames) / n;
+    state.counters["moves"] = double(moves) / n;
+    state.counters["lost"] = double(lost) / n;
+    state.counters["error m"] = error;
+    state.counters["rotation deg"] = rotation;
+}
+
 }  // namespace
 
+BENCHMARK(BM_PixelMarch)
+    ->ArgsProduct({{0, 1}, {640, 960, 1280}, {1}, {0, 1}, {0, 160, 200}})
+    ->Unit(benchmark::kMillisecond)
+    ->UseRealTime()
+    ->Iterations(1);
 BENCHMARK(BM_AlgorithmOne)->Unit(benchmark::kMillisecond)->UseRealTime();
 BENCHMARK(BM_RenderAndDetect)
-    ->Arg(0)
-    ->Arg(1)
-    ->Arg(2)
-    ->Arg(3)
+    ->Args({0, 1280})
+    ->Args({1, 1280})
+    ->Args({2, 1280})
+    ->Args({3, 1280})
+    ->Args({0, 640})
+    ->Args({3, 640})
+    ->Args({0, 960})
+    ->Args({3, 960})
     ->Unit(benchmark::kMillisecond)
     ->UseRealTime();
 BENCHMARK(BM_TableOneMonteCarlo)->Unit(benchmark::kMillisecond);

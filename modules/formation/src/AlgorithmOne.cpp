@@ -1,5 +1,6 @@
 #include <mrloc/common/Error.h>
 #include <mrloc/formation/AlgorithmOne.h>
+#include <mrloc/formation/CameraModel.h>
 #include <mrpt/math/wrap2pi.h>
 
 #include <cmath>
@@ -141,7 +142,11 @@ std::optional<std::vector<Maneuver>> AlgorithmOneController::decide(
     dm2_ = std::abs(reading->u2 - reading->ua);
     // seed 003 Algorithm 1, step 1: the anchor at the centre of the rear image. A point
     // right of centre lies right of the camera, left of the robot: turn towards it.
-    if (std::abs(ec) > o_.pixelTolerance) return std::vector{Maneuver::turn(-std::atan2(ec, f))};
+    std::vector<Maneuver> out;
+    if (std::abs(ec) > o_.pixelTolerance) {
+        out.push_back(Maneuver::turn(-std::atan2(ec, f)));
+        if (!o_.together) return out;  // and look again
+    }
     // Steps 3-9: while d_m1 != d_m2, turn towards the beacon that looks farther and move
     // sideways (the robot is a unicycle: turn a right angle, drive, turn back).
     double es = dm1_ - dm2_;
@@ -156,19 +161,21 @@ std::optional<std::vector<Maneuver>> AlgorithmOneController::decide(
         const double offset = -es / gain_;  // m, the robot's offset towards b1
         // b1 right of the anchor in the image: on the camera's right, the robot's left.
         const double towardsB1 = reading->u1 > reading->ua ? M_PI / 2 : -M_PI / 2;
-        return std::vector{Maneuver::turn(towardsB1), Maneuver::drive(-offset),
-                           Maneuver::turn(-towardsB1)};
+        for (const auto& m :
+             {Maneuver::turn(towardsB1), Maneuver::drive(-offset), Maneuver::turn(-towardsB1)})
+            out.push_back(m);
+        if (!o_.together) return out;
     }
     // Steps 10-17: forward (away) while d_m1 > d_t, back while d_m1 < d_t.
     const double dm = 0.5 * (dm1_ + dm2_);
-    if (std::abs(dm - dt_) > o_.pixelTolerance)
-        return std::vector{Maneuver::drive((dm - dt_) / slope_)};
-    return std::vector<Maneuver>{};
+    if (std::abs(dm - dt_) > o_.pixelTolerance) out.push_back(Maneuver::drive((dm - dt_) / slope_));
+    return out;
 }
 
 Maneuver executed(Maneuver m, const ManeuverNoise& noise, mrpt::random::CRandomGenerator& rng) {
     const double sd = m.kind == Maneuver::Kind::Turn ? noise.turn : noise.drive;
     m.amount *= 1 + sd * rng.drawGaussian1D_normalized();
+    if (noise.slip > 0) m.amount *= 1 - std::abs(noise.slip * rng.drawGaussian1D_normalized());
     return m;
 }
 
@@ -176,7 +183,7 @@ AlgorithmOneResult runAlgorithmOne(const mrpt::opengl::COpenGLScene& scene,
                                    const BeaconTriangle& beacons, mrpt::poses::CPose2D start,
                                    sim::PinholeCamera& camera, const MarkerOptions& markers,
                                    const AlgorithmOneOptions& o,
-                                   mrpt::random::CRandomGenerator& rng) {
+                                   mrpt::random::CRandomGenerator& rng, const CameraModel* lens) {
     AlgorithmOneController controller(beacons, camera.intrinsics(), markers, o);
     AlgorithmOneResult r;
     auto pose = start;
@@ -195,7 +202,8 @@ AlgorithmOneResult runAlgorithmOne(const mrpt::opengl::COpenGLScene& scene,
         const auto frame =
             camera.render(scene, rearCameraPose(pose, markers.bodySize, o.cameraHeight));
         ++r.frames;
-        const auto maneuvers = controller.decide(detectMarkers(frame));
+        const auto maneuvers =
+            controller.decide(lens ? lens->see(frame, rng) : detectMarkers(frame));
         r.dm1 = controller.dm1(), r.dm2 = controller.dm2();
         if (!maneuvers) break;
         if (maneuvers->empty()) {

@@ -116,13 +116,21 @@ std::vector<Maneuver> CameraMove::decide(const std::vector<MarkerSighting>& tags
                 return m;
             }
             const double centre = 0.5 * (a->u + b->u) - cx;
-            if (std::abs(centre) > o_.gateTolerance)  // a point right of centre: turn right
-                return order({Maneuver::turn(-std::atan2(centre, f))});
+            std::vector<Maneuver> m;
+            if (std::abs(centre) > o_.gateTolerance) {  // a point right of centre: turn right
+                m = order({Maneuver::turn(-std::atan2(centre, f))});
+                if (!o_.algorithmOne.together) return m;  // and look again
+            }
             // beacons s apart at depth D show f s / D apart; the tags face the robot, half a
             // body nearer than the robots' centres
             const double D = f * o_.side / std::abs(a->u - b->u) + o_.markers.bodySize / 2;
-            if (D > o_.gateStop + 0.15) return order({Maneuver::drive(D - o_.gateStop)});
-            auto m = order({Maneuver::drive(D)});
+            if (D > o_.gateStop + 0.15) {
+                auto drive = order({Maneuver::drive(D - o_.gateStop)});
+                m.insert(m.end(), drive.begin(), drive.end());
+                return m;
+            }
+            auto through = order({Maneuver::drive(D)});
+            m.insert(m.end(), through.begin(), through.end());
             auto next = gatePassed();
             m.insert(m.end(), next.begin(), next.end());
             return m;
@@ -131,10 +139,15 @@ std::vector<Maneuver> CameraMove::decide(const std::vector<MarkerSighting>& tags
             const auto anchor = largestTag(move_.anchor, tags);
             if (!anchor) return finishBlind();
             const double e = anchor->u - cx;
-            if (std::abs(e) > o_.algorithmOne.pixelTolerance)
-                return order({Maneuver::turn(-std::atan2(e, f))});
+            std::vector<Maneuver> m;
+            if (std::abs(e) > o_.algorithmOne.pixelTolerance) {
+                m = order({Maneuver::turn(-std::atan2(e, f))});
+                if (!o_.algorithmOne.together) return m;  // and look again
+            }
             phase_ = Phase::AlgorithmOne;  // out to the vertex, then Algorithm 1
-            return order({Maneuver::drive((move_.target - at_).norm())});
+            auto out = order({Maneuver::drive((move_.target - at_).norm())});
+            m.insert(m.end(), out.begin(), out.end());
+            return m;
         }
         case Phase::AlgorithmOne: {
             const auto m = algorithmOne_->decide(tags);

@@ -35,6 +35,15 @@ std::vector<TPoint2D> FormationConfig::worldRoute() const {
     return out;
 }
 
+mrpt::img::TCamera FormationConfig::cameraIntrinsics() const {
+    mrpt::img::TCamera k;
+    k.ncols = uint32_t(cameraWidth);
+    k.nrows = uint32_t(cameraRows);
+    k.setIntrinsicParamsFromValues(cameraFocal, cameraFocal, double(cameraWidth) / 2,
+                                   double(cameraRows) / 2);
+    return k;
+}
+
 std::vector<TPoint2D> FormationConfig::worldStrip() const {
     auto strip = initialStrip(robots, formation.side);
     for (auto& p : strip) p = p + origin;
@@ -86,8 +95,20 @@ void FormationConfig::loadFromConfigFile(const mrpt::config::CConfigFileBase& sr
     dr.scaleFactor = s.real("scale_factor", dr.scaleFactor, -0.5, 0.5);
     dr.speedNoise = s.real("speed_noise", dr.speedNoise, 0, 10);
     dr.dt = s.real("dr_period", dr.dt, 1e-3, 10);
-    cameraFocal = s.real("camera_focal", cameraFocal, 100, 5000);
+    cameraWidth = size_t(s.integer("camera_width", long(cameraWidth), 160, 4096));
+    cameraRows = size_t(s.integer("camera_rows", long(cameraRows), 60, 4096));
+    cameraFocal = s.real("camera_focal", cameraFocal, 50, 5000);
     pixelTolerance = s.real("pixel_tolerance", pixelTolerance, 0.1, 50);
+    together = s.choice("corrections", "together", {"together", "one_per_frame"}) == "together";
+    lens.k1 = s.real("lens_k1", lens.k1, -1, 1);
+    lens.k2 = s.real("lens_k2", lens.k2, -1, 1);
+    lens.p1 = s.real("lens_p1", lens.p1, -0.1, 0.1);
+    lens.p2 = s.real("lens_p2", lens.p2, -0.1, 0.1);
+    lens.calibrationError = s.real("lens_calibration_error", lens.calibrationError, -1, 1);
+    lens.blur = s.real("camera_blur", lens.blur, 0, 10);
+    lens.noise = s.real("camera_noise", lens.noise, 0, 100);
+    lens.exposure = s.real("camera_exposure", lens.exposure, 0.05, 4);
+    maneuverNoise.slip = s.real("wheel_slip", maneuverNoise.slip, 0, 0.5);
     lateral = s.choice("algorithm_one", "midpoint", {"paper", "midpoint"}) == "paper"
                   ? AlgorithmOneOptions::Lateral::Paper
                   : AlgorithmOneOptions::Lateral::Midpoint;
@@ -118,6 +139,7 @@ void FormationConfig::loadFromConfigFile(const mrpt::config::CConfigFileBase& sr
     experimentRobotsMax =
         size_t(s.integer("experiment_robots_max", long(experimentRobotsMax), 4, 50));
     cameraStarts = size_t(s.integer("camera_starts", long(cameraStarts), 0, 27));
+    pixelRuns = size_t(s.integer("pixel_runs", long(pixelRuns), 0, kMaxPixelRuns));
     if (cameraStarts != 0 && cameraStarts != 27)
         s.fail("camera_starts", "0 (none) or 27 (the 3 x 3 x 3 grid of starts)");
     // without the key, the experiment draws from the run's seed (--seed reaches it)
@@ -159,8 +181,20 @@ void FormationConfig::saveToConfigFile(mrpt::config::CConfigFileBase& t,
     t.write(section, "scale_factor", dr.scaleFactor);
     t.write(section, "speed_noise", dr.speedNoise);
     t.write(section, "dr_period", dr.dt);
+    t.write(section, "camera_width", int(cameraWidth));
+    t.write(section, "camera_rows", int(cameraRows));
     t.write(section, "camera_focal", cameraFocal);
     t.write(section, "pixel_tolerance", pixelTolerance);
+    t.write(section, "corrections", std::string(together ? "together" : "one_per_frame"));
+    t.write(section, "lens_k1", lens.k1);
+    t.write(section, "lens_k2", lens.k2);
+    t.write(section, "lens_p1", lens.p1);
+    t.write(section, "lens_p2", lens.p2);
+    t.write(section, "lens_calibration_error", lens.calibrationError);
+    t.write(section, "camera_blur", lens.blur);
+    t.write(section, "camera_noise", lens.noise);
+    t.write(section, "camera_exposure", lens.exposure);
+    t.write(section, "wheel_slip", maneuverNoise.slip);
     t.write(section, "algorithm_one",
             std::string(lateral == AlgorithmOneOptions::Lateral::Paper ? "paper" : "midpoint"));
     t.write(section, "gate_stop", gateStop);
@@ -179,6 +213,7 @@ void FormationConfig::saveToConfigFile(mrpt::config::CConfigFileBase& t,
     t.write(section, "experiment_routes", routes);
     t.write(section, "experiment_robots_max", int(experimentRobotsMax));
     t.write(section, "camera_starts", int(cameraStarts));
+    t.write(section, "pixel_runs", int(pixelRuns));
     if (experimentSeedGiven) t.write(section, "experiment_seed", std::to_string(experimentSeed));
 }
 

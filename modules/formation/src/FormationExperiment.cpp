@@ -2,10 +2,16 @@
 #include <mrloc/formation/AlgorithmOne.h>
 #include <mrloc/formation/FormationExperiment.h>
 #include <mrloc/formation/FormationLocalizer.h>
+#include <mrloc/formation/PixelMarch.h>
 #include <mrloc/formation/Routes.h>
 #include <mrpt/core/format.h>
 
+#include <algorithm>
+#include <atomic>
 #include <cmath>
+#include <exception>
+#include <mutex>
+#include <thread>
 
 namespace mrloc::formation {
 
@@ -25,10 +31,103 @@ size_t marchesPerRun(const FormationConfig& c) {
            (c.experimentRobotsMax >= 4 ? c.experimentRobotsMax - 3 : 0);
 }
 
+/** One pixel march and the dead-reckoned drive beside it. */
+struct PixelJob {
+    size_t route = 0, speed = 0, run = 0;
+    PixelMarchResult march;
+    double deadReckoning = 0;
+};
+
+/** Table 1 from pixels: pixel_runs pixel marches per route and speed, on every core. Each
+ *  worker thread renders with its own camera (an EGL context is current on one thread) and
+ *  each march draws from its own generator, seeded from the experiment's seed and the
+ *  march's place in the table: the same file whatever the thread count. */
+std::vector<FormationExperimentFile::PixelRow> pixelTable(const FormationConfig& c, bool quiet,
+                                                          std::vector<double>& lateral,
+                                                          std::vector<double>& longitudinal) {
+    std::vector<PixelJob> jobs;
+    for (size_t r = 0; r < c.experimentRoutes.size(); ++r)
+        for (size_t w = 0; w < c.experimentSpeeds.size(); ++w)
+            for (size_t run = 0; run < c.pixelRuns; ++run) jobs.push_back({r, w, run, {}, 0});
+    std::vector<std::vector<TPoint2D>> routes;
+    for (const auto& name : c.experimentRoutes) routes.push_back(route(name));
+    std::atomic<size_t> next{0}, done{0};
+    common::Progress progress("formation pixel experiment", jobs.size(), quiet);
+    std::exception_ptr failure;
+    std::mutex failureLock;
+    const auto work = [&](bool draws) {
+        try {
+            sim::PinholeCamera camera(c.cameraIntrinsics());
+            for (size_t k; (k = next++) < jobs.size();) {
+                auto& j = jobs[k];
+                mrpt::random::CRandomGenerator rng(
+                    uint32_t(c.experimentSeed * 2654435761u + 7919u * (k + 1)));
+                const double w = c.experimentSpeeds[j.speed];
+                j.march =
+                    pixelMarch(c.robots, routes[j.route], {}, pixelMarchOptions(c, w), camera, rng);
+                j.deadReckoning =
+                    deadReckon(routes[j.route], c.wheelRadius, w, c.deadReckoning, rng)
+                        .back()
+                        .error;
+                ++done;
+                if (draws) progress.update(done);
+            }
+        } catch (...) {
+            std::lock_guard<std::mutex> lock(failureLock);
+            if (!failure) failure = std::current_exception();
+            next = jobs.size();  // the others stop at their next march
+        }
+    };
+    const size_t threads = std::clamp<size_t>(std::thread::hardware_concurrency(), 1, 8);
+    std::vector<std::thread> pool;
+    for (size_t t = 1; t < threads; ++t) pool.emplace_back(work, false);
+    work(true);  // the calling thread works too and draws the bar
+    for (auto& t : pool) t.join();
+    if (failure) std::rethrow_exception(failure);
+    std::vector<FormationExperimentFile::PixelRow> rows;
+    for (size_t r = 0; r < c.experimentRoutes.size(); ++r)
+        for (size_t w = 0; w < c.experimentSpeeds.size(); ++w) {
+            FormationExperimentFile::PixelRow row;
+            row.route = c.experimentRoutes[r];
+            row.wheelSpeed = c.experimentSpeeds[w];
+            std::vector<double> errors;
+            for (const auto& j : jobs) {
+                if (j.route != r || j.speed != w) continue;
+                const auto& m = j.march;
+                ++row.runs;
+                row.arrived += m.march.arrived ? 1 : 0;
+                errors.push_back(m.march.finalError());
+                row.deadReckoning += j.deadReckoning;
+                row.lostMoves += double(m.lostMoves);
+                row.frames += double(m.frames);
+                row.rotation += m.rotation.empty() ? 0 : std::abs(m.rotation.back());
+                lateral.insert(lateral.end(), m.lateral.begin(), m.lateral.end());
+                longitudinal.insert(longitudinal.end(), m.longitudinal.begin(),
+                                    m.longitudinal.end());
+            }
+            const double n = double(row.runs);
+            for (const double e : errors)
+                row.formation += e / n, row.formationMax = std::max(row.formationMax, e);
+            for (const double e : errors)
+                row.formationSd += (e - row.formation) * (e - row.formation) / n;
+            row.formationSd = std::sqrt(row.formationSd);
+            row.deadReckoning /= n, row.lostMoves /= n, row.frames /= n, row.rotation /= n;
+            rows.push_back(row);
+        }
+    return rows;
+}
+
 }  // namespace
 
 FormationExperimentFile runFormationExperiment(const FormationConfig& c, bool quiet) {
     FormationExperimentFile f;
+    if (c.pixelRuns > 0) {
+        std::vector<double> lateral, longitudinal;
+        f.pixel = pixelTable(c, quiet, lateral, longitudinal);
+        const auto [lm, ls] = absMoments(lateral);
+        const auto [om, os] = absMoments(longitudinal);
+        f.steps.push_back({"pixel_march", lm, ls, om, os, lateral.size()});
+    }
     if (c.runs == 0) return f;
     common::Progress progress("formation experiment", c.runs * marchesPerRun(c), quiet);
     size_t marches = 0;
@@ -96,12 +195,15 @@ FormationExperimentFile runFormationExperiment(const FormationConfig& c, bool qu
     if (c.cameraStarts > 0) {  // the building step of fig. 3g from a 3 x 3 x 3 grid of starts
         MarkerOptions markers;
         const auto step = buildingStep(c.formation.side, markers);
-        sim::PinholeCamera camera(cameraIntrinsics(c.cameraFocal));
+        // the pixel mode's camera, through its camera model
+        sim::PinholeCamera camera(c.cameraIntrinsics());
+        const CameraModel lens(camera.intrinsics(), c.lens);
         AlgorithmOneOptions ao;
         ao.side = c.formation.side;
         ao.pixelTolerance = c.pixelTolerance;
         ao.lateral = c.lateral;
         ao.noise = c.maneuverNoise;
+        ao.together = c.together;
         std::vector<double> lat, lon;
         const auto& ideal = step.vertex;
         for (const double dx : {-0.15, 0.0, 0.15})
@@ -109,8 +211,8 @@ FormationExperimentFile runFormationExperiment(const FormationConfig& c, bool qu
                 for (const double heading : {-10.0, 0.0, 10.0}) {
                     const mrpt::poses::CPose2D start(ideal.x() + dx, ideal.y() - depth,
                                                      ideal.phi() + heading * M_PI / 180);
-                    const auto r =
-                        runAlgorithmOne(*step.scene, step.beacons, start, camera, markers, ao, rng);
+                    const auto r = runAlgorithmOne(*step.scene, step.beacons, start, camera,
+                                                   markers, ao, rng, &lens);
                     lat.push_back(r.end.x() - ideal.x());  // along the base
                     lon.push_back(r.end.y() - ideal.y());  // across it
                 }
@@ -146,6 +248,20 @@ std::vector<method::WorkItem> formationWork(const FormationLocalizer& localizer,
         w.simulation = true;
         out.push_back(w);
     }
+    if (c.pixelRuns > 0) {
+        // Measured: 8 pixel marches (both routes, both speeds) in 29 s on 2 cores with the
+        // default 640 x 200 camera: 7.2 s per march on a core, growing with the pixels
+        constexpr double kSecondsPerPixelMarch = 7.2;
+        const double pixels = double(c.cameraWidth * c.cameraRows) / (640.0 * 200.0);
+        method::WorkItem p;
+        p.what = mrpt::format("the pixel experiment's %zu marches",
+                              c.pixelRuns * c.experimentRoutes.size() * c.experimentSpeeds.size());
+        p.keys = "[formation] pixel_runs x experiment_routes x experiment_speeds, robots / 4";
+        p.seconds = double(c.pixelRuns * c.experimentRoutes.size() * c.experimentSpeeds.size()) *
+                    kSecondsPerPixelMarch * std::max(1.0, pixels) * double(c.robots) / 4;
+        p.parallel = true;  // pixelTable's pool
+        out.push_back(p);
+    }
     if (c.runs == 0) return out;
     double marchMetres = 0;  // Table 1 and fig. 14, then fig. 15 on the first route
     for (const auto& name : c.experimentRoutes)
@@ -165,7 +281,7 @@ std::vector<method::WorkItem> formationWork(const FormationLocalizer& localizer,
 
 std::vector<std::string> formationExperiment(const method::ExperimentOf<FormationLocalizer>& in) {
     const auto& loc = in.localizer;
-    if (loc.config().runs == 0) return {};
+    if (loc.config().runs == 0 && loc.config().pixelRuns == 0) return {};
     FormationConfig config = loc.config();
     if (!config.experimentSeedGiven) config.experimentSeed = in.seed;
     runFormationExperiment(config, in.quiet).write(in.outDir);

@@ -118,7 +118,9 @@ void FormationExperimentFile::write(const std::string& dir) const {
         << "# table route wheel_speed runs moves formation dead_reckoning formation_time "
            "dead_reckoning_time\n"
         << "# curve route wheel_speed kind time error | robots n runs error\n"
-        << "# step source lateral_mean lateral_sd longitudinal_mean longitudinal_sd count\n";
+        << "# step source lateral_mean lateral_sd longitudinal_mean longitudinal_sd count\n"
+        << "# pixel route wheel_speed runs arrived formation formation_sd formation_max "
+           "dead_reckoning lost_moves frames rotation\n";
     for (const auto& r : table)
         out << "table " << r.route << " " << formatNumber(r.wheelSpeed) << " " << r.runs << " "
             << r.moves << " " << formatNumber(r.formation) << " " << formatNumber(r.deadReckoning)
@@ -133,6 +135,12 @@ void FormationExperimentFile::write(const std::string& dir) const {
         out << "step " << s.source << " " << formatNumber(s.lateralMean) << " "
             << formatNumber(s.lateralSd) << " " << formatNumber(s.longitudinalMean) << " "
             << formatNumber(s.longitudinalSd) << " " << s.count << "\n";
+    for (const auto& r : pixel)
+        out << "pixel " << r.route << " " << formatNumber(r.wheelSpeed) << " " << r.runs << " "
+            << r.arrived << " " << formatNumber(r.formation) << " " << formatNumber(r.formationSd)
+            << " " << formatNumber(r.formationMax) << " " << formatNumber(r.deadReckoning) << " "
+            << formatNumber(r.lostMoves) << " " << formatNumber(r.frames) << " "
+            << formatNumber(r.rotation) << "\n";
     common::writeFileAtomically(path(dir), out.str());
 }
 
@@ -142,7 +150,8 @@ FormationExperimentFile FormationExperimentFile::read(const std::string& dir) {
         const std::string& tag = line.fields.at(0);
         // a route names the report's fig. 14 picture: a name, never a path (the file may
         // come from a run folder someone sent)
-        if (tag == "table" || tag == "curve") common::checkName(line.fields.at(1), line.where);
+        if (tag == "table" || tag == "curve" || tag == "pixel")
+            common::checkName(line.fields.at(1), line.where);
         if (tag == "table") {
             line.expectFields(9);
             f.table.push_back({line.fields[1], line.number(2), size_t(line.number(3)),
@@ -159,6 +168,12 @@ FormationExperimentFile FormationExperimentFile::read(const std::string& dir) {
             line.expectFields(7);
             f.steps.push_back({line.fields[1], line.number(2), line.number(3), line.number(4),
                                line.number(5), size_t(line.number(6))});
+        } else if (tag == "pixel") {
+            line.expectFields(12);
+            f.pixel.push_back({line.fields[1], line.number(2), size_t(line.number(3)),
+                               size_t(line.number(4)), line.number(5), line.number(6),
+                               line.number(7), line.number(8), line.number(9), line.number(10),
+                               line.number(11)});
         } else {
             throw Error(line.where + ": unknown record '" + tag + "'");
         }

@@ -179,6 +179,27 @@ report::Html experimentSection(const std::string& dir) {
                    mrpt::format("%.3f", r.deadReckoning), mrpt::format("%.0f", r.formationTime),
                    mrpt::format("%.0f", r.deadReckoningTime)});
     out += table.html();
+    if (!e.pixel.empty()) {
+        out += heading(3, "Table 1 from pixels") +
+               paragraph(
+                   "Each move steered by the moving robot's cameras alone: frames rendered, seen "
+                   "through the camera model and searched by AprilTag 3 (pixel_runs marches per "
+                   "route and speed, four robots unless [formation] robots says otherwise), each "
+                   "beside a dead-reckoned drive. Rotation: the formation's heading error at the "
+                   "end, which no rule that sees only the formation can observe "
+                   "(doc/formation.md).");
+        report::Table pixel({"route", "wheel speed (rad/s)", "runs", "arrived",
+                             "formation mean (m)", "sd (m)", "worst (m)", "dead reckoning (m)",
+                             "lost moves", "frames", "rotation (deg)"});
+        for (const auto& r : e.pixel)
+            pixel.row({r.route, mrpt::format("%g", r.wheelSpeed), std::to_string(r.runs),
+                       std::to_string(r.arrived), mrpt::format("%.3f", r.formation),
+                       mrpt::format("%.3f", r.formationSd), mrpt::format("%.3f", r.formationMax),
+                       mrpt::format("%.3f", r.deadReckoning), mrpt::format("%.2f", r.lostMoves),
+                       mrpt::format("%.0f", r.frames),
+                       mrpt::format("%.2f", r.rotation * 180 / M_PI)});
+        out += pixel.html();
+    }
     // the speed ratios, the paper's finding
     for (const auto& a : e.table)
         for (const auto& b : e.table)
@@ -229,8 +250,9 @@ report::Html experimentSection(const std::string& dir) {
             "(lateral) and across it (longitudinal). " +
             report::emphasis("model") + ": the error model's draws, which the marches above use; " +
             report::emphasis("camera") +
-            ": Algorithm 1 from rendered frames (AprilTag 3), from a grid of starts "
-            "around the vertex.");
+            ": Algorithm 1 from rendered frames (AprilTag 3, the pixel mode's camera and camera "
+            "model), from a grid of starts around the vertex; " +
+            report::emphasis("pixel_march") + ": every step of Table 1's pixel marches.");
     auto steps = stepErrorTable();
     for (const auto& s : e.steps)
         addStepErrors(steps, s.source, s.count, s.lateralMean, s.lateralSd, s.longitudinalMean,

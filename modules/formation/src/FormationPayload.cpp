@@ -1,5 +1,6 @@
 #include <mrloc/common/Error.h>
 #include <mrloc/formation/FormationPayload.h>
+#include <mrloc/formation/PixelMarch.h>
 #include <mrloc/sim/Scanner.h>
 #include <mrpt/core/format.h>
 #include <mrpt/math/wrap2pi.h>
@@ -97,30 +98,20 @@ double FormationPayload::headingError(const sim::Step& step) const {
                                 step.fleet.robot(m.robot).pose().phi());
 }
 
-CameraMoveOptions cameraMoveOptions(const FormationConfig& c) {
-    CameraMoveOptions o;
-    o.side = c.formation.side;
-    o.intrinsics = cameraIntrinsics(c.cameraFocal);
-    o.algorithmOne.side = c.formation.side;
-    o.algorithmOne.pixelTolerance = c.pixelTolerance;
-    o.algorithmOne.lateral = c.lateral;
-    o.algorithmOne.noise = c.maneuverNoise;
-    o.gateStop = c.gateStop;
-    return o;
-}
-
 void FormationPayload::startCameraMove(sim::Step& step) {
     const Move& m = *team_.current();
-    if (!camera_)
-        camera_ = std::make_unique<sim::PinholeCamera>(cameraIntrinsics(config_.cameraFocal));
-    const MarkerOptions markers;
-    // The scene is drawn about the moving robot: the renderer works in single precision, and
-    // 30 m from the origin a robot's body (2 cm behind its tags) showed through them.
-    sceneOrigin_ = mrpt::poses::CPose2D(step.fleet.robot(m.robot).pose().x(),
-                                        step.fleet.robot(m.robot).pose().y(), 0);
-    scene_ = sim::makeWorldScene(step.world.options(), false);
-    for (size_t i = 0; i < robots_; ++i)
-        if (i != m.robot) addRobot(*scene_, step.fleet.robot(i).pose() - sceneOrigin_, i, markers);
+    if (!camera_) {  // the cameras and the scene, once for the march
+        camera_ = std::make_unique<sim::PinholeCamera>(config_.cameraIntrinsics());
+        lens_.emplace(camera_->intrinsics(), config_.lens);
+        scene_.emplace(robots_, MarkerOptions{});
+    }
+    // The scene about the moving robot (single precision), the mover not in its own view.
+    const auto& mover = step.fleet.robot(m.robot).pose();
+    scene_->setOrigin({mover.x(), mover.y()});
+    for (size_t i = 0; i < robots_; ++i) {
+        scene_->place(i, step.fleet.robot(i).pose());
+        scene_->show(i, i != m.robot);
+    }
     std::vector<double> headings;
     for (size_t i = 0; i < robots_; ++i) headings.push_back(team_.believedHeading(i));
     cameraMove_.emplace(m, team_.believed(), headings, cameraMoveOptions(config_));
@@ -159,12 +150,12 @@ void FormationPayload::cameraFrame(sim::Step& step) {
     const auto& robot = step.fleet.robot(team_.current()->robot);
     const bool front = cameraMove_->camera() == CameraMove::Camera::Front;
     const MarkerOptions markers;
-    const auto local = robot.pose() - sceneOrigin_;  // in the scene's frame
+    const auto local = scene_->local(robot.pose());
     const auto pose = front ? frontCameraPose(local, markers.bodySize, markers.tagHeight)
                             : rearCameraPose(local, markers.bodySize, markers.tagHeight);
-    const auto picture = camera_->render(*scene_, pose);
-    // full resolution: a far anchor seen edge-on shows two tags of about 25 px
-    const auto tags = detectMarkers(picture, 1);
+    // through the camera model, at full resolution (a far anchor seen edge-on shows two
+    // small tags, which the detector's decimation loses)
+    const auto tags = lens_->see(camera_->render(scene_->scene(), pose), step.rng);
     // the frame's tags as bearings from the camera (MRPT's class for landmark sightings)
     const auto& k = camera_->intrinsics();
     auto obs = mrpt::obs::CObservationBearingRange::Create();

@@ -65,16 +65,15 @@ mrpt::math::TPoint3D markerCentre(const mrpt::poses::CPose2D& robot, Side side,
     return {robot.x() + r * std::cos(a), robot.y() + r * std::sin(a), o.tagHeight};
 }
 
-void addRobot(mrpt::opengl::COpenGLScene& scene, const mrpt::poses::CPose2D& pose, size_t robot,
-              const MarkerOptions& o) {
+mrpt::opengl::CSetOfObjects::Ptr robotObjects(size_t robot, const MarkerOptions& o) {
+    auto objects = mrpt::opengl::CSetOfObjects::Create();
     // The body stands 2 cm inside its tags: the renderer's depth buffer cannot tell a tag from
     // a face 1 mm behind it beyond about 2 m (a tag there came out black).
     const double h = o.bodySize / 2 - 0.02;
     auto body = mrpt::opengl::CBox::Create(mrpt::math::TPoint3D{-h, -h, 0},
                                            mrpt::math::TPoint3D{h, h, o.bodyHeight});
     body->setColor_u8(60, 60, 70);
-    body->setPose(mrpt::poses::CPose3D(pose.x(), pose.y(), 0, pose.phi(), 0, 0));
-    scene.insert(body);
+    objects->insert(body);
     const double half = o.tagSize / 2 * kPrintedPixels / kTagPixels;  // with its margin
     for (const Side side : {Side::Front, Side::Left, Side::Back, Side::Right}) {
         auto plane = mrpt::opengl::CTexturedPlane::Create(-half, half, -half, half);
@@ -85,12 +84,20 @@ void addRobot(mrpt::opengl::COpenGLScene& scene, const mrpt::poses::CPose2D& pos
         // a tag is printed on one side: from behind, at a robot's corner, its back would cut
         // into the white margin of the next side's tag and hide it from the detector
         plane->cullFaces(mrpt::opengl::TCullFace::BACK);
-        const auto c = markerCentre(pose, side, o);
-        const double facing = pose.phi() + double(int(side)) * M_PI / 2;
+        const auto c = markerCentre(mrpt::poses::CPose2D(0, 0, 0), side, o);
+        const double facing = double(int(side)) * M_PI / 2;
         // The plane's +Z (its normal) outwards, its +X to the viewer's right, +Y up.
         plane->setPose(mrpt::poses::CPose3D(c.x, c.y, c.z, facing + M_PI / 2, 0, M_PI / 2));
-        scene.insert(plane);
+        objects->insert(plane);
     }
+    return objects;
+}
+
+void addRobot(mrpt::opengl::COpenGLScene& scene, const mrpt::poses::CPose2D& pose, size_t robot,
+              const MarkerOptions& o) {
+    auto objects = robotObjects(robot, o);
+    objects->setPose(mrpt::poses::CPose3D(pose.x(), pose.y(), 0, pose.phi(), 0, 0));
+    scene.insert(objects);
 }
 
 std::vector<MarkerSighting> detectMarkersArUco(const mrpt::img::CImage& picture) {
@@ -108,11 +115,12 @@ std::vector<MarkerSighting> detectMarkersArUco(const mrpt::img::CImage& picture)
         const double den = d1.x * d2.y - d1.y * d2.x;
         const double t = (w.x * d2.y - w.y * d2.x) / den;
         const double area = 0.5 * std::abs(d1.x * d2.y - d1.y * d2.x);  // a quad's, by diagonals
+        const std::array<mrpt::math::TPoint2D, 4> quad{mrpt::math::TPoint2D{c[0].x, c[0].y},
+                                                       {c[1].x, c[1].y},
+                                                       {c[2].x, c[2].y},
+                                                       {c[3].x, c[3].y}};
         out.push_back({ids[i], c[0].x + t * d1.x, c[0].y + t * d1.y, std::sqrt(area),
-                       verticalEdgeHeight({mrpt::math::TPoint2D{c[0].x, c[0].y},
-                                           {c[1].x, c[1].y},
-                                           {c[2].x, c[2].y},
-                                           {c[3].x, c[3].y}})});
+                       verticalEdgeHeight(quad), quad});
     }
     std::sort(out.begin(), out.end(),
               [](const MarkerSighting& a, const MarkerSighting& b) { return a.id < b.id; });
@@ -147,16 +155,29 @@ std::vector<MarkerSighting> detectMarkers(const mrpt::img::CImage& picture, floa
         zarray_get(detections, i, &d);
         const double e1x = d->p[2][0] - d->p[0][0], e1y = d->p[2][1] - d->p[0][1];
         const double e2x = d->p[3][0] - d->p[1][0], e2y = d->p[3][1] - d->p[1][1];
+        const std::array<mrpt::math::TPoint2D, 4> quad{mrpt::math::TPoint2D{d->p[0][0], d->p[0][1]},
+                                                       {d->p[1][0], d->p[1][1]},
+                                                       {d->p[2][0], d->p[2][1]},
+                                                       {d->p[3][0], d->p[3][1]}};
         out.push_back({d->id, d->c[0], d->c[1], std::sqrt(0.5 * std::abs(e1x * e2y - e1y * e2x)),
-                       verticalEdgeHeight({mrpt::math::TPoint2D{d->p[0][0], d->p[0][1]},
-                                           {d->p[1][0], d->p[1][1]},
-                                           {d->p[2][0], d->p[2][1]},
-                                           {d->p[3][0], d->p[3][1]}})});
+                       verticalEdgeHeight(quad), quad});
     }
     apriltag_detections_destroy(detections);
     std::sort(out.begin(), out.end(),
               [](const MarkerSighting& a, const MarkerSighting& b) { return a.id < b.id; });
     return out;
+}
+
+MarkerSighting sightingFromCorners(int id, const std::array<mrpt::math::TPoint2D, 4>& c) {
+    const mrpt::math::TPoint2D d1 = c[2] - c[0], d2 = c[3] - c[1], w = c[1] - c[0];
+    const double cross = d1.x * d2.y - d1.y * d2.x;
+    const double t = std::abs(cross) > 1e-12 ? (w.x * d2.y - w.y * d2.x) / cross : 0.5;
+    return {id,
+            c[0].x + t * d1.x,
+            c[0].y + t * d1.y,
+            std::sqrt(0.5 * std::abs(cross)),
+            verticalEdgeHeight(c),
+            c};
 }
 
 double verticalEdgeHeight(const std::array<mrpt::math::TPoint2D, 4>& c) {

@@ -20,6 +20,9 @@ namespace mrloc::formation {
  *  `executed`, so both stray alike. */
 struct ManeuverNoise {
     double turn = 0.02, drive = 0.02;
+    /** Wheel slip: the share of a maneuver the wheels lose on the floor, half-normal with
+     *  this sd (a slipping wheel falls short, never long); 0: none. */
+    double slip = 0;
 };
 
 struct AlgorithmOneOptions {
@@ -39,6 +42,12 @@ struct AlgorithmOneOptions {
      *    the belief predicts). The vertex is then the reflection of the real anchor across
      *    the real base: an anchor off by d puts it d the other way. */
     enum class Lateral { Paper, Midpoint } lateral = Lateral::Paper;
+    /** Every correction one frame asks for executed before the next frame (the centring
+     *  turn, the sideways maneuver and the depth drive, each from the same frame to first
+     *  order), rather than one per frame as the paper's steps are listed; the stop conditions
+     *  are the paper's. The pixel march's gates and face-away step do the same (a turn and
+     *  its drive from one frame). */
+    bool together = false;
 };
 
 /** The beacons: base b1, base b2 and the anchor as the formation believes them (the perfect
@@ -84,7 +93,8 @@ struct Maneuver {
     static Maneuver drive(double distance) { return {Kind::Drive, distance}; }
 };
 
-/** The maneuver as the wheels execute it: its amount times 1 + noise x N(0, 1). */
+/** The maneuver as the wheels execute it: its amount times 1 + noise x N(0, 1), and times
+ *  1 - |slip x N(0, 1)| when there is slip. */
 Maneuver executed(Maneuver m, const ManeuverNoise& noise, mrpt::random::CRandomGenerator& rng);
 
 /** The rear camera on the robot's back face, looking backwards, at `height`. */
@@ -116,11 +126,13 @@ class AlgorithmOneController {
 };
 
 /** Runs Algorithm 1 from `start` (the robot's centre and heading) among `beacons` in
- *  `scene` (the beacons already added; the moving robot is not in its own view). */
+ *  `scene` (the beacons already added; the moving robot is not in its own view); each frame
+ *  seen through `lens` (CameraModel) when given, else searched as rendered. */
 AlgorithmOneResult runAlgorithmOne(const mrpt::opengl::COpenGLScene& scene,
                                    const BeaconTriangle& beacons, mrpt::poses::CPose2D start,
                                    sim::PinholeCamera& camera, const MarkerOptions& markers,
                                    const AlgorithmOneOptions& options,
-                                   mrpt::random::CRandomGenerator& rng);
+                                   mrpt::random::CRandomGenerator& rng,
+                                   const class CameraModel* lens = nullptr);
 
 }  // namespace mrloc::formation

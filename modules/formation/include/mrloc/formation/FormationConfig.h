@@ -3,6 +3,7 @@
 // The team, its route and its sensors for the simulator and the localizer, and the Monte
 // Carlo experiment of seed 003 sec. 5 (Table 1, figs. 14-15).
 #include <mrloc/formation/AlgorithmOne.h>
+#include <mrloc/formation/CameraModel.h>
 #include <mrloc/formation/DeadReckoning.h>
 #include <mrloc/formation/March.h>
 #include <mrloc/sim/Scanner.h>
@@ -17,6 +18,8 @@ struct FormationConfig : public mrpt::config::CLoadableOptions {
     /** Upper bounds (doc/errors.md): robots by the 36h11 family's ids (4 tags per robot),
      *  moves and Monte Carlo runs by time. */
     static constexpr long kMaxRobots = 146, kMaxMoves = 100000, kMaxRuns = 100000;
+    /** Table 1 from pixels: a pixel march takes seconds (doc/errors.md, "Work"). */
+    static constexpr long kMaxPixelRuns = 1000;
 
     /** Where a move ends: drawn from the paper's per-step errors (Model), or where the
      *  robot's cameras steer it, frame by frame (Pixel: CameraMove). */
@@ -32,8 +35,16 @@ struct FormationConfig : public mrpt::config::CLoadableOptions {
     VertexErrorModel vertexErrors;
     DeadReckoningOptions deadReckoning;
     // The pixel mode's cameras and control (CameraMove, AlgorithmOne)
-    double cameraFocal = 485;   ///< px, 1280 x 720 front and rear cameras
+    /** The front and rear cameras: camera_width x camera_rows px, the rows a band about the
+     *  horizon (the tags stand at the cameras' height: the rows above and below never hold
+     *  one), focal length camera_focal px (a 105-degree horizontal field of view). */
+    size_t cameraWidth = 640, cameraRows = 200;
+    double cameraFocal = 242.5;
     double pixelTolerance = 2;  ///< px, Algorithm 1's conditions
+    /** Each frame's corrections executed together (AlgorithmOneOptions::together), or one
+     *  per frame (the paper's steps as listed). */
+    bool together = true;
+    CameraModelOptions lens;  ///< the camera model: distortion, blur, noise, exposure
     /** Algorithm 1's lateral condition: ours by default (the paper's amplifies errors when
      *  moves are chained; doc/formation.md). */
     AlgorithmOneOptions::Lateral lateral = AlgorithmOneOptions::Lateral::Midpoint;
@@ -49,6 +60,8 @@ struct FormationConfig : public mrpt::config::CLoadableOptions {
     std::vector<std::string> experimentRoutes{"many_turns", "patrol"};
     size_t experimentRobotsMax = 10;  ///< fig. 15: N = 4 .. this
     size_t cameraStarts = 27;         ///< Algorithm 1 from pixels: a 3 x 3 x 3 grid, or 0
+    /** Table 1 from pixels: pixel marches per route and speed (0: none), on every core. */
+    size_t pixelRuns = 0;
     /** experiment_seed; without it (experimentSeedGiven false) the run's seed is used. */
     unsigned long experimentSeed = 1;
     bool experimentSeedGiven = false;
@@ -58,6 +71,8 @@ struct FormationConfig : public mrpt::config::CLoadableOptions {
     /** The robots' starts in the world frame (initialStrip + origin). */
     std::vector<TPoint2D> worldStrip() const;
     double speed() const { return wheelRadius * wheelSpeed; }  ///< m/s
+    /** The front and rear cameras' intrinsics (camera_width, camera_rows, camera_focal). */
+    mrpt::img::TCamera cameraIntrinsics() const;
 
     void loadFromConfigFile(const mrpt::config::CConfigFileBase& source,
                             const std::string& section) override;

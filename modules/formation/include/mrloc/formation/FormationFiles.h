@@ -74,7 +74,19 @@ struct FormationExperimentFile {
         double lateralMean = 0, lateralSd = 0, longitudinalMean = 0, longitudinalSd = 0;
         size_t count = 0;
     };
+    /** Table 1 from pixels: pixel marches (PixelMarch) per route and speed, each beside a
+     *  dead-reckoned drive of the same route. Errors at the destination in m (mean, sd,
+     *  worst), arrived marches, lost moves and frames per march, and the formation's
+     *  rotation at the end (mean |angle|, rad). */
+    struct PixelRow {
+        std::string route;
+        double wheelSpeed = 0;
+        size_t runs = 0, arrived = 0;
+        double formation = 0, formationSd = 0, formationMax = 0, deadReckoning = 0;
+        double lostMoves = 0, frames = 0, rotation = 0;
+    };
     std::vector<TableRow> table;
+    std::vector<PixelRow> pixel;
     std::vector<CurvePoint> curves;
     std::vector<RobotsRow> robots;
     std::vector<StepRow> steps;

@@ -20,6 +20,7 @@
 #include <mrloc/formation/CameraMove.h>
 #include <mrloc/formation/DeadReckoning.h>
 #include <mrloc/formation/FormationConfig.h>
+#include <mrloc/formation/FormationScene.h>
 #include <mrloc/formation/Team.h>
 #include <mrloc/sim/Payload.h>
 
@@ -74,8 +75,8 @@ class FormationPayload : public sim::Payload {
     double drTravelled_ = 0, drRouteLength_ = 0;  ///< m, truly driven and the route's length
     // pixel mode
     std::unique_ptr<sim::PinholeCamera> camera_;
-    mrpt::opengl::COpenGLScene::Ptr scene_;  ///< every robot but the mover, with its tags
-    mrpt::poses::CPose2D sceneOrigin_;       ///< the scene's origin in the world: the mover
+    std::optional<CameraModel> lens_;
+    std::optional<FormationScene> scene_;  ///< every formation robot, built once
     std::optional<CameraMove> cameraMove_;
     std::deque<Maneuver> maneuvers_;  ///< to execute, real amounts (errors drawn)
 };

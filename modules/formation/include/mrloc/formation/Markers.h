@@ -8,6 +8,7 @@
 #include <mrpt/math/TPoint2D.h>
 #include <mrpt/math/TPoint3D.h>
 #include <mrpt/opengl/COpenGLScene.h>
+#include <mrpt/opengl/CSetOfObjects.h>
 #include <mrpt/poses/CPose2D.h>
 #include <mrpt/poses/CPose3D.h>
 
@@ -34,7 +35,11 @@ int markerId(size_t robot, Side side);
 mrpt::math::TPoint3D markerCentre(const mrpt::poses::CPose2D& robot, Side side,
                                   const MarkerOptions& options);
 
-/** Adds robot r at `pose` to the scene: its body and its four tags, each facing outwards. */
+/** Robot r as the cameras see it, about its own centre (facing +X): its body and its four
+ *  tags, each facing outwards; place it with setPose. */
+mrpt::opengl::CSetOfObjects::Ptr robotObjects(size_t robot, const MarkerOptions& options);
+
+/** Adds robot r at `pose` to the scene (robotObjects, placed). */
 void addRobot(mrpt::opengl::COpenGLScene& scene, const mrpt::poses::CPose2D& pose, size_t robot,
               const MarkerOptions& options);
 
@@ -48,7 +53,13 @@ struct MarkerSighting {
      *  upright tag, whatever the angle it is seen at (a turn foreshortens its width, not its
      *  height). */
     double height = 0;
+    /** Its corners (px), in the detector's order. */
+    std::array<mrpt::math::TPoint2D, 4> corners{};
 };
+
+/** A sighting from its corners alone: the centre where the diagonals cross (perspective keeps
+ *  straight lines straight), the size and the height as the detectors give them. */
+MarkerSighting sightingFromCorners(int id, const std::array<mrpt::math::TPoint2D, 4>& corners);
 
 /** `decimate`: the detector's quad decimation (2: its quads found on a half-size picture,
  *  faster; 1: small tags too, such as a far robot seen edge-on).
