@@ -49,6 +49,8 @@ long+='|FormationAlgorithmOne\.MidpointRuleConvergesWithBeaconsFacingAnyWay'
 long+='|RunFolder\.AnInterruptedReRunLeavesThePreviousRunByteIdentical'
 long+='|RunFolder\.ASecondMrlocOnTheSameFolderIsRefused|Samples\.MrptsRawlogEditReadsEachAsMrlocInfoDoes'
 long+='|MrlocOmnivision\.ConventionalMethodAndByteIdenticalRepeats|MrlocRun\.SameIniAndSeedGiveByteIdenticalOutputs'
+# the pixel experiment's marches (the pixel march's code stays sanitized in PixelMarch.NineMetres)
+long+='|PixelMarch\.TableOneFromPixelsBeatsDeadReckoningAndRepeats'
 if [ "${MRLOC_SANITIZE_ALL:-0}" = 1 ]; then
   ctest --output-on-failure -j "$(nproc)" "$@"
 else

@@ -156,6 +156,10 @@ TEST(MrlocFormation, BadFormationInputIsAClearErrorAndWritesNothing) {
         {"runs          = 0", "runs = 0\ndr_period = 0.07",
          "dr_period = 0.07 s must be a whole number"},
         {"safety_margin = 0.3", "safety_margin = nan", "[formation] safety_margin"},
+        {"safety_margin = 0.3", "safety_margin = 0.3\ncamera_width = 642",
+         "[formation] camera_width: a multiple of 4"},
+        {"safety_margin = 0.3", "safety_margin = 0.3\nlens_k1 = 2", "[formation] lens_k1"},
+        {"safety_margin = 0.3", "safety_margin = 0.3\npixel_runs = 1001", "[formation] pixel_runs"},
     };
     for (const auto& c : cases) {
         const std::string ini =
@@ -220,7 +224,8 @@ TEST(MrlocFormation, PixelModeMarchIsSteeredByTheCamerasAndTheMidpointRuleBeatsT
     // the other way; chained, the errors grow faster at every move. On a 19.5 m route (25
     // moves) measured with the 1280 x 720 camera: the last mover 0.93 m off with the paper's
     // rule (1.34 m at worst on the way), 0.146 m with the midpoint rule; with the 640 x 200
-    // camera 0.63 m (after 14 moves) and 0.151 m.
+    // camera, its beacons re-acquired (before that the paper's rule lost them and fell
+    // behind), 0.38 m and 0.151 m.
     const auto longer = [&](const std::string& rule) {
         std::string ini =
             writeIniFrom(config("formation_pixel"), "formation_pixel_" + rule,
@@ -233,18 +238,30 @@ TEST(MrlocFormation, PixelModeMarchIsSteeredByTheCamerasAndTheMidpointRuleBeatsT
         const std::string dir = tmp("formation_pixel_" + rule);
         EXPECT_EQ(mrlocCmd("run " + ini + " -q --out " + dir).code, 0);
         const auto j = common::loadJson(dir + "/metrics.json")["formation"];
-        // the midpoint rule arrives; the paper's falls behind (with the 640 x 200 camera it
-        // had built 14 of the 25 triangles, 0.63 m off, when the 1800 s ran out)
-        if (rule == "midpoint") {
-            EXPECT_EQ(j["moves"], 25);
-        }
+        EXPECT_EQ(j["moves"], 25) << rule;
         return j["final_error_m"].get<double>();
     };
     const double ours = longer("midpoint"), paper = longer("paper");
     std::cout << "pixel mode, 25 moves, the last mover's error: midpoint rule " << ours
               << " m, the paper's " << paper << " m\n";
     EXPECT_LT(ours, 0.2);
-    EXPECT_GT(paper, 3 * ours);
+    EXPECT_GT(paper, 2 * ours);  // measured 2.5 times
+}
+
+TEST(MrlocFormation, AMarchWhoseCamerasFindNoTagSaysSoInTheHeadline) {
+    // A focal length of 60 px shows a tag 1.3 m away in 7 px: AprilTag 3 finds none, every
+    // move re-acquires in vain and is finished blind. The run must not read as a success.
+    const std::string ini = writeIniFrom(config("formation_pixel"), "formation_blind",
+                                         "camera_focal    = 242.5", "camera_focal = 60");
+    const std::string out = tmp("formation_blind");
+    const auto r = mrlocCmd("run " + ini + " --out " + out);
+    ASSERT_EQ(r.code, 0) << r.output;
+    const auto m = common::loadJson(out + "/metrics.json")["formation"];
+    const int lost = m["camera_lost_moves"].get<int>();
+    EXPECT_EQ(lost, m["moves"].get<int>()) << m.dump(2);
+    EXPECT_NE(r.output.find(std::to_string(lost) + " moves lost the beacons and went on blind"),
+              std::string::npos)
+        << r.output;
 }
 
 TEST(MrlocFormation, PatrolRouteEndsWhereItStartsAndDeadReckoningDrivesAllOfIt) {

@@ -174,6 +174,8 @@ TEST(MrlocOmnivision, BadOmnivisionInputIsAClearErrorAndWritesNothing) {
         {"duration = 23", "duration = 11", "after [scenario] duration"},
         {"camera = render ", "camera = fisheye ", "[omnivision] camera"},
         {"view_width = 512 ", "view_width = wide ", "[omnivision] view_width"},
+        // a width whose rows are not whole 4-byte words overran the rendered picture's memory
+        {"view_width = 512 ", "view_width = 513 ", "[omnivision] view_width: a multiple of 4"},
     };
     for (const auto& c : cases) {
         const std::string ini = writeIniFrom(config("omnivision_5robots"), "badomni", c.from, c.to);

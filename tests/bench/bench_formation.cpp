@@ -1,9 +1,12 @@
-// Speed of seed 003's Monte Carlo in the error-model mode: the target is 100 runs x
-// 2 routes x 2 wheel speeds (formation and dead reckoning each) in under 2 s.
+// Speed of seed 003's Monte Carlo in the error-model mode (the target: 100 runs x 2 routes x
+// 2 wheel speeds, formation and dead reckoning each, in under 2 s), of rendering and searching
+// a frame at several resolutions, of whole pixel marches over both routes and several seeds,
+// and of the pixel experiment (Table 1 from pixels).
 // Run: build/tests/bench/bench_formation --benchmark_repetitions=5
 //      --benchmark_report_aggregates_only=true   (report the medians)
 #include <benchmark/benchmark.h>
 #include <mrloc/formation/AlgorithmOne.h>
+#include <mrloc/formation/FormationExperiment.h>
 #include <mrloc/formation/March.h>
 #include <mrloc/formation/Markers.h>
 #include <mrloc/formation/PixelMarch.h>
@@ -102,7 +105,7 @@ void BM_PixelMarch(benchmark::State& state) {
     o.camera.intrinsics = scaledCamera(state.range(1), state.range(4));
     o.camera.algorithmOne.lateral = formation::AlgorithmOneOptions::Lateral::Midpoint;
     o.camera.algorithmOne.together = state.range(3) != 0;
-    sim::PinholeCamera camera(o.camera.intrinsics);
+    sim::PinholeCamera camera(formation::renderIntrinsics(o));
     size_t frames = 0, moves = 0, lost = 0;
     double error = 0, rotation = 0;
     for (auto _ : state) {
@@ -123,11 +126,27 @@ void BM_PixelMarch(benchmark::State& state) {
 
 }  // namespace
 
+/** The pixel experiment (Table 1 from pixels) with pixel_runs = 2: 8 marches (both routes,
+ *  both speeds) on every core, dead reckoning beside each. */
+void BM_PixelExperiment(benchmark::State& state) {
+    formation::FormationConfig c;
+    c.runs = 0, c.cameraStarts = 0, c.pixelRuns = 2;
+    size_t rows = 0;
+    for (auto _ : state) rows += formation::runFormationExperiment(c).pixel.size();
+    state.counters["marches"] = 8;
+    state.counters["rows"] = double(rows) / double(state.iterations());
+}
+
+// Args: route (0 many turns, 1 patrol), width (px), seed, corrections together (1) or one
+// per frame (0), rows (0: 16:9)
 BENCHMARK(BM_PixelMarch)
-    ->ArgsProduct({{0, 1}, {640, 960, 1280}, {1}, {0, 1}, {0, 160, 200}})
+    ->ArgsProduct({{0, 1}, {640}, {1, 2, 3}, {1}, {200}})
+    ->Args({0, 640, 1, 0, 200})
+    ->Args({0, 1280, 1, 1, 400})
     ->Unit(benchmark::kMillisecond)
     ->UseRealTime()
     ->Iterations(1);
+BENCHMARK(BM_PixelExperiment)->Unit(benchmark::kMillisecond)->UseRealTime()->Iterations(1);
 BENCHMARK(BM_AlgorithmOne)->Unit(benchmark::kMillisecond)->UseRealTime();
 BENCHMARK(BM_RenderAndDetect)
     ->Args({0, 1280})

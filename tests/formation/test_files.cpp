@@ -39,6 +39,7 @@ TEST(FormationFiles, RunAndExperimentFilesRoundTrip) {
     e.curves.push_back({"many_turns", "dr", 5.8, 5, 0.01});
     e.robots.push_back({4, 100, 0.3});
     e.steps.push_back({"camera", 0.003, 0.002, 0.0015, 0.001, 27});
+    e.pixel.push_back({"patrol", 2.9, 20, 19, 1.12, 0.53, 1.97, 3.57, 0.05, 1344.9, 0.0324});
     e.write(dir);
     const auto eb = formation::FormationExperimentFile::read(dir);
     ASSERT_EQ(eb.table.size(), 1u);
@@ -47,6 +48,12 @@ TEST(FormationFiles, RunAndExperimentFilesRoundTrip) {
     EXPECT_EQ(eb.curves[0].kind, "dr");
     EXPECT_EQ(eb.robots[0].error, 0.3);
     EXPECT_EQ(eb.steps[0].count, 27u);
+    ASSERT_EQ(eb.pixel.size(), 1u);
+    EXPECT_EQ(eb.pixel[0].route, "patrol");
+    EXPECT_EQ(eb.pixel[0].arrived, 19u);
+    EXPECT_EQ(eb.pixel[0].formationMax, 1.97);
+    EXPECT_EQ(eb.pixel[0].frames, 1344.9);
+    EXPECT_EQ(eb.pixel[0].rotation, 0.0324);
 
     std::ofstream(formation::FormationRunFile::path(dir), std::ios::app) << "move 1 f1 2\n";
     try {

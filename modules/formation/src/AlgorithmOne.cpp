@@ -184,7 +184,8 @@ AlgorithmOneResult runAlgorithmOne(const mrpt::opengl::COpenGLScene& scene,
                                    sim::PinholeCamera& camera, const MarkerOptions& markers,
                                    const AlgorithmOneOptions& o,
                                    mrpt::random::CRandomGenerator& rng, const CameraModel* lens) {
-    AlgorithmOneController controller(beacons, camera.intrinsics(), markers, o);
+    AlgorithmOneController controller(beacons, lens ? lens->intrinsics() : camera.intrinsics(),
+                                      markers, o);
     AlgorithmOneResult r;
     auto pose = start;
     const auto execute = [&](const Maneuver& planned) {

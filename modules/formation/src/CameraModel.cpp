@@ -26,6 +26,8 @@ void check(bool ok, const char* key, double value, const char* bound) {
 
 struct CameraModel::Impl {
     CameraModelOptions o;
+    mrpt::img::TCamera camera;  ///< the camera's own
+    mrpt::img::TCamera render;  ///< the ideal picture to render: all the lens sees
     cv::Mat K, trueD, believedD;
     cv::Mat mapX, mapY;  ///< each camera pixel's ray in the ideal (rendered) picture
 };
@@ -45,6 +47,7 @@ CameraModel::CameraModel(const mrpt::img::TCamera& k, const CameraModelOptions& 
     impl_->K = cameraMatrix(k);
     impl_->trueD = distortion(o, 1);
     impl_->believedD = distortion(o, 1 + o.calibrationError);
+    impl_->render = impl_->camera = k;
     if (o.k1 == 0 && o.k2 == 0 && o.p1 == 0 && o.p2 == 0) return;
     // A camera pixel sees the ray that its undistorted position has in the pinhole picture.
     std::vector<cv::Point2f> pixels, rays;
@@ -52,14 +55,40 @@ CameraModel::CameraModel(const mrpt::img::TCamera& k, const CameraModelOptions& 
     for (uint32_t v = 0; v < k.nrows; ++v)
         for (uint32_t u = 0; u < k.ncols; ++u) pixels.emplace_back(float(u), float(v));
     cv::undistortPoints(pixels, rays, impl_->K, impl_->trueD, cv::noArray(), impl_->K);
+    // A barrel lens sees beyond the pinhole picture of the same focal length: the ideal
+    // picture is rendered as large as the rays reach (same focal length, the principal point
+    // moved by the margin), so that no camera pixel samples outside it.
+    float minX = 0, minY = 0, maxX = float(k.ncols - 1), maxY = float(k.nrows - 1);
+    for (const auto& r : rays) {
+        if (!std::isfinite(r.x) || !std::isfinite(r.y))
+            throw Error(
+                "[formation] lens_k1, lens_k2, lens_p1, lens_p2: the lens model folds "
+                "over inside the picture (a pixel has no ray)");
+        minX = std::min(minX, r.x), maxX = std::max(maxX, r.x);
+        minY = std::min(minY, r.y), maxY = std::max(maxY, r.y);
+    }
+    const double left = std::ceil(-minX) + 2, top = std::ceil(-minY) + 2;
+    // whole multiples of 4 px: the renderer reads rows without padding (sim::PinholeCamera)
+    const double width = 4 * std::ceil((std::ceil(maxX) + 3 + left) / 4);
+    const double height = 4 * std::ceil((std::ceil(maxY) + 3 + top) / 4);
+    if (width > 4 * double(k.ncols) || height > 4 * double(k.nrows))
+        throw Error(mrpt::format(
+            "[formation] lens_k1 = %g, lens_k2 = %g: the lens sees more than 4 times the "
+            "pinhole picture's width or height; give a weaker distortion",
+            o.k1, o.k2));
+    impl_->render.ncols = uint32_t(width), impl_->render.nrows = uint32_t(height);
+    impl_->render.setIntrinsicParamsFromValues(k.fx(), k.fy(), k.cx() + left, k.cy() + top);
     impl_->mapX.create(int(k.nrows), int(k.ncols), CV_32FC1);
     impl_->mapY.create(int(k.nrows), int(k.ncols), CV_32FC1);
     for (uint32_t v = 0, i = 0; v < k.nrows; ++v)
         for (uint32_t u = 0; u < k.ncols; ++u, ++i) {
-            impl_->mapX.at<float>(int(v), int(u)) = rays[i].x;
-            impl_->mapY.at<float>(int(v), int(u)) = rays[i].y;
+            impl_->mapX.at<float>(int(v), int(u)) = rays[i].x + float(left);
+            impl_->mapY.at<float>(int(v), int(u)) = rays[i].y + float(top);
         }
 }
+
+const mrpt::img::TCamera& CameraModel::renderIntrinsics() const { return impl_->render; }
+const mrpt::img::TCamera& CameraModel::intrinsics() const { return impl_->camera; }
 
 CameraModel::~CameraModel() = default;
 CameraModel::CameraModel(CameraModel&&) noexcept = default;
@@ -76,6 +105,8 @@ mrpt::img::CImage CameraModel::degrade(const mrpt::img::CImage& rendered,
         cv::cvtColor(image, gray, cv::COLOR_BGR2GRAY);
     else
         gray = image.clone();
+    if (gray.cols != int(impl_->render.ncols) || gray.rows != int(impl_->render.nrows))
+        throw Error("formation: a picture for the camera model is not of renderIntrinsics()' size");
     if (!impl_->mapX.empty()) {  // the lens: straight lines bend
         cv::Mat bent;
         cv::remap(gray, bent, impl_->mapX, impl_->mapY, cv::INTER_LINEAR, cv::BORDER_REPLICATE);

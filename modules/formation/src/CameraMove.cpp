@@ -9,8 +9,19 @@ namespace mrloc::formation {
 
 namespace {
 /** When Algorithm 1 misses a beacon, steps along the heading (m) that look from nearby
- *  viewpoints in turn and come back to where it started. */
-constexpr std::array<double, 5> kRecovery{0.03, -0.06, 0.09, -0.12, 0.06};
+ *  viewpoints in turn and come back to where it started (a tag seen edge-on, or cut at a
+ *  robot's corner), then two steps away from the beacons (the rear camera looks back: from
+ *  farther the base beacons stand nearer its axis), from where Algorithm 1's depth
+ *  condition brings the robot back. */
+constexpr std::array<double, 7> kRecovery{0.03, -0.06, 0.09, -0.12, 0.06, 0.3, 0.3};
+/** When the rear camera misses the anchor after facing away from it, turns (rad) that look
+ *  to either side in widening steps: headings of +-20, +-40 and +-60 degrees about the
+ *  first, with the camera's +-53 degrees that is +-113 degrees searched. */
+constexpr std::array<double, 6> kAnchorScan{0.35, -0.70, 1.05, -1.40, 1.75, -2.10};
+/** Algorithm 1 frames after which its pixel tolerance doubles: a robot that dithers about
+ *  the vertex (the maneuvers' errors larger than the tolerance asks) stops near it rather
+ *  than loses the move. */
+constexpr int kRelaxEvery = 20;
 }  // namespace
 
 CameraMove::CameraMove(const Move& move, const std::vector<TPoint2D>& believed,
@@ -86,8 +97,9 @@ std::vector<Maneuver> CameraMove::gatePassed() {
     return towards(away);
 }
 
-std::vector<Maneuver> CameraMove::finishBlind() {
+std::vector<Maneuver> CameraMove::finishBlind(const std::string& why) {
     phase_ = Phase::Lost;
+    lostWhy_ = why;
     std::vector<Maneuver> m;
     if ((move_.target - at_).norm() > 0.01) {
         m = towards(move_.target);
@@ -101,7 +113,7 @@ std::vector<Maneuver> CameraMove::finishBlind() {
 
 std::vector<Maneuver> CameraMove::decide(const std::vector<MarkerSighting>& tags) {
     if (!camera()) return {};
-    if (++frames_ > o_.maxFrames) return finishBlind();
+    if (++frames_ > o_.maxFrames) return finishBlind("more than max_frames frames");
     const double f = o_.intrinsics.fx(), cx = o_.intrinsics.cx();
     switch (phase_) {
         case Phase::Gate: {
@@ -137,7 +149,11 @@ std::vector<Maneuver> CameraMove::decide(const std::vector<MarkerSighting>& tags
         }
         case Phase::FaceAway: {
             const auto anchor = largestTag(move_.anchor, tags);
-            if (!anchor) return finishBlind();
+            if (!anchor && scans_ < int(kAnchorScan.size())) {
+                ++reacquisitions_;  // look to either side for it
+                return order({Maneuver::turn(kAnchorScan[size_t(scans_++)])});
+            }
+            if (!anchor) return finishBlind("the anchor out of the rear camera's view");
             const double e = anchor->u - cx;
             std::vector<Maneuver> m;
             if (std::abs(e) > o_.algorithmOne.pixelTolerance) {
@@ -150,18 +166,13 @@ std::vector<Maneuver> CameraMove::decide(const std::vector<MarkerSighting>& tags
             return m;
         }
         case Phase::AlgorithmOne: {
+            if (++algorithmOneFrames_ % kRelaxEvery == 0) algorithmOne_->relaxTolerance(2);
             const auto m = algorithmOne_->decide(tags);
-            if (!m && recoveries_ < int(kRecovery.size()) - 1) {
-                // a beacon's tag was not found (seen edge-on, or its margin cut by the next
-                // side's tag at a robot's corner): look again from a step away
+            if (!m && recoveries_ < int(kRecovery.size())) {
+                ++reacquisitions_;  // look again from a step away
                 return order({Maneuver::drive(kRecovery[size_t(recoveries_++)])});
             }
-            if (!m) {  // back where the search started, and on by the belief
-                auto back = order({Maneuver::drive(kRecovery.back())});
-                auto rest = finishBlind();
-                back.insert(back.end(), rest.begin(), rest.end());
-                return back;
-            }
+            if (!m) return finishBlind("a beacon out of view in Algorithm 1");
             recoveries_ = 0;
             if (m->empty()) phase_ = Phase::Done;
             return order(*m);

@@ -96,6 +96,8 @@ void FormationConfig::loadFromConfigFile(const mrpt::config::CConfigFileBase& sr
     dr.speedNoise = s.real("speed_noise", dr.speedNoise, 0, 10);
     dr.dt = s.real("dr_period", dr.dt, 1e-3, 10);
     cameraWidth = size_t(s.integer("camera_width", long(cameraWidth), 160, 4096));
+    if (cameraWidth % 4 != 0)  // the renderer reads rows of whole 4-byte words
+        s.fail("camera_width", "a multiple of 4 px");
     cameraRows = size_t(s.integer("camera_rows", long(cameraRows), 60, 4096));
     cameraFocal = s.real("camera_focal", cameraFocal, 50, 5000);
     pixelTolerance = s.real("pixel_tolerance", pixelTolerance, 0.1, 50);

@@ -57,7 +57,7 @@ std::vector<FormationExperimentFile::PixelRow> pixelTable(const FormationConfig&
     std::mutex failureLock;
     const auto work = [&](bool draws) {
         try {
-            sim::PinholeCamera camera(c.cameraIntrinsics());
+            sim::PinholeCamera camera(renderIntrinsics(pixelMarchOptions(c, c.wheelSpeed)));
             for (size_t k; (k = next++) < jobs.size();) {
                 auto& j = jobs[k];
                 mrpt::random::CRandomGenerator rng(
@@ -196,8 +196,8 @@ FormationExperimentFile runFormationExperiment(const FormationConfig& c, bool qu
         MarkerOptions markers;
         const auto step = buildingStep(c.formation.side, markers);
         // the pixel mode's camera, through its camera model
-        sim::PinholeCamera camera(c.cameraIntrinsics());
-        const CameraModel lens(camera.intrinsics(), c.lens);
+        const CameraModel lens(c.cameraIntrinsics(), c.lens);
+        sim::PinholeCamera camera(lens.renderIntrinsics());
         AlgorithmOneOptions ao;
         ao.side = c.formation.side;
         ao.pixelTolerance = c.pixelTolerance;

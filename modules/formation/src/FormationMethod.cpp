@@ -321,12 +321,21 @@ common::Headline formationHeadline(const method::HeadlineOf<FormationLocalizer>&
                                "ended before the destination: after move %.0f, "
                                "state '%s'",
                                moves.value_or(0), state.c_str());
+    // pixel mode: a move whose beacons the cameras lost was finished blind; the march is
+    // then not what the method did, and the headline says so
+    const auto lost = common::numberAt(in.metrics, "formation/camera_lost_moves");
+    if (lost && *lost > 0)
+        h.status += mrpt::format("; %.0f move%s lost the beacons and went on blind", *lost,
+                                 *lost == 1 ? "" : "s");
     std::string differs;
     const auto& c = in.localizer.config();
     if (!in.scenario)
         differs = "a log recorded elsewhere";
     else if (c.mode == FormationConfig::Mode::Pixel)
-        differs = "rendered frames of an ideal camera; the paper's are the lab robots' cameras";
+        differs = c.lens.ideal() ? "rendered frames of an ideal camera; the paper's are the lab "
+                                   "robots' cameras"
+                                 : "rendered frames through a camera model; the paper's are "
+                                   "the lab robots' cameras";
     else if (c.routeName == "custom")
         differs = "a route of this INI's; the paper's are its figs. 12-13";
     const std::string claim =

@@ -101,8 +101,8 @@ double FormationPayload::headingError(const sim::Step& step) const {
 void FormationPayload::startCameraMove(sim::Step& step) {
     const Move& m = *team_.current();
     if (!camera_) {  // the cameras and the scene, once for the march
-        camera_ = std::make_unique<sim::PinholeCamera>(config_.cameraIntrinsics());
-        lens_.emplace(camera_->intrinsics(), config_.lens);
+        lens_.emplace(config_.cameraIntrinsics(), config_.lens);
+        camera_ = std::make_unique<sim::PinholeCamera>(lens_->renderIntrinsics());
         scene_.emplace(robots_, MarkerOptions{});
     }
     // The scene about the moving robot (single precision), the mover not in its own view.
@@ -157,7 +157,7 @@ void FormationPayload::cameraFrame(sim::Step& step) {
     // small tags, which the detector's decimation loses)
     const auto tags = lens_->see(camera_->render(scene_->scene(), pose), step.rng);
     // the frame's tags as bearings from the camera (MRPT's class for landmark sightings)
-    const auto& k = camera_->intrinsics();
+    const auto& k = lens_->intrinsics();  // the undistorted tags' frame
     auto obs = mrpt::obs::CObservationBearingRange::Create();
     obs->sensorLabel = robot.options().name + (front ? ".front" : ".rear");
     obs->timestamp = step.stamp;

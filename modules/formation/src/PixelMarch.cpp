@@ -32,6 +32,10 @@ PixelMarchOptions pixelMarchOptions(const FormationConfig& c, double wheelSpeed)
     return o;
 }
 
+mrpt::img::TCamera renderIntrinsics(const PixelMarchOptions& o) {
+    return CameraModel(o.camera.intrinsics, o.lens).renderIntrinsics();
+}
+
 double latticeRotation(const std::vector<TPoint2D>& believed, const std::vector<TPoint2D>& truth) {
     TPoint2D cb{0, 0}, ct{0, 0};
     for (size_t i = 0; i < believed.size(); ++i) cb = cb + believed[i], ct = ct + truth[i];
@@ -61,7 +65,10 @@ PixelMarchResult pixelMarch(size_t robots, const std::vector<TPoint2D>& route,
     for (const auto& p : m.actual) pose.emplace_back(p.x, p.y, 0);
     std::vector<double> believedHeading(robots, 0);  // seed 003 sec. 5: all face east
     FormationScene scene(robots, markers);
-    const CameraModel lens(camera.intrinsics(), o.lens);
+    const CameraModel lens(o.camera.intrinsics, o.lens);
+    if (camera.intrinsics().ncols != lens.renderIntrinsics().ncols ||
+        camera.intrinsics().nrows != lens.renderIntrinsics().nrows)
+        throw Error("formation: a pixel march's camera must render renderIntrinsics(options)");
     RoutePlanner planner(route, o.march.formation, o.march.maxMoves);
     double time = 0;
     for (;;) {
@@ -100,6 +107,10 @@ PixelMarchResult pixelMarch(size_t robots, const std::vector<TPoint2D>& route,
         }
         r.framesPerMove.push_back(cameraMove.frames());
         r.lostMoves += cameraMove.lost() ? 1 : 0;
+        r.lostWhy.push_back(cameraMove.lostWhy());
+        r.reacquisitions += size_t(cameraMove.reacquisitions());
+        r.relaxedMoves +=
+            cameraMove.finalTolerance() > o.camera.algorithmOne.pixelTolerance ? 1 : 0;
         r.blindGates += size_t(cameraMove.blindGates());
         // the step's own error, on the true beacons (seed 003 fig. 11)
         const TPoint2D end{p.x(), p.y()};

@@ -55,6 +55,8 @@ void OmniOptions::loadFromConfigFile(const mrpt::config::CConfigFileBase& src,
     render = s.choice("camera", "render", {"render", "bearings"}) == "render";
     panorama.views = int(s.integer("views", long(panorama.views), 3, 12));
     panorama.viewWidth = int(s.integer("view_width", long(panorama.viewWidth), 32, 8192));
+    if (panorama.viewWidth % 4 != 0)  // the renderer reads rows of whole 4-byte words: an
+        s.fail("view_width", "a multiple of 4 px");  // odd width overran the picture
     panorama.height = int(s.integer("view_height", long(panorama.height), 8, 4096));
     bearingSigma = s.real("bearing_sigma", bearingSigma, 0, 10);
     maxRange = s.real("max_range", maxRange, 0, 1e6);

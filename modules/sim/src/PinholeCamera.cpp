@@ -59,8 +59,15 @@ struct PinholeCamera::Impl {
     }
 };
 
-PinholeCamera::PinholeCamera(const mrpt::img::TCamera& intrinsics)
-    : impl_(std::make_unique<Impl>(intrinsics)) {}
+PinholeCamera::PinholeCamera(const mrpt::img::TCamera& intrinsics) {
+    // MRPT's renderer reads the picture back row after row without padding: a row of 3 x
+    // width bytes that is not a whole number of 4-byte words overran the picture's memory.
+    if (intrinsics.ncols % 4 != 0 || intrinsics.ncols == 0 || intrinsics.nrows == 0)
+        throw Error("pinhole camera: the picture's width must be a positive multiple of 4 px (" +
+                    std::to_string(intrinsics.ncols) + " x " + std::to_string(intrinsics.nrows) +
+                    ")");
+    impl_ = std::make_unique<Impl>(intrinsics);
+}
 PinholeCamera::~PinholeCamera() = default;
 
 const mrpt::img::TCamera& PinholeCamera::intrinsics() const { return impl_->intrinsics; }

@@ -112,6 +112,9 @@ class AlgorithmOneController {
                            const MarkerOptions& markers, const AlgorithmOneOptions& options);
     /** Empty: every condition holds (converged). Nothing: a beacon is out of view. */
     std::optional<std::vector<Maneuver>> decide(const std::vector<MarkerSighting>& tags);
+    /** Multiplies the pixel tolerance of the three conditions by `factor`. */
+    void relaxTolerance(double factor) { o_.pixelTolerance *= factor; }
+    double tolerance() const { return o_.pixelTolerance; }
     double dm1() const { return dm1_; }  ///< px, the last lateral distances
     double dm2() const { return dm2_; }
 

@@ -36,9 +36,15 @@ class CameraModel {
     CameraModel(CameraModel&&) noexcept;
     CameraModel& operator=(CameraModel&&) noexcept;
 
-    /** The tags the robot finds in a rendered picture: the picture degraded as the camera
-     *  takes it (noise drawn from `rng`), searched by AprilTag 3 at full resolution, each tag's
-     *  corners undistorted with the robot's calibration. */
+    /** The ideal pinhole picture to render for this camera: the camera's own, or, with lens
+     *  distortion, a larger one of the same focal length that holds every ray the lens sees
+     *  (a barrel lens sees beyond the pinhole picture). */
+    const mrpt::img::TCamera& renderIntrinsics() const;
+    /** The camera's own intrinsics: the frame the undistorted tags are in. */
+    const mrpt::img::TCamera& intrinsics() const;
+    /** The tags the robot finds in a rendered picture (of renderIntrinsics()): the picture degraded
+     * as the camera takes it (noise drawn from `rng`), searched by AprilTag 3 at full resolution,
+     * each tag's corners undistorted with the robot's calibration. */
     std::vector<MarkerSighting> see(const mrpt::img::CImage& rendered,
                                     mrpt::random::CRandomGenerator& rng) const;
     /** The rendered picture as the camera takes it (grey levels). */

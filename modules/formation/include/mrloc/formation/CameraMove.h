@@ -11,13 +11,17 @@
 //     image's centre), drive out the triangle's height, then Algorithm 1
 //     (AlgorithmOneController) until its three conditions hold.
 // The controller tracks where it believes the robot is (the maneuvers it ordered, exactly
-// done) to know where to look; what it steers by is the tags. When Algorithm 1 misses a
-// beacon it looks again from small steps along its heading; when the beacons stay lost, it
-// finishes the move by the belief alone (to the target, then facing away from the anchor).
+// done) to know where to look; what it steers by is the tags. A beacon it misses it
+// re-acquires: the anchor after facing away by turning to either side, a beacon in Algorithm
+// 1 by small steps along its heading and then by backing away from the beacons; Algorithm
+// 1's tolerance doubles every 20 of its frames, so that a robot dithering about the vertex
+// stops there. Only when a beacon stays lost does it finish the move by the belief alone (to
+// the target, then facing away from the anchor), and says so.
 #include <mrloc/formation/AlgorithmOne.h>
 #include <mrloc/formation/Formation.h>
 
 #include <optional>
+#include <string>
 #include <vector>
 
 namespace mrloc::formation {
@@ -49,8 +53,14 @@ class CameraMove {
     bool converged() const { return phase_ == Phase::Done; }
     /** The beacons were lost on the way: the move was finished by the believed geometry. */
     bool lost() const { return phase_ == Phase::Lost; }
+    /** Why the beacons were lost: "" while they were not. */
+    const std::string& lostWhy() const { return lostWhy_; }
     int frames() const { return frames_; }
     int blindGates() const { return blindGates_; }  ///< gates driven by the believed geometry
+    /** Frames after which the robot moved or turned to find a beacon it missed. */
+    int reacquisitions() const { return reacquisitions_; }
+    /** Algorithm 1's pixel tolerance when it stopped (px): doubled every 20 of its frames. */
+    double finalTolerance() const { return algorithmOne_->tolerance(); }
 
  private:
     enum class Phase { Gate, FaceAway, AlgorithmOne, Done, Lost };
@@ -58,7 +68,7 @@ class CameraMove {
     std::vector<Maneuver> towards(const TPoint2D& p);              ///< a turn to face p
     std::vector<Maneuver> gatePassed();
     /** The camera lost the beacons: on to the target and round, by the belief alone. */
-    std::vector<Maneuver> finishBlind();
+    std::vector<Maneuver> finishBlind(const std::string& why);
     std::optional<MarkerSighting> largestTag(size_t robot,
                                              const std::vector<MarkerSighting>& tags) const;
 
@@ -72,7 +82,9 @@ class CameraMove {
     TPoint2D at_;     ///< believed position
     double heading_;  ///< believed heading (rad)
     std::optional<AlgorithmOneController> algorithmOne_;
-    int frames_ = 0, blindGates_ = 0, recoveries_ = 0;
+    int frames_ = 0, blindGates_ = 0, recoveries_ = 0, scans_ = 0, algorithmOneFrames_ = 0;
+    int reacquisitions_ = 0;
+    std::string lostWhy_;
 };
 
 }  // namespace mrloc::formation

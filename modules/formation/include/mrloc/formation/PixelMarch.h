@@ -11,6 +11,7 @@
 #include <mrloc/formation/March.h>
 #include <mrloc/sim/PinholeCamera.h>
 
+#include <string>
 #include <vector>
 
 namespace mrloc::formation {
@@ -29,12 +30,16 @@ struct PixelMarchResult {
     /** Moves whose beacons the camera lost for good (finished by the belief), and gates
      *  driven by the belief (a gate's beacons not both in view). */
     size_t lostMoves = 0, blindGates = 0;
+    /** Frames after which a robot moved or turned to find a beacon it missed, and moves
+     *  whose Algorithm 1 stopped on a relaxed tolerance (it dithered about the vertex). */
+    size_t reacquisitions = 0, relaxedMoves = 0;
     /** Per move: the formation's rotation against the believed lattice (rad; the angle of
      *  the least-squares rotation of every robot's believed position onto its true one), and
      *  the step's own error along and across the true base (m; the true end against the
      *  true anchor reflected across the true base, as formation.run.txt's). */
     std::vector<double> rotation, lateral, longitudinal;
     std::vector<int> framesPerMove;
+    std::vector<std::string> lostWhy;  ///< per move: why its beacons were lost, or ""
 };
 
 /** The pixel mode's cameras and control from [formation]. */
@@ -42,13 +47,18 @@ CameraMoveOptions cameraMoveOptions(const FormationConfig& config);
 /** A pixel march's options from [formation] at wheel speed `wheelSpeed` (rad/s). */
 PixelMarchOptions pixelMarchOptions(const FormationConfig& config, double wheelSpeed);
 
+/** What the march's camera renders: the cameras' intrinsics, enlarged for the lens
+ *  (CameraModel::renderIntrinsics). Create the march's sim::PinholeCamera with it. */
+mrpt::img::TCamera renderIntrinsics(const PixelMarchOptions& options);
+
 /** The least-squares rotation (rad) that takes `believed` onto `truth`, both about their
  *  centroids (2-D Kabsch): the formation's heading error. */
 double latticeRotation(const std::vector<TPoint2D>& believed, const std::vector<TPoint2D>& truth);
 
 /** N robots from initialStrip march through `route` (as march()), each move from `camera`'s
  *  frames. Time: each turn at maxTurnRate, each drive at the robots' speed (frames are taken
- *  at rest and not timed). `camera` must draw no other scene during the march. */
+ *  at rest and not timed). `camera` (of renderIntrinsics(options)) must draw no other scene
+ *  during the march. */
 PixelMarchResult pixelMarch(size_t robots, const std::vector<TPoint2D>& route,
                             const std::vector<Obstacle>& obstacles,
                             const PixelMarchOptions& options, sim::PinholeCamera& camera,

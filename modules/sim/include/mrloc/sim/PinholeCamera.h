@@ -32,7 +32,7 @@ mrpt::poses::CPose3D cameraPoseLooking(const mrpt::math::TPoint3D& position, dou
 class PinholeCamera {
  public:
     /** One rendering context of intrinsics.ncols x intrinsics.nrows pixels, reused for
-     *  every picture. */
+     *  every picture. Throws mrloc::Error unless ncols is a positive multiple of 4. */
     explicit PinholeCamera(const mrpt::img::TCamera& intrinsics);
     ~PinholeCamera();
     const mrpt::img::TCamera& intrinsics() const;
