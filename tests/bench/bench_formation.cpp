@@ -98,12 +98,16 @@ mrpt::img::TCamera scaledCamera(long width, long rows = 0) {
 }
 
 /** A whole pixel march (4 robots) along a route of seed 003: every frame rendered, searched
- *  and decided on. Args: route (0 many turns, 1 patrol), camera width (px), seed. */
+ *  and decided on. Args: route (0 many turns, 1 patrol), camera width (px), seed, corrections
+ *  together (1) or one per frame (0), rows (0: 16:9), lateral rule (0 midpoint, 1 the
+ *  paper's; optional). Counters: the formation's |rotation| after 50, 100 and 150 moves. */
 void BM_PixelMarch(benchmark::State& state) {
     const auto route = formation::route(state.range(0) == 0 ? "many_turns" : "patrol");
     formation::PixelMarchOptions o;
     o.camera.intrinsics = scaledCamera(state.range(1), state.range(4));
-    o.camera.algorithmOne.lateral = formation::AlgorithmOneOptions::Lateral::Midpoint;
+    o.camera.algorithmOne.lateral = state.range(5) == 1
+                                        ? formation::AlgorithmOneOptions::Lateral::Paper
+                                        : formation::AlgorithmOneOptions::Lateral::Midpoint;
     o.camera.algorithmOne.together = state.range(3) != 0;
     sim::PinholeCamera camera(formation::renderIntrinsics(o));
     size_t frames = 0, moves = 0, lost = 0;
@@ -114,6 +118,9 @@ void BM_PixelMarch(benchmark::State& state) {
         frames += r.frames, moves += r.march.moves.size(), lost += r.lostMoves;
         error = r.march.finalError();
         rotation = r.rotation.empty() ? 0 : r.rotation.back() * 180 / M_PI;
+        for (const size_t at : {50, 100, 150})
+            state.counters["rot" + std::to_string(at) + " deg"] =
+                r.rotation.size() >= at ? std::abs(r.rotation[at - 1]) * 180 / M_PI : NAN;
     }
     const double n = double(state.iterations());
     state.counters["frames/s"] = benchmark::Counter(double(frames), benchmark::Counter::kIsRate);
@@ -140,9 +147,15 @@ void BM_PixelExperiment(benchmark::State& state) {
 // Args: route (0 many turns, 1 patrol), width (px), seed, corrections together (1) or one
 // per frame (0), rows (0: 16:9)
 BENCHMARK(BM_PixelMarch)
-    ->ArgsProduct({{0, 1}, {640}, {1, 2, 3}, {1}, {200}})
-    ->Args({0, 640, 1, 0, 200})
-    ->Args({0, 1280, 1, 1, 400})
+    ->ArgsProduct({{0, 1}, {640}, {1, 2, 3}, {1}, {200}, {0}})
+    ->ArgsProduct({{0}, {640}, {1, 2, 3}, {0}, {200}, {0}})
+    ->ArgsProduct({{0}, {640}, {1, 2, 3}, {1}, {200}, {1}})
+    ->Args({0, 960, 1, 1, 300, 0})
+    ->Args({0, 960, 2, 1, 300, 0})
+    ->Args({0, 960, 3, 1, 300, 0})
+    ->Args({0, 1280, 1, 1, 400, 0})
+    ->Args({0, 1280, 2, 1, 400, 0})
+    ->Args({0, 1280, 3, 1, 400, 0})
     ->Unit(benchmark::kMillisecond)
     ->UseRealTime()
     ->Iterations(1);
