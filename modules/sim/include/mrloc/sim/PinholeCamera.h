@@ -4,10 +4,13 @@
 // to which a method adds each robot's markers. Seed 000's omni panorama (four views) and
 // seed 003's front and rear cameras are all such views.
 //
-// Lifetime: MRPT 2.5's CFBORender terminates the EGL display every renderer shares when it is
-// destroyed, and a renderer destroyed after that throws from its destructor. So a camera
-// must go before any renderer created after it does (the app releases a simulation's
-// payload, and its cameras, as soon as the simulation ends).
+// Lifetime and threads (MRPT 2.5's CFBORender, measured): when a renderer is destroyed, the
+// other renderers of the same thread can no longer draw, and one destroyed after that throws
+// from its destructor; so a thread holds one camera at a time (the app releases a
+// simulation's payload, and its cameras, as soon as the simulation ends). Renderers on
+// different threads draw at the same time and may be destroyed in any order (the pixel
+// experiment's workers each hold one). A scene's GL buffers belong to the renderer that first
+// drew it: a scene drawn by a camera since destroyed must be built again.
 #include <mrloc/sim/World.h>
 #include <mrpt/img/CImage.h>
 #include <mrpt/img/TCamera.h>
