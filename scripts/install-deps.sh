@@ -7,7 +7,7 @@ packages=(
   build-essential cmake pkg-config
   libmrpt-dev            # MRPT 2.5: poses, observations, rawlogs, config, opengl (CFBORender)
   libeigen3-dev liboctomap-dev zlib1g-dev
-  libopencv-dev          # imgproc (omnivision's bands); with libopencv-contrib-dev, which it pulls
+  libopencv-dev          # imgproc (omnivision's bands), calib3d (formation's lens model); with libopencv-contrib-dev, which it pulls
   libopencv-contrib-dev  # in: aruco, the detector formation measures AprilTag 3 against
   libapriltag-dev        # AprilTag 3 (BSD-2): formation's tag detector (seed 003), the better one
   nlohmann-json3-dev     # metrics.json writing and reading

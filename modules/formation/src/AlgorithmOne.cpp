@@ -172,6 +172,15 @@ std::optional<std::vector<Maneuver>> AlgorithmOneController::decide(
     return out;
 }
 
+void applyManeuver(mrpt::poses::CPose2D& pose, const Maneuver& m) {
+    if (m.kind == Maneuver::Kind::Turn) {
+        pose.phi(mrpt::math::wrapToPi(pose.phi() + m.amount));
+    } else {
+        pose.x(pose.x() + m.amount * std::cos(pose.phi()));
+        pose.y(pose.y() + m.amount * std::sin(pose.phi()));
+    }
+}
+
 Maneuver executed(Maneuver m, const ManeuverNoise& noise, mrpt::random::CRandomGenerator& rng) {
     const double sd = m.kind == Maneuver::Kind::Turn ? noise.turn : noise.drive;
     m.amount *= 1 + sd * rng.drawGaussian1D_normalized();
@@ -189,14 +198,7 @@ AlgorithmOneResult runAlgorithmOne(const mrpt::opengl::COpenGLScene& scene,
     AlgorithmOneResult r;
     auto pose = start;
     const auto execute = [&](const Maneuver& planned) {
-        const Maneuver m = executed(planned, o.noise, rng);
-        if (m.kind == Maneuver::Kind::Turn) {
-            pose.phi(mrpt::math::wrapToPi(pose.phi() + m.amount));
-        } else {
-            const double d = m.amount;
-            pose.x(pose.x() + d * std::cos(pose.phi()));
-            pose.y(pose.y() + d * std::sin(pose.phi()));
-        }
+        applyManeuver(pose, executed(planned, o.noise, rng));
         ++r.maneuvers;
     };
     while (r.maneuvers < o.maxManeuvers) {

@@ -97,9 +97,8 @@ std::vector<Maneuver> CameraMove::gatePassed() {
     return towards(away);
 }
 
-std::vector<Maneuver> CameraMove::finishBlind(const std::string& why) {
+std::vector<Maneuver> CameraMove::finishBlind() {
     phase_ = Phase::Lost;
-    lostWhy_ = why;
     std::vector<Maneuver> m;
     if ((move_.target - at_).norm() > 0.01) {
         m = towards(move_.target);
@@ -113,7 +112,7 @@ std::vector<Maneuver> CameraMove::finishBlind(const std::string& why) {
 
 std::vector<Maneuver> CameraMove::decide(const std::vector<MarkerSighting>& tags) {
     if (!camera()) return {};
-    if (++frames_ > o_.maxFrames) return finishBlind("more than max_frames frames");
+    if (++frames_ > o_.maxFrames) return finishBlind();
     const double f = o_.intrinsics.fx(), cx = o_.intrinsics.cx();
     switch (phase_) {
         case Phase::Gate: {
@@ -150,10 +149,10 @@ std::vector<Maneuver> CameraMove::decide(const std::vector<MarkerSighting>& tags
         case Phase::FaceAway: {
             const auto anchor = largestTag(move_.anchor, tags);
             if (!anchor && scans_ < int(kAnchorScan.size())) {
-                ++reacquisitions_;  // look to either side for it
+                // look to either side for it
                 return order({Maneuver::turn(kAnchorScan[size_t(scans_++)])});
             }
-            if (!anchor) return finishBlind("the anchor out of the rear camera's view");
+            if (!anchor) return finishBlind();
             const double e = anchor->u - cx;
             std::vector<Maneuver> m;
             if (std::abs(e) > o_.algorithmOne.pixelTolerance) {
@@ -169,10 +168,10 @@ std::vector<Maneuver> CameraMove::decide(const std::vector<MarkerSighting>& tags
             if (++algorithmOneFrames_ % kRelaxEvery == 0) algorithmOne_->relaxTolerance(2);
             const auto m = algorithmOne_->decide(tags);
             if (!m && recoveries_ < int(kRecovery.size())) {
-                ++reacquisitions_;  // look again from a step away
+                // look again from a step away
                 return order({Maneuver::drive(kRecovery[size_t(recoveries_++)])});
             }
-            if (!m) return finishBlind("a beacon out of view in Algorithm 1");
+            if (!m) return finishBlind();
             recoveries_ = 0;
             if (m->empty()) phase_ = Phase::Done;
             return order(*m);

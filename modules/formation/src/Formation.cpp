@@ -40,6 +40,11 @@ std::vector<TPoint2D> initialStrip(size_t robots, double side) {
     return out;
 }
 
+double arrivalHeading(const Move& m, const std::vector<TPoint2D>& believed) {
+    const TPoint2D& anchor = believed[m.anchor];
+    return std::atan2(m.target.y - anchor.y, m.target.x - anchor.x);
+}
+
 std::vector<TPoint2D> innerPath(const std::array<TPoint2D, 3>& beacons, const TPoint2D& from,
                                 const TPoint2D& target) {
     // seed 003 Algorithm 2, step 1: the centre points between the beacons

@@ -40,11 +40,8 @@ FormationRunFile FormationRunFile::fromRun(const Team& team, const common::Traje
         const auto b1 = truthAt(m.base[0], e.time), b2 = truthAt(m.base[1], e.time),
                    anchor = truthAt(m.anchor, e.time);
         if (end && b1 && b2 && anchor) {
-            const TPoint2D vertex = *b1 + *b2 - *anchor;  // the real anchor reflected
-            const TPoint2D along = (*b2 - *b1) * (1 / (*b2 - *b1).norm());
-            const TPoint2D d = *end - vertex;
-            row.lateral = d.x * along.x + d.y * along.y;
-            row.longitudinal = -d.x * along.y + d.y * along.x;
+            const auto e = stepError(*b1, *b2, *anchor, *end);
+            row.lateral = e.lateral, row.longitudinal = e.longitudinal;
         }
         f.moves.push_back(row);
     }

@@ -76,6 +76,14 @@ TPoint2D algorithmOneVertex(const TPoint2D& b1, const TPoint2D& b2, const TPoint
     return R;
 }
 
+StepError stepError(const TPoint2D& b1, const TPoint2D& b2, const TPoint2D& anchor,
+                    const TPoint2D& end) {
+    const TPoint2D vertex = b1 + b2 - anchor;  // the real anchor reflected
+    const TPoint2D along = (b2 - b1) * (1 / (b2 - b1).norm());
+    const TPoint2D d = end - vertex;
+    return {d.x * along.x + d.y * along.y, -d.x * along.y + d.y * along.x};
+}
+
 TPoint2D moveEnd(const Move& move, const std::vector<TPoint2D>& ideal,
                  const std::vector<TPoint2D>& actual, const MarchOptions& options,
                  const VertexErrorModel& errors, mrpt::random::CRandomGenerator& rng) {

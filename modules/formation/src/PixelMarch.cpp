@@ -85,14 +85,9 @@ PixelMarchResult pixelMarch(size_t robots, const std::vector<TPoint2D>& route,
         const auto execute = [&](const std::vector<Maneuver>& planned) {
             for (const auto& plan : planned) {
                 const Maneuver e = executed(plan, o.camera.algorithmOne.noise, rng);
-                if (e.kind == Maneuver::Kind::Turn) {
-                    p.phi(mrpt::math::wrapToPi(p.phi() + e.amount));
-                    time += std::abs(e.amount) / o.maxTurnRate;
-                } else {
-                    p.x(p.x() + e.amount * std::cos(p.phi()));
-                    p.y(p.y() + e.amount * std::sin(p.phi()));
-                    time += std::abs(e.amount) / speed;
-                }
+                applyManeuver(p, e);
+                time +=
+                    std::abs(e.amount) / (e.kind == Maneuver::Kind::Turn ? o.maxTurnRate : speed);
             }
         };
         execute(cameraMove.start());
@@ -105,24 +100,14 @@ PixelMarchResult pixelMarch(size_t robots, const std::vector<TPoint2D>& route,
             ++r.frames;
             execute(cameraMove.decide(tags));
         }
-        r.framesPerMove.push_back(cameraMove.frames());
         r.lostMoves += cameraMove.lost() ? 1 : 0;
-        r.lostWhy.push_back(cameraMove.lostWhy());
-        r.reacquisitions += size_t(cameraMove.reacquisitions());
-        r.relaxedMoves +=
-            cameraMove.finalTolerance() > o.camera.algorithmOne.pixelTolerance ? 1 : 0;
         r.blindGates += size_t(cameraMove.blindGates());
-        // the step's own error, on the true beacons (seed 003 fig. 11)
         const TPoint2D end{p.x(), p.y()};
-        const auto& a = m.actual;
-        const TPoint2D perfect = a[move.base[0]] + a[move.base[1]] - a[move.anchor];
-        const TPoint2D base = a[move.base[1]] - a[move.base[0]];
-        const TPoint2D along = base * (1 / base.norm()), across{-along.y, along.x};
-        const TPoint2D d = end - perfect;
-        r.lateral.push_back(d.x * along.x + d.y * along.y);
-        r.longitudinal.push_back(d.x * across.x + d.y * across.y);
-        const TPoint2D anchor = m.ideal[move.anchor];
-        believedHeading[k] = std::atan2(move.target.y - anchor.y, move.target.x - anchor.x);
+        const auto& a = m.actual;  // the step's own error, on the true beacons
+        const auto e = stepError(a[move.base[0]], a[move.base[1]], a[move.anchor], end);
+        r.lateral.push_back(e.lateral);
+        r.longitudinal.push_back(e.longitudinal);
+        believedHeading[k] = arrivalHeading(move, m.ideal);
         m.ideal[k] = move.target;
         m.actual[k] = end;
         m.moves.push_back({time, k, m.ideal[k], m.actual[k]});

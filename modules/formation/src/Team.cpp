@@ -23,13 +23,6 @@ std::optional<std::string> messageRobot(const std::string& text, const std::stri
     return text.substr(head.size(), text.size() - head.size() - tail.size());
 }
 
-/** The heading a move leaves its robot with: facing away from the anchor, its rear camera
- *  on it (seed 003 Algorithm 1, step 1). */
-double arrivalHeading(const Move& m, const std::vector<TPoint2D>& believed) {
-    const TPoint2D& anchor = believed[m.anchor];
-    return std::atan2(m.target.y - anchor.y, m.target.x - anchor.x);
-}
-
 }  // namespace
 
 std::string arrivedLabel(const std::string& text) {

@@ -97,6 +97,9 @@ struct Maneuver {
  *  1 - |slip x N(0, 1)| when there is slip. */
 Maneuver executed(Maneuver m, const ManeuverNoise& noise, mrpt::random::CRandomGenerator& rng);
 
+/** A unicycle at `pose` after maneuver m (a turn on the spot or a drive along its heading). */
+void applyManeuver(mrpt::poses::CPose2D& pose, const Maneuver& m);
+
 /** The rear camera on the robot's back face, looking backwards, at `height`. */
 mrpt::poses::CPose3D rearCameraPose(const mrpt::poses::CPose2D& robot, double bodySize,
                                     double height);
@@ -114,7 +117,6 @@ class AlgorithmOneController {
     std::optional<std::vector<Maneuver>> decide(const std::vector<MarkerSighting>& tags);
     /** Multiplies the pixel tolerance of the three conditions by `factor`. */
     void relaxTolerance(double factor) { o_.pixelTolerance *= factor; }
-    double tolerance() const { return o_.pixelTolerance; }
     double dm1() const { return dm1_; }  ///< px, the last lateral distances
     double dm2() const { return dm2_; }
 

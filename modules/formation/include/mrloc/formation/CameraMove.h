@@ -53,14 +53,8 @@ class CameraMove {
     bool converged() const { return phase_ == Phase::Done; }
     /** The beacons were lost on the way: the move was finished by the believed geometry. */
     bool lost() const { return phase_ == Phase::Lost; }
-    /** Why the beacons were lost: "" while they were not. */
-    const std::string& lostWhy() const { return lostWhy_; }
     int frames() const { return frames_; }
     int blindGates() const { return blindGates_; }  ///< gates driven by the believed geometry
-    /** Frames after which the robot moved or turned to find a beacon it missed. */
-    int reacquisitions() const { return reacquisitions_; }
-    /** Algorithm 1's pixel tolerance when it stopped (px): doubled every 20 of its frames. */
-    double finalTolerance() const { return algorithmOne_->tolerance(); }
 
  private:
     enum class Phase { Gate, FaceAway, AlgorithmOne, Done, Lost };
@@ -68,7 +62,7 @@ class CameraMove {
     std::vector<Maneuver> towards(const TPoint2D& p);              ///< a turn to face p
     std::vector<Maneuver> gatePassed();
     /** The camera lost the beacons: on to the target and round, by the belief alone. */
-    std::vector<Maneuver> finishBlind(const std::string& why);
+    std::vector<Maneuver> finishBlind();
     std::optional<MarkerSighting> largestTag(size_t robot,
                                              const std::vector<MarkerSighting>& tags) const;
 
@@ -83,8 +77,6 @@ class CameraMove {
     double heading_;  ///< believed heading (rad)
     std::optional<AlgorithmOneController> algorithmOne_;
     int frames_ = 0, blindGates_ = 0, recoveries_ = 0, scans_ = 0, algorithmOneFrames_ = 0;
-    int reacquisitions_ = 0;
-    std::string lostWhy_;
 };
 
 }  // namespace mrloc::formation

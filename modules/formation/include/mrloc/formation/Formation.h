@@ -50,6 +50,10 @@ std::vector<TPoint2D> initialStrip(size_t robots, double side);
 std::vector<TPoint2D> innerPath(const std::array<TPoint2D, 3>& beacons, const TPoint2D& from,
                                 const TPoint2D& target);
 
+/** The heading a move leaves its robot with: facing away from the anchor, its rear camera
+ *  on it (seed 003 Algorithm 1, step 1), in the believed frame. */
+double arrivalHeading(const Move& move, const std::vector<TPoint2D>& believed);
+
 /** The path from `from` along `path` passes within `margin` of no obstacle. */
 bool clearOf(const TPoint2D& from, const std::vector<TPoint2D>& path,
              const std::vector<Obstacle>& obstacles, double margin);

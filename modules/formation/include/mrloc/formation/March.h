@@ -49,6 +49,15 @@ struct MarchOptions {
 TPoint2D algorithmOneVertex(const TPoint2D& b1, const TPoint2D& b2, const TPoint2D& anchor,
                             double side);
 
+/** A step's own error (seed 003 fig. 11): its true end against the true anchor reflected
+ *  across the true base (the vertex of a perfect triangle on them), along the base from b1
+ *  to b2 (lateral) and across it (longitudinal), m. */
+struct StepError {
+    double lateral = 0, longitudinal = 0;
+};
+StepError stepError(const TPoint2D& b1, const TPoint2D& b2, const TPoint2D& anchor,
+                    const TPoint2D& end);
+
 /** Where a move really ends (the error-model mode): the vertex the carry model gives among
  *  the real beacons, plus the per-step error drawn along and across the real base.
  *  `ideal` and `actual`: every robot's believed and real position. */

@@ -30,16 +30,11 @@ struct PixelMarchResult {
     /** Moves whose beacons the camera lost for good (finished by the belief), and gates
      *  driven by the belief (a gate's beacons not both in view). */
     size_t lostMoves = 0, blindGates = 0;
-    /** Frames after which a robot moved or turned to find a beacon it missed, and moves
-     *  whose Algorithm 1 stopped on a relaxed tolerance (it dithered about the vertex). */
-    size_t reacquisitions = 0, relaxedMoves = 0;
     /** Per move: the formation's rotation against the believed lattice (rad; the angle of
      *  the least-squares rotation of every robot's believed position onto its true one), and
      *  the step's own error along and across the true base (m; the true end against the
      *  true anchor reflected across the true base, as formation.run.txt's). */
     std::vector<double> rotation, lateral, longitudinal;
-    std::vector<int> framesPerMove;
-    std::vector<std::string> lostWhy;  ///< per move: why its beacons were lost, or ""
 };
 
 /** The pixel mode's cameras and control from [formation]. */
