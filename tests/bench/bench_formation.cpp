@@ -109,12 +109,14 @@ void BM_PixelMarch(benchmark::State& state) {
                                         ? formation::AlgorithmOneOptions::Lateral::Paper
                                         : formation::AlgorithmOneOptions::Lateral::Midpoint;
     o.camera.algorithmOne.together = state.range(3) != 0;
+    const size_t robots = size_t(state.range(6));
+    o.camera.latticeFit = state.range(7) != 0;
     sim::PinholeCamera camera(formation::renderIntrinsics(o));
     size_t frames = 0, moves = 0, lost = 0;
     double error = 0, rotation = 0;
     for (auto _ : state) {
         mrpt::random::CRandomGenerator rng(uint32_t(state.range(2)));
-        const auto r = formation::pixelMarch(4, route, {}, o, camera, rng);
+        const auto r = formation::pixelMarch(robots, route, {}, o, camera, rng);
         frames += r.frames, moves += r.march.moves.size(), lost += r.lostMoves;
         error = r.march.finalError();
         rotation = r.rotation.empty() ? 0 : r.rotation.back() * 180 / M_PI;
@@ -145,17 +147,16 @@ void BM_PixelExperiment(benchmark::State& state) {
 }
 
 // Args: route (0 many turns, 1 patrol), width (px), seed, corrections together (1) or one
-// per frame (0), rows (0: 16:9)
+// per frame (0), rows (0: 16:9), lateral rule (0 midpoint, 1 the paper's), robots, lattice
+// fit (1) or Algorithm 1 alone (0)
 BENCHMARK(BM_PixelMarch)
-    ->ArgsProduct({{0, 1}, {640}, {1, 2, 3}, {1}, {200}, {0}})
-    ->ArgsProduct({{0}, {640}, {1, 2, 3}, {0}, {200}, {0}})
-    ->ArgsProduct({{0}, {640}, {1, 2, 3}, {1}, {200}, {1}})
-    ->Args({0, 960, 1, 1, 300, 0})
-    ->Args({0, 960, 2, 1, 300, 0})
-    ->Args({0, 960, 3, 1, 300, 0})
-    ->Args({0, 1280, 1, 1, 400, 0})
-    ->Args({0, 1280, 2, 1, 400, 0})
-    ->Args({0, 1280, 3, 1, 400, 0})
+    ->ArgsProduct({{0, 1}, {640}, {1, 2, 3}, {1}, {200}, {0}, {4}, {1}})
+    ->ArgsProduct({{0}, {640}, {1, 2, 3}, {0}, {200}, {0}, {4}, {1}})
+    ->ArgsProduct({{0}, {640}, {1, 2, 3}, {1}, {200}, {1}, {4}, {1}})
+    ->ArgsProduct({{0}, {960}, {1, 2, 3}, {1}, {300}, {0}, {4}, {1}})
+    ->ArgsProduct({{0}, {1280}, {1, 2, 3}, {1}, {400}, {0}, {4}, {1}})
+    ->ArgsProduct({{0}, {640}, {1, 2, 3}, {1}, {200}, {0}, {6, 8}, {0, 1}})
+    ->ArgsProduct({{0}, {960}, {1, 2, 3}, {1}, {300}, {0}, {8}, {0, 1}})
     ->Unit(benchmark::kMillisecond)
     ->UseRealTime()
     ->Iterations(1);

@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 #include <mrloc/common/Error.h>
 #include <mrloc/formation/CameraModel.h>
+#include <mrloc/formation/CameraMove.h>
 #include <mrloc/formation/FormationExperiment.h>
 #include <mrloc/formation/PixelMarch.h>
 
@@ -35,7 +36,63 @@ double greyMean(const mrpt::img::CImage& a) {
     return sum / double(a.getWidth() * a.getHeight());
 }
 
+using formation::MarkerSighting;
+
+/** Six robots of the starting strip (believed poses, facing east) and what the rear camera of
+ *  a robot at `truth` sees of them: each robot's front tag's centre, projected by MRPT's
+ *  pose algebra (project), not by the fit's own model. */
+struct LatticeView {
+    std::vector<mrpt::poses::CPose2D> believed;
+    std::vector<MarkerSighting> tags;
+};
+LatticeView latticeView(const mrpt::poses::CPose2D& truth, const mrpt::img::TCamera& k,
+                        const formation::MarkerOptions& m) {
+    LatticeView v;
+    for (const auto& p : formation::initialStrip(6, 1.5)) v.believed.emplace_back(p.x, p.y, 0);
+    const auto camera = formation::rearCameraPose(truth, m.bodySize, m.tagHeight);
+    for (size_t r = 0; r < v.believed.size(); ++r) {
+        const auto side = formation::Side::Front;
+        if (const auto s =
+                formation::project(k, camera, formation::markerCentre(v.believed[r], side, m))) {
+            auto seen = *s;
+            seen.id = formation::markerId(r, side);
+            v.tags.push_back(seen);
+        }
+    }
+    return v;
+}
 }  // namespace
+
+TEST(LatticeFit, RecoversTheRearCamerasPoseFromTheLatticeAndDropsAWrongTag) {
+    // A robot east of the strip, facing east (its rear camera on the six robots), 2 cm and
+    // 1 degree off the pose the fit starts from.
+    const formation::MarkerOptions m;
+    const auto k = formation::cameraIntrinsics(485);
+    const mrpt::poses::CPose2D start(6.0, 0.65, 0), truth(6.02, 0.63, 1 * M_PI / 180);
+    auto view = latticeView(truth, k, m);
+    ASSERT_EQ(view.tags.size(), 6u);  // all in the 105-degree view
+    auto fit = formation::fitToLattice(view.tags, view.believed, 99, start, k, m, 4);
+    ASSERT_TRUE(fit);
+    EXPECT_EQ(fit->robots, 6u);
+    EXPECT_NEAR(fit->pose.x(), truth.x(), 1e-6);
+    EXPECT_NEAR(fit->pose.y(), truth.y(), 1e-6);
+    EXPECT_NEAR(fit->pose.phi(), truth.phi(), 1e-7);
+    EXPECT_LT(fit->rms, 1e-4);
+    // one tag 10 px off (cut at another robot's edge): dropped, the pose still exact
+    view.tags[2].u += 10;
+    fit = formation::fitToLattice(view.tags, view.believed, 99, start, k, m, 4);
+    ASSERT_TRUE(fit);
+    EXPECT_EQ(fit->robots, 5u);
+    EXPECT_NEAR(fit->pose.x(), truth.x(), 1e-6);
+    EXPECT_NEAR(fit->pose.y(), truth.y(), 1e-6);
+    // the mover's own tags and unknown robots are not evidence; too few robots: no fit
+    view.tags.resize(3);
+    view.tags.push_back(view.tags[0]);
+    view.tags.back().id = formation::markerId(50, formation::Side::Left);
+    EXPECT_FALSE(formation::fitToLattice(view.tags, view.believed, 99, start, k, m, 4));
+    EXPECT_FALSE(formation::fitToLattice(view.tags, view.believed, 0, start, k, m, 3));
+    EXPECT_TRUE(formation::fitToLattice(view.tags, view.believed, 99, start, k, m, 3));
+}
 
 TEST(PixelMarch, LatticeRotationIsTheRotationBetweenTwoCopies) {
     const auto strip = formation::initialStrip(6, 1.5);

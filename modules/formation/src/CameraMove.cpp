@@ -2,8 +2,10 @@
 #include <mrloc/formation/CameraMove.h>
 #include <mrpt/math/wrap2pi.h>
 
+#include <Eigen/Dense>
 #include <array>
 #include <cmath>
+#include <set>
 
 namespace mrloc::formation {
 
@@ -22,13 +24,95 @@ constexpr std::array<double, 6> kAnchorScan{0.35, -0.70, 1.05, -1.40, 1.75, -2.1
  *  the vertex (the maneuvers' errors larger than the tolerance asks) stops near it rather
  *  than loses the move. */
 constexpr int kRelaxEvery = 20;
+/** The lattice fit drops the tag with the largest residual while any is over this (px): a
+ *  tag cut at another robot's edge, or a robot far off its believed vertex. */
+constexpr double kFitOutlier = 4;
+/** A lattice fit farther than this (m) from where Algorithm 1 put the robot among its three
+ *  beacons is not trusted (Algorithm 1 places it within millimetres of them). */
+constexpr double kFitMaxCorrection = 0.05;
+
+/** A rear-camera picture column (px) of world point p, the robot at `pose` (its camera on
+ *  its back face, `back` behind its centre, looking backwards, level). */
+double rearColumn(const mrpt::poses::CPose2D& pose, double back, const TPoint2D& p,
+                  const mrpt::img::TCamera& k) {
+    const double psi = pose.phi() + M_PI;
+    const TPoint2D c{pose.x() + back * std::cos(psi), pose.y() + back * std::sin(psi)};
+    const TPoint2D d = p - c;
+    const double ahead = d.x * std::cos(psi) + d.y * std::sin(psi);
+    const double right = d.x * std::sin(psi) - d.y * std::cos(psi);  // the camera's +X
+    return k.cx() + k.fx() * right / ahead;
+}
 }  // namespace
+
+std::optional<LatticeFit> fitToLattice(const std::vector<MarkerSighting>& tags,
+                                       const std::vector<mrpt::poses::CPose2D>& believed,
+                                       size_t self, const mrpt::poses::CPose2D& start,
+                                       const mrpt::img::TCamera& k, const MarkerOptions& markers,
+                                       size_t minRobots) {
+    struct Bearing {
+        TPoint2D point;  ///< the tag's centre, believed
+        double u = 0;    ///< px, seen
+        size_t robot = 0;
+    };
+    std::vector<Bearing> seen;
+    for (const auto& t : tags) {
+        const size_t r = size_t(t.id / 4);
+        if (t.id < 0 || r == self || r >= believed.size()) continue;
+        const auto c = markerCentre(believed[r], Side(t.id % 4), markers);
+        seen.push_back({{c.x, c.y}, t.u, r});
+    }
+    const auto robots = [&] {
+        std::set<size_t> r;
+        for (const auto& b : seen) r.insert(b.robot);
+        return r.size();
+    };
+    const double back = markers.bodySize / 2;
+    for (;;) {
+        if (robots() < std::max<size_t>(minRobots, 3)) return std::nullopt;
+        // Gauss-Newton on (x, y, phi), numeric Jacobian of each column
+        Eigen::Vector3d x(start.x(), start.y(), start.phi());
+        const auto residuals = [&](const Eigen::Vector3d& q) {
+            Eigen::VectorXd r(Eigen::Index(seen.size()));
+            const mrpt::poses::CPose2D pose(q[0], q[1], q[2]);
+            for (size_t i = 0; i < seen.size(); ++i)
+                r[Eigen::Index(i)] = seen[i].u - rearColumn(pose, back, seen[i].point, k);
+            return r;
+        };
+        bool converged = false;
+        for (int it = 0; it < 20 && !converged; ++it) {
+            const Eigen::VectorXd r = residuals(x);
+            Eigen::MatrixXd J(r.size(), 3);
+            for (int j = 0; j < 3; ++j) {
+                Eigen::Vector3d dx = Eigen::Vector3d::Zero();
+                dx[j] = 1e-5;
+                J.col(j) = -(residuals(x + dx) - residuals(x - dx)) / 2e-5;  // the columns'
+            }
+            const Eigen::Vector3d step = (J.transpose() * J).ldlt().solve(J.transpose() * r);
+            if (!step.allFinite()) return std::nullopt;
+            x += step;
+            converged = step.head<2>().norm() < 1e-6 && std::abs(step[2]) < 1e-6;
+        }
+        if (!converged || !x.allFinite()) return std::nullopt;
+        const Eigen::VectorXd r = residuals(x);
+        Eigen::Index worst = 0;
+        if (r.cwiseAbs().maxCoeff(&worst) > kFitOutlier) {
+            seen.erase(seen.begin() + worst);
+            continue;
+        }
+        return LatticeFit{mrpt::poses::CPose2D(x[0], x[1], mrpt::math::wrapToPi(x[2])), robots(),
+                          std::sqrt(r.squaredNorm() / double(r.size()))};
+    }
+}
 
 CameraMove::CameraMove(const Move& move, const std::vector<TPoint2D>& believed,
                        const std::vector<double>& headings, const CameraMoveOptions& o)
     : move_(move), o_(o), anchor_(believed.at(move.anchor)) {
     at_ = believed.at(move.robot);
     heading_ = headings.at(move.robot);
+    if (headings.size() != believed.size())
+        throw Error("formation: a move needs every robot's believed heading");
+    for (size_t i = 0; i < believed.size(); ++i)
+        believed_.emplace_back(believed[i].x, believed[i].y, headings[i]);
     // Algorithm 2's midpoints: which two beacons each lies between
     const std::array<size_t, 3> b{move.base[0], move.base[1], move.anchor};
     for (size_t p = 0; p + 1 < move.path.size(); ++p) {
@@ -74,6 +158,7 @@ std::optional<CameraMove::Camera> CameraMove::camera() const {
             return Camera::Front;
         case Phase::FaceAway:
         case Phase::AlgorithmOne:
+        case Phase::LatticeFit:
             return Camera::Rear;
         default:
             return std::nullopt;
@@ -108,6 +193,32 @@ std::vector<Maneuver> CameraMove::finishBlind() {
     auto face = towards(at_ * 2 - anchor_);  // away from the anchor, as Algorithm 1 leaves it
     m.insert(m.end(), face.begin(), face.end());
     return m;
+}
+
+std::vector<Maneuver> CameraMove::fitStep(const std::vector<MarkerSighting>& tags) {
+    phase_ = Phase::Done;
+    if (!o_.latticeFit || latticeFits_ >= o_.latticeFits) return {};
+    const double heading = arrivalHeading(move_, [&] {
+        std::vector<TPoint2D> p;
+        for (const auto& b : believed_) p.push_back({b.x(), b.y()});
+        return p;
+    }());
+    const auto fit = fitToLattice(tags, believed_, move_.robot,
+                                  mrpt::poses::CPose2D(move_.target.x, move_.target.y, heading),
+                                  o_.intrinsics, o_.markers, o_.latticeFitRobots);
+    if (!fit) return {};  // Algorithm 1's vertex stands
+    const TPoint2D at{fit->pose.x(), fit->pose.y()}, to = move_.target - at;
+    if (to.norm() < o_.latticeFitTolerance || to.norm() > kFitMaxCorrection) return {};
+    // to the vertex the lattice fit puts it off from, and facing away from the anchor again
+    ++latticeFits_;
+    phase_ = Phase::LatticeFit;
+    at_ = at, heading_ = fit->pose.phi();
+    // forwards or backwards, whichever turns less
+    double along = std::atan2(to.y, to.x), distance = to.norm();
+    if (std::abs(mrpt::math::wrapToPi(along - heading_)) > M_PI / 2)
+        along = mrpt::math::wrapToPi(along + M_PI), distance = -distance;
+    return order({Maneuver::turn(mrpt::math::wrapToPi(along - heading_)), Maneuver::drive(distance),
+                  Maneuver::turn(mrpt::math::wrapToPi(heading - along))});
 }
 
 std::vector<Maneuver> CameraMove::decide(const std::vector<MarkerSighting>& tags) {
@@ -173,9 +284,11 @@ std::vector<Maneuver> CameraMove::decide(const std::vector<MarkerSighting>& tags
             }
             if (!m) return finishBlind();
             recoveries_ = 0;
-            if (m->empty()) phase_ = Phase::Done;
+            if (m->empty()) return fitStep(tags);
             return order(*m);
         }
+        case Phase::LatticeFit:
+            return fitStep(tags);
         default:
             return {};
     }

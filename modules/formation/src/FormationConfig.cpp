@@ -102,6 +102,7 @@ void FormationConfig::loadFromConfigFile(const mrpt::config::CConfigFileBase& sr
     cameraFocal = s.real("camera_focal", cameraFocal, 50, 5000);
     pixelTolerance = s.real("pixel_tolerance", pixelTolerance, 0.1, 50);
     together = s.choice("corrections", "together", {"together", "one_per_frame"}) == "together";
+    latticeFit = s.flag("lattice_fit", latticeFit);
     lens.k1 = s.real("lens_k1", lens.k1, -1, 1);
     lens.k2 = s.real("lens_k2", lens.k2, -1, 1);
     lens.p1 = s.real("lens_p1", lens.p1, -0.1, 0.1);
@@ -188,6 +189,7 @@ void FormationConfig::saveToConfigFile(mrpt::config::CConfigFileBase& t,
     t.write(section, "camera_focal", cameraFocal);
     t.write(section, "pixel_tolerance", pixelTolerance);
     t.write(section, "corrections", std::string(together ? "together" : "one_per_frame"));
+    t.write(section, "lattice_fit", latticeFit);
     t.write(section, "lens_k1", lens.k1);
     t.write(section, "lens_k2", lens.k2);
     t.write(section, "lens_p1", lens.p1);

@@ -17,6 +17,7 @@ CameraMoveOptions cameraMoveOptions(const FormationConfig& c) {
     o.algorithmOne.together = c.together;
     o.algorithmOne.noise = c.maneuverNoise;
     o.gateStop = c.gateStop;
+    o.latticeFit = c.latticeFit;
     return o;
 }
 

@@ -48,6 +48,10 @@ struct FormationConfig : public mrpt::config::CLoadableOptions {
     /** Algorithm 1's lateral condition: ours by default (the paper's amplifies errors when
      *  moves are chained; doc/formation.md). */
     AlgorithmOneOptions::Lateral lateral = AlgorithmOneOptions::Lateral::Midpoint;
+    /** After Algorithm 1, the pose fitted to every robot in the rear view and the vertex
+     *  corrected by it (CameraMoveOptions::latticeFit; N >= 5; ours, doc/formation.md: off,
+     *  since it measured no better). */
+    bool latticeFit = false;
     double gateStop = 0.8;                                 ///< m before a gate to centre again
     ManeuverNoise maneuverNoise;                           ///< turn_noise, drive_noise
     sim::ScannerOptions obstacleSensor{72, 0.01, 4.0, 0};  ///< rays, sigma, range (rate unused)
