@@ -17,11 +17,11 @@ struct Swarm {
 
 /** Views of robots at `poses` with Gaussian bearing noise (deg). */
 inline Swarm viewsOf(std::vector<mrpt::poses::CPose2D> poses, double sigmaDeg, unsigned seed,
-                     double maxRange = 0) {
+                     double maxRange = 0, double markerRadius = 0.05) {
     mrpt::random::CRandomGenerator rng(seed);
     omnivision::OmniCameraOptions o;
     o.maxRange = maxRange;
-    o.markerRadius = 0.05;
+    o.markerRadius = markerRadius;
     Swarm s;
     s.poses = std::move(poses);
     for (size_t i = 0; i < s.poses.size(); ++i) {
@@ -45,9 +45,11 @@ inline Swarm viewsOf(std::vector<mrpt::poses::CPose2D> poses, double sigmaDeg, u
     return s;
 }
 
-/** n robots uniformly in a side x side square, at least minSeparation apart. */
+/** n robots uniformly in a side x side square, at least minSeparation apart; markers of
+ *  markerRadius block the lines of sight (the camera's band is 0.15 m). */
 inline Swarm randomSwarm(size_t n, unsigned seed, double sigmaDeg, double side = 20,
-                         double minSeparation = 1.0, double maxRange = 0) {
+                         double minSeparation = 1.0, double maxRange = 0,
+                         double markerRadius = 0.05) {
     mrpt::random::CRandomGenerator rng(seed);
     std::vector<mrpt::poses::CPose2D> poses;
     while (poses.size() < n) {
@@ -57,7 +59,7 @@ inline Swarm randomSwarm(size_t n, unsigned seed, double sigmaDeg, double side =
             }))
             poses.emplace_back(x, y, rng.drawUniform(-M_PI, M_PI));
     }
-    return viewsOf(std::move(poses), sigmaDeg, seed + 7919, maxRange);
+    return viewsOf(std::move(poses), sigmaDeg, seed + 7919, maxRange, markerRadius);
 }
 
 }  // namespace mrloc::testing_omni

@@ -4,6 +4,8 @@
 #include <mrloc/common/Error.h>
 #include <mrloc/omnivision/TriangleSearch.h>
 
+#include <tuple>
+
 #include "Degrees.h"
 #include "Swarm.h"
 
@@ -105,6 +107,53 @@ TEST(TriangleSearch, FastFindsEveryLabelOfAMutuallyVisibleSwarm) {
         EXPECT_GE(id.triangles.size(), size_t(0.6 * double(n * (n - 1) * (n - 2) / 6)));
         for (const auto& t : id.triangles) EXPECT_LE(std::abs(t.sum() - M_PI), o.sumTolerance);
     }
+}
+
+/** Swarms at the density of 30 robots in a 20 m square (bench_triangles' BM_Identify). */
+testing_omni::Swarm denseSwarm(size_t n, unsigned seed, double sigmaDeg, bool occluded) {
+    return testing_omni::randomSwarm(n, seed, sigmaDeg, 20 * std::sqrt(double(n) / 30), 1.0,
+                                     occluded ? 12 : 0, occluded ? 0.15 : 0.05);
+}
+SearchOptions tolerancesFor(double sigmaDeg) {
+    SearchOptions o;
+    o.sumTolerance = 6 * sigmaDeg * kDeg;
+    o.bearingTolerance = 4 * sigmaDeg * kDeg;
+    return o;
+}
+
+TEST(TriangleSearch, FiftyAndSeventyFiveRobotsAreLabelledWithNoWrongLabel) {
+    // Before the hull seeds in a row, the mutual group and the significance test, 2 of 5
+    // such scenes with 50 robots failed with 275-291 wrong labels. Measured since: every
+    // image labelled at N = 50 (seeds 1-3), 97.8-100 % at N = 75; the bound is 97 % (the
+    // issue's).
+    for (const auto& [n, seed] :
+         std::vector<std::pair<size_t, unsigned>>{{50, 1}, {50, 2}, {50, 3}, {75, 1}}) {
+        const auto sw = denseSwarm(n, seed, 0.02, false);
+        const auto id = identify(sw.snapshot, tolerancesFor(0.02));
+        const auto sc = score(id.labels, sw.truth);
+        EXPECT_EQ(sc.wrong, 0u) << "N = " << n << ", seed " << seed;
+        EXPECT_GE(double(sc.right), 0.97 * double(sc.images)) << "N = " << n << ", seed " << seed;
+        EXPECT_TRUE(id.unresolved.empty()) << "N = " << n << ", seed " << seed;
+    }
+}
+
+TEST(TriangleSearch, NoisierOrOccludedBearingsLeaveImagesUnlabelledNeverWrong) {
+    // 0.05 and 0.1 deg of noise (the tolerances 4 and 6 sigma), and swarms whose cameras see
+    // 12 m through markers of the band's 0.15 m: fewer labels, none wrong. Over these nine
+    // scenes 96.5 % of the images are labelled; the bound is 95 %. Breaking the significance
+    // test (every candidate taken) gives wrong labels here and in the test above.
+    size_t images = 0, right = 0;
+    for (unsigned seed = 1; seed <= 3; ++seed) {
+        for (const auto& [n, sigma, occluded] : std::vector<std::tuple<size_t, double, bool>>{
+                 {30, 0.05, false}, {20, 0.1, false}, {20, 0.02, true}}) {
+            const auto sw = denseSwarm(n, seed, sigma, occluded);
+            const auto id = identify(sw.snapshot, tolerancesFor(sigma));
+            const auto sc = score(id.labels, sw.truth);
+            EXPECT_EQ(sc.wrong, 0u) << "N = " << n << ", " << sigma << " deg, seed " << seed;
+            images += sc.images, right += sc.right;
+        }
+    }
+    EXPECT_GE(double(right), 0.95 * double(images));  // measured 96.5 %
 }
 
 TEST(TriangleSearch, FastAgreesWithTheBruteForceOracle) {

@@ -58,9 +58,26 @@ double LayoutGrower::fitHeading(const Layout& layout, int r) const {
 
 /** Robots that could stand where a ray of s1 meets a ray of s2. */
 std::vector<Candidate> LayoutGrower::candidates(const Layout& layout, int s1, int s2,
-                                                size_t minRays, size_t minSeen) const {
+                                                size_t minRays, size_t minSeen,
+                                                std::set<std::pair<int, int>>& claimed) const {
     std::vector<Candidate> out, points;
     std::vector<std::pair<int, int>> rays;
+    const double sigma2 = std::pow(o_.bearingTolerance / 4, 2);  // the tolerance is 4 sigma
+    // How far the cameras see, as the layout shows it: the longest labelled sight. A placed
+    // robot farther than that from a point is not asked (a camera's range): its miss
+    // would count against a true robot.
+    // Only where the layout shows that cameras do not see every robot (under 90 % of the
+    // placed pairs labelled): a swarm that sees itself whole is checked by every robot.
+    double reach = 0;
+    size_t sights = 0;
+    for (int u : layout.order)
+        for (int w : layout.labels[size_t(u)])
+            if (w >= 0 && layout.placed[size_t(w)]) {
+                reach = std::max(reach, (layout.p[size_t(u)] - layout.p[size_t(w)]).norm());
+                ++sights;
+            }
+    const size_t k = layout.order.size();
+    reach = double(sights) >= 0.9 * double(k * (k - 1)) ? INFINITY : reach * kReachMargin;
     size_t maxRays = 0;
     const auto& lab = layout.labels;
     std::vector<std::pair<int, Vec2>> rays2;  // s2's unlabeled images and their rays
@@ -77,33 +94,65 @@ std::vector<Candidate> LayoutGrower::candidates(const Layout& layout, int s1, in
             const Vec2 w = layout.p[size_t(s2)] - layout.p[size_t(s1)];
             const double t1 = cross(w, u2) / den, t2 = cross(w, u1) / den;
             if (t1 <= 1e-9 || t2 <= 1e-9) continue;  // the rays meet behind a camera
-            const Vec2 at = layout.p[size_t(s1)] + t1 * u1;
+            Vec2 at = layout.p[size_t(s1)] + t1 * u1;
             rays.assign({{s1, int(c)}, {s2, d}});
+            // The point's uncertainty from its rays' bearing noise (a ray d away errs by
+            // d sigma across it), refined with every ray that confirms it: a point where two
+            // rays meet at a narrow angle is uncertain along them, and the bearings it
+            // predicts for the other robots are only as good as it (their tolerance widens
+            // by that, then narrows as rays are added).
+            LineMeeting meeting;
+            const auto addRay = [&](int s, double angle, double dist) {
+                meeting.add(layout.p[size_t(s)], angle, 1 / (dist * dist * sigma2));
+            };
+            addRay(s1, std::atan2(u1.y(), u1.x()), t1);
+            addRay(s2, std::atan2(u2.y(), u2.x()), t2);
+            Eigen::Matrix2d cov = meeting.information().inverse();
             // Every other placed robot that sees the point confirms it. A chance meeting
             // of two rays is confirmed by few: stop checking once misses outweigh hits.
-            size_t misses = 0;
+            size_t misses = 0, checks = 0;
             for (int s : layout.order) {
                 if (s == s1 || s == s2) continue;
-                const double b = direction(layout.p[size_t(s)], at) - layout.heading[size_t(s)];
-                const double t = tolAt(layout, (at - layout.p[size_t(s)]).norm());
-                if (const int img = table_.findImage(lab, s, b, t); img >= 0)
+                const Vec2 to = at - layout.p[size_t(s)];
+                const double dist = to.norm();
+                if (dist > reach) continue;
+                const Vec2 across = Vec2(-to.y(), to.x()) / std::max(dist, 1e-9);
+                const double spread = std::sqrt(across.dot(cov * across)) / std::max(dist, 1e-9);
+                if (spread > kMaxSpread * o_.bearingTolerance) continue;  // it cannot tell
+                ++checks;
+                const double t =
+                    std::max(tolAt(layout, dist), std::hypot(o_.bearingTolerance, 4 * spread));
+                const double b = std::atan2(to.y(), to.x()) - layout.heading[size_t(s)];
+                if (const int img = table_.findImage(lab, s, b, t); img >= 0) {
                     rays.push_back({s, img});
-                else if (++misses > 2 * (rays.size() - 2) + kMissSlack)
+                    addRay(s, layout.heading[size_t(s)] + table_.bearing(s, img), dist);
+                    if (const auto better = meeting.solve()) at = *better;
+                    cov = meeting.information().inverse();
+                } else if (++misses > 2 * (rays.size() - 2) + kMissSlack) {
                     break;
+                }
             }
             if (rays.size() < minRays) continue;
             maxRays = std::max(maxRays, rays.size());
             Candidate cand;
             cand.at = at;
             cand.raysIn = rays;
+            cand.rayChecks = checks;
             points.push_back(std::move(cand));
         }
     }
-    // Only points about as well confirmed as the best are worth identifying.
+    // Only points about as well confirmed as the best are worth identifying; while the
+    // layout is small, only those all placed robots see but one (growOnce's rule).
+    const bool small = layout.order.size() < kSmallLayout;
     for (auto& cand : points) {
-        if (2 * cand.raysIn.size() < maxRays) continue;
+        if (small ? cand.raysIn.size() + 1 < maxRays : 2 * cand.raysIn.size() < maxRays) continue;
+        const auto again = std::count_if(cand.raysIn.begin(), cand.raysIn.end(),
+                                         [&](const auto& ray) { return claimed.count(ray) > 0; });
+        if (2 * size_t(again) > cand.raysIn.size()) continue;  // found from another pair
         refinePoint(layout, cand);
+        const size_t before = out.size();
         identifyRobot(layout, cand, minSeen, out);
+        if (out.size() > before) claimed.insert(cand.raysIn.begin(), cand.raysIn.end());
     }
     return out;
 }
@@ -155,6 +204,7 @@ void LayoutGrower::identifyRobot(const Layout& layout, const Candidate& c, size_
             k.at = c.at;
             k.heading = h;
             k.raysIn = c.raysIn;
+            k.rayChecks = c.rayChecks;
             k.seen = seen;
             k.residual = residual(layout, k);
             if (best.robot < 0 || k.evidence() > best.evidence() ||
@@ -202,11 +252,11 @@ void LayoutGrower::sortByEvidence(std::vector<Candidate>& found) {
 }
 
 /** One round: the candidates from the first anchor pair that yields any.
- *  - With the seed alone, a fourth robot is taken only if a fifth then fits with all
- *    four (one step of lookahead): three robots confirm a point too weakly.
+ *  - With the seed alone, the largest group of candidates that all see each other
+ *    (placeMutualGroup): three robots confirm a point too weakly.
  *  - While the layout is small, only a candidate every placed robot agrees with (but
  *    for one pair that cannot see each other).
- *  - Later, every candidate with at least half the round's best evidence, best first. */
+ *  - Later, every candidate whose agreement is beyond chance (significant), best first. */
 bool LayoutGrower::growOnce(Layout& layout) const {
     const size_t placed = layout.order.size();
     // Anchor pairs: those among the first few placed robots together, then pairs of the
@@ -229,22 +279,16 @@ bool LayoutGrower::growOnce(Layout& layout) const {
     for (size_t gi = 0; gi < groups.size() && gi < kAnchorGroups; ++gi) {
         const auto& group = groups[gi];
         std::vector<Candidate> found;
+        std::set<std::pair<int, int>> claimed;
         for (const auto& [s1, s2] : group) {
-            auto more = candidates(layout, s1, s2, 3, 3);
+            auto more = candidates(layout, s1, s2, 3, 3, claimed);
             found.insert(found.end(), std::make_move_iterator(more.begin()),
                          std::make_move_iterator(more.end()));
         }
         if (found.empty()) continue;
         sortByEvidence(found);
         if (placed == 3) {
-            for (size_t i = 0; i < found.size() && i < kLookahead; ++i) {
-                Layout trial = layout;
-                place(trial, found[i]);
-                if (confirmed(trial)) {
-                    layout = std::move(trial);
-                    return true;
-                }
-            }
+            if (placeMutualGroup(layout, found)) return true;
             continue;
         }
         if (placed < kSmallLayout) {  // all agree, but for one pair hidden from each other
@@ -252,15 +296,14 @@ bool LayoutGrower::growOnce(Layout& layout) const {
             place(layout, found.front());
             return true;
         }
-        // A robot must agree with at least a quarter of the placed robots (rays in plus
-        // robots seen >= half the layout): chance agreement grows with the layout, true
-        // agreement grows faster.
-        const size_t bar = std::max({kMinEvidence, placed / 2, 3 * found.front().evidence() / 4});
+        // A robot must agree with the layout beyond chance: chance agreement grows with
+        // the images per view (N), true agreement with the robots placed.
         bool any = false;
         for (const auto& c : found) {
             const bool mutual =
                 2 * c.seen.size() >= c.raysIn.size() && 2 * c.raysIn.size() >= c.seen.size();
-            if (c.evidence() < bar || !mutual || conflicts(layout, c)) continue;
+            if (c.evidence() < kMinEvidence || !significant(c) || !mutual || conflicts(layout, c))
+                continue;
             place(layout, c);
             any = true;
         }
@@ -269,38 +312,132 @@ bool LayoutGrower::growOnce(Layout& layout) const {
     return false;
 }
 
-/** Whether some unplaced robot fits with every robot placed so far (one pair may be
- *  hidden from each other) and with the newest one in particular; or none is left. */
-bool LayoutGrower::confirmed(const Layout& layout) const {
-    const size_t k = layout.order.size();
-    const int newest = layout.order.back();
-    bool left = false;
-    for (int r = 0; r < n_; ++r) left |= !layout.placed[size_t(r)] && table_.view(r).size() >= 2;
-    if (!left) return true;
-    const auto involves = [&](const Candidate& c) {
-        for (const auto& [s, img] : c.raysIn)
-            if (s == newest) return true;
-        for (const auto& [s, img] : c.seen)
-            if (s == newest) return true;
-        return false;
+bool LayoutGrower::significant(const Candidate& c) const {
+    const double m = double(c.checks()), h = double(c.hits());
+    if (h < 1 || h > m) return h >= 1;
+    size_t images = 0;
+    for (int r = 0; r < n_; ++r) images += table_.view(r).size();
+    const double perView = double(images) / std::max(1, n_);
+    // a window of +-2 bearing tolerances (tolAt's largest) over every image
+    const double p = std::min(0.5, perView * 4 * o_.bearingTolerance / (2 * M_PI));
+    // the binomial tail P(X >= h), bounded by C(m, h) p^h
+    const double logTail =
+        std::lgamma(m + 1) - std::lgamma(h + 1) - std::lgamma(m - h + 1) + h * std::log(p);
+    return logTail < std::log(0.01) - 4 * std::log(double(std::max(n_, 2)));
+}
+
+/** From the seed alone a point is confirmed by three robots, too few to tell a true robot
+ *  from chance once N is large. But true candidates see each other: robot a has an image
+ *  where its point predicts b's point, and b one towards a's, which a chance candidate
+ *  rarely does with many. The largest group of candidates that all see each other (greedy,
+ *  the best connected first; one candidate per robot, no image twice) is placed at once
+ *  when it holds at least kMinGroup robots. */
+bool LayoutGrower::placeMutualGroup(Layout& layout, const std::vector<Candidate>& all) const {
+    // the pairwise test is quadratic: the best kPerRobot candidates of each robot (all is
+    // sorted by evidence, then residual)
+    std::vector<Candidate> found;
+    std::vector<size_t> perRobot(size_t(n_), 0);
+    for (const auto& c : all)
+        if (perRobot[size_t(c.robot)]++ < kPerRobot) found.push_back(c);
+    const size_t k = found.size();
+    // The smallest group beyond chance: g candidates that all see each other pass g (g - 1)
+    // bearing checks, each by chance with probability p (a window of +-2 tolerances over a
+    // view's images), among about k^2 pairs tried: p^(g (g - 1)) k^2 under 1e-6.
+    size_t images = 0;
+    for (int r = 0; r < n_; ++r) images += table_.view(r).size();
+    const double p =
+        std::min(0.5, double(images) / std::max(1, n_) * 4 * o_.bearingTolerance / (2 * M_PI));
+    size_t minGroup = 2;
+    while (minGroup<kMinGroup&& double(minGroup * (minGroup - 1)) * std::log(p) +
+                    2 * std::log(double(k) + 1)>
+               std::log(1e-6))
+        ++minGroup;
+    // A swarm with fewer robots left than kMinGroup (which may not all see each other):
+    // one robot at a time, as every placed robot agrees with it (growOnce's small rule).
+    size_t left = 0;
+    for (int r = 0; r < n_; ++r) left += !layout.placed[size_t(r)] && table_.view(r).size() >= 2;
+    if (left < kMinGroup) minGroup = 1;
+    if (k < minGroup) return false;
+    std::vector<std::vector<char>> sees(k, std::vector<char>(k, 0));
+    std::vector<size_t> degree(k, 0);
+    const auto looks = [&](const Candidate& a, const Candidate& b) {
+        const Vec2 d = b.at - a.at;
+        return table_.findImage({}, a.robot, std::atan2(d.y(), d.x()) - a.heading,
+                                tolAt(layout, d.norm())) >= 0;
     };
-    for (size_t a = 0; a < 2; ++a)  // the seed's rays: the best known
-        for (size_t b = a + 1; b < 3; ++b)
-            for (const auto& c : candidates(layout, layout.order[a], layout.order[b], k - 1, k - 1))
-                if (c.evidence() + 2 >= 2 * k && involves(c)) return true;
-    return false;
+    for (size_t a = 0; a < k; ++a)
+        for (size_t b = a + 1; b < k; ++b)
+            if (found[a].robot != found[b].robot &&
+                (found[a].at - found[b].at).norm() > 1e-3 * layout.scale &&
+                looks(found[a], found[b]) && looks(found[b], found[a]))
+                sees[a][b] = sees[b][a] = 1, ++degree[a], ++degree[b];
+    std::vector<size_t> order(k);
+    for (size_t i = 0; i < k; ++i) order[i] = i;
+    std::stable_sort(order.begin(), order.end(),
+                     [&](size_t a, size_t b) { return degree[a] > degree[b]; });
+    std::vector<size_t> group;
+    for (size_t c : order) {
+        if (degree[c] + 1 < minGroup) break;
+        bool fits = std::all_of(group.begin(), group.end(), [&](size_t g) { return sees[c][g]; });
+        for (size_t g : group)
+            for (const auto& ray : found[c].raysIn)
+                if (std::find(found[g].raysIn.begin(), found[g].raysIn.end(), ray) !=
+                    found[g].raysIn.end())
+                    fits = false;  // one image cannot show two robots
+        if (fits) group.push_back(c);
+    }
+    if (group.size() < minGroup) return false;
+    for (size_t g : group) place(layout, found[g]);
+    return true;
 }
 
 Layout LayoutGrower::growFrom(const Seed& seed, bool& ok) const {
     Layout layout;
     ok = placeSeed(seed, layout);
     if (!ok) return layout;
-    while (growOnce(layout)) polish(layout, 2);
+    // relabelled every round: a placed robot's images of other placed robots left
+    // unlabelled would cast rays that meet at robots already placed
+    while (growOnce(layout)) {
+        polish(layout, 2);
+        relabel(layout);
+    }
     for (int pass = 0; pass < 2; ++pass) {
         polish(layout, 3);
         relabel(layout);
     }
+    // robots that do not fit out, one at a time (the worst first), then grown again
+    for (size_t pruned = 0; pruned < size_t(n_) && layout.order.size() > 3;) {
+        const int worst = worstFit(layout);
+        if (worst < 0) break;
+        unplace(layout, worst);
+        ++pruned;
+        polish(layout, 2);
+        relabel(layout);
+        if (worstFit(layout) < 0) {
+            while (growOnce(layout)) {
+                polish(layout, 2);
+                relabel(layout);
+            }
+        }
+    }
+    keepMutual(layout);
     return layout;
+}
+
+/** A label u -> w stands only if w has a label -> u: a robot placed a little off its true
+ *  place (on rays that met by chance near it) keeps some images that fit it, but the
+ *  others' images of it no longer match and lose their labels. Visibility is mutual
+ *  (a camera's range, a marker in the line of sight), so a true label rarely lacks its
+ *  reverse. */
+void LayoutGrower::keepMutual(Layout& layout) {
+    std::vector<std::vector<char>> sees(layout.labels.size(),
+                                        std::vector<char>(layout.labels.size(), 0));
+    for (size_t u = 0; u < layout.labels.size(); ++u)
+        for (int w : layout.labels[u])
+            if (w >= 0) sees[u][size_t(w)] = 1;
+    for (size_t u = 0; u < layout.labels.size(); ++u)
+        for (int& w : layout.labels[u])
+            if (w >= 0 && !sees[size_t(w)][u]) w = -1;
 }
 
 }  // namespace mrloc::omnivision::seedgrow

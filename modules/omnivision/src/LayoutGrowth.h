@@ -18,6 +18,7 @@
 #include <cmath>
 #include <functional>
 #include <optional>
+#include <set>
 #include <utility>
 #include <vector>
 
@@ -41,11 +42,14 @@ inline double direction(const Vec2& from, const Vec2& to) {
 /** The least-squares meeting point of lines, each through a point at a direction. */
 class LineMeeting {
  public:
-    void add(const Vec2& through, double angle) {
+    /** weight: 1 / the variance of the point's distance from the line (m^-2): then
+     *  information() is the meeting point's information matrix. */
+    void add(const Vec2& through, double angle, double weight = 1) {
         const Vec2 normal(-std::sin(angle), std::cos(angle));
-        A_ += normal * normal.transpose();
-        b_ += normal * normal.dot(through);
+        A_ += weight * normal * normal.transpose();
+        b_ += weight * normal * normal.dot(through);
     }
+    const Eigen::Matrix2d& information() const { return A_; }
     /** None when the lines are (nearly) parallel. */
     std::optional<Vec2> solve() const {
         if (std::abs(A_.determinant()) <= 1e-12) return std::nullopt;
@@ -83,7 +87,13 @@ struct Candidate {
     std::vector<std::pair<int, int>> raysIn;  ///< placed robot, its image of `robot`
     std::vector<std::pair<int, int>> seen;    ///< placed robot, `robot`'s image of it
     double residual = 0;                      ///< sum of squared bearing errors
+    size_t rayChecks = 0;  ///< placed robots beyond the two anchors asked for a ray into it
     size_t evidence() const { return raysIn.size() + seen.size(); }
+    /** Checks that could have failed and those that did not: rays asked of placed robots
+     *  beyond the two anchors, and the candidate's own images of the placed robots beyond
+     *  the two its heading was fitted to. */
+    size_t checks() const { return rayChecks + (raysIn.size() - 2); }
+    size_t hits() const { return (raysIn.size() - 2) + (seen.size() - 2); }
 };
 
 /** Each camera's images and the signed angles between them. */
@@ -156,8 +166,11 @@ class LayoutGrower {
     double tolAt(const Layout& layout, double dist) const;
     bool placeSeed(const Seed& seed, Layout& layout) const;
     double fitHeading(const Layout& layout, int r) const;
+    /** `claimed`: rays into points already identified this round (from another anchor
+     *  pair): a point most of whose rays are claimed is the same robot again and is not
+     *  identified twice; the rays of the points identified here are added. */
     std::vector<Candidate> candidates(const Layout& layout, int s1, int s2, size_t minRays,
-                                      size_t minSeen) const;
+                                      size_t minSeen, std::set<std::pair<int, int>>& claimed) const;
     void refinePoint(const Layout& layout, Candidate& c) const;
     void identifyRobot(const Layout& layout, const Candidate& c, size_t minSeen,
                        std::vector<Candidate>& out) const;
@@ -166,17 +179,34 @@ class LayoutGrower {
     static bool conflicts(const Layout& layout, const Candidate& c);
     static void sortByEvidence(std::vector<Candidate>& found);
     bool growOnce(Layout& layout) const;
-    bool confirmed(const Layout& layout) const;
+    bool placeMutualGroup(Layout& layout, const std::vector<Candidate>& found) const;
+    /** Whether c's agreement with the layout is beyond chance: the probability that a
+     *  wrong point and robot pass as many of its checks (each by chance with the share of
+     *  the circle a tolerance window over every image covers) is below 1 % over all the
+     *  hypotheses a search tries (about N^4: points N^2, robots N, anchor pairs N). */
+    bool significant(const Candidate& c) const;
     void polish(Layout& layout, int sweeps) const;
     void relabel(Layout& layout) const;
+    int worstFit(const Layout& layout) const;
+    static void unplace(Layout& layout, int r);
+    static void keepMutual(Layout& layout);
 
     static constexpr double kMinRayAngle = 0.02;  ///< sin of ~1.1 degrees
-    static constexpr size_t kLookahead = 3;       ///< fourth robots tried from the seed
     static constexpr size_t kSmallLayout = 6;     ///< below: every placed robot must agree
     static constexpr size_t kAnchors = 4;         ///< the first robots, whose pairs all give rays
     static constexpr size_t kMissSlack = 4;       ///< misses allowed beyond twice the hits
     static constexpr size_t kAnchorGroups = 8;    ///< anchor pairs tried per round, at most
     static constexpr size_t kMinEvidence = 8;     ///< rays in plus robots seen
+    static constexpr size_t kMinGroup = 4;  ///< robots placed at once beside the seed, at most
+    static constexpr size_t kPerRobot = 3;  ///< candidates per robot in the group test
+    /** A placed robot whose labels fit the layout worse than this (RMS, bearing sigmas) is
+     *  taken out again: it was placed on a chance meeting of rays near its true place. */
+    static constexpr double kMaxRms = 4;
+    /** A point whose predicted bearing for a robot is this many bearing tolerances
+     *  uncertain is not checked against that robot (it could not tell). */
+    static constexpr double kMaxSpread = 10;
+    /** Points farther than this times the longest labelled sight are not checked. */
+    static constexpr double kReachMargin = 1.1;
 
     const ImageTable& table_;
     const SearchOptions& o_;

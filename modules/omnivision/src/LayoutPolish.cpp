@@ -13,6 +13,11 @@ void LayoutGrower::polish(Layout& layout, int sweeps) const {
     for (int it = 0; it < sweeps; ++it)
         for (size_t k = 2; k < layout.order.size(); ++k) {  // the first two fix the frame
             const int r = layout.order[k];
+            // a ray from d away misses by d x its bearing's error: weigh it by 1 / d^2
+            const auto weight = [&](int s) {
+                return 1 /
+                       std::max((layout.p[size_t(s)] - layout.p[size_t(r)]).squaredNorm(), 1e-6);
+            };
             LineMeeting m;
             for (int s : layout.order) {
                 if (s == r) continue;
@@ -20,17 +25,54 @@ void LayoutGrower::polish(Layout& layout, int sweeps) const {
                 for (size_t img = 0; img < lab.size(); ++img)
                     if (lab[img] == r)
                         m.add(layout.p[size_t(s)],
-                              layout.heading[size_t(s)] + table_.bearing(s, int(img)));
+                              layout.heading[size_t(s)] + table_.bearing(s, int(img)), weight(s));
             }
             const auto& own = layout.labels[size_t(r)];
             for (size_t img = 0; img < own.size(); ++img)
                 if (own[img] >= 0 && layout.placed[size_t(own[img])])
                     m.add(layout.p[size_t(own[img])],
-                          layout.heading[size_t(r)] + table_.bearing(r, int(img)));
+                          layout.heading[size_t(r)] + table_.bearing(r, int(img)),
+                          weight(own[img]));
             if (const auto at = m.solve()) layout.p[size_t(r)] = *at;
             layout.heading[size_t(r)] = fitHeading(layout, r);
         }
     for (int r : layout.order) layout.heading[size_t(r)] = fitHeading(layout, r);
+}
+
+/** The placed robot whose labelled bearings (its images of others, others' images of it)
+ *  fit the layout worst, by RMS in bearing sigmas, if that is over kMaxRms; else -1. */
+int LayoutGrower::worstFit(const Layout& layout) const {
+    const double sigma = o_.bearingTolerance / 4;  // the tolerance is 4 sigma
+    std::vector<double> sum(size_t(n_), 0);
+    std::vector<size_t> count(size_t(n_), 0);
+    for (int u : layout.order) {
+        const auto& lab = layout.labels[size_t(u)];
+        for (size_t img = 0; img < lab.size(); ++img) {
+            const int w = lab[img];
+            if (w < 0 || !layout.placed[size_t(w)]) continue;
+            const double e = wrapToPi(direction(layout.p[size_t(u)], layout.p[size_t(w)]) -
+                                      layout.heading[size_t(u)] - table_.bearing(u, int(img)));
+            for (int r : {u, w}) sum[size_t(r)] += e * e, ++count[size_t(r)];
+        }
+    }
+    int worst = -1;
+    double worstRms = kMaxRms;
+    for (int r : layout.order)
+        if (count[size_t(r)] > 0)
+            if (const double rms = std::sqrt(sum[size_t(r)] / double(count[size_t(r)])) / sigma;
+                rms > worstRms)
+                worst = r, worstRms = rms;
+    return worst;
+}
+
+/** Takes robot r out of the layout, with every label to or from it. */
+void LayoutGrower::unplace(Layout& layout, int r) {
+    layout.placed[size_t(r)] = 0;
+    layout.order.erase(std::find(layout.order.begin(), layout.order.end(), r));
+    for (auto& lab : layout.labels)
+        for (int& w : lab)
+            if (w == r) w = -1;
+    std::fill(layout.labels[size_t(r)].begin(), layout.labels[size_t(r)].end(), -1);
 }
 
 /** Re-assigns every placed camera's labels from the polished layout: each image goes to

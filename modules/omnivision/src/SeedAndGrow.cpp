@@ -50,13 +50,17 @@ Identification identify(const Snapshot& s, const SearchOptions& o) {
                    labels + labels / 50 >= bestLabels) {
             ++matched;
         }
-        // Done when everything that can be placed is, or when the best layout has been
-        // grown again from three other seeds, or when the budget is spent.
-        return (best.order.size() == placeable && labeledShare(best) >= kDoneShare) ||
+        // Done when everything that can be placed is (but for 1 in 50: a robot whose
+        // images all stand nearly in line with others' cannot be), or when the best layout
+        // has been grown again from three other seeds, or when the budget is spent.
+        return (best.order.size() + placeable / 50 >= placeable &&
+                labeledShare(best) >= kDoneShare) ||
                matched >= 3 || tried >= o.maxSeeds;
     };
     if (!tryHullSeeds(table, o, attempt)) tryGeneralSeeds(table, o, attempt);
-    Labels labels = best.labels;
+    // A seed that grew no further is no evidence: three robots' angles summing to 180
+    // degrees happen by chance.
+    Labels labels = best.order.size() > 3 || placeable <= 3 ? best.labels : Labels{};
     if (labels.empty()) {
         labels.resize(size_t(n));
         for (int r = 0; r < n; ++r) labels[size_t(r)].assign(s.views[size_t(r)].size(), -1);

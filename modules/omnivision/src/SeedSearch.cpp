@@ -67,31 +67,57 @@ bool tryHullSeeds(const ImageTable& table, const SearchOptions& o, const SeedAtt
             }
         }
     }
-    std::vector<std::pair<double, Seed>> seeds;  // best conditioned first
+    // Three hull robots in a row, i -> j -> k counter-clockwise: i's first image shows j, j's
+    // first and last show k and i, k's last shows j. From i, k lies a few images past j (only
+    // the robots inside the ear i-j-k lie between), and from k, i a few images before j: the
+    // ear's images are searched kEar deep. A true triple's neighbours along the hull are
+    // seeds too (j -> k -> l, h -> i -> j), a chance one's rarely: seeds that chain come
+    // first, then those with fewer robots inside the ear, then the best conditioned.
+    constexpr size_t kEar = 6;
+    struct HullSeed {
+        int chain = 0;
+        size_t inside = 0;
+        double conditioning = 0;
+        Seed seed;
+    };
+    std::vector<HullSeed> seeds;
     for (int i : hull)
         for (int j : hull)
             for (int k : hull) {
                 if (i == j || j == k || i == k) continue;
                 const double thetaJ = signedAngle(table.view(j), first[size_t(j)], last[size_t(j)]);
-                for (size_t x = 0; x < table.view(i).size(); ++x) {
-                    if (int(x) == first[size_t(i)]) continue;
-                    const double thetaI = signedAngle(table.view(i), first[size_t(i)], int(x));
+                const size_t ni = table.view(i).size(), nk = table.view(k).size();
+                for (size_t off = 1; off <= kEar && off < ni; ++off) {
+                    const int x = int((size_t(first[size_t(i)]) + off) % ni);
+                    const double thetaI = signedAngle(table.view(i), first[size_t(i)], x);
                     const double thetaK = M_PI - thetaI - thetaJ;
                     if (thetaK <= 0) continue;
                     const int y = table.findImage({}, k, table.bearing(k, last[size_t(k)]) - thetaK,
                                                   o.sumTolerance);
                     if (y < 0 || y == last[size_t(k)]) continue;
+                    const size_t before = (size_t(last[size_t(k)]) + nk - size_t(y)) % nk;
+                    if (before > kEar) continue;
                     const Seed seed{{i, j, k},
-                                    {{{first[size_t(i)], int(x)},
+                                    {{{first[size_t(i)], x},
                                       {first[size_t(j)], last[size_t(j)]},
                                       {y, last[size_t(k)]}}}};
-                    seeds.push_back({std::min({thetaI, thetaJ, thetaK}), seed});
+                    seeds.push_back(
+                        {0, off + before - 2, std::min({thetaI, thetaJ, thetaK}), seed});
                 }
             }
-    std::stable_sort(seeds.begin(), seeds.end(),
-                     [](const auto& a, const auto& b) { return a.first > b.first; });
-    for (const auto& [conditioning, seed] : seeds)
-        if (attempt(seed)) return true;
+    std::set<std::pair<int, int>> heads, tails;  // (r0, r1) and (r1, r2) of every seed
+    for (const auto& h : seeds)
+        heads.insert({h.seed.r[0], h.seed.r[1]}), tails.insert({h.seed.r[1], h.seed.r[2]});
+    for (auto& h : seeds)
+        h.chain = int(heads.count({h.seed.r[1], h.seed.r[2]})) +
+                  int(tails.count({h.seed.r[0], h.seed.r[1]}));
+    std::stable_sort(seeds.begin(), seeds.end(), [](const HullSeed& a, const HullSeed& b) {
+        if (a.chain != b.chain) return a.chain > b.chain;
+        if (a.inside != b.inside) return a.inside < b.inside;
+        return a.conditioning > b.conditioning;
+    });
+    for (const auto& h : seeds)
+        if (attempt(h.seed)) return true;
     return false;
 }
 
