@@ -31,16 +31,14 @@ constexpr double kFitOutlier = 4;
  *  beacons is not trusted (Algorithm 1 places it within millimetres of them). */
 constexpr double kFitMaxCorrection = 0.05;
 
-/** A rear-camera picture column (px) of world point p, the robot at `pose` (its camera on
- *  its back face, `back` behind its centre, looking backwards, level). */
-double rearColumn(const mrpt::poses::CPose2D& pose, double back, const TPoint2D& p,
+/** The rear camera's picture column (px) of a world point at the camera's height, the robot
+ *  at `pose`: unlike project(), also for a point outside the picture (the fit's numeric
+ *  Jacobian steps across the picture's edge). */
+double rearColumn(const mrpt::poses::CPose2D& pose, const MarkerOptions& m, const TPoint2D& p,
                   const mrpt::img::TCamera& k) {
-    const double psi = pose.phi() + M_PI;
-    const TPoint2D c{pose.x() + back * std::cos(psi), pose.y() + back * std::sin(psi)};
-    const TPoint2D d = p - c;
-    const double ahead = d.x * std::cos(psi) + d.y * std::sin(psi);
-    const double right = d.x * std::sin(psi) - d.y * std::cos(psi);  // the camera's +X
-    return k.cx() + k.fx() * right / ahead;
+    const auto local = rearCameraPose(pose, m.bodySize, m.tagHeight)
+                           .inverseComposePoint({p.x, p.y, m.tagHeight});  // +Z ahead, +X right
+    return k.cx() + k.fx() * local.x / local.z;
 }
 }  // namespace
 
@@ -66,7 +64,6 @@ std::optional<LatticeFit> fitToLattice(const std::vector<MarkerSighting>& tags,
         for (const auto& b : seen) r.insert(b.robot);
         return r.size();
     };
-    const double back = markers.bodySize / 2;
     for (;;) {
         if (robots() < std::max<size_t>(minRobots, 3)) return std::nullopt;
         // Gauss-Newton on (x, y, phi), numeric Jacobian of each column
@@ -75,7 +72,7 @@ std::optional<LatticeFit> fitToLattice(const std::vector<MarkerSighting>& tags,
             Eigen::VectorXd r(Eigen::Index(seen.size()));
             const mrpt::poses::CPose2D pose(q[0], q[1], q[2]);
             for (size_t i = 0; i < seen.size(); ++i)
-                r[Eigen::Index(i)] = seen[i].u - rearColumn(pose, back, seen[i].point, k);
+                r[Eigen::Index(i)] = seen[i].u - rearColumn(pose, markers, seen[i].point, k);
             return r;
         };
         bool converged = false;
@@ -198,11 +195,8 @@ std::vector<Maneuver> CameraMove::finishBlind() {
 std::vector<Maneuver> CameraMove::fitStep(const std::vector<MarkerSighting>& tags) {
     phase_ = Phase::Done;
     if (!o_.latticeFit || latticeFits_ >= o_.latticeFits) return {};
-    const double heading = arrivalHeading(move_, [&] {
-        std::vector<TPoint2D> p;
-        for (const auto& b : believed_) p.push_back({b.x(), b.y()});
-        return p;
-    }());
+    // arrivalHeading: facing away from the anchor
+    const double heading = std::atan2(move_.target.y - anchor_.y, move_.target.x - anchor_.x);
     const auto fit = fitToLattice(tags, believed_, move_.robot,
                                   mrpt::poses::CPose2D(move_.target.x, move_.target.y, heading),
                                   o_.intrinsics, o_.markers, o_.latticeFitRobots);

@@ -59,25 +59,10 @@ double LayoutGrower::fitHeading(const Layout& layout, int r) const {
 /** Robots that could stand where a ray of s1 meets a ray of s2. */
 std::vector<Candidate> LayoutGrower::candidates(const Layout& layout, int s1, int s2,
                                                 size_t minRays, size_t minSeen,
-                                                std::set<std::pair<int, int>>& claimed) const {
+                                                Round& round) const {
     std::vector<Candidate> out, points;
     std::vector<std::pair<int, int>> rays;
     const double sigma2 = std::pow(o_.bearingTolerance / 4, 2);  // the tolerance is 4 sigma
-    // How far the cameras see, as the layout shows it: the longest labelled sight. A placed
-    // robot farther than that from a point is not asked (a camera's range): its miss
-    // would count against a true robot.
-    // Only where the layout shows that cameras do not see every robot (under 90 % of the
-    // placed pairs labelled): a swarm that sees itself whole is checked by every robot.
-    double reach = 0;
-    size_t sights = 0;
-    for (int u : layout.order)
-        for (int w : layout.labels[size_t(u)])
-            if (w >= 0 && layout.placed[size_t(w)]) {
-                reach = std::max(reach, (layout.p[size_t(u)] - layout.p[size_t(w)]).norm());
-                ++sights;
-            }
-    const size_t k = layout.order.size();
-    reach = double(sights) >= 0.9 * double(k * (k - 1)) ? INFINITY : reach * kReachMargin;
     size_t maxRays = 0;
     const auto& lab = layout.labels;
     std::vector<std::pair<int, Vec2>> rays2;  // s2's unlabeled images and their rays
@@ -115,7 +100,7 @@ std::vector<Candidate> LayoutGrower::candidates(const Layout& layout, int s1, in
                 if (s == s1 || s == s2) continue;
                 const Vec2 to = at - layout.p[size_t(s)];
                 const double dist = to.norm();
-                if (dist > reach) continue;
+                if (dist > round.reach) continue;  // out of its camera's range
                 const Vec2 across = Vec2(-to.y(), to.x()) / std::max(dist, 1e-9);
                 const double spread = std::sqrt(across.dot(cov * across)) / std::max(dist, 1e-9);
                 if (spread > kMaxSpread * o_.bearingTolerance) continue;  // it cannot tell
@@ -146,13 +131,14 @@ std::vector<Candidate> LayoutGrower::candidates(const Layout& layout, int s1, in
     const bool small = layout.order.size() < kSmallLayout;
     for (auto& cand : points) {
         if (small ? cand.raysIn.size() + 1 < maxRays : 2 * cand.raysIn.size() < maxRays) continue;
-        const auto again = std::count_if(cand.raysIn.begin(), cand.raysIn.end(),
-                                         [&](const auto& ray) { return claimed.count(ray) > 0; });
+        const auto again =
+            std::count_if(cand.raysIn.begin(), cand.raysIn.end(),
+                          [&](const auto& ray) { return round.claimed.count(ray) > 0; });
         if (2 * size_t(again) > cand.raysIn.size()) continue;  // found from another pair
         refinePoint(layout, cand);
         const size_t before = out.size();
         identifyRobot(layout, cand, minSeen, out);
-        if (out.size() > before) claimed.insert(cand.raysIn.begin(), cand.raysIn.end());
+        if (out.size() > before) round.claimed.insert(cand.raysIn.begin(), cand.raysIn.end());
     }
     return out;
 }
@@ -251,6 +237,19 @@ void LayoutGrower::sortByEvidence(std::vector<Candidate>& found) {
     });
 }
 
+double LayoutGrower::sightReach(const Layout& layout) const {
+    double longest = 0;
+    size_t sights = 0;
+    for (int u : layout.order)
+        for (int w : layout.labels[size_t(u)])
+            if (w >= 0 && layout.placed[size_t(w)]) {
+                longest = std::max(longest, (layout.p[size_t(u)] - layout.p[size_t(w)]).norm());
+                ++sights;
+            }
+    const size_t k = layout.order.size();
+    return double(sights) >= 0.9 * double(k * (k - 1)) ? INFINITY : longest * kReachMargin;
+}
+
 /** One round: the candidates from the first anchor pair that yields any.
  *  - With the seed alone, the largest group of candidates that all see each other
  *    (placeMutualGroup): three robots confirm a point too weakly.
@@ -276,12 +275,14 @@ bool LayoutGrower::growOnce(Layout& layout) const {
     for (size_t a = 0; a < open.size(); ++a)
         for (size_t b = a + 1; b < open.size() && groups.size() < kAnchorGroups; ++b)
             groups.push_back({{open[a].second, open[b].second}});
+    const double reach = sightReach(layout);
     for (size_t gi = 0; gi < groups.size() && gi < kAnchorGroups; ++gi) {
         const auto& group = groups[gi];
         std::vector<Candidate> found;
-        std::set<std::pair<int, int>> claimed;
+        Round round;
+        round.reach = reach;
         for (const auto& [s1, s2] : group) {
-            auto more = candidates(layout, s1, s2, 3, 3, claimed);
+            auto more = candidates(layout, s1, s2, 3, 3, round);
             found.insert(found.end(), std::make_move_iterator(more.begin()),
                          std::make_move_iterator(more.end()));
         }
@@ -313,17 +314,19 @@ bool LayoutGrower::growOnce(Layout& layout) const {
 }
 
 bool LayoutGrower::significant(const Candidate& c) const {
-    const double m = double(c.checks()), h = double(c.hits());
-    if (h < 1 || h > m) return h >= 1;
-    size_t images = 0;
-    for (int r = 0; r < n_; ++r) images += table_.view(r).size();
-    const double perView = double(images) / std::max(1, n_);
-    // a window of +-2 bearing tolerances (tolAt's largest) over every image
-    const double p = std::min(0.5, perView * 4 * o_.bearingTolerance / (2 * M_PI));
+    const double m = double(c.checks()), h = double(c.hits());  // h <= m
+    if (h < 1) return false;
     // the binomial tail P(X >= h), bounded by C(m, h) p^h
     const double logTail =
-        std::lgamma(m + 1) - std::lgamma(h + 1) - std::lgamma(m - h + 1) + h * std::log(p);
+        std::lgamma(m + 1) - std::lgamma(h + 1) - std::lgamma(m - h + 1) + h * std::log(chance_);
     return logTail < std::log(0.01) - 4 * std::log(double(std::max(n_, 2)));
+}
+
+double LayoutGrower::chancePerCheck(const ImageTable& table, const SearchOptions& o) {
+    size_t images = 0;
+    for (int r = 0; r < table.robots(); ++r) images += table.view(r).size();
+    const double perView = double(images) / std::max(1, table.robots());
+    return std::min(0.5, perView * 4 * o.bearingTolerance / (2 * M_PI));
 }
 
 /** From the seed alone a point is confirmed by three robots, too few to tell a true robot
@@ -331,7 +334,7 @@ bool LayoutGrower::significant(const Candidate& c) const {
  *  where its point predicts b's point, and b one towards a's, which a chance candidate
  *  rarely does with many. The largest group of candidates that all see each other (greedy,
  *  the best connected first; one candidate per robot, no image twice) is placed at once
- *  when it holds at least kMinGroup robots. */
+ *  when it is large enough to be beyond chance (at most kMinGroup robots). */
 bool LayoutGrower::placeMutualGroup(Layout& layout, const std::vector<Candidate>& all) const {
     // the pairwise test is quadratic: the best kPerRobot candidates of each robot (all is
     // sorted by evidence, then residual)
@@ -341,17 +344,14 @@ bool LayoutGrower::placeMutualGroup(Layout& layout, const std::vector<Candidate>
         if (perRobot[size_t(c.robot)]++ < kPerRobot) found.push_back(c);
     const size_t k = found.size();
     // The smallest group beyond chance: g candidates that all see each other pass g (g - 1)
-    // bearing checks, each by chance with probability p (a window of +-2 tolerances over a
-    // view's images), among about k^2 pairs tried: p^(g (g - 1)) k^2 under 1e-6.
-    size_t images = 0;
-    for (int r = 0; r < n_; ++r) images += table_.view(r).size();
-    const double p =
-        std::min(0.5, double(images) / std::max(1, n_) * 4 * o_.bearingTolerance / (2 * M_PI));
+    // bearing checks, each by chance with probability chance_, among about k^2 pairs
+    // tried: chance_^(g (g - 1)) k^2 under 1e-6.
+    const auto beyondChance = [&](size_t g) {
+        return double(g * (g - 1)) * std::log(chance_) + 2 * std::log(double(k) + 1) <=
+               std::log(1e-6);
+    };
     size_t minGroup = 2;
-    while (minGroup<kMinGroup&& double(minGroup * (minGroup - 1)) * std::log(p) +
-                    2 * std::log(double(k) + 1)>
-               std::log(1e-6))
-        ++minGroup;
+    while (minGroup < kMinGroup && !beyondChance(minGroup)) ++minGroup;
     // A swarm with fewer robots left than kMinGroup (which may not all see each other):
     // one robot at a time, as every placed robot agrees with it (growOnce's small rule).
     size_t left = 0;
@@ -391,16 +391,18 @@ bool LayoutGrower::placeMutualGroup(Layout& layout, const std::vector<Candidate>
     return true;
 }
 
-Layout LayoutGrower::growFrom(const Seed& seed, bool& ok) const {
-    Layout layout;
-    ok = placeSeed(seed, layout);
-    if (!ok) return layout;
-    // relabelled every round: a placed robot's images of other placed robots left
-    // unlabelled would cast rays that meet at robots already placed
+void LayoutGrower::growAll(Layout& layout) const {
     while (growOnce(layout)) {
         polish(layout, 2);
         relabel(layout);
     }
+}
+
+Layout LayoutGrower::growFrom(const Seed& seed, bool& ok) const {
+    Layout layout;
+    ok = placeSeed(seed, layout);
+    if (!ok) return layout;
+    growAll(layout);
     for (int pass = 0; pass < 2; ++pass) {
         polish(layout, 3);
         relabel(layout);
@@ -413,12 +415,7 @@ Layout LayoutGrower::growFrom(const Seed& seed, bool& ok) const {
         ++pruned;
         polish(layout, 2);
         relabel(layout);
-        if (worstFit(layout) < 0) {
-            while (growOnce(layout)) {
-                polish(layout, 2);
-                relabel(layout);
-            }
-        }
+        if (worstFit(layout) < 0) growAll(layout);
     }
     keepMutual(layout);
     return layout;

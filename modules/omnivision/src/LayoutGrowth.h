@@ -157,7 +157,7 @@ bool tryGeneralSeeds(const ImageTable& table, const SearchOptions& o, const Seed
 class LayoutGrower {
  public:
     LayoutGrower(const ImageTable& table, const SearchOptions& o)
-        : table_(table), o_(o), n_(table.robots()) {}
+        : table_(table), o_(o), n_(table.robots()), chance_(chancePerCheck(table, o)) {}
     /** The layout grown from the seed, polished and relabeled; ok is false for a
      *  degenerate seed. */
     Layout growFrom(const Seed& seed, bool& ok) const;
@@ -166,11 +166,21 @@ class LayoutGrower {
     double tolAt(const Layout& layout, double dist) const;
     bool placeSeed(const Seed& seed, Layout& layout) const;
     double fitHeading(const Layout& layout, int r) const;
-    /** `claimed`: rays into points already identified this round (from another anchor
-     *  pair): a point most of whose rays are claimed is the same robot again and is not
-     *  identified twice; the rays of the points identified here are added. */
+    /** What the anchor pairs of one growth round share. */
+    struct Round {
+        /** How far a placed robot may be from a point and still be asked (sightReach). */
+        double reach = INFINITY;
+        /** Rays into points already identified this round (from another anchor pair): a
+         *  point most of whose rays are claimed is the same robot again and is not
+         *  identified twice; candidates() adds the rays of the points it identifies. */
+        std::set<std::pair<int, int>> claimed;
+    };
     std::vector<Candidate> candidates(const Layout& layout, int s1, int s2, size_t minRays,
-                                      size_t minSeen, std::set<std::pair<int, int>>& claimed) const;
+                                      size_t minSeen, Round& round) const;
+    /** How far the cameras see, as the layout shows it: 1.1 times the longest labelled
+     *  sight where under 90 % of the placed pairs are labelled (a camera range), else
+     *  unbounded (a swarm that sees itself whole is checked by every robot). */
+    double sightReach(const Layout& layout) const;
     void refinePoint(const Layout& layout, Candidate& c) const;
     void identifyRobot(const Layout& layout, const Candidate& c, size_t minSeen,
                        std::vector<Candidate>& out) const;
@@ -179,12 +189,20 @@ class LayoutGrower {
     static bool conflicts(const Layout& layout, const Candidate& c);
     static void sortByEvidence(std::vector<Candidate>& found);
     bool growOnce(Layout& layout) const;
+    /** growOnce until it places no more, polishing and relabelling after each round: a
+     *  placed robot's images of other placed robots left unlabelled would cast rays that
+     *  meet at robots already placed. */
+    void growAll(Layout& layout) const;
     bool placeMutualGroup(Layout& layout, const std::vector<Candidate>& found) const;
     /** Whether c's agreement with the layout is beyond chance: the probability that a
      *  wrong point and robot pass as many of its checks (each by chance with the share of
      *  the circle a tolerance window over every image covers) is below 1 % over all the
      *  hypotheses a search tries (about N^4: points N^2, robots N, anchor pairs N). */
     bool significant(const Candidate& c) const;
+    /** The chance that a bearing falls in a tolerance window by accident: the share of the
+     *  circle that a window of +-2 tolerances (tolAt's largest) over a view's images
+     *  covers, at most 1/2. */
+    static double chancePerCheck(const ImageTable& table, const SearchOptions& o);
     void polish(Layout& layout, int sweeps) const;
     void relabel(Layout& layout) const;
     int worstFit(const Layout& layout) const;
@@ -211,6 +229,7 @@ class LayoutGrower {
     const ImageTable& table_;
     const SearchOptions& o_;
     int n_;
+    double chance_;  ///< chancePerCheck
 };
 
 }  // namespace mrloc::omnivision::seedgrow

@@ -84,8 +84,7 @@ class CameraMove {
     /** The beacons were lost on the way: the move was finished by the believed geometry. */
     bool lost() const { return phase_ == Phase::Lost; }
     int frames() const { return frames_; }
-    int blindGates() const { return blindGates_; }    ///< gates driven by the believed geometry
-    int latticeFits() const { return latticeFits_; }  ///< corrections by the lattice fit
+    int blindGates() const { return blindGates_; }  ///< gates driven by the believed geometry
 
  private:
     enum class Phase { Gate, FaceAway, AlgorithmOne, LatticeFit, Done, Lost };
@@ -112,7 +111,7 @@ class CameraMove {
     double heading_;  ///< believed heading (rad)
     std::optional<AlgorithmOneController> algorithmOne_;
     int frames_ = 0, blindGates_ = 0, recoveries_ = 0, scans_ = 0, algorithmOneFrames_ = 0;
-    int latticeFits_ = 0;
+    int latticeFits_ = 0;  ///< corrections by the lattice fit so far
 };
 
 }  // namespace mrloc::formation
