@@ -4,6 +4,7 @@
 // bearing noise 0.02 deg. Target: N = 30 under 50 ms.
 #include <benchmark/benchmark.h>
 #include <mrloc/common/Error.h>
+#include <mrloc/omnivision/RestartSearch.h>
 #include <mrloc/omnivision/TriangleSearch.h>
 
 #include <algorithm>
@@ -111,8 +112,69 @@ void BM_Identify(benchmark::State& state) {
     state.counters["over_work_bound"] = double(failed);
 }
 
+/** The proposed method's search at t_b (seed 000 eq. (11)-(12)) against the full search at
+ *  t_b, at each restart. Ten stop-and-go scenes per N (Swarm.h: A and B still, the others
+ *  0.3 m on), 0.02 deg noise; t_e identified beforehand. Median and worst time, and the
+ *  rounds whose t_b triangle (A, B, K) is not the truth's. Args: N, localized (1) or full
+ *  (0). */
+void BM_SearchAtTb(benchmark::State& state) {
+    const size_t n = size_t(state.range(0));
+    const bool localized = state.range(1) != 0;
+    const auto o = options();
+    std::vector<testing_omni::StopAndGo> scenes;
+    std::vector<omnivision::Identification> atTe;
+    for (unsigned seed = 1; seed <= 10; ++seed) {
+        scenes.push_back(
+            testing_omni::stopAndGo(n, seed, 0.02, 20 * std::sqrt(double(n) / 30), 0.3));
+        atTe.push_back(omnivision::consistentTriangles(scenes.back().after.snapshot,
+                                                       scenes.back().after.truth, o.sumTolerance));
+    }
+    std::vector<double> ms;
+    size_t wrong = 0, failed = 0, triples = 0;
+    for (auto _ : state) {
+        ms.clear(), wrong = failed = triples = 0;
+        for (size_t s = 0; s < scenes.size(); ++s) {
+            const auto& sg = scenes[s];
+            const auto t0 = std::chrono::steady_clock::now();
+            omnivision::Labels labels;
+            try {
+                if (localized) {
+                    const auto r = omnivision::localizedRestartSearch(
+                        sg.before.snapshot, sg.after.snapshot, atTe[s], 0, 1, sg.travelled,
+                        sg.turned, o);
+                    labels = r.before.labels;
+                    triples += r.triples;
+                } else {
+                    labels = omnivision::identify(sg.before.snapshot, o).labels;
+                }
+            } catch (const mrloc::Error&) {
+                ++failed;
+                continue;
+            }
+            ms.push_back(
+                std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0)
+                    .count());
+            bool right = true;
+            for (size_t r = 0; r < labels.size(); ++r)
+                for (size_t i = 0; i < labels[r].size(); ++i)
+                    right &= labels[r][i] < 0 || labels[r][i] == sg.before.truth[r][i];
+            wrong += !right;
+        }
+    }
+    std::sort(ms.begin(), ms.end());
+    state.counters["median_ms"] = ms.empty() ? -1 : ms[ms.size() / 2];
+    state.counters["worst_ms"] = ms.empty() ? -1 : ms.back();
+    state.counters["scenes_with_a_wrong_label"] = double(wrong);
+    state.counters["failed"] = double(failed);
+    if (localized) state.counters["image_triples_mean"] = double(triples) / 10;
+}
+
 }  // namespace
 
+BENCHMARK(BM_SearchAtTb)
+    ->ArgsProduct({{10, 30, 50, 100}, {1, 0}})
+    ->Unit(benchmark::kMillisecond)
+    ->Iterations(1);
 BENCHMARK(BM_Identify)
     ->ArgsProduct({{10, 20, 30}, {2, 5, 10}, {0, 1}})
     ->Unit(benchmark::kMillisecond)

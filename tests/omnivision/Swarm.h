@@ -62,4 +62,40 @@ inline Swarm randomSwarm(size_t n, unsigned seed, double sigmaDeg, double side =
     return viewsOf(std::move(poses), sigmaDeg, seed + 7919, maxRange, markerRadius);
 }
 
+/** Seed 000 section 3's two instants: a random swarm at t_b, and at t_e the same after every
+ *  robot but A = 0 and B = 1 drove `step` m in a random direction (turning up to 0.2 rad).
+ *  A's image of B and B's of A are the same image at both instants. */
+constexpr double kThinMarker = 1e-3;  ///< m: every robot sees every other
+struct StopAndGo {
+    Swarm before, after;
+    std::vector<double> travelled, turned;  ///< per robot: m, rad (the odometer's)
+};
+inline StopAndGo stopAndGo(size_t n, unsigned seed, double sigmaDeg, double side, double step) {
+    StopAndGo s;
+    s.before = randomSwarm(n, seed, sigmaDeg, side, 1.0, 0, kThinMarker);
+    mrpt::random::CRandomGenerator rng(seed);
+    auto moved = s.before.poses;
+    s.travelled.assign(n, 0);
+    s.turned.assign(n, 0);
+    for (size_t r = 2; r < n; ++r) {
+        const double dir = rng.drawUniform(-M_PI, M_PI);
+        s.travelled[r] = step;
+        s.turned[r] = rng.drawUniform(-0.2, 0.2);
+        moved[r] =
+            mrpt::poses::CPose2D(moved[r].x() + step * std::cos(dir),
+                                 moved[r].y() + step * std::sin(dir), moved[r].phi() + s.turned[r]);
+    }
+    s.after = viewsOf(moved, sigmaDeg, seed + 100, 0, kThinMarker);
+    const auto imageOf = [](const Swarm& sw, size_t r, int who) {
+        const auto& t = sw.truth[r];
+        return size_t(std::find(t.begin(), t.end(), who) - t.begin());
+    };
+    for (size_t r : {0u, 1u}) {
+        const size_t was = imageOf(s.before, r, int(1 - r)), is = imageOf(s.after, r, int(1 - r));
+        if (was < s.before.truth[r].size() && is < s.after.truth[r].size())
+            s.after.snapshot.views[r].bearings[is] = s.before.snapshot.views[r].bearings[was];
+    }
+    return s;
+}
+
 }  // namespace mrloc::testing_omni

@@ -4,8 +4,11 @@
 #include <mrloc/common/Error.h>
 #include <mrloc/omnivision/Refinement.h>
 #include <mrloc/omnivision/RelativeLocation.h>
+#include <mrloc/omnivision/RestartSearch.h>
+#include <mrpt/math/wrap2pi.h>
 
 #include <Eigen/LU>
+#include <iostream>
 
 #include "Degrees.h"
 #include "Swarm.h"
@@ -112,6 +115,11 @@ struct TwoInstants {
             t.push_back(std::hypot(after[i].x() - before[i].x(), after[i].y() - before[i].y()));
         return t;
     }
+    std::vector<double> turned() const {
+        std::vector<double> t;
+        for (size_t i = 0; i < before.size(); ++i) t.push_back(after[i].phi() - before[i].phi());
+        return t;
+    }
 };
 
 double distance(const mrpt::poses::CPose2D& p, const mrpt::poses::CPose2D& q) {
@@ -136,12 +144,77 @@ TEST(Methods, ConventionalAndProposedGiveEveryDistanceOfAHandLayout) {
     EXPECT_NEAR(prop.after.baseline, 5, 1e-9);
     for (const auto& [e, d] : prop.after.distance)
         EXPECT_NEAR(d, distance(t.after[size_t(e.first)], t.after[size_t(e.second)]), 1e-9);
-    // The layout: A at the origin, B on the x axis (here the world frame already).
+    // The layout: A at the origin, B on the x axis (here the world frame already), and
+    // each robot's heading from where its images point.
     for (size_t r = 0; r < 5; ++r) {
         ASSERT_TRUE(prop.after.position[r]);
         EXPECT_NEAR(prop.after.position[r]->x(), t.after[r].x(), 1e-9);
         EXPECT_NEAR(prop.after.position[r]->y(), t.after[r].y(), 1e-9);
+        ASSERT_TRUE(prop.after.heading[r]);
+        EXPECT_NEAR(*prop.after.heading[r], t.after[r].phi(), 1e-9) << r;
+        EXPECT_NEAR(*prop.before.heading[r], t.before[r].phi(), 1e-9) << r;
     }
+}
+
+TEST(Methods, LocalizedSearchAtTbFindsTheWitnessTriangleOfEq12) {
+    TwoInstants t;
+    const auto sb = testing_omni::viewsOf(t.before, 0, 1);
+    const auto se = testing_omni::viewsOf(t.after, 0, 2);
+    const auto ie = identify(se.snapshot, exact());
+    const auto local = localizedRestartSearch(sb.snapshot, se.snapshot, ie, 0, 1, t.travelled(),
+                                              t.turned(), exact());
+    // C travelled farthest (1 m against E's 0.71 m): the first witness tried, and found.
+    EXPECT_EQ(local.witness, 2);
+    EXPECT_EQ(local.witnessesTried, 1u);
+    EXPECT_EQ(local.triangles, 1u);
+    // Eq. (12): at most |NM_A^b| |NM_B^b| |NM_C^b| triples, less the stopped pair's images
+    // (3 x 3 x 4), and half of A's and B's pairs put C on opposite sides of AB.
+    EXPECT_LE(local.triples, 36u);
+    EXPECT_GT(local.triples, 0u);
+    // The six labels are the truth's, and nothing else is labelled.
+    int labelled = 0;
+    for (size_t r = 0; r < 5; ++r)
+        for (size_t img = 0; img < local.before.labels[r].size(); ++img)
+            if (const int who = local.before.labels[r][img]; who >= 0) {
+                ++labelled;
+                EXPECT_EQ(who, sb.truth[r][img]) << r << " " << img;
+            }
+    EXPECT_EQ(labelled, 6);
+    ASSERT_EQ(local.before.triangles.size(), 1u);
+    EXPECT_EQ(local.before.triangles[0].robot, (std::array<int, 3>{0, 1, 2}));
+    // The proposed method on it gives the full search's L and t_e layout.
+    const auto prop =
+        proposedMethod(sb.snapshot, local.before, se.snapshot, ie, 0, 1, t.travelled());
+    EXPECT_EQ(prop.moving, 2);
+    EXPECT_NEAR(prop.after.baseline, 5, 1e-9);
+    // No moving witness: the paper's restart.
+    EXPECT_THROW(localizedRestartSearch(sb.snapshot, se.snapshot, ie, 0, 1,
+                                        std::vector<double>(5, 0), t.turned(), exact()),
+                 Error);
+}
+
+TEST(Methods, LocalizedSearchPicksTheTrueTriangleAmongChanceSumsInASwarm) {
+    // 30 and 60 robots, 0.02 deg noise; between t_b and t_e every robot but A and B drives
+    // 0.3 m. Many triples sum to 180 degrees by chance; the one that keeps K nearest its
+    // t_e place is K's true triangle.
+    for (const size_t n : {30u, 60u})
+        for (unsigned seed = 1; seed <= 3; ++seed) {
+            const auto sg = testing_omni::stopAndGo(n, seed, 0.02, 20 * std::sqrt(n / 30.0), 0.3);
+            const auto &before = sg.before, &after = sg.after;
+            const auto& travelled = sg.travelled;
+            SearchOptions o;
+            o.sumTolerance = 6 * 0.02 * kDeg;
+            o.bearingTolerance = 4 * 0.02 * kDeg;
+            // t_e identified (the full search's job)
+            const auto ie = consistentTriangles(after.snapshot, after.truth, o.sumTolerance);
+            const auto local = localizedRestartSearch(before.snapshot, after.snapshot, ie, 0, 1,
+                                                      travelled, sg.turned, o);
+            EXPECT_GT(local.triangles, 1u) << n << " " << seed;  // chance sums exist
+            for (size_t r = 0; r < n; ++r)
+                for (size_t img = 0; img < local.before.labels[r].size(); ++img)
+                    if (const int who = local.before.labels[r][img]; who >= 0)
+                        EXPECT_EQ(who, before.truth[r][img]) << n << " " << seed;
+        }
 }
 
 TEST(Methods, ProposedNeedsACommonMovingWitness) {
@@ -194,11 +267,12 @@ TEST(Refinement, ExactDataIsAFixedPointAndNoiseIsReduced) {
     for (size_t r = 0; r < 5; ++r) {
         EXPECT_NEAR(exactFit.position[1][r]->x(), t.after[r].x(), 1e-6);
         EXPECT_NEAR(exactFit.position[1][r]->y(), t.after[r].y(), 1e-6);
+        EXPECT_NEAR(*exactFit.heading[1][r], t.after[r].phi(), 1e-7);
     }
     // Noisy angles (0.1 deg) and exact odometry: over 30 trials the refined layout is
     // closer to the truth than the paper's, and its covariance is honest (the mean
     // normalised squared error of a 2-D position is about 2).
-    double paperSq = 0, refinedSq = 0, nees = 0;
+    double paperSq = 0, refinedSq = 0, nees = 0, headingNees = 0;
     int n = 0;
     for (unsigned trial = 0; trial < 30; ++trial) {
         build(0.1, 100 + 2 * trial, paper);
@@ -210,11 +284,18 @@ TEST(Refinement, ExactDataIsAFixedPointAndNoiseIsReduced) {
             paperSq += (*paper.after.position[r] - truth).squaredNorm();
             const Vec2 e = *fit.position[1][r] - truth;
             refinedSq += e.squaredNorm();
-            nees += e.dot(fit.covariance[1][r].inverse() * e);
+            nees += e.dot(fit.covariance[1][r].topLeftCorner<2, 2>().inverse() * e);
+            headingNees +=
+                std::pow(mrpt::math::wrapToPi(*fit.heading[1][r] - t.after[r].phi()), 2) /
+                fit.covariance[1][r](2, 2);
             ++n;
         }
     }
     EXPECT_LT(refinedSq, paperSq);
     EXPECT_GT(nees / n, 1.0);
     EXPECT_LT(nees / n, 3.5);
+    // The heading's variance is as honest (1 expected).
+    EXPECT_GT(headingNees / n, 0.5);
+    EXPECT_LT(headingNees / n, 1.8);
+    std::cout << "position NEES " << nees / n << ", heading NEES " << headingNees / n << "\n";
 }

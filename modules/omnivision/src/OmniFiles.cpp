@@ -19,11 +19,11 @@ void LayoutFile::write(const std::string& dir) const {
     out << "# layout in the paper's frame (a at the origin, b on the x axis)\n"
         << "t " << formatNumber(time) << "\nframe " << a << " " << b << "\n"
         << "# robot x_paper y_paper x_refined y_refined cov_xx cov_xy cov_yy x_true y_true "
-           "(m, m^2; nan: unknown)\n";
+           "phi_paper phi_refined cov_phiphi phi_true (m, m^2, rad, rad^2; nan: unknown)\n";
     for (const auto& p : points) {
         out << p.robot;
-        for (double v :
-             {p.paperX, p.paperY, p.refinedX, p.refinedY, p.cxx, p.cxy, p.cyy, p.trueX, p.trueY})
+        for (double v : {p.paperX, p.paperY, p.refinedX, p.refinedY, p.cxx, p.cxy, p.cyy, p.trueX,
+                         p.trueY, p.paperPhi, p.refinedPhi, p.cphiphi, p.truePhi})
             out << " " << formatNumber(v);
         out << "\n";
     }
@@ -40,11 +40,13 @@ LayoutFile LayoutFile::read(const std::string& dir) {
             line.expectFields(3);
             f.a = line.fields[1], f.b = line.fields[2];
         } else {
-            line.expectFields(10);
+            // Runs before headings were estimated have the first 10 fields only.
+            if (line.fields.size() != 10) line.expectFields(14);
             LayoutPoint p{line.fields[0], 0, 0, 0, 0, 0, 0, 0, 0, 0};
-            double* v[] = {&p.paperX, &p.paperY, &p.refinedX, &p.refinedY, &p.cxx,
-                           &p.cxy,    &p.cyy,    &p.trueX,    &p.trueY};
-            for (size_t i = 0; i < 9; ++i) *v[i] = line.number(i + 1);
+            double* v[] = {&p.paperX,     &p.paperY,  &p.refinedX, &p.refinedY, &p.cxx,
+                           &p.cxy,        &p.cyy,     &p.trueX,    &p.trueY,    &p.paperPhi,
+                           &p.refinedPhi, &p.cphiphi, &p.truePhi};
+            for (size_t i = 0; i + 1 < line.fields.size(); ++i) *v[i] = line.number(i + 1);
             f.points.push_back(p);
         }
     }

@@ -8,6 +8,7 @@
 #include <mrloc/omnivision/OmniFiles.h>
 #include <mrloc/omnivision/OmniLocalizer.h>
 #include <mrpt/core/format.h>
+#include <mrpt/math/wrap2pi.h>
 #include <mrpt/obs/CObservationBearingRange.h>
 #include <mrpt/obs/CObservationImage.h>
 #include <mrpt/obs/CObservationOdometry.h>
@@ -35,6 +36,10 @@ std::shared_ptr<T> expect(const mrpt::obs::CObservation::Ptr& obs, const char* c
 
 std::vector<std::optional<Vec2>> OmniResult::final() const {
     return refined ? refined->position.back() : paper.position;
+}
+
+std::vector<std::optional<double>> OmniResult::finalHeading() const {
+    return refined ? refined->heading.back() : paper.heading;
 }
 
 void OmniLocalizer::configure(const mrpt::config::CConfigFileBase& ini) {
@@ -67,7 +72,13 @@ void OmniLocalizer::process(const mrpt::obs::CObservation::Ptr& obs) {
         const auto o = expect<mrpt::obs::CObservationOdometry>(obs, "CObservationOdometry");
         auto& path = odometryPaths_[robot];
         path.add(t, o->odometry);
-        odometer_[robot].push_back({t, path.length()});
+        auto& readings = odometer_[robot];
+        const double heading =
+            readings.empty()
+                ? o->odometry.phi()
+                : readings.back().heading +
+                      mrpt::math::wrapToPi(o->odometry.phi() - readings.back().heading);
+        readings.push_back({t, path.length(), heading});
     } else if (sensor.rfind("lidar.", 0) == 0) {
         const auto r = expect<mrpt::obs::CObservationRange>(obs, "CObservationRange");
         if (r->sensedData.size() != 1 || !std::isfinite(r->sensedData.front().sensedDistance))
@@ -78,19 +89,33 @@ void OmniLocalizer::process(const mrpt::obs::CObservation::Ptr& obs) {
     result_.reset();
 }
 
+namespace {
+/** A quantity the odometer accumulates, linearly interpolated at t (clamped to the log). */
+template <class Path, class Get>
+double odometerAt(const Path& path, double t, Get get) {
+    if (t <= path.front().t) return get(path.front());
+    if (t >= path.back().t) return get(path.back());
+    const auto hi = std::lower_bound(path.begin(), path.end(), t,
+                                     [](const auto& r, double time) { return r.t < time; });
+    const auto lo = hi - 1;
+    const double a = (t - lo->t) / (hi->t - lo->t);
+    return get(*lo) + a * (get(*hi) - get(*lo));
+}
+}  // namespace
+
 double OmniLocalizer::travelledBetween(const std::string& robot, double t0, double t1) const {
     const auto it = odometer_.find(robot);
     if (it == odometer_.end() || it->second.empty()) return 0;
-    const auto& path = it->second;
-    const auto at = [&](double t) {
-        if (t <= path.front().first) return path.front().second;
-        if (t >= path.back().first) return path.back().second;
-        const auto hi = std::lower_bound(path.begin(), path.end(), std::make_pair(t, -1e300));
-        const auto lo = hi - 1;
-        const double a = (t - lo->first) / (hi->first - lo->first);
-        return lo->second + a * (hi->second - lo->second);
-    };
-    return at(t1) - at(t0);  // eq. (8)'s l_C: the rotary encoders' distance
+    const auto length = [](const OdometerReading& r) { return r.length; };
+    return odometerAt(it->second, t1, length) -
+           odometerAt(it->second, t0, length);  // eq. (8)'s l_C
+}
+
+double OmniLocalizer::turnedBetween(const std::string& robot, double t0, double t1) const {
+    const auto it = odometer_.find(robot);
+    if (it == odometer_.end() || it->second.empty()) return 0;
+    const auto heading = [](const OdometerReading& r) { return r.heading; };
+    return odometerAt(it->second, t1, heading) - odometerAt(it->second, t0, heading);
 }
 
 Snapshot OmniLocalizer::snapshotAt(double t, const std::vector<std::string>& robots) const {
@@ -148,10 +173,23 @@ const OmniResult& OmniLocalizer::result() const {
             const double te = start + options_.te + double(round) * options_.roundPeriod;
             const int a = index(na, "pairs"), b = index(nb, "pairs");
             const Snapshot sb = snapshotAt(tb, r.robots), se = snapshotAt(te, r.robots);
-            const Identification ib = identify(sb, so), ie = identify(se, so);
-            std::vector<double> travelled;
-            for (const auto& name : r.robots) travelled.push_back(travelledBetween(name, tb, te));
+            const Identification ie = identify(se, so);
+            std::vector<double> travelled, turned;
+            for (const auto& name : r.robots) {
+                travelled.push_back(travelledBetween(name, tb, te));
+                turned.push_back(turnedBetween(name, tb, te));
+            }
+            Identification ib;
             try {
+                if (options_.localizedSearch) {
+                    const auto local =
+                        localizedRestartSearch(sb, se, ie, a, b, travelled, turned, so);
+                    ib = local.before;
+                    r.localizedSearches.push_back(
+                        {na + " " + nb, local.witnessesTried, local.triples, local.triangles});
+                } else {
+                    ib = identify(sb, so);
+                }
                 const auto prop = proposedMethod(sb, ib, se, ie, a, b, travelled);
                 r.a = a, r.b = b, r.moving = prop.moving, r.travelled = prop.travelled;
                 r.time = se.time, r.timeBefore = sb.time;
@@ -212,11 +250,12 @@ std::map<std::string, common::Trajectory> OmniLocalizer::estimates() const {
     const auto& r = result();
     std::map<std::string, common::Trajectory> out;
     const auto final = r.final();
+    const auto heading = r.finalHeading();
     for (size_t k = 0; k < r.robots.size(); ++k) {
         auto& traj = out[r.robots[k]];
-        if (final[k])
+        if (final[k] && heading[k])
             traj.push_back(
-                {r.time, mrpt::poses::CPose3D(final[k]->x(), final[k]->y(), 0, 0, 0, 0)});
+                {r.time, mrpt::poses::CPose3D(final[k]->x(), final[k]->y(), 0, *heading[k], 0, 0)});
     }
     return out;
 }
@@ -226,12 +265,13 @@ std::map<std::string, common::CovarianceTrack> OmniLocalizer::covariances() cons
     std::map<std::string, common::CovarianceTrack> out;
     if (!r.refined) return out;
     const auto final = r.final();
+    const auto heading = r.finalHeading();
     for (size_t k = 0; k < r.robots.size(); ++k) {
-        if (!final[k]) continue;  // no estimate, no covariance (one line per estimate)
+        if (!final[k] || !heading[k]) continue;  // one line per estimate
         common::StampedCovariance c{r.time, {}};
-        c.cov.fill(NAN);
-        const Eigen::Matrix2d& P = r.refined->covariance.back()[k];
-        c.cov(0, 0) = P(0, 0), c.cov(0, 1) = c.cov(1, 0) = P(0, 1), c.cov(1, 1) = P(1, 1);
+        const Eigen::Matrix3d& P = r.refined->covariance.back()[k];
+        for (int i = 0; i < 3; ++i)
+            for (int j = 0; j < 3; ++j) c.cov(i, j) = P(i, j);
         out[r.robots[k]].push_back(c);
     }
     return out;
@@ -256,21 +296,22 @@ common::Trajectories OmniLocalizer::truthInEstimateFrame(const common::Trajector
     return truth;
 }
 
-std::vector<std::optional<Vec2>> OmniLocalizer::truthAtLayout(
+std::vector<std::optional<mrpt::poses::CPose2D>> OmniLocalizer::truthAtLayout(
     const common::Trajectories& truth) const {
     const auto& r = result();
-    std::vector<std::optional<Vec2>> out(r.robots.size());
+    std::vector<std::optional<mrpt::poses::CPose2D>> out(r.robots.size());
     for (size_t k = 0; k < r.robots.size(); ++k)
         if (const auto it = truth.find(r.robots[k]); it != truth.end())
             if (const auto p = common::interpolate(it->second, r.time))
-                out[k] = Vec2(p->x(), p->y());
+                out[k] = mrpt::poses::CPose2D(p->x(), p->y(), p->yaw());
     return out;
 }
 
 common::ObservationUse OmniLocalizer::observationUse() const {
     common::ObservationUse use;
-    use.kind = "omni-directional views (CObservationImage <robot>.omni, CObservationBearingRange "
-               "<robot>.omni_bearings)";
+    use.kind =
+        "omni-directional views (CObservationImage <robot>.omni, CObservationBearingRange "
+        "<robot>.omni_bearings)";
     for (const auto& [t, views] : views_) use.seen += views.size();
     use.used = use.seen;
     return use;
@@ -284,6 +325,12 @@ nlohmann::json OmniLocalizer::methodMetrics() const {
     j["robots"] = r.robots.size();
     j["pair"] = r.robots[size_t(r.a)] + " " + r.robots[size_t(r.b)];
     j["restarts"] = r.restarts;
+    j["search_at_tb"] = options_.localizedSearch ? "localized" : "full";
+    for (const auto& l : r.localizedSearches)
+        j["localized_searches"].push_back({{"pair", l.pair},
+                                           {"witnesses_tried", l.witnessesTried},
+                                           {"image_triples", l.triples},
+                                           {"triangles_summing_to_180", l.triangles}});
     j["baseline_L_m"] = r.paper.baseline;
     if (r.moving >= 0) {
         j["moving_robot_C"] = r.robots[size_t(r.moving)];
@@ -296,6 +343,9 @@ nlohmann::json OmniLocalizer::methodMetrics() const {
         nlohmann::json sj;
         sj["triangles"] = r.ids[s].triangles.size();
         sj["seeds_tried"] = r.ids[s].candidates;
+        sj["pair_visits"] = r.ids[s].pairVisits;
+        const bool localized = options_.localizedSearch && r.ids.size() == 2 && s == 0;
+        sj["search"] = localized ? "localized" : "full";
         std::vector<std::string> unresolved;
         for (int k : r.ids[s].unresolved) unresolved.push_back(r.robots[size_t(k)]);
         sj["unresolved"] = unresolved;
@@ -312,8 +362,29 @@ nlohmann::json OmniLocalizer::methodMetrics() const {
 nlohmann::json OmniLocalizer::truthMetrics(const common::Trajectories& truthInFrame) const {
     // Against the truth, in the paper's frame: pairwise distances and the layout.
     const auto& r = result();
-    const auto truth = truthAtLayout(truthInFrame);
+    const auto pose = truthAtLayout(truthInFrame);
+    std::vector<std::optional<Vec2>> truth(pose.size());
+    for (size_t k = 0; k < pose.size(); ++k)
+        if (pose[k]) truth[k] = Vec2(pose[k]->x(), pose[k]->y());
     nlohmann::json j = nlohmann::json::object();
+    const auto stats = [](const std::vector<double>& v) {
+        const auto st = common::computeStats(v);
+        return nlohmann::json{{"pairs", v.size()}, {"median", st.median}, {"max", st.max}};
+    };
+    // Headings (deg), the paper layout's and the refined, against the truth's.
+    const auto headingErrors = [&](const std::vector<std::optional<double>>& heading) {
+        std::vector<double> err;
+        for (size_t k = 0; k < pose.size(); ++k)
+            if (pose[k] && heading[k])
+                err.push_back(std::abs(mrpt::math::wrapToPi(*heading[k] - pose[k]->phi())) * 180 /
+                              M_PI);
+        auto s = stats(err);
+        s["robots"] = s["pairs"];
+        s.erase("pairs");
+        return s;
+    };
+    j["heading_error_deg_paper"] = headingErrors(r.paper.heading);
+    if (r.refined) j["heading_error_deg_refined"] = headingErrors(r.refined->heading.back());
     if (truth[size_t(r.a)] && truth[size_t(r.b)]) {
         j["true_L_m"] = (*truth[size_t(r.b)] - *truth[size_t(r.a)]).norm();
         std::vector<double> paperErr, refinedErr;
@@ -328,10 +399,6 @@ nlohmann::json OmniLocalizer::truthMetrics(const common::Trajectories& truthInFr
                     std::abs((*final[size_t(e.first)] - *final[size_t(e.second)]).norm() - dt) /
                     dt);
         }
-        const auto stats = [](const std::vector<double>& v) {
-            const auto st = common::computeStats(v);
-            return nlohmann::json{{"pairs", v.size()}, {"median", st.median}, {"max", st.max}};
-        };
         j["relative_distance_error_paper"] = stats(paperErr);
         if (r.refined) j["relative_distance_error_refined"] = stats(refinedErr);
     }
@@ -360,10 +427,14 @@ void OmniLocalizer::writeOutputs(const std::string& outDir,
                        nan,
                        truth[k] ? truth[k]->x() : nan,
                        truth[k] ? truth[k]->y() : nan};
+        if (r.paper.heading[k]) lp.paperPhi = *r.paper.heading[k];
+        if (truth[k]) lp.truePhi = truth[k]->phi();
         if (r.refined && final[k]) {
             const auto& c = r.refined->covariance.back()[k];
             lp.refinedX = final[k]->x(), lp.refinedY = final[k]->y();
             lp.cxx = c(0, 0), lp.cxy = c(0, 1), lp.cyy = c(1, 1);
+            if (const auto& h = r.refined->heading.back()[k])
+                lp.refinedPhi = *h, lp.cphiphi = c(2, 2);
         }
         layout.points.push_back(lp);
     }

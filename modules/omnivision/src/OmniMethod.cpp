@@ -242,12 +242,24 @@ report::Html omnivisionSection(const report::RunView& run) {
         const size_t n = size_t(std::clamp(robots, 0LL, 1LL << 20));
         const size_t all = n >= 3 ? n * (n - 1) * (n - 2) / 6 : 0;
         const auto snapshots = m.value("snapshots", nlohmann::json::object());
+        const auto degrees = [&](const char* key, const char* stat) {
+            const auto v = common::numberAt(m, std::string(key) + "/" + stat);
+            return v ? mrpt::format("%.3f deg", *v) : std::string("none");
+        };
+        if (m.contains("heading_error_deg_paper"))
+            headline += " Heading error, median (max): the paper's layout " +
+                        degrees("heading_error_deg_paper", "median") + " (" +
+                        degrees("heading_error_deg_paper", "max") + "), refined " +
+                        degrees("heading_error_deg_refined", "median") + " (" +
+                        degrees("heading_error_deg_refined", "max") + ").";
         for (const auto& [name, snap] : snapshots.items()) {
             if (!snap.is_object()) continue;
+            const bool localized = snap.value("search", "") == "localized";
             headline += " Snapshot " + name + ": " +
                         report::cellText(snap.value("triangles", nlohmann::json())) +
                         mrpt::format(" of the %zu triangles found", all) +
-                        (snap.value("unresolved", nlohmann::json::array()).empty()
+                        (localized ? " (the localized search of eq. (11)-(12): one is asked)."
+                         : snap.value("unresolved", nlohmann::json::array()).empty()
                              ? "."
                              : ", some robots unresolved.");
         }
@@ -305,8 +317,9 @@ common::Headline omnivisionHeadline(const method::HeadlineOf<OmniLocalizer>& in)
     const auto method = in.metrics.value("omnivision", nlohmann::json::object());
     if (method.contains("snapshots") && method["snapshots"].is_object())
         for (const auto& [name, snapshot] : method["snapshots"].items())
-            if (snapshot.contains("unresolved") && snapshot["unresolved"].is_array())
-                unresolved += snapshot["unresolved"].size();
+            if (snapshot.is_object() && snapshot.value("search", "") != "localized" &&
+                snapshot.contains("unresolved") && snapshot["unresolved"].is_array())
+                unresolved += snapshot["unresolved"].size();  // localized: one triangle asked
     h.reached = unresolved == 0;
     h.status = h.reached ? "every robot identified"
                          : mrpt::format("%zu robot views unresolved", unresolved);
@@ -320,6 +333,9 @@ common::Headline omnivisionHeadline(const method::HeadlineOf<OmniLocalizer>& in)
             {"relative distance error, refined (median)", refined, "%", none, "", false});
     h.figures.push_back({"relative distance error, seed 000's solution (median)",
                          percent("relative_distance_error_paper"), "%", none, "", false});
+    h.figures.push_back({"heading error, refined (median)",
+                         common::numberAt(method, "heading_error_deg_refined/median"), "deg",
+                         "seed 000 does not estimate headings", "", false});
     return h;
 }
 

@@ -45,6 +45,7 @@ void OmniOptions::loadFromConfigFile(const mrpt::config::CConfigFileBase& src,
     te = s.real("t_e", te, 0, 1e6);
     if (te <= tb) s.fail("t_e", mrpt::format("must be after t_b (%g)", tb));
     roundPeriod = s.real("round_period", roundPeriod, 0, 1e6);
+    localizedSearch = s.choice("search_at_tb", "full", {"full", "localized"}) == "localized";
     if (pairs.size() > 1 && roundPeriod <= te - tb)
         s.fail("round_period", "must exceed t_e - t_b when several pairs are listed");
     const auto measured = parsePairs(s, "measured_pair", {measuredPair});
@@ -84,6 +85,7 @@ void OmniOptions::saveToConfigFile(mrpt::config::CConfigFileBase& t,
     t.write(section, "t_b", tb);
     t.write(section, "t_e", te);
     t.write(section, "round_period", roundPeriod);
+    t.write(section, "search_at_tb", std::string(localizedSearch ? "localized" : "full"));
     t.write(section, "measured_pair", measuredPair.first + " " + measuredPair.second);
     t.write(section, "snapshot", snapshot);
     t.write(section, "lidar_sigma", lidarSigma);

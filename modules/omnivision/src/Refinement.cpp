@@ -176,16 +176,18 @@ RefinedLayout refineLayout(const RefinementProblem& p) {
     out.bearings = bearings.size();
     out.rmsBearingResidual = bearings.empty() ? 0 : std::sqrt(sumSq / double(bearings.size()));
     out.position.assign(S, std::vector<std::optional<Vec2>>(n));
-    out.covariance.assign(S, std::vector<Eigen::Matrix2d>(n, Eigen::Matrix2d::Zero()));
+    out.heading.assign(S, std::vector<std::optional<double>>(n));
+    out.covariance.assign(S, std::vector<Eigen::Matrix3d>(n, Eigen::Matrix3d::Zero()));
     for (size_t s = 0; s < S; ++s)
         for (size_t r = 0; r < n; ++r) {
             const int pose = poseOf[s][r];
             if (pose < 0) continue;
             out.position[s][r] = position(pose);
             const auto& v = vars[size_t(pose)];
-            const int idx[2] = {v.x, v.y};
-            for (int a = 0; a < 2; ++a)
-                for (int b = 0; b < 2; ++b)
+            out.heading[s][r] = mrpt::math::wrapToPi(x[size_t(v.h)]);
+            const int idx[3] = {v.x, v.y, v.h};
+            for (int a = 0; a < 3; ++a)
+                for (int b = 0; b < 3; ++b)
                     if (idx[a] >= 0 && idx[b] >= 0)
                         out.covariance[s][r](a, b) = cov(idx[a], idx[b]);
         }

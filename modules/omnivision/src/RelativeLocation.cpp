@@ -45,6 +45,24 @@ int sideAt(const Snapshot& s, const Triangle& t, int r, int toward) {
     return signedAngle(s.views[size_t(r)], imgToward, imgThird) >= 0 ? 1 : -1;
 }
 
+std::vector<std::optional<double>> headingsFromLayout(
+    const Snapshot& s, const Labels& labels, const std::vector<std::optional<Vec2>>& position) {
+    std::vector<std::optional<double>> out(position.size());
+    for (size_t o = 0; o < position.size(); ++o) {
+        if (!position[o] || o >= labels.size()) continue;
+        double sx = 0, sy = 0;
+        for (size_t img = 0; img < labels[o].size(); ++img) {
+            const int t = labels[o][img];
+            if (t < 0 || !position[size_t(t)]) continue;
+            const Vec2 d = *position[size_t(t)] - *position[o];
+            const double h = std::atan2(d.y(), d.x()) - s.views[o].bearings[img];
+            sx += std::cos(h), sy += std::sin(h);
+        }
+        if (sx != 0 || sy != 0) out[o] = std::atan2(sy, sx);
+    }
+    return out;
+}
+
 Solution solveFromBaseline(const Snapshot& s, const Identification& id, int a, int b,
                            double baseline) {
     const size_t n = s.robots();
@@ -95,6 +113,7 @@ Solution solveFromBaseline(const Snapshot& s, const Identification& id, int a, i
                 grew = true;
             }
     }
+    out.heading = headingsFromLayout(s, id.labels, out.position);
     return out;
 }
 

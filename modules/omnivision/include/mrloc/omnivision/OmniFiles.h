@@ -16,6 +16,9 @@ namespace mrloc::omnivision {
 struct LayoutPoint {
     std::string robot;
     double paperX, paperY, refinedX, refinedY, cxx, cxy, cyy, trueX, trueY;
+    /** Headings (rad) in the layout's frame: the paper layout's (headingsFromLayout), the
+     *  refined one with its variance (rad^2), the truth's. */
+    double paperPhi = NAN, refinedPhi = NAN, cphiphi = NAN, truePhi = NAN;
 };
 
 /** The refined position's error weighed by its covariance, per coordinate the gauge leaves

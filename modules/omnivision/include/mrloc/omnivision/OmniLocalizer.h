@@ -2,16 +2,19 @@
 // The omni-directional camera method as a common::Localizer (INI: [scenario] method =
 // omnivision). It reads each robot's panoramas (<robot>.omni, detected here) or bearings
 // (<robot>.omni_bearings), its odometry and, for the conventional method, the LiDAR
-// distance (<A>.lidar.<B>); identifies the images at every snapshot; and solves the layout
-// at t_e (proposed) or at the snapshot (conventional) in the paper's frame: A at the
-// origin, B on the x axis. Estimates, and the truth they are compared with, are in that
-// frame.
+// distance (<A>.lidar.<B>); identifies the images at every snapshot (at t_b, with
+// search_at_tb = localized, only eq. (11)-(12)'s triangle); and solves the layout at t_e
+// (proposed) or at the snapshot (conventional) in the paper's frame: A at the origin, B on
+// the x axis. Estimates (position and heading), and the truth they are compared with, are
+// in that frame.
 #include <mrloc/common/Localizer.h>
 #include <mrloc/common/OdometryPath.h>
 #include <mrloc/omnivision/Accuracy.h>
 #include <mrloc/omnivision/OmniOptions.h>
 #include <mrloc/omnivision/Refinement.h>
 #include <mrloc/omnivision/RelativeLocation.h>
+#include <mrloc/omnivision/RestartSearch.h>
+#include <mrpt/poses/CPose2D.h>
 
 #include <map>
 #include <optional>
@@ -22,6 +25,12 @@ namespace mrloc::omnivision {
 struct OmniResult {
     std::vector<std::string> robots;    ///< index -> name
     std::vector<std::string> restarts;  ///< why earlier stopped pairs failed
+    /** search_at_tb = localized: eq. (11)-(12)'s work in each round that got that far. */
+    struct LocalizedCost {
+        std::string pair;
+        size_t witnessesTried = 0, triples = 0, triangles = 0;
+    };
+    std::vector<LocalizedCost> localizedSearches;
     int a = -1, b = -1, moving = -1;
     double time = 0;                  ///< of the layout (t_e, or the conventional snapshot)
     double timeBefore = 0;            ///< t_b (proposed)
@@ -30,7 +39,8 @@ struct OmniResult {
     std::vector<Identification> ids;
     Solution paper;  ///< at `time`
     std::optional<RefinedLayout> refined;
-    std::vector<std::optional<Vec2>> final() const;  ///< refined if any, else paper
+    std::vector<std::optional<Vec2>> final() const;           ///< refined if any, else paper
+    std::vector<std::optional<double>> finalHeading() const;  ///< the same, headings (rad)
 };
 
 class OmniLocalizer : public common::Localizer {
@@ -39,9 +49,8 @@ class OmniLocalizer : public common::Localizer {
     void saveConfig(mrpt::config::CConfigFileBase& target) const override;
     void process(const mrpt::obs::CObservation::Ptr& obs) override;
     std::map<std::string, common::Trajectory> estimates() const override;
-    /** The refinement's position covariance at the layout's time (A's is zero: it is the
-     *  frame's origin; B's y too); the heading is not estimated in the output: nan. None
-     *  without `refine`. */
+    /** The refinement's covariance of (x, y, heading) at the layout's time (A's x and y
+     *  are zero: it is the frame's origin; B's y too). None without `refine`. */
     std::map<std::string, common::CovarianceTrack> covariances() const override;
     common::Trajectories truthInEstimateFrame(
         const common::Trajectories& worldTruth) const override;
@@ -65,7 +74,11 @@ class OmniLocalizer : public common::Localizer {
     std::string origin_;
     std::map<double, std::map<std::string, View>> views_;  ///< time -> robot -> view
     std::optional<double> firstTime_;  ///< the rawlog's first observation: t_b, t_e count from it
-    std::map<std::string, std::vector<std::pair<double, double>>> odometer_;  ///< t, path
+    /** Per robot, per odometry reading: t, path length, heading (unwrapped). */
+    struct OdometerReading {
+        double t, length, heading;
+    };
+    std::map<std::string, std::vector<OdometerReading>> odometer_;
     std::map<std::string, common::OdometryPath> odometryPaths_;
     struct LidarReading {
         double time;
@@ -75,10 +88,14 @@ class OmniLocalizer : public common::Localizer {
     std::vector<LidarReading> lidar_;
     mutable std::optional<OmniResult> result_;  ///< solved once, on first use
 
+    /** The odometer's path length over [t0, t1] (m) and its heading change (rad; 0 for a
+     *  robot without odometry). */
     double travelledBetween(const std::string& robot, double t0, double t1) const;
+    double turnedBetween(const std::string& robot, double t0, double t1) const;
     Snapshot snapshotAt(double t, const std::vector<std::string>& robots) const;
-    /** Each robot's true position at the layout's time, in the paper's frame. */
-    std::vector<std::optional<Vec2>> truthAtLayout(const common::Trajectories& truth) const;
+    /** Each robot's true pose at the layout's time, in the paper's frame. */
+    std::vector<std::optional<mrpt::poses::CPose2D>> truthAtLayout(
+        const common::Trajectories& truth) const;
 };
 
 }  // namespace mrloc::omnivision

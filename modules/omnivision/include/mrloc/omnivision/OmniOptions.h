@@ -19,6 +19,10 @@ struct OmniOptions : public mrpt::config::CLoadableOptions {
      *  moving witness gives L; the others are the paper's restarts. */
     std::vector<std::pair<std::string, std::string>> pairs{{"A", "B"}};
     double tb = 10, te = 12, roundPeriod = 10;  ///< s
+    /** Proposed: the search at t_b. full: every image identified, as at t_e (the refinement
+     *  then has every robot's odometer). localized: seed 000 eq. (11)-(12), only a
+     *  triangle of A, B and one witness of t_e (RestartSearch.h). */
+    bool localizedSearch = false;
     /** Conventional: the pair whose distance a LiDAR measures, at `snapshot`. */
     std::pair<std::string, std::string> measuredPair{"A", "B"};
     double snapshot = 10;      ///< s

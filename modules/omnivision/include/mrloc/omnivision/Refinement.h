@@ -40,10 +40,13 @@ struct RefinementProblem {
 };
 
 struct RefinedLayout {
-    std::vector<std::vector<std::optional<Vec2>>> position;  ///< [instant][robot]
-    std::vector<std::vector<Eigen::Matrix2d>> covariance;    ///< [instant][robot], m^2
-    double rmsBearingResidual = 0;                           ///< rad
-    size_t bearings = 0;                                     ///< measurements used
+    std::vector<std::vector<std::optional<Vec2>>> position;   ///< [instant][robot]
+    std::vector<std::vector<std::optional<double>>> heading;  ///< [instant][robot], rad
+    /** [instant][robot]: of (x, y, heading), m^2, m rad, rad^2; zero where the frame fixes a
+     *  coordinate (A's x and y, B's y). */
+    std::vector<std::vector<Eigen::Matrix3d>> covariance;
+    double rmsBearingResidual = 0;  ///< rad
+    size_t bearings = 0;            ///< measurements used
     int iterations = 0;
 };
 

@@ -19,8 +19,15 @@ struct Solution {
     int a = -1, b = -1;
     double baseline = 0;                             ///< |AB| (m)
     std::vector<std::optional<Vec2>> position;       ///< per robot; A = (0,0), B = (L,0)
+    std::vector<std::optional<double>> heading;      ///< per robot (rad): headingsFromLayout
     std::map<std::pair<int, int>, double> distance;  ///< sine rule, key (i, j) with i < j
 };
+
+/** Each placed robot's heading in the layout's frame (beyond the paper, which leaves it
+ *  out): the circular mean, over its labelled images of placed robots, of the direction to
+ *  that robot less the image's bearing. None for a robot with no such image. */
+std::vector<std::optional<double>> headingsFromLayout(
+    const Snapshot& s, const Labels& labels, const std::vector<std::optional<Vec2>>& position);
 
 /** Distances by the sine rule and the layout, from |AB| = baseline. Throws mrloc::Error if
  *  A and B are in no common triangle. */

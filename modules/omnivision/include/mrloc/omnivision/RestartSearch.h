@@ -1,0 +1,56 @@
+#pragma once
+// Seed 000 eq. (11)-(12): the proposed method's search at t_b, localized.
+//
+// At t_e the conventional search has identified every image. At t_b only one triangle is
+// needed: the stopped pair A, B and a robot K that both see, and that sees them, at both
+// instants. K is therefore sought only among the witnesses of t_e (NM_A^e ∩ NM_B^e,
+// eq. (11)), and for one K the search examines |NM_A^b| |NM_B^b| |NM_K^b| image triples
+// (eq. (12)): A and B stand still, so A's image of B (and B's of A) is the one at its t_e
+// bearing; what remains is A's image of K, B's image of K and K's image of A, and the 180
+// degree sum then fixes K's image of B. The search stops at the first witness with a
+// triangle, as the paper's does.
+//
+// Gap filled: with many robots several triples sum to 180 degrees within tolerance by
+// chance (eq. (9)'s chance sums: hundreds per witness at N = 30). Two things the paper's
+// setting gives tell the true one:
+//  - K's turn. A triangle gives K's heading at t_b (from its image of A), the t_e
+//    triangle its heading at t_e; the difference must be what K's odometer turned, within
+//    kTurnTolerance. A chance triangle implies any turn.
+//  - K's motion. [t_b, t_e] is short: of the triangles left, the one that puts K nearest
+//    its t_e place is taken (both in units of |AB|, in the frame A and B hold still).
+// A witness one of whose images has another within the sum tolerance (a robot nearly in
+// line with it) is skipped: that robot's triangle fits as well, and its label would be a
+// guess.
+// The witnesses are tried farthest travelled first, the proposed method's choice of C.
+#include <mrloc/omnivision/TriangleSearch.h>
+
+#include <vector>
+
+namespace mrloc::omnivision {
+
+/** rad: K's turn from the triangles against its odometer's. Wheel odometry over the short
+ *  [t_b, t_e] errs well under a degree; the triangles' headings err by the bearing noise
+ *  times the lever (tenths of a degree at 0.05 deg). */
+constexpr double kTurnTolerance = 3 * M_PI / 180;
+
+struct RestartSearch {
+    /** At t_b: the labels of the triangle's six images and that triangle (the other
+     *  robots unresolved: they are not searched). */
+    Identification before;
+    int witness = -1;           ///< K
+    size_t witnessesTried = 0;  ///< eq. (11): witnesses searched before one had a triangle
+    size_t triples = 0;         ///< eq. (12): image triples examined, over those witnesses
+    size_t triangles = 0;       ///< triples of the witness taken that summed to 180 degrees
+};
+
+/** The localized search at t_b. `travelled[r]` and `turned[r]` are robot r's odometer
+ *  distance (m) and heading change (rad) over [t_b, t_e]; witnesses that did not move are
+ *  skipped (eq. (8) needs l_C > 0). Throws
+ *  mrloc::Error if A and B do not see each other at t_e or if no moving witness of t_e
+ *  forms a triangle with them at t_b (the paper then stops another pair). */
+RestartSearch localizedRestartSearch(const Snapshot& before, const Snapshot& after,
+                                     const Identification& idAfter, int a, int b,
+                                     const std::vector<double>& travelled,
+                                     const std::vector<double>& turned, const SearchOptions& o);
+
+}  // namespace mrloc::omnivision
