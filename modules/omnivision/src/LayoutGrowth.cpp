@@ -330,65 +330,125 @@ double LayoutGrower::chancePerCheck(const ImageTable& table, const SearchOptions
 }
 
 /** From the seed alone a point is confirmed by three robots, too few to tell a true robot
- *  from chance once N is large. But true candidates see each other: robot a has an image
- *  where its point predicts b's point, and b one towards a's, which a chance candidate
- *  rarely does with many. The largest group of candidates that all see each other (greedy,
- *  the best connected first; one candidate per robot, no image twice) is placed at once
- *  when it is large enough to be beyond chance (at most kMinGroup robots). */
+ *  from chance once N is large (at N = 100 some 7,000 candidates for 97 robots, about 60
+ *  robots per point). But true candidates see each other: robot a has an image where its
+ *  point predicts b's point, and b one towards a's, which a chance candidate does with few.
+ *  The largest group of candidates that all see each other (greedy, the best connected
+ *  first; one candidate per robot, no image twice) is placed at once when it is large
+ *  enough to be beyond chance (at most kMinGroup robots). Two passes:
+ *  - the best kPerRobot candidates of each robot (by evidence, then residual), each one's
+ *    degree the candidates it sees that see it back: enough where few candidates share a
+ *    point (sparse or occluded swarms);
+ *  - else every candidate, each one's degree the points it sees that see it back (some
+ *    candidate there looks towards it): one robot stands at a point however many chance
+ *    candidates share it, so a true candidate's degree is the true points it sees, a chance
+ *    one's the few its images hit by accident. At N = 100 the true candidate is rarely
+ *    among a robot's best three. */
 bool LayoutGrower::placeMutualGroup(Layout& layout, const std::vector<Candidate>& all) const {
-    // the pairwise test is quadratic: the best kPerRobot candidates of each robot (all is
-    // sorted by evidence, then residual)
-    std::vector<Candidate> found;
-    std::vector<size_t> perRobot(size_t(n_), 0);
-    for (const auto& c : all)
-        if (perRobot[size_t(c.robot)]++ < kPerRobot) found.push_back(c);
-    const size_t k = found.size();
-    // The smallest group beyond chance: g candidates that all see each other pass g (g - 1)
-    // bearing checks, each by chance with probability chance_, among about k^2 pairs
-    // tried: chance_^(g (g - 1)) k^2 under 1e-6.
-    const auto beyondChance = [&](size_t g) {
-        return double(g * (g - 1)) * std::log(chance_) + 2 * std::log(double(k) + 1) <=
-               std::log(1e-6);
-    };
-    size_t minGroup = 2;
-    while (minGroup < kMinGroup && !beyondChance(minGroup)) ++minGroup;
     // A swarm with fewer robots left than kMinGroup (which may not all see each other):
     // one robot at a time, as every placed robot agrees with it (growOnce's small rule).
     size_t left = 0;
     for (int r = 0; r < n_; ++r) left += !layout.placed[size_t(r)] && table_.view(r).size() >= 2;
-    if (left < kMinGroup) minGroup = 1;
-    if (k < minGroup) return false;
-    std::vector<std::vector<char>> sees(k, std::vector<char>(k, 0));
-    std::vector<size_t> degree(k, 0);
-    const auto looks = [&](const Candidate& a, const Candidate& b) {
-        const Vec2 d = b.at - a.at;
-        return table_.findImage({}, a.robot, std::atan2(d.y(), d.x()) - a.heading,
+    // The smallest group beyond chance: g candidates that all see each other pass g (g - 1)
+    // bearing checks, each by chance with probability chance_, among about k^2 pairs
+    // tried: chance_^(g (g - 1)) k^2 under 1e-6.
+    const auto smallestGroup = [&](size_t k) {
+        if (left < kMinGroup) return size_t(1);
+        size_t g = 2;
+        while (g<kMinGroup&& double(g * (g - 1)) * std::log(chance_) + 2 * std::log(double(k) + 1)>
+                   std::log(1e-6))
+            ++g;
+        return g;
+    };
+    const auto seesPoint = [&](const Candidate& a, const Vec2& at) {
+        const Vec2 d = at - a.at;
+        return d.norm() > 1e-3 * layout.scale &&
+               table_.findImage({}, a.robot, std::atan2(d.y(), d.x()) - a.heading,
                                 tolAt(layout, d.norm())) >= 0;
     };
-    for (size_t a = 0; a < k; ++a)
-        for (size_t b = a + 1; b < k; ++b)
-            if (found[a].robot != found[b].robot &&
-                (found[a].at - found[b].at).norm() > 1e-3 * layout.scale &&
-                looks(found[a], found[b]) && looks(found[b], found[a]))
-                sees[a][b] = sees[b][a] = 1, ++degree[a], ++degree[b];
-    std::vector<size_t> order(k);
-    for (size_t i = 0; i < k; ++i) order[i] = i;
-    std::stable_sort(order.begin(), order.end(),
-                     [&](size_t a, size_t b) { return degree[a] > degree[b]; });
-    std::vector<size_t> group;
-    for (size_t c : order) {
-        if (degree[c] + 1 < minGroup) break;
-        bool fits = std::all_of(group.begin(), group.end(), [&](size_t g) { return sees[c][g]; });
-        for (size_t g : group)
-            for (const auto& ray : found[c].raysIn)
-                if (std::find(found[g].raysIn.begin(), found[g].raysIn.end(), ray) !=
-                    found[g].raysIn.end())
-                    fits = false;  // one image cannot show two robots
-        if (fits) group.push_back(c);
+    // The greedy group over `found`, highest degree first; placed if large enough.
+    const auto placeGroup = [&](const std::vector<Candidate>& found,
+                                const std::vector<size_t>& degree, size_t minGroup,
+                                const auto& mutual) {
+        std::vector<size_t> order(found.size());
+        for (size_t i = 0; i < order.size(); ++i) order[i] = i;
+        std::stable_sort(order.begin(), order.end(),
+                         [&](size_t a, size_t b) { return degree[a] > degree[b]; });
+        std::vector<size_t> group;
+        std::set<std::pair<int, int>> used;  // one image cannot show two robots
+        for (size_t c : order) {
+            if (degree[c] + 1 < minGroup) break;
+            if (!std::all_of(group.begin(), group.end(), [&](size_t g) { return mutual(c, g); }) ||
+                std::any_of(found[c].raysIn.begin(), found[c].raysIn.end(),
+                            [&](const auto& ray) { return used.count(ray) > 0; }))
+                continue;
+            group.push_back(c);
+            used.insert(found[c].raysIn.begin(), found[c].raysIn.end());
+        }
+        if (group.size() < minGroup) return false;
+        for (size_t g : group) place(layout, found[g]);
+        return true;
+    };
+
+    // 1. The best few per robot, degrees over candidates (all is sorted by evidence).
+    {
+        std::vector<Candidate> found;
+        std::vector<size_t> perRobot(size_t(n_), 0);
+        for (const auto& c : all)
+            if (perRobot[size_t(c.robot)]++ < kPerRobot) found.push_back(c);
+        const size_t k = found.size();
+        std::vector<std::vector<char>> sees(k, std::vector<char>(k, 0));
+        std::vector<size_t> degree(k, 0);
+        for (size_t a = 0; a < k; ++a)
+            for (size_t b = a + 1; b < k; ++b)
+                if (found[a].robot != found[b].robot && seesPoint(found[a], found[b].at) &&
+                    seesPoint(found[b], found[a].at))
+                    sees[a][b] = sees[b][a] = 1, ++degree[a], ++degree[b];
+        const size_t minGroup = smallestGroup(k);
+        if (k >= minGroup &&
+            placeGroup(found, degree, minGroup, [&](size_t a, size_t b) { return sees[a][b]; }))
+            return true;
     }
-    if (group.size() < minGroup) return false;
-    for (size_t g : group) place(layout, found[g]);
-    return true;
+    // 2. Every candidate, degrees over points.
+    const size_t k = all.size();
+    const size_t minGroup = smallestGroup(k);
+    if (k < minGroup) return false;
+    std::map<std::vector<std::pair<int, int>>, size_t> pointIndex;
+    std::vector<Vec2> points;
+    std::vector<size_t> pointOf(k);
+    for (size_t c = 0; c < k; ++c) {
+        const auto [it, added] = pointIndex.emplace(all[c].raysIn, points.size());
+        if (added) points.push_back(all[c].at);
+        pointOf[c] = it->second;
+    }
+    const size_t m = points.size();
+    // sees[c][q]: candidate c has an image towards point q; the directions and tolerances
+    // between points are shared by the candidates at a point.
+    std::vector<std::vector<double>> towards(m, std::vector<double>(m, 0)), tol = towards;
+    for (size_t p = 0; p < m; ++p)
+        for (size_t q = 0; q < m; ++q) {
+            const Vec2 d = points[q] - points[p];
+            towards[p][q] = std::atan2(d.y(), d.x());
+            tol[p][q] = d.norm() <= 1e-3 * layout.scale ? -1 : tolAt(layout, d.norm());
+        }
+    std::vector<std::vector<char>> sees(k, std::vector<char>(m, 0));
+    for (size_t c = 0; c < k; ++c) {
+        const size_t p = pointOf[c];
+        for (size_t q = 0; q < m; ++q)
+            sees[c][q] =
+                tol[p][q] > 0 &&
+                table_.findImage({}, all[c].robot, towards[p][q] - all[c].heading, tol[p][q]) >= 0;
+    }
+    // back[q][p]: some candidate at q sees p.
+    std::vector<std::vector<char>> back(m, std::vector<char>(m, 0));
+    for (size_t c = 0; c < k; ++c)
+        for (size_t p = 0; p < m; ++p) back[pointOf[c]][p] |= sees[c][p];
+    std::vector<size_t> degree(k, 0);
+    for (size_t c = 0; c < k; ++c)
+        for (size_t q = 0; q < m; ++q) degree[c] += sees[c][q] && back[q][pointOf[c]];
+    return placeGroup(all, degree, minGroup, [&](size_t a, size_t b) {
+        return all[a].robot != all[b].robot && sees[a][pointOf[b]] && sees[b][pointOf[a]];
+    });
 }
 
 void LayoutGrower::growAll(Layout& layout) const {

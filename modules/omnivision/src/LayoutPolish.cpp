@@ -44,7 +44,7 @@ void LayoutGrower::polish(Layout& layout, int sweeps) const {
 int LayoutGrower::worstFit(const Layout& layout) const {
     const double sigma = o_.bearingTolerance / 4;  // the tolerance is 4 sigma
     std::vector<double> sum(size_t(n_), 0);
-    std::vector<size_t> count(size_t(n_), 0);
+    std::vector<size_t> count(size_t(n_), 0), in(size_t(n_), 0), out(size_t(n_), 0);
     for (int u : layout.order) {
         const auto& lab = layout.labels[size_t(u)];
         for (size_t img = 0; img < lab.size(); ++img) {
@@ -53,8 +53,21 @@ int LayoutGrower::worstFit(const Layout& layout) const {
             const double e = wrapToPi(direction(layout.p[size_t(u)], layout.p[size_t(w)]) -
                                       layout.heading[size_t(u)] - table_.bearing(u, int(img)));
             for (int r : {u, w}) sum[size_t(r)] += e * e, ++count[size_t(r)];
+            ++out[size_t(u)], ++in[size_t(w)];
         }
     }
+    // Sight is mutual (a camera's range, a marker in the line of sight): a robot that the
+    // others see where it stands but that sees few of them from there is another robot's
+    // look-alike (near it, its view of the far robots differs from the true one's by little
+    // parallax). The most one-sided goes first.
+    int oneSided = -1;
+    double worstShare = kMinSightShare;
+    for (int r : layout.order)
+        if (in[size_t(r)] >= kMinEvidence)
+            if (const double share = double(out[size_t(r)]) / double(in[size_t(r)]);
+                share < worstShare)
+                oneSided = r, worstShare = share;
+    if (oneSided >= 0) return oneSided;
     int worst = -1;
     double worstRms = kMaxRms;
     for (int r : layout.order)

@@ -23,7 +23,11 @@ double labeledShare(const Layout& layout) {
     return images ? double(labelCount(layout)) / double(images) : 0;
 }
 
-constexpr double kDoneShare = 0.9;
+/** A layout that places every robot it can and labels this share of their images is done.
+ *  Images two robots share within the tolerance stay unlabelled, more with more noise: at
+ *  0.05 deg and N = 75 a true layout labels 83-91 %, and with 0.9 the search then tried its
+ *  200 seeds (24 s) for nothing. */
+constexpr double kDoneShare = 0.75;
 
 }  // namespace
 

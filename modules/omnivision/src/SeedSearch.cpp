@@ -18,9 +18,15 @@ Error ImageTable::tooMuchWork() const {
 }
 
 ImageTable::ImageTable(const Snapshot& s, size_t maxVisits)
-    : snapshot_(s), pairs_(s.robots()), maxVisits_(maxVisits) {
+    : snapshot_(s), pairs_(s.robots()), buckets_(s.robots()), maxVisits_(maxVisits) {
     for (int r = 0; r < robots(); ++r) {
         const auto& v = view(r);
+        auto& first = buckets_[size_t(r)];
+        first.resize(kBuckets);
+        for (size_t i = 0, img = 0; i < kBuckets; ++i) {
+            while (img < v.size() && v.bearings[img] < bucketStart(i)) ++img;
+            first[i] = uint32_t(img);
+        }
         for (int e = 0; e < int(v.size()); ++e)
             for (int f = 0; f < int(v.size()); ++f)
                 if (e != f) pairs_[size_t(r)].push_back({signedAngle(v, e, f), e, f});
@@ -35,7 +41,10 @@ int ImageTable::findImage(const Labels& labels, int r, double b, double tol) con
     const size_t n = v.size();
     if (n == 0) return -1;
     b = wrapToPi(b);
-    const size_t start = size_t(std::lower_bound(v.begin(), v.end(), b) - v.begin()) % n;
+    // the first bearing >= b: from its bucket's first image, a step or two on
+    size_t start = buckets_[size_t(r)][std::min(kBuckets - 1, size_t((b + M_PI) / kBucketWidth))];
+    while (start < n && v[start] < b) ++start;
+    start %= n;
     int best = -1;
     double bestD = tol;
     const auto consider = [&](size_t i) {
@@ -74,6 +83,7 @@ bool tryHullSeeds(const ImageTable& table, const SearchOptions& o, const SeedAtt
     // seeds too (j -> k -> l, h -> i -> j), a chance one's rarely: seeds that chain come
     // first, then those with fewer robots inside the ear, then the best conditioned.
     constexpr size_t kEar = 6;
+    constexpr double kFlatSeed = 5 * M_PI / 180;  ///< rad: a seed angle below it is flat
     struct HullSeed {
         int chain = 0;
         size_t inside = 0;
@@ -111,7 +121,12 @@ bool tryHullSeeds(const ImageTable& table, const SearchOptions& o, const SeedAtt
     for (auto& h : seeds)
         h.chain = int(heads.count({h.seed.r[1], h.seed.r[2]})) +
                   int(tails.count({h.seed.r[0], h.seed.r[1]}));
-    std::stable_sort(seeds.begin(), seeds.end(), [](const HullSeed& a, const HullSeed& b) {
+    // Hull robots nearly in line make a flat triangle (at N = 100 angles of 0.5 degrees):
+    // its shape errs by percent, so the headings it gives point the rays past the robots they
+    // should meet, and it grows nothing. Such seeds come last.
+    const auto flat = [](const HullSeed& h) { return h.conditioning < kFlatSeed; };
+    std::stable_sort(seeds.begin(), seeds.end(), [&](const HullSeed& a, const HullSeed& b) {
+        if (flat(a) != flat(b)) return flat(b);
         if (a.chain != b.chain) return a.chain > b.chain;
         if (a.inside != b.inside) return a.inside < b.inside;
         return a.conditioning > b.conditioning;
