@@ -187,6 +187,19 @@ TEST(Methods, LocalizedSearchAtTbFindsTheWitnessTriangleOfEq12) {
         proposedMethod(sb.snapshot, local.before, se.snapshot, ie, 0, 1, t.travelled());
     EXPECT_EQ(prop.moving, 2);
     EXPECT_NEAR(prop.after.baseline, 5, 1e-9);
+    // Views of 500 images each (a hostile log) exceed the work bound: one line, no hang.
+    auto huge = sb.snapshot;
+    for (size_t r : {0u, 1u, 2u}) {
+        std::vector<double> raw = huge.views[r].bearings;
+        for (int i = 0; i < 500; ++i) raw.push_back(-3 + 0.0119 * i);
+        huge.views[r] = makeView(raw, "huge");
+    }
+    try {
+        localizedRestartSearch(huge, se.snapshot, ie, 0, 1, t.travelled(), t.turned(), exact());
+        FAIL() << "expected the work bound";
+    } catch (const Error& e) {
+        EXPECT_NE(std::string(e.what()).find("work bound"), std::string::npos) << e.what();
+    }
     // No moving witness: the paper's restart.
     EXPECT_THROW(localizedRestartSearch(sb.snapshot, se.snapshot, ie, 0, 1,
                                         std::vector<double>(5, 0), t.turned(), exact()),

@@ -4,6 +4,7 @@
 #include <mrloc/common/Error.h>
 #include <mrloc/common/Rawlog.h>
 #include <mrloc/common/Trajectory.h>
+#include <mrloc/omnivision/OmniCamera.h>
 #include <mrloc/omnivision/OmniLocalizer.h>
 #include <mrloc/omnivision/OmniMethod.h>
 #include <mrloc/sim/Simulator.h>
@@ -11,6 +12,7 @@
 #include <mrpt/obs/CObservationBearingRange.h>
 #include <mrpt/obs/CObservationRange.h>
 
+#include <algorithm>
 #include <filesystem>
 
 using namespace mrloc;
@@ -88,6 +90,35 @@ TEST(OmniSimulation, SnapshotsStopsAndLidarGoToTheRawlog) {
     const auto c2 =
         common::interpolate(common::loadTum(common::groundTruthPath(path, "C")), 1.7e9 + 2);
     EXPECT_GT(std::abs(c1->y() - c2->y()), 0.2);  // C drove on
+}
+
+// Bearings mode: an obstacle between two cameras hides each from the other (as a rendered
+// panorama would), through the world's own line of sight; a robot's band hides those behind
+// it; out of range is out of sight.
+TEST(OmniSimulation, ObstaclesBandsAndRangeHideRobotsInBearingsMode) {
+    sim::WorldOptions w;
+    w.sizeX = 10, w.sizeY = 10, w.height = 3;
+    w.obstacles = {{"wall", {4.9, 0.2, 0}, {5.1, 3, 1}}};
+    const sim::World world(w);
+    const omnivision::LineOfSight clear = [&](const auto& a, const auto& b) {
+        return world.lineOfSight(a, b);
+    };
+    // A and B on either side of the wall; C seen by both; D behind C's band from A.
+    const std::vector<mrpt::poses::CPose2D> poses{
+        {2, 1, 0}, {8, 1, 0}, {5, 6, 0}, {6.8, 9, 0}};  // D = A + 1.6 (C - A)
+    omnivision::OmniCameraOptions o;
+    o.render = false;
+    o.markerRadius = 0.15;
+    const auto robotsSeen = [&](size_t observer, const omnivision::LineOfSight& los) {
+        auto r = omnivision::sightingsOf(poses, observer, o, los).robots;
+        std::sort(r.begin(), r.end());
+        return r;
+    };
+    EXPECT_EQ(robotsSeen(0, {}), (std::vector<int>{1, 2}));     // open space: B and C
+    EXPECT_EQ(robotsSeen(0, clear), (std::vector<int>{2}));     // the wall hides B
+    EXPECT_EQ(robotsSeen(1, clear), (std::vector<int>{2, 3}));  // and A from B
+    o.maxRange = 5;
+    EXPECT_EQ(robotsSeen(1, clear), (std::vector<int>{}));  // C is 5.8 m away, D 8 m
 }
 
 TEST(OmniLocalizerInput, WrongClassUnderAnOmniLabelIsAnError) {

@@ -11,7 +11,7 @@
 namespace mrloc::omnivision {
 
 TrueSighting sightingsOf(const std::vector<mrpt::poses::CPose2D>& poses, size_t observer,
-                         const OmniCameraOptions& o) {
+                         const OmniCameraOptions& o, const LineOfSight& clear) {
     TrueSighting out;
     const auto& me = poses[observer];
     for (size_t j = 0; j < poses.size(); ++j) {
@@ -27,7 +27,10 @@ TrueSighting sightingsOf(const std::vector<mrpt::poses::CPose2D>& poses, size_t 
             if (along <= 0 || along >= dist) continue;
             blocked = std::abs(kx * dy - ky * dx) / dist < o.markerRadius;
         }
-        if (blocked) continue;
+        // an obstacle between the cameras (at their height) hides the band as well
+        if (blocked || (clear && !clear({me.x(), me.y(), o.cameraHeight},
+                                        {poses[j].x(), poses[j].y(), o.cameraHeight})))
+            continue;
         out.bearings.push_back(mrpt::math::wrapToPi(std::atan2(dy, dx) - me.phi()));
         out.robots.push_back(int(j));
     }
@@ -36,8 +39,8 @@ TrueSighting sightingsOf(const std::vector<mrpt::poses::CPose2D>& poses, size_t 
 
 mrpt::obs::CObservationBearingRange::Ptr senseBearings(
     const std::vector<mrpt::poses::CPose2D>& poses, size_t observer, const OmniCameraOptions& o,
-    mrpt::random::CRandomGenerator& rng) {
-    auto seen = sightingsOf(poses, observer, o);
+    mrpt::random::CRandomGenerator& rng, const LineOfSight& clear) {
+    auto seen = sightingsOf(poses, observer, o, clear);
     std::vector<size_t> order(seen.bearings.size());
     std::iota(order.begin(), order.end(), 0);
     for (size_t i = order.size(); i > 1; --i)  // Fisher-Yates with MRPT's generator

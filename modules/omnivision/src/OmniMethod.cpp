@@ -52,7 +52,9 @@ void OmniPayload::sense(sim::Step& step) {
             img->sensorLabel = name + ".omni";
             obs = img;
         } else {
-            obs = senseBearings(poses, i, setup_.camera, step.rng);
+            obs = senseBearings(
+                poses, i, setup_.camera, step.rng,
+                [&](const auto& a, const auto& b) { return step.world.lineOfSight(a, b); });
             obs->sensorLabel = name + ".omni_bearings";
         }
         obs->timestamp = step.stamp;

@@ -91,6 +91,14 @@ RestartSearch localizedRestartSearch(const Snapshot& before, const Snapshot& aft
         const Vec2 kAfter = unitBaselinePoint(
             lineDirections(angleAt(te, a), angleAt(te, b), sideAt(after, te, a, b)));
         const View& vk = before.views[size_t(k)];
+        // the full search's work bound, and at least 1e8 triples (a second or so): a
+        // hostile log's views may be huge
+        if (double(va.size()) * double(vb.size()) * double(vk.size()) >
+            std::max(1e8, double(o.maxPairVisits(before.robots()))))
+            throw Error(mrpt::format(
+                "omnivision: the localized search at t_b would examine %zu x %zu x %zu image "
+                "triples, beyond the search's work bound (doc/errors.md, \"Work\")",
+                va.size(), vb.size(), vk.size()));
         // K's heading at t_e, in the frame of A and B, from its image of A.
         const double headingAfter =
             std::atan2(-kAfter.y(), -kAfter.x()) -

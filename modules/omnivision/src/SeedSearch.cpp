@@ -39,7 +39,7 @@ ImageTable::ImageTable(const Snapshot& s, size_t maxVisits)
 int ImageTable::findImage(const Labels& labels, int r, double b, double tol) const {
     const auto& v = snapshot_.views[size_t(r)].bearings;
     const size_t n = v.size();
-    if (n == 0) return -1;
+    if (n == 0 || !std::isfinite(b)) return -1;  // wrapToPi loops on infinity
     b = wrapToPi(b);
     // the first bearing >= b: from its bucket's first image, a step or two on
     size_t start = buckets_[size_t(r)][std::min(kBuckets - 1, size_t((b + M_PI) / kBucketWidth))];

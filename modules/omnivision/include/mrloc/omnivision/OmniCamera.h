@@ -17,6 +17,7 @@
 #include <mrpt/poses/CPose2D.h>
 #include <mrpt/random/RandomGenerators.h>
 
+#include <functional>
 #include <memory>
 #include <optional>
 #include <string>
@@ -58,14 +59,21 @@ struct TrueSighting {
     std::vector<double> bearings;
     std::vector<int> robots;
 };
+/** Whether nothing stands between two points (the world's walls and obstacles:
+ *  sim::World::lineOfSight); empty: open space. */
+using LineOfSight =
+    std::function<bool(const mrpt::math::TPoint3D& from, const mrpt::math::TPoint3D& to)>;
+
+/** Robots out of range, behind another robot's band, or (if `clear` is given) behind an
+ *  obstacle between the two cameras are not seen. */
 TrueSighting sightingsOf(const std::vector<mrpt::poses::CPose2D>& poses, size_t observer,
-                         const OmniCameraOptions& o);
+                         const OmniCameraOptions& o, const LineOfSight& clear = {});
 
 /** Bearings mode: the sightings with noise, in a random order (the image carries no
  *  identity). */
 mrpt::obs::CObservationBearingRange::Ptr senseBearings(
     const std::vector<mrpt::poses::CPose2D>& poses, size_t observer, const OmniCameraOptions& o,
-    mrpt::random::CRandomGenerator& rng);
+    mrpt::random::CRandomGenerator& rng, const LineOfSight& clear = {});
 
 /** Render mode: one rendering context reused for every robot and instant. */
 class OmniRenderer {
