@@ -367,9 +367,9 @@ nlohmann::json OmniLocalizer::truthMetrics(const common::Trajectories& truthInFr
     for (size_t k = 0; k < pose.size(); ++k)
         if (pose[k]) truth[k] = Vec2(pose[k]->x(), pose[k]->y());
     nlohmann::json j = nlohmann::json::object();
-    const auto stats = [](const std::vector<double>& v) {
+    const auto stats = [](const std::vector<double>& v, const char* count = "pairs") {
         const auto st = common::computeStats(v);
-        return nlohmann::json{{"pairs", v.size()}, {"median", st.median}, {"max", st.max}};
+        return nlohmann::json{{count, v.size()}, {"median", st.median}, {"max", st.max}};
     };
     // Headings (deg), the paper layout's and the refined, against the truth's.
     const auto headingErrors = [&](const std::vector<std::optional<double>>& heading) {
@@ -378,10 +378,7 @@ nlohmann::json OmniLocalizer::truthMetrics(const common::Trajectories& truthInFr
             if (pose[k] && heading[k])
                 err.push_back(std::abs(mrpt::math::wrapToPi(*heading[k] - pose[k]->phi())) * 180 /
                               M_PI);
-        auto s = stats(err);
-        s["robots"] = s["pairs"];
-        s.erase("pairs");
-        return s;
+        return stats(err, "robots");
     };
     j["heading_error_deg_paper"] = headingErrors(r.paper.heading);
     if (r.refined) j["heading_error_deg_refined"] = headingErrors(r.refined->heading.back());

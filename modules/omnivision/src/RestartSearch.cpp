@@ -14,18 +14,8 @@ namespace mrloc::omnivision {
 
 namespace {
 
-/** The image of `v` nearest to `bearing`, if within `tolerance` (rad). */
+/** The image of a view (sorted) nearest to `bearing`, by bisection, if within `tolerance`. */
 std::optional<int> imageNear(const View& v, double bearing, double tolerance) {
-    std::optional<int> best;
-    double bestErr = tolerance;
-    for (size_t i = 0; i < v.size(); ++i)
-        if (const double e = std::abs(mrpt::math::wrapToPi(v.bearings[i] - bearing)); e <= bestErr)
-            best = int(i), bestErr = e;
-    return best;
-}
-
-/** The image of a sorted view nearest to `bearing`, by bisection, if within `tolerance`. */
-std::optional<int> sortedImageNear(const View& v, double bearing, double tolerance) {
     const auto& b = v.bearings;
     if (b.empty()) return std::nullopt;
     const double w = mrpt::math::wrapToPi(bearing);
@@ -128,7 +118,7 @@ RestartSearch localizedRestartSearch(const Snapshot& before, const Snapshot& aft
                     ++out.triples;
                     // Counter-clockwise triangle A, B, K: from K, B lies counter-clockwise of A.
                     const auto kb =
-                        sortedImageNear(vk, vk.bearings[size_t(ka)] + side * atK, o.sumTolerance);
+                        imageNear(vk, vk.bearings[size_t(ka)] + side * atK, o.sumTolerance);
                     if (!kb || *kb == ka) continue;
                     ++found;
                     Vec2 kBefore;
