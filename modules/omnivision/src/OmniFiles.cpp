@@ -92,16 +92,21 @@ AccuracyFile AccuracyFile::read(const std::string& dir) {
 
 void plotLayout(const LayoutFile& layout, const std::string& pngPath) {
     const auto& points = layout.points;
+    // Past 30 robots their names overlap: only the frame's pair is named.
+    constexpr size_t kMaxNamed = 30;
+    const bool nameAll = points.size() <= kMaxNamed;
     const std::string title = "layout at the last snapshot: " + layout.a + " at the origin, " +
-                              layout.b + " on the x axis";
+                              layout.b + " on the x axis" +
+                              (nameAll ? "" : " (only these two named)");
     std::string truth = "$truth << EOD\n", paper = "$paper << EOD\n", refined = "$refined << EOD\n",
-                ellipses = "$ellipses << EOD\n";
+                ellipses = "$ellipses << EOD\n", names = "$names << EOD\n";
     char line[256];
     for (const auto& p : points) {
         if (std::isfinite(p.trueX)) {
             std::snprintf(line, sizeof line, "%.6f %.6f %s\n", p.trueX, p.trueY,
                           report::gnuplotDataWord(p.robot).c_str());
             truth += line;
+            if (nameAll || p.robot == layout.a || p.robot == layout.b) names += line;
         }
         if (std::isfinite(p.paperX)) {
             std::snprintf(line, sizeof line, "%.6f %.6f\n", p.paperX, p.paperY);
@@ -123,14 +128,15 @@ void plotLayout(const LayoutFile& layout, const std::string& pngPath) {
             }
         }
     }
-    std::string plot = truth + "EOD\n" + paper + "EOD\n" + refined + "EOD\n" + ellipses + "EOD\n";
+    std::string plot = truth + "EOD\n" + names + "EOD\n" + paper + "EOD\n" + refined + "EOD\n" +
+                       ellipses + "EOD\n";
     plot +=
         "set title " + report::gnuplotString(title) +
         "\nset size ratio -1\nset xlabel 'x (m)'\nset ylabel 'y (m)'\n"
         "set key outside right\n"
         "plot $ellipses using 1:2:3:4:5 with ellipses lc rgb '#9999ff' title 'refined, 3 sigma', "
         "$truth using 1:2 with points pt 6 ps 2 lc rgb '#008000' title 'truth', "
-        "$truth using 1:2:3 with labels offset 1.2,1.2 notitle, "
+        "$names using 1:2:3 with labels offset 1.2,1.2 notitle, "
         "$paper using 1:2 with points pt 2 ps 1.5 lc rgb '#d00000' title 'paper (eq. 8, sine "
         "rule)', "
         "$refined using 1:2 with points pt 1 ps 1.5 lc rgb '#0000d0' title 'least squares'\n";

@@ -64,7 +64,11 @@ void OmniLocalizer::process(const mrpt::obs::CObservation::Ptr& obs) {
     if (!firstTime_ || t < *firstTime_) firstTime_ = t;
     if (sensor == "omni") {
         const auto img = expect<mrpt::obs::CObservationImage>(obs, "CObservationImage");
-        views_[t][robot] = makeView(detectMarkers(img->image, options_.panorama), obs->sensorLabel);
+        DetectorOptions detector;  // the band's size splits overlapping markers
+        detector.markerRadius = options_.markerRadius;
+        detector.markerHeight = options_.markerHeight;
+        views_[t][robot] =
+            makeView(detectMarkers(img->image, options_.panorama, detector), obs->sensorLabel);
     } else if (sensor == "omni_bearings") {
         const auto b = expect<mrpt::obs::CObservationBearingRange>(obs, "CObservationBearingRange");
         views_[t][robot] = viewFromObservation(*b, obs->sensorLabel);

@@ -165,13 +165,17 @@ void plotErrorPerRobot(const RobotErrors& errors, const std::string& pngPath) {
         for (const auto& te : e)
             rows += mrpt::format("%d %.6f %s\n", i++, te.error, gnuplotDataWord(robot).c_str());
     if (i == 0) throw Error("no errors to plot for " + pngPath);
+    // at most about 25 names under the axis: a swarm's hundred would overlap
+    const int every = (i + 24) / 25;
     runGnuplot(rows +
                    "EOD\nset xlabel 'robot'\nset ylabel 'position error (m)'\n"
                    "set xrange [-0.5:" +
                    std::to_string(i) +
                    "-0.5]\nset yrange [0:*]\n"
                    "set xtics rotate by -45\nset key outside right top\n"
-                   "plot $e using 1:2:xtic(3) with points pt 7 ps 1.5 lc rgb '#d00000' "
+                   "plot $e using 1:2:xtic(int(column(1)) % " +
+                   std::to_string(every) +
+                   " == 0 ? stringcolumn(3) : '') with points pt 7 ps 1.5 lc rgb '#d00000' "
                    "title 'error of the estimate'\n",
                pngPath);
 }
