@@ -138,6 +138,24 @@ TEST(TriangleSearch, FiftyAndSeventyFiveRobotsAreLabelledWithNoWrongLabel) {
     }
 }
 
+TEST(TriangleSearch, SeventyFiveAtFiveHundredthsOfADegreeKeepNoWrongLabel) {
+    // Two ways to a wrong label at 0.05 deg, one scene each (of the bench's 10, which had 30
+    // wrong labels). Scene 6: a robot standing in line between placed pairs had its images
+    // taken by their labels, stayed unplaced, and 14 images of it kept another's label,
+    // until the finished layout was grown once more (growFreed). Scene 5: a robot placed
+    // near its true place kept 4 wrong labels, until a robot that misses the placed robots
+    // it should see was taken out (34 % of its checks against a 2.7 % median). Measured
+    // since: none wrong, 92.4 % and 86.7 % labelled; bound 85 % (0.05 deg leaves images
+    // that two robots share within the tolerance unlabelled). Broken once each: fails.
+    for (const unsigned seed : {6u, 5u}) {
+        const auto sw = denseSwarm(75, seed, 0.05, false);
+        const auto id = identify(sw.snapshot, tolerancesFor(0.05));
+        const auto sc = score(id.labels, sw.truth);
+        EXPECT_EQ(sc.wrong, 0u) << "seed " << seed;
+        EXPECT_GE(double(sc.right), 0.85 * double(sc.images)) << "seed " << seed;
+    }
+}
+
 TEST(TriangleSearch, AHundredRobotsAreLabelledWithNoWrongLabel) {
     // Seeds 3 and 9 of the bench. Before the group's degree over every candidate, the flat
     // seeds last and the one-sided sight, scene 3 took 9 seeds (2 s) and scene 9 had 26

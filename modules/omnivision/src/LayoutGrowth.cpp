@@ -481,6 +481,11 @@ Layout LayoutGrower::growFrom(const Seed& seed, bool& ok) const {
     return layout;
 }
 
+void LayoutGrower::growFreed(Layout& layout) const {
+    growAll(layout);
+    keepMutual(layout);
+}
+
 /** A label u -> w stands only if w has a label -> u: a robot placed a little off its true
  *  place (on rays that met by chance near it) keeps some images that fit it, but the
  *  others' images of it no longer match and lose their labels. Visibility is mutual
