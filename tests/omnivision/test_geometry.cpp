@@ -225,8 +225,9 @@ TEST(Methods, LocalizedSearchPicksTheTrueTriangleAmongChanceSumsInASwarm) {
             EXPECT_GT(local.triangles, 1u) << n << " " << seed;  // chance sums exist
             for (size_t r = 0; r < n; ++r)
                 for (size_t img = 0; img < local.before.labels[r].size(); ++img)
-                    if (const int who = local.before.labels[r][img]; who >= 0)
+                    if (const int who = local.before.labels[r][img]; who >= 0) {
                         EXPECT_EQ(who, before.truth[r][img]) << n << " " << seed;
+                    }
         }
 }
 

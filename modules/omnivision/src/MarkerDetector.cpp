@@ -63,13 +63,13 @@ Piece pieceOf(const std::vector<BlobColumn>& columns, size_t begin, size_t end, 
  *  front at depth z along the view's axis spans f * height / z rows, and a band at
  *  distance d spans 2 asin(radius / d) of azimuth. */
 bool isWholeBand(const Piece& piece, const Panorama& p, const DetectorOptions& o) {
-    const double offAxis = std::remainder(piece.bearing, p.viewFov());  // axes at k * fov
+    const double offAxis = p.offAxis(piece.bearing);
     const auto widthAt = [&](double rows) {
         const double depth = p.focal() * o.markerHeight / std::max(rows, 0.5);
         const double distance = depth / std::cos(offAxis) + o.markerRadius;
         return 2 * std::asin(std::min(1.0, o.markerRadius / distance));
     };
-    const double column = std::pow(std::cos(offAxis), 2) / p.focal();  // rad a column spans
+    const double column = p.columnAngleAt(piece.bearing);
     const bool notTooWide =
         piece.clipped || piece.span <= widthAt(piece.height + o.heightSlack) + 1.5 * column;
     return notTooWide && piece.span >= widthAt(piece.height - o.heightSlack) - 1.5 * column;

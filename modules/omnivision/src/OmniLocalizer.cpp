@@ -164,8 +164,7 @@ const OmniResult& OmniLocalizer::result() const {
         // anywhere in its column), and a column spans cos^2(angle off the view's axis) / f.
         const Panorama pano = options_.panorama;
         p.bearingSigmaAt = [pano](double bearing) {
-            const double off = std::remainder(bearing, pano.viewFov());
-            return std::pow(std::cos(off), 2) / (std::sqrt(24.0) * pano.focal());
+            return pano.columnAngleAt(bearing) / std::sqrt(24.0);
         };
         p.stillViewsRepeat = true;
     }

@@ -19,6 +19,13 @@ struct Panorama {
     double focal() const { return 0.5 * viewWidth / std::tan(0.5 * viewFov()); }
     /** Azimuth of view k's optical axis in the robot frame (rad). */
     double viewAzimuth(int k) const { return -k * viewFov(); }
+    /** Angle (rad) of a bearing off the axis of the view it falls in. */
+    double offAxis(double bearing) const { return std::remainder(bearing, viewFov()); }
+    /** Azimuth (rad) one column spans at a bearing: a pinhole view's columns are even in
+     *  the image, not in azimuth (cos^2 of the angle off the axis, over the focal). */
+    double columnAngleAt(double bearing) const {
+        return std::pow(std::cos(offAxis(bearing)), 2) / focal();
+    }
     /** Bearing (robot frame, rad) of the centre of pixel column u (may be fractional). */
     double bearingOfColumn(double u) const {
         const int k = std::min(views - 1, std::max(0, int(std::floor(u / viewWidth))));
