@@ -156,6 +156,26 @@ TEST(TriangleSearch, SeventyFiveAtFiveHundredthsOfADegreeKeepNoWrongLabel) {
     }
 }
 
+TEST(TriangleSearch, InRangeLimitedSwarmsARobotInLineTakesBackItsImages) {
+    // Cameras that see 12 m through 0.15 m bands (the bench's occluded rows). Scene 6 at
+    // N = 75, 0.02 deg: robot 7 stood where the sights 26-67 and 43-63 cross, those four
+    // images of it kept the far robot's label (4 wrong), and 79.0 % was labelled. Scene 8
+    // at N = 100, 0.05 deg: likewise robot 47 on six sights (12 wrong, 90.3 %). Three
+    // causes: the growth stopped asking the placed robots in range after a few misses
+    // (bands hide most of them), a robot placed in the same round on an image kept it from
+    // the nearer robot whose band hides it, and the last growth tried 8 anchor pairs.
+    // Measured since: none wrong, 100 % and 99.5 % labelled; bound 97 % (the issue's).
+    // Each undone alone: 4 wrong and 80.4 % (scene 6); 12 wrong; 2 wrong and 78.2 %.
+    for (const auto& [n, seed, sigma] :
+         std::vector<std::tuple<size_t, unsigned, double>>{{75, 6, 0.02}, {100, 8, 0.05}}) {
+        const auto sw = denseSwarm(n, seed, sigma, true);
+        const auto id = identify(sw.snapshot, tolerancesFor(sigma));
+        const auto sc = score(id.labels, sw.truth);
+        EXPECT_EQ(sc.wrong, 0u) << "N = " << n << ", seed " << seed;
+        EXPECT_GE(double(sc.right), 0.97 * double(sc.images)) << "N = " << n << ", seed " << seed;
+    }
+}
+
 TEST(TriangleSearch, AChanceLayoutOfAFewRobotsIsNotKept) {
     // 30 robots at 0.3 deg (three times the worst noise): a tolerance window then
     // holds a chance bearing 1 time in 5, no true layout grows, and the search kept the

@@ -94,7 +94,11 @@ std::vector<Candidate> LayoutGrower::candidates(const Layout& layout, int s1, in
             addRay(s2, std::atan2(u2.y(), u2.x()), t2);
             Eigen::Matrix2d cov = meeting.information().inverse();
             // Every other placed robot that sees the point confirms it. A chance meeting
-            // of two rays is confirmed by few: stop checking once misses outweigh hits.
+            // of two rays is confirmed by few: stop checking once misses outweigh hits,
+            // unless the cameras' range bounds the checks. There a true point misses most
+            // of the placed robots in range, hidden by nearer bands, and was dropped after
+            // its first few misses (measured in occluded scenes at N = 75 and 0.02 deg:
+            // 4 wrong labels and 3 scenes under 90 % labelled, none with no early stop).
             size_t misses = 0, checks = 0;
             for (int s : layout.order) {
                 if (s == s1 || s == s2) continue;
@@ -113,7 +117,7 @@ std::vector<Candidate> LayoutGrower::candidates(const Layout& layout, int s1, in
                     addRay(s, layout.heading[size_t(s)] + table_.bearing(s, img), dist);
                     if (const auto better = meeting.solve()) at = *better;
                     cov = meeting.information().inverse();
-                } else if (++misses > 2 * (rays.size() - 2) + kMissSlack) {
+                } else if (++misses > 2 * (rays.size() - 2) + kMissSlack && !round.bounded) {
                     break;
                 }
             }
@@ -223,10 +227,17 @@ void LayoutGrower::place(Layout& layout, const Candidate& c) {
     for (const auto& [s, img] : c.seen) layout.labels[size_t(c.robot)][size_t(img)] = s;
 }
 
-bool LayoutGrower::conflicts(const Layout& layout, const Candidate& c) {
+bool LayoutGrower::conflicts(const Layout& layout, const Candidate& c, bool bounded) {
     if (layout.placed[size_t(c.robot)]) return true;
-    for (const auto& [s, img] : c.raysIn)
-        if (layout.labels[size_t(s)][size_t(img)] >= 0) return true;
+    for (const auto& [s, img] : c.raysIn) {
+        const int w = layout.labels[size_t(s)][size_t(img)];
+        if (w < 0) continue;
+        // w was placed this round on an image that was free when c was found: the image
+        // shows the nearer of the two (relabel's rule), whose band hides the other
+        const double toPoint = (c.at - layout.p[size_t(s)]).norm();
+        if (!bounded || (layout.p[size_t(w)] - layout.p[size_t(s)]).norm() <= kInFront * toPoint)
+            return true;
+    }
     return false;
 }
 
@@ -250,13 +261,21 @@ double LayoutGrower::sightReach(const Layout& layout) const {
     return double(sights) >= 0.9 * double(k * (k - 1)) ? INFINITY : longest * kReachMargin;
 }
 
+bool LayoutGrower::rangeBounded(const Layout& layout, double reach) {
+    if (std::isinf(reach)) return false;
+    for (int u : layout.order)
+        for (int w : layout.order)
+            if ((layout.p[size_t(u)] - layout.p[size_t(w)]).norm() > reach) return true;
+    return false;
+}
+
 /** One round: the candidates from the first anchor pair that yields any.
  *  - With the seed alone, the largest group of candidates that all see each other
  *    (placeMutualGroup): three robots confirm a point too weakly.
  *  - While the layout is small, only a candidate every placed robot agrees with (but
  *    for one pair that cannot see each other).
  *  - Later, every candidate whose agreement is beyond chance (significant), best first. */
-bool LayoutGrower::growOnce(Layout& layout) const {
+bool LayoutGrower::growOnce(Layout& layout, size_t anchorGroups) const {
     const size_t placed = layout.order.size();
     // Anchor pairs: those among the first few placed robots together, then pairs of the
     // robots with most unlabeled images (they see what is left), one pair at a time.
@@ -273,14 +292,16 @@ bool LayoutGrower::growOnce(Layout& layout) const {
     }
     std::stable_sort(open.begin(), open.end(), std::greater<>());
     for (size_t a = 0; a < open.size(); ++a)
-        for (size_t b = a + 1; b < open.size() && groups.size() < kAnchorGroups; ++b)
+        for (size_t b = a + 1; b < open.size() && groups.size() < anchorGroups; ++b)
             groups.push_back({{open[a].second, open[b].second}});
     const double reach = sightReach(layout);
-    for (size_t gi = 0; gi < groups.size() && gi < kAnchorGroups; ++gi) {
+    const bool bounded = rangeBounded(layout, reach);
+    for (size_t gi = 0; gi < groups.size() && gi < anchorGroups; ++gi) {
         const auto& group = groups[gi];
         std::vector<Candidate> found;
         Round round;
         round.reach = reach;
+        round.bounded = bounded;
         for (const auto& [s1, s2] : group) {
             auto more = candidates(layout, s1, s2, 3, 3, round);
             found.insert(found.end(), std::make_move_iterator(more.begin()),
@@ -303,7 +324,8 @@ bool LayoutGrower::growOnce(Layout& layout) const {
         for (const auto& c : found) {
             const bool mutual =
                 2 * c.seen.size() >= c.raysIn.size() && 2 * c.raysIn.size() >= c.seen.size();
-            if (c.evidence() < kMinEvidence || !significant(c) || !mutual || conflicts(layout, c))
+            if (c.evidence() < kMinEvidence || !significant(c) || !mutual ||
+                conflicts(layout, c, bounded))
                 continue;
             place(layout, c);
             any = true;
@@ -451,8 +473,8 @@ bool LayoutGrower::placeMutualGroup(Layout& layout, const std::vector<Candidate>
     });
 }
 
-void LayoutGrower::growAll(Layout& layout) const {
-    while (growOnce(layout)) {
+void LayoutGrower::growAll(Layout& layout, size_t anchorGroups) const {
+    while (growOnce(layout, anchorGroups)) {
         polish(layout, 2);
         relabel(layout);
     }
@@ -482,7 +504,7 @@ Layout LayoutGrower::growFrom(const Seed& seed, bool& ok) const {
 }
 
 void LayoutGrower::growFreed(Layout& layout) const {
-    growAll(layout);
+    growAll(layout, rangeBounded(layout, sightReach(layout)) ? size_t(-1) : kAnchorGroups);
     keepMutual(layout);
 }
 

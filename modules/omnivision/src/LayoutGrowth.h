@@ -172,7 +172,9 @@ class LayoutGrower {
     /** Grows a finished layout again, once its one-sided labels are gone (keepMutual):
      *  a robot standing in line between two placed ones had its images taken by their
      *  labels while it grew; freed, they place it, and the labels of the pairs it hides
-     *  from each other go to it. */
+     *  from each other go to it. Where the cameras' range is bounded (rangeBounded), from
+     *  every pair of placed robots with free images: a robot left unplaced there is seen
+     *  by its neighbours only, rarely by the kAnchorGroups pairs with most free images. */
     void growFreed(Layout& layout) const;
 
  private:
@@ -183,6 +185,8 @@ class LayoutGrower {
     struct Round {
         /** How far a placed robot may be from a point and still be asked (sightReach). */
         double reach = INFINITY;
+        /** The reach leaves placed robots out (rangeBounded). */
+        bool bounded = false;
         /** Rays into points already identified this round (from another anchor pair): a
          *  point most of whose rays are claimed is the same robot again and is not
          *  identified twice; candidates() adds the rays of the points it identifies. */
@@ -194,18 +198,26 @@ class LayoutGrower {
      *  sight where under 90 % of the placed pairs are labelled (a camera range), else
      *  unbounded (a swarm that sees itself whole is checked by every robot). */
     double sightReach(const Layout& layout) const;
+    /** Whether the cameras' range is bounded: some placed pair stands farther apart than
+     *  the reach. Robots then see only their neighbours, and bands hide many of those
+     *  (a true point misses most placed robots in range); a swarm that sees itself whole
+     *  has a reach beyond its layout, however many of its labels are missing. */
+    static bool rangeBounded(const Layout& layout, double reach);
     void refinePoint(const Layout& layout, Candidate& c) const;
     void identifyRobot(const Layout& layout, const Candidate& c, size_t minSeen,
                        std::vector<Candidate>& out) const;
     double residual(const Layout& layout, const Candidate& c) const;
     static void place(Layout& layout, const Candidate& c);
-    static bool conflicts(const Layout& layout, const Candidate& c);
+    /** Whether c's rays are taken by robots placed before it: by any, or where the
+     *  cameras' range is bounded (rangeBounded: bands hide often), by one no farther
+     *  along the image than kInFront times c's point. */
+    static bool conflicts(const Layout& layout, const Candidate& c, bool bounded);
     static void sortByEvidence(std::vector<Candidate>& found);
-    bool growOnce(Layout& layout) const;
+    bool growOnce(Layout& layout, size_t anchorGroups = kAnchorGroups) const;
     /** growOnce until it places no more, polishing and relabelling after each round: a
      *  placed robot's images of other placed robots left unlabelled would cast rays that
-     *  meet at robots already placed. */
-    void growAll(Layout& layout) const;
+     *  meet at robots already placed. anchorGroups: anchor pairs tried per round, at most. */
+    void growAll(Layout& layout, size_t anchorGroups = kAnchorGroups) const;
     bool placeMutualGroup(Layout& layout, const std::vector<Candidate>& found) const;
     /** Whether c's agreement with the layout is beyond chance: the probability that a
      *  wrong point and robot pass as many of its checks (each by chance with the share of
@@ -251,6 +263,8 @@ class LayoutGrower {
     static constexpr double kMaxSpread = 10;
     /** Points farther than this times the longest labelled sight are not checked. */
     static constexpr double kReachMargin = 1.1;
+    /** A robot this many times farther than a point along an image is hidden by it. */
+    static constexpr double kInFront = 1.05;
 
     const ImageTable& table_;
     const SearchOptions& o_;
