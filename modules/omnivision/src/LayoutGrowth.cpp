@@ -13,8 +13,19 @@ double LayoutGrower::tolAt(const Layout& layout, double dist) const {
     return o_.bearingTolerance * std::min(2.0, 1 + 0.5 * layout.scale / std::max(dist, 1e-9));
 }
 
+Layout LayoutGrower::emptyLayout() const {
+    Layout layout;
+    layout.placed.assign(size_t(n_), 0);
+    layout.p.assign(size_t(n_), Vec2::Zero());
+    layout.heading.assign(size_t(n_), 0);
+    layout.labels.resize(size_t(n_));
+    for (int r = 0; r < n_; ++r) layout.labels[size_t(r)].assign(table_.view(r).size(), -1);
+    return layout;
+}
+
 /** Places a seed triangle with |r0 r1| = 1; false if it is degenerate. */
 bool LayoutGrower::placeSeed(const Seed& seed, Layout& layout) const {
+    if (seed.pair) return placePair(seed, layout);
     std::array<double, 3> theta{};
     for (size_t v = 0; v < 3; ++v) {
         theta[v] = signedAngle(table_.view(seed.r[v]), seed.image[v][0], seed.image[v][1]);
@@ -22,12 +33,7 @@ bool LayoutGrower::placeSeed(const Seed& seed, Layout& layout) const {
     }
     const double third = M_PI - theta[0] - theta[1];
     if (third < 1e-6) return false;
-    layout = Layout{};
-    layout.placed.assign(size_t(n_), 0);
-    layout.p.assign(size_t(n_), Vec2::Zero());
-    layout.heading.assign(size_t(n_), 0);
-    layout.labels.resize(size_t(n_));
-    for (int r = 0; r < n_; ++r) layout.labels[size_t(r)].assign(table_.view(r).size(), -1);
+    layout = emptyLayout();
     layout.p[size_t(seed.r[1])] = {1, 0};
     layout.p[size_t(seed.r[2])] = std::sin(theta[1]) / std::sin(third) * unit(theta[0]);
     for (size_t v = 0; v < 3; ++v) {
@@ -41,6 +47,20 @@ bool LayoutGrower::placeSeed(const Seed& seed, Layout& layout) const {
     layout.scale = (1 + layout.p[size_t(seed.r[2])].norm() +
                     (layout.p[size_t(seed.r[2])] - Vec2(1, 0)).norm()) /
                    3;
+    return true;
+}
+
+/** Places a pair seed at (0, 0) and (1, 0); false if both are one robot. */
+bool LayoutGrower::placePair(const Seed& seed, Layout& layout) const {
+    const int i = seed.r[0], j = seed.r[1];
+    if (i == j) return false;
+    layout = emptyLayout();
+    layout.p[size_t(j)] = {1, 0};
+    for (const int r : {i, j}) layout.placed[size_t(r)] = 1, layout.order.push_back(r);
+    layout.labels[size_t(i)][size_t(seed.image[0][0])] = j;
+    layout.labels[size_t(j)][size_t(seed.image[1][1])] = i;
+    for (const int r : {i, j}) layout.heading[size_t(r)] = fitHeading(layout, r);
+    layout.scale = 1;
     return true;
 }
 
@@ -138,7 +158,9 @@ std::vector<Candidate> LayoutGrower::candidates(const Layout& layout, int s1, in
         const auto again =
             std::count_if(cand.raysIn.begin(), cand.raysIn.end(),
                           [&](const auto& ray) { return round.claimed.count(ray) > 0; });
-        if (2 * size_t(again) > cand.raysIn.size()) continue;  // found from another pair
+        // Found from another pair; not from a pair seed's two robots, whose points have two
+        // rays each: chance points identified first claimed both rays of every true one.
+        if (layout.order.size() > 2 && 2 * size_t(again) > cand.raysIn.size()) continue;
         refinePoint(layout, cand);
         const size_t before = out.size();
         identifyRobot(layout, cand, minSeen, out);
@@ -283,7 +305,7 @@ bool LayoutGrower::growOnce(Layout& layout, size_t anchorGroups) const {
     for (size_t a = 0; a < std::min(placed, kAnchors); ++a)
         for (size_t b = a + 1; b < std::min(placed, kAnchors); ++b)
             groups[0].push_back({layout.order[a], layout.order[b]});
-    if (placed == 3) groups[0].resize(1);      // a true seed finds its fourth from one pair
+    if (placed <= 3) groups[0].resize(1);      // a true seed finds its fourth from one pair
     std::vector<std::pair<size_t, int>> open;  // (unlabeled images, robot)
     for (int r : layout.order) {
         const auto& lab = layout.labels[size_t(r)];
@@ -303,13 +325,15 @@ bool LayoutGrower::growOnce(Layout& layout, size_t anchorGroups) const {
         round.reach = reach;
         round.bounded = bounded;
         for (const auto& [s1, s2] : group) {
-            auto more = candidates(layout, s1, s2, 3, 3, round);
+            // a pair seed's candidates are seen by, and see, its two robots only
+            const size_t least = std::min<size_t>(3, placed);
+            auto more = candidates(layout, s1, s2, least, least, round);
             found.insert(found.end(), std::make_move_iterator(more.begin()),
                          std::make_move_iterator(more.end()));
         }
         if (found.empty()) continue;
         sortByEvidence(found);
-        if (placed == 3) {
+        if (placed <= 3) {
             if (placeMutualGroup(layout, found)) return true;
             continue;
         }

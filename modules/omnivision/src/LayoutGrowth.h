@@ -2,8 +2,8 @@
 // Seed and grow (TriangleSearch.h), the pieces its files share:
 //  - ImageTable: each camera's images and the signed angles between every ordered pair of
 //    them, sorted, so that "which pairs subtend about delta" is a binary search;
-//  - seeds (SeedSearch.cpp): triangles from the swarm's hull first, then any three angle
-//    pairs summing to 180 degrees;
+//  - seeds (SeedSearch.cpp): triangles from the swarm's hull first, then pairs of hull
+//    robots (for a camera range), then any three angle pairs summing to 180 degrees;
 //  - LayoutGrower: places a seed triangle and grows the layout where rays of placed robots
 //    meet (LayoutGrowth.cpp), then polishes positions and relabels images (LayoutPolish.cpp);
 //  - identify() (SeedAndGrow.cpp) tries seeds until a layout labels nearly every image.
@@ -68,6 +68,9 @@ class LineMeeting {
 struct Seed {
     std::array<int, 3> r{};
     std::array<std::array<int, 2>, 3> image{};
+    /** Two robots only (tryPairSeeds): r[0]'s image[0][0] shows r[1], r[1]'s image[1][1]
+     *  shows r[0]; r[2] and the other images are unused. */
+    bool pair = false;
 };
 
 /** A robot placed (up to scale) in the growing layout. */
@@ -158,6 +161,11 @@ class ImageTable {
 using SeedAttempt = std::function<bool(const Seed&)>;
 /** Seeds from the hull, best conditioned first; true if an attempt stopped the search. */
 bool tryHullSeeds(const ImageTable& table, const SearchOptions& o, const SeedAttempt& attempt);
+/** Pairs of robots on the hull's boundary, each the other's extreme image: i's first image
+ *  (counter-clockwise after its gap) shows j and j's last shows i. Where cameras see only
+ *  their neighbours the hull's ears are wider than their range and no hull triangle is
+ *  true; a pair is grown from the robots both see (the first group). */
+bool tryPairSeeds(const ImageTable& table, const SeedAttempt& attempt);
 /** Every triangle of counter-clockwise angle pairs summing to 180 degrees. */
 bool tryGeneralSeeds(const ImageTable& table, const SearchOptions& o, const SeedAttempt& attempt);
 
@@ -179,7 +187,10 @@ class LayoutGrower {
 
  private:
     double tolAt(const Layout& layout, double dist) const;
+    /** No robot placed, no image labelled. */
+    Layout emptyLayout() const;
     bool placeSeed(const Seed& seed, Layout& layout) const;
+    bool placePair(const Seed& seed, Layout& layout) const;
     double fitHeading(const Layout& layout, int r) const;
     /** What the anchor pairs of one growth round share. */
     struct Round {

@@ -88,7 +88,8 @@ Identification identify(const Snapshot& s, const SearchOptions& o) {
         // seeds, or when the budget is spent.
         return complete(best) || matched >= 3 || tried >= o.maxSeeds;
     };
-    if (!tryHullSeeds(table, o, attempt)) tryGeneralSeeds(table, o, attempt);
+    if (!tryHullSeeds(table, o, attempt) && !tryPairSeeds(table, attempt))
+        tryGeneralSeeds(table, o, attempt);
     const bool done = complete(best);
     // Measured at 0.05 deg, N = 75: the 14 and 6 wrong labels of two scenes were images of
     // one unplaced robot, each labelled as the placed robot it hides; grown once more, it
