@@ -76,15 +76,26 @@ std::optional<std::pair<int, int>> gapOf(const View& view) {
     return std::nullopt;
 }
 
+/** The robots whose view has such a gap, and per robot its first and last image (-1). */
+struct HullGaps {
+    std::vector<int> hull, first, last;
+};
+HullGaps hullGaps(const ImageTable& table) {
+    HullGaps g;
+    g.first.assign(size_t(table.robots()), -1);
+    g.last.assign(size_t(table.robots()), -1);
+    for (int r = 0; r < table.robots(); ++r)
+        if (const auto gap = gapOf(table.view(r))) {
+            std::tie(g.first[size_t(r)], g.last[size_t(r)]) = *gap;
+            g.hull.push_back(r);
+        }
+    return g;
+}
+
 }  // namespace
 
 bool tryHullSeeds(const ImageTable& table, const SearchOptions& o, const SeedAttempt& attempt) {
-    std::vector<int> hull, first(size_t(table.robots()), -1), last(size_t(table.robots()), -1);
-    for (int r = 0; r < table.robots(); ++r)
-        if (const auto gap = gapOf(table.view(r))) {
-            std::tie(first[size_t(r)], last[size_t(r)]) = *gap;
-            hull.push_back(r);
-        }
+    const auto [hull, first, last] = hullGaps(table);
     // Three hull robots in a row, i -> j -> k counter-clockwise: i's first image shows j, j's
     // first and last show k and i, k's last shows j. From i, k lies a few images past j (only
     // the robots inside the ear i-j-k lie between), and from k, i a few images before j: the
@@ -154,12 +165,7 @@ bool tryPairSeeds(const ImageTable& table, const SeedAttempt& attempt) {
     for (int r = 0; r < table.robots(); ++r) images += table.view(r).size();
     if (2 * images >= size_t(table.robots()) * size_t(std::max(table.robots() - 1, 0)))
         return false;
-    std::vector<int> hull, first(size_t(table.robots()), -1), last(size_t(table.robots()), -1);
-    for (int r = 0; r < table.robots(); ++r)
-        if (const auto gap = gapOf(table.view(r))) {
-            std::tie(first[size_t(r)], last[size_t(r)]) = *gap;
-            hull.push_back(r);
-        }
+    const auto [hull, first, last] = hullGaps(table);
     for (const int i : hull)
         for (const int j : hull) {
             if (i == j) continue;
