@@ -19,6 +19,7 @@ packages=(
   mrpt-common            # MRPT's example rawlogs and INIs: tests and fuzzing seeds
   mrpt-apps              # MRPT's own ro-localization / pf-localization: timed beside mrloc localize (doc/framesync.md)
   xvfb                   # xvfb-run: MRPT's apps open a window even when asked for a log
+  parallel               # GNU parallel: `mrloc batch` runs its trials through it (doc/batch.md)
   # `mrloc import rosbag` (doc/import.md): ROS 1 bags read by librosbag-storage (BSD), the
   # message types it converts, and the ROS 2 headers Debian's pluginlib-dev (which
   # rosbag/bag.h includes) wants on the path

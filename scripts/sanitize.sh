@@ -28,6 +28,8 @@ long+='|TriangleSearch\.AHundredRobotsAreLabelledWithNoWrongLabel|TriangleSearch
 long+='|TriangleSearch\.AChanceLayoutOfAFewRobotsIsNotKept|TriangleSearch\.AHundredRobotsWithACameraRangeArePairSeeded'
 # a pixel march with the 27 camera starts: the EGL teardown it checks is the same sanitized
 long+='|MrlocFormation\.APixelMarchCutShortWithCameraStartsExitsCleanly'
+# formation's Table 1 in process and as a batch: the marches MrlocFormation runs sanitized
+long+='|MrlocBatch\.FormationTableOneEqualsTheInProcessExperiment'
 long+='|Elimination\.OfficeFloorOfTwentyFourIdenticalRooms|MrlocPolymap\.DrivingWithEveryAlgorithm'
 long+='|MrlocFormation\.PatrolRoute|Visibility\.Star5000|Elimination\.FromNoisyScans'
 long+='|FormationMarch\.ErrorDoesNotGrow|FormationAlgorithmOne\.ConvergesFromEveryStart'

@@ -21,6 +21,8 @@
 #include <thread>
 
 #include "Advice.h"
+#include "BatchPlan.h"
+#include "BatchSummary.h"
 #include "IniFile.h"
 #include "MrptTruth.h"
 #include "RunSetup.h"
@@ -101,6 +103,16 @@ common::Headline doLocalize(const method::Registry& registry, Setup& s, const st
     common::saveJson(common::run_dir::metrics(dir), result.metrics);
     return headline;
 }
+
+}  // namespace
+
+common::Headline simulateAndLocalize(const method::Registry& registry, Setup& s,
+                                     const std::string& dir) {
+    const std::string rawlog = doSimulate(s, dir, true);
+    return doLocalize(registry, s, rawlog, dir, true, rawlog);
+}
+
+namespace {
 
 std::string doReport(const method::Registry& registry, const std::string& dir) {
     const std::string metricsPath = common::run_dir::metrics(dir);
@@ -259,10 +271,14 @@ int localize(const method::Registry& registry, int argc, char** argv) {
 int report(const method::Registry& registry, int argc, char** argv) {
     TCLAP::CmdLine cmd(
         "mrloc report: render report.html and its pictures in a directory written by "
-        "`mrloc localize`",
+        "`mrloc localize`, or of a batch folder summed up by `mrloc batch --collect`",
         ' ', kVersion);
     TCLAP::UnlabeledValueArg<std::string> dir("run-dir", "run directory", true, "", "DIR", cmd);
     if (const auto code = parseArgs(cmd, argc, argv)) return *code;
+    if (batch_dir::isBatch(dir.getValue())) {  // a batch folder: its summary, plotted
+        std::cout << renderBatchReport(dir.getValue()) << "\n";
+        return 0;
+    }
     if (!fs::is_regular_file(fs::symlink_status(common::run_dir::metrics(dir.getValue()))))
         throw Error(dir.getValue() +
                     ": not a run directory (no metrics.json; run `mrloc localize` first)");
@@ -331,6 +347,9 @@ constexpr const char* kUsage =
     "  run <ini>                simulate, localize and report in a row\n"
     "  info <rawlog>            per robot and sensor label: class, count, rate, time span\n"
     "  index <folder>           index.html of a folder of runs: headlines beside the papers'\n"
+    "  trial <ini> --seed N     one seed of the INI's experiment: one JSON line of figures\n"
+    "  batch <ini> --seeds A..B trials over seeds (and a --grid of keys) through GNU parallel,\n"
+    "                           or a Slurm script; --collect sums them up (doc/batch.md)\n"
     "  import <format> <in...>  a log recorded by others (libRSF, sonar text, MRCLAM, CARMEN)\n"
     "                           into a rawlog + ground truth (mrloc import --help)\n";
 }  // namespace
@@ -350,6 +369,8 @@ int main(const method::Registry& registry, int argc, char** argv) {
         if (command == "info") return info(argc - 1, argv + 1);
         if (command == "index") return index(argc - 1, argv + 1);
         if (command == "import") return import(argc - 1, argv + 1);
+        if (command == "trial") return trial(registry, argc - 1, argv + 1);
+        if (command == "batch") return batch(registry, argc - 1, argv + 1);
         std::cerr << "mrloc: unknown command '" << command << "'\n" << kUsage;
         return 2;
     } catch (const TCLAP::ArgException& e) {

@@ -7,6 +7,8 @@
 
 #include <optional>
 
+#include "RunSetup.h"
+
 namespace mrloc::app {
 
 /** MRPT's TCLAP returns false from parse() after --help/--version (exit 0) and after a
@@ -20,11 +22,19 @@ int run(const method::Registry& registry, int argc, char** argv);
 int info(int argc, char** argv);
 int index(int argc, char** argv);
 int import(int argc, char** argv);
+int trial(const method::Registry& registry, int argc, char** argv);  // Trial.cpp
+int batch(const method::Registry& registry, int argc, char** argv);  // Batch.cpp
 
 /** Reads and validates everything an INI asks for, as `simulate`, `localize` and `run` do
  *  before they write anything (the scenario built when it has [scenario]), and renders its
  *  effective.ini; throws mrloc::Error naming file, section, key or line. Writes nothing. */
 std::string checkIni(const method::Registry& registry, const std::string& iniPath);
+
+/** Simulates the setup's scenario into `dir`, localizes it and runs the method's experiment,
+ *  quietly, as `mrloc run` does without its report: `mrloc trial` of a method that registers
+ *  no trial of its own (its headline holds its experiment's figures). */
+common::Headline simulateAndLocalize(const method::Registry& registry, Setup& s,
+                                     const std::string& dir);
 
 /** Dispatches `mrloc <command> ...` (argv[0] is the program); prints errors, returns the
  *  exit code: 0 done, 1 error, 2 usage. */

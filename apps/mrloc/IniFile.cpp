@@ -42,6 +42,10 @@ std::optional<std::string> closeTo(const std::string& section,
 
 }  // namespace
 
+bool isMrlocSection(const std::string& section, const method::Registry& registry) {
+    return ownedByMrloc(section, registry.sections());
+}
+
 /** A rawlog by its name or its first bytes (gzip's magic, or MRPT's binary archive). */
 bool looksLikeRawlog(const std::string& path) {
     const std::string ext = fs::path(path).extension().string();

@@ -21,6 +21,9 @@ void checkNotAnIni(const std::string& rawlogPath);
 /** The INI's bytes, as read once: checked, parsed and copied into config.ini from these. */
 std::string readIniText(const std::string& path);
 
+/** A section mrloc reads: a registered method's, the framework's, or a robot's (any case). */
+bool isMrlocSection(const std::string& section, const method::Registry& registry);
+
 /** Opens an INI. Sections of other programs (MRPT's apps: [ro-localization],
  *  [MetricMap_...]) are left alone; a section that looks like a misspelling of one of mrloc's
  *  ([sensor], [Beacons], [robto.r1]) would otherwise be ignored silently, and is refused. */

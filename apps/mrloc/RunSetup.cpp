@@ -2,6 +2,7 @@
 
 #include <mrloc/common/AtomicFile.h>
 #include <mrloc/common/Error.h>
+#include <mrloc/common/IniLint.h>
 #include <mrloc/common/IniSection.h>
 #include <mrloc/common/Metrics.h>
 #include <mrloc/common/Names.h>
@@ -11,6 +12,7 @@
 #include <mrpt/system/os.h>
 
 #include <algorithm>
+#include <cctype>
 #include <ctime>
 #include <filesystem>
 #include <fstream>
@@ -50,12 +52,32 @@ std::string cpuModel() {
     return "unknown";
 }
 
+/** Writes the overrides into the INI as read (never into the file), each first checked as
+ *  a line of the INI would be: a section mrloc reads, a well-formed key and value. Their
+ *  values then meet the section's own checks (range, unknown key) as the INI's do. */
+void applyOverrides(const method::Registry& registry, mrpt::config::CConfigFile& ini,
+                    const std::vector<KeyOverride>& overrides) {
+    for (const auto& o : overrides) {
+        const std::string origin = o.from + " " + common::printable(o.text());
+        if (!isMrlocSection(o.section, registry))
+            throw Error(origin + ": [" + common::printable(o.section) +
+                        "] is not a section mrloc reads (sections: scenario, world, "
+                        "robot.<name>, report and the methods'; doc/ini.md)");
+        common::lintIni("[" + o.section + "]\n" + o.key + " = " + o.value + "\n", origin,
+                        [](const std::string&) { return true; });
+        ini.write(o.section, o.key, o.value);
+    }
+    ini.discardSavingChanges();
+}
+
 Setup loadSetupUnguarded(const method::Registry& registry, const std::string& iniPath,
-                         std::optional<long> seed, bool needSimulation, const std::string& rawlog) {
+                         std::optional<long> seed, bool needSimulation, const std::string& rawlog,
+                         const std::vector<KeyOverride>& overrides) {
     Setup s;
     s.iniPath = iniPath;
     s.iniText = readIniText(iniPath);
     s.ini = openIni(iniPath, s.iniText, registry);
+    applyOverrides(registry, *s.ini, overrides);
     s.scenario.loadFromConfigFile(*s.ini, "scenario");
     if (seed) {
         if (*seed < 0 || *seed > 4294967295L) throw Error("--seed must be in [0, 4294967295]");
@@ -86,11 +108,44 @@ Setup loadSetupUnguarded(const method::Registry& registry, const std::string& in
 
 }  // namespace
 
+KeyOverride parseOverride(const std::string& text, const std::string& what) {
+    const auto eq = text.find('=');
+    const auto dot = eq == std::string::npos ? eq : text.rfind('.', eq);
+    if (eq == std::string::npos || dot == std::string::npos || dot == 0 || dot + 1 == eq)
+        throw Error(what + " " + common::printable(text) +
+                    ": expected section.key=value (scenario.duration=60, robot.r1.speed=0.3)");
+    KeyOverride o{text.substr(0, dot), text.substr(dot + 1, eq - dot - 1), text.substr(eq + 1),
+                  what};
+    for (const char c : o.section + o.key)
+        if (!std::isalnum(static_cast<unsigned char>(c)) && c != '_' && c != '.' && c != '-')
+            throw Error(what + " " + common::printable(text) + ": a section or key name holds '" +
+                        common::printable(std::string(1, c)) +
+                        "' (letters, digits, '_', '-', '.')");
+    if (o.value.size() > 1000 || o.value.find_first_of("\n\r") != std::string::npos)
+        throw Error(what + " " + common::printable(text.substr(0, 80)) +
+                    ": a value is one line of at most 1,000 characters");
+    std::string section = o.section, key = o.key;
+    for (char& c : section) c = char(std::tolower(static_cast<unsigned char>(c)));
+    for (char& c : key) c = char(std::tolower(static_cast<unsigned char>(c)));
+    if (section == "scenario" && key == "seed")
+        throw Error(what + " scenario.seed: the seed is --seed's (mrloc batch: --seeds A..B)");
+    return o;
+}
+
 Setup loadSetup(const method::Registry& registry, const std::string& iniPath,
-                std::optional<long> seed, bool needSimulation, const std::string& rawlog) {
+                std::optional<long> seed, bool needSimulation, const std::string& rawlog,
+                const std::vector<KeyOverride>& overrides) {
     try {
-        return loadSetupUnguarded(registry, iniPath, seed, needSimulation, rawlog);
-    } catch (const Error&) {
+        return loadSetupUnguarded(registry, iniPath, seed, needSimulation, rawlog, overrides);
+    } catch (const Error& e) {
+        // a key --set gave is named as --set gave it, not as the INI's
+        const std::string what = e.what();
+        for (const auto& o : overrides) {
+            const std::string tag = iniPath + ": [" + o.section + "] " + o.key + ": ";
+            if (what.rfind(tag, 0) == 0)
+                throw Error(o.from + " " + common::printable(o.text()) + ": " +
+                            what.substr(tag.size()));
+        }
         throw;
     } catch (const std::exception& e) {
         throw Error(iniPath + ": " + oneLine(e.what()));

@@ -14,6 +14,20 @@
 
 namespace mrloc::app {
 
+/** `--set section.key=value`: one INI key given on the command line (`mrloc trial`,
+ *  `mrloc batch`). It is read as if the INI held it, through the same checks. */
+struct KeyOverride {
+    std::string section, key, value;
+    std::string from = "--set";  ///< what gave it, for messages: --set, --grid
+    std::string text() const { return section + "." + key + "=" + value; }
+};
+
+/** Parses "section.key=value": the key is after the last dot before '=', so that a
+ *  robot's section keeps its own (robot.r1.speed=0.3). Throws mrloc::Error naming `what`
+ *  ("--set", "--grid") for a malformed one, a value over one line or 1,000 characters, or
+ *  [scenario] seed (the seed is --seed's). */
+KeyOverride parseOverride(const std::string& text, const std::string& what);
+
 /** Everything one INI asks for, read and validated before anything is written. */
 struct Setup {
     std::string iniPath;
@@ -32,7 +46,8 @@ struct Setup {
  *  when the INI's [scenario] holds only localize keys. `rawlog`: the log the run will read,
  *  if any, for the advice given on an MRPT app's INI that mrloc does not replace. */
 Setup loadSetup(const method::Registry& registry, const std::string& iniPath,
-                std::optional<long> seed, bool needSimulation, const std::string& rawlog = "");
+                std::optional<long> seed, bool needSimulation, const std::string& rawlog = "",
+                const std::vector<KeyOverride>& overrides = {});
 
 /** What the run's steps will cost (method/Work.h): the simulation's steps when `simulating`,
  *  and the method's parts for the steps asked. */

@@ -117,7 +117,61 @@ std::vector<FormationExperimentFile::PixelRow> pixelTable(const FormationConfig&
     return rows;
 }
 
+MarchOptions marchOptions(const FormationConfig& c) {
+    MarchOptions o;
+    o.formation = c.formation;
+    o.wheelRadius = c.wheelRadius;
+    o.maxMoves = c.maxMoves;
+    o.carry = c.carry;
+    return o;
+}
+
+/** One march of Table 1 and the dead-reckoned drive beside it. */
+struct TableMarch {
+    MarchResult march;
+    std::vector<ErrorSample> deadReckoning;
+};
+
+/** One Monte Carlo run of Table 1 (and fig. 14): every route at every speed, in that
+ *  order, drawn from a generator of its own seeded with `seed`. Run r of the experiment is
+ *  seed experiment_seed + r, so that `mrloc batch` over those seeds gives Table 1. */
+std::vector<TableMarch> tableRun(const FormationConfig& c, unsigned long seed) {
+    mrpt::random::CRandomGenerator rng{static_cast<uint32_t>(seed)};
+    MarchOptions o = marchOptions(c);
+    std::vector<TableMarch> out;
+    for (const auto& name : c.experimentRoutes) {
+        const auto waypoints = route(name);
+        for (const double w : c.experimentSpeeds) {
+            o.wheelSpeed = w;
+            TableMarch t;
+            t.march = march(c.robots, waypoints, {}, o, c.vertexErrors, rng);
+            t.deadReckoning = deadReckon(waypoints, c.wheelRadius, w, c.deadReckoning, rng);
+            out.push_back(std::move(t));
+        }
+    }
+    return out;
+}
+
 }  // namespace
+
+common::Headline formationTrial(const method::TrialOf<FormationLocalizer>& in) {
+    const auto& c = in.localizer.config();
+    const auto run = tableRun(c, in.scenario.scenario.seed);
+    common::Headline h;
+    h.status = "Table 1, one run";
+    size_t k = 0;
+    for (const auto& name : c.experimentRoutes)
+        for (const double w : c.experimentSpeeds) {
+            const auto& t = run[k++];
+            const std::string where = name + mrpt::format(" at %g rad/s", w);
+            h.reached = h.reached && t.march.arrived;
+            h.figures.push_back({where + ": formation", t.march.finalError(), "m", "", "", false});
+            h.figures.push_back(
+                {where + ": dead reckoning", t.deadReckoning.back().error, "m", "", "", true});
+        }
+    if (!h.reached) h.status = "Table 1, one run: a march did not arrive";
+    return h;
+}
 
 FormationExperimentFile runFormationExperiment(const FormationConfig& c, bool quiet) {
     FormationExperimentFile f;
@@ -131,46 +185,51 @@ FormationExperimentFile runFormationExperiment(const FormationConfig& c, bool qu
     if (c.runs == 0) return f;
     common::Progress progress("formation experiment", c.runs * marchesPerRun(c), quiet);
     size_t marches = 0;
-    mrpt::random::CRandomGenerator rng(uint32_t(c.experimentSeed));
-    MarchOptions o;
-    o.formation = c.formation;
-    o.wheelRadius = c.wheelRadius;
-    o.maxMoves = c.maxMoves;
-    o.carry = c.carry;
-    std::vector<double> lateral, longitudinal;  // the model's per-step errors, as drawn
-    for (const auto& name : c.experimentRoutes) {
-        const auto waypoints = route(name);
-        for (const double w : c.experimentSpeeds) {
-            o.wheelSpeed = w;
-            FormationExperimentFile::TableRow row{name, w, c.runs};
-            std::vector<double> moveError, drError;
-            std::vector<double> moveTime;
-            for (size_t run = 0; run < c.runs; ++run) {
-                const auto m = march(c.robots, waypoints, {}, o, c.vertexErrors, rng);
-                const auto d = deadReckon(waypoints, c.wheelRadius, w, c.deadReckoning, rng);
-                progress.update(++marches);
-                row.formation += m.finalError() / double(c.runs);
-                row.deadReckoning += d.back().error / double(c.runs);
-                row.moves = m.moves.size();
-                row.formationTime = m.moves.empty() ? 0 : m.moves.back().time;
-                row.deadReckoningTime = d.back().time;
-                moveError.resize(m.moves.size()), moveTime.resize(m.moves.size());
-                for (size_t k = 0; k < m.moves.size(); ++k) {
-                    moveError[k] += m.moves[k].error() / double(c.runs);
-                    moveTime[k] = m.moves[k].time;
-                }
-                const size_t every = size_t(std::lround(kCurveStep / c.deadReckoning.dt));
-                drError.resize((d.size() - 1) / every + 1);
-                for (size_t k = 0; k * every < d.size(); ++k)
-                    drError[k] += d[k * every].error / double(c.runs);
+    // Table 1's runs, each from its own seed (formationTrial's), summed as they come (a run
+    // is dropped once summed: memory stays that of one run); then the rest from one
+    // generator of the experiment's seed
+    struct Cell {
+        FormationExperimentFile::TableRow row;
+        std::vector<double> moveError, moveTime, drError;
+    };
+    std::vector<Cell> cells;  // route x speed, tableRun's order
+    for (const auto& name : c.experimentRoutes)
+        for (const double w : c.experimentSpeeds)
+            cells.push_back({FormationExperimentFile::TableRow{name, w, c.runs}, {}, {}, {}});
+    const size_t every = size_t(std::lround(kCurveStep / c.deadReckoning.dt));
+    for (size_t run = 0; run < c.runs; ++run) {
+        const auto marchesOfRun = tableRun(c, c.experimentSeed + run);
+        for (size_t k = 0; k < cells.size(); ++k) {
+            auto& [row, moveError, moveTime, drError] = cells[k];
+            const auto& m = marchesOfRun[k].march;
+            const auto& d = marchesOfRun[k].deadReckoning;
+            row.formation += m.finalError() / double(c.runs);
+            row.deadReckoning += d.back().error / double(c.runs);
+            row.moves = m.moves.size();
+            row.formationTime = m.moves.empty() ? 0 : m.moves.back().time;
+            row.deadReckoningTime = d.back().time;
+            moveError.resize(m.moves.size()), moveTime.resize(m.moves.size());
+            for (size_t i = 0; i < m.moves.size(); ++i) {
+                moveError[i] += m.moves[i].error() / double(c.runs);
+                moveTime[i] = m.moves[i].time;
             }
-            f.table.push_back(row);
-            for (size_t k = 0; k < moveError.size(); ++k)
-                f.curves.push_back({name, "formation", w, moveTime[k], moveError[k]});
-            for (size_t k = 0; k < drError.size(); ++k)
-                f.curves.push_back({name, "dr", w, double(k) * kCurveStep, drError[k]});
+            drError.resize((d.size() - 1) / every + 1);
+            for (size_t i = 0; i * every < d.size(); ++i)
+                drError[i] += d[i * every].error / double(c.runs);
         }
+        progress.update(marches += cells.size());
     }
+    for (const auto& [row, moveError, moveTime, drError] : cells) {
+        f.table.push_back(row);
+        for (size_t i = 0; i < moveError.size(); ++i)
+            f.curves.push_back({row.route, "formation", row.wheelSpeed, moveTime[i], moveError[i]});
+        for (size_t i = 0; i < drError.size(); ++i)
+            f.curves.push_back(
+                {row.route, "dr", row.wheelSpeed, double(i) * kCurveStep, drError[i]});
+    }
+    mrpt::random::CRandomGenerator rng(uint32_t(c.experimentSeed));
+    MarchOptions o = marchOptions(c);
+    std::vector<double> lateral, longitudinal;  // the model's per-step errors, as drawn
     // fig. 15: the first route at the first speed, N = 4 .. max
     o.wheelSpeed = c.experimentSpeeds.front();
     const auto waypoints = route(c.experimentRoutes.front());

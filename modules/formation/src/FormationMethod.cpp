@@ -367,6 +367,7 @@ void registerMethod(method::Registry& registry) {
     m.headline = formationHeadline;
     m.scenario = loadScenario;
     m.experiment = formationExperiment;  // seed 003 Table 1, figs. 11, 14, 15
+    m.trial = formationTrial;            // one run of Table 1 (mrloc trial, mrloc batch)
     m.work = formationWork;
     m.report.subject = "swarm localization by triangle formations (seed 003)";
     m.report.html = formationSection;  // its own picture: no world top view

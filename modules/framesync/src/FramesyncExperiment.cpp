@@ -7,6 +7,7 @@
 
 #include <algorithm>
 #include <atomic>
+#include <cmath>
 #include <exception>
 #include <mutex>
 #include <thread>
@@ -97,6 +98,28 @@ FramesyncExperimentFile runExperiment(const sim::ScenarioConfig& scenario,
     for (auto& t : pool) t.join();
     if (failure) std::rethrow_exception(failure);
     return out;
+}
+
+common::Headline framesyncTrial(const method::TrialOf<FramesyncLocalizer>& in) {
+    const auto& config = in.localizer.config();
+    const auto world = std::make_shared<const sim::World>(in.scenario.world);
+    const auto run = simulateRun(in.scenario, config, world, sliceWorld(*world, config.rig),
+                                 in.scenario.scenario.seed, config.rig.sigma, 1.0);
+    common::Headline h;
+    h.reached = !config.team.sharing || run.redefinitions > 0;
+    h.status = !config.team.sharing ? "frames kept apart ([framesync] sharing = false)"
+               : h.reached          ? "one frame shared"
+                                    : "no frame shared";
+    // the names of the run's headline (FramesyncMethod.cpp), whose first two are these
+    const auto value = [](double v) {
+        return std::isfinite(v) ? std::optional<double>(v) : std::nullopt;
+    };
+    h.figures.push_back(
+        {"end discrepancy, shared frame", value(run.sharedError), "m", "", "", false});
+    h.figures.push_back({"own odometry", value(run.odometryError), "m", "", "", true});
+    h.figures.push_back({"walls", double(run.walls), "", "", "", false});
+    h.figures.push_back({"redefinitions", double(run.redefinitions), "", "", "", false});
+    return h;
 }
 
 std::vector<method::WorkItem> framesyncWork(const FramesyncLocalizer& localizer,

@@ -319,6 +319,7 @@ void registerMethod(method::Registry& registry) {
     m.headline = framesyncHeadline;
     m.scenario = loadScenario;
     m.experiment = framesyncExperiment;  // seed 004 sec. 5.2 over seeds, noises, drifts
+    m.trial = framesyncTrial;            // one run of it (mrloc trial, mrloc batch)
     m.work = framesyncWork;
     m.report.subject = "one frame shared through walls seen by sonar (seed 004)";
     m.report.html = framesyncSection;  // its own picture (fig. 7): no world top view

@@ -32,6 +32,7 @@ void ScenarioOptions::loadFromConfigFile(const mrpt::config::CConfigFileBase& sr
                                   duration / dt, kMaxSteps));
     startTime = s.real("start_time", startTime, 1.0, 4e9);
     groundTruthRate = s.real("ground_truth_rate", groundTruthRate, 0.1, 1000);
+    odometryErrorScale = s.real("odometry_error_scale", odometryErrorScale, 0, 100);
     robots.clear();
     std::istringstream in(s.text("robots", ""));
     std::set<std::string> seen;
@@ -101,6 +102,8 @@ void ScenarioOptions::saveToConfigFile(mrpt::config::CConfigFileBase& t,
     t.write(section, "dt", dt);
     t.write(section, "start_time", mrpt::format("%.3f", startTime));
     t.write(section, "ground_truth_rate", groundTruthRate);
+    // written only when set: the effective.ini of every run before the key is unchanged
+    if (odometryErrorScale != 1) t.write(section, "odometry_error_scale", odometryErrorScale);
     std::string list;
     for (const auto& r : robots) list += (list.empty() ? "" : " ") + r;
     t.write(section, "robots", list);

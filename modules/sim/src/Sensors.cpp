@@ -4,15 +4,18 @@
 
 namespace mrloc::sim {
 
-OdometrySensor::OdometrySensor(const RobotOptions& robot, mrpt::random::CRandomGenerator& rng)
+OdometrySensor::OdometrySensor(const RobotOptions& robot, mrpt::random::CRandomGenerator& rng,
+                               double errorScale)
     : robot_(robot),
       odometry_(robot.start),
-      scaleError_(robot.odometryScaleError),
-      headingDrift_(robot.odometryHeadingDrift) {
-    if (robot.odometryScaleErrorSigma > 0)
-        scaleError_ += rng.drawGaussian1D(0, robot.odometryScaleErrorSigma);
-    if (robot.odometryHeadingDriftSigma > 0)
-        headingDrift_ += rng.drawGaussian1D(0, robot.odometryHeadingDriftSigma);
+      scaleError_(robot.odometryScaleError * errorScale),
+      headingDrift_(robot.odometryHeadingDrift * errorScale) {
+    // scaled before the draw, as framesync's drift sweep scales the robots' keys: a scale
+    // of d gives the same odometry as every key multiplied by d
+    if (robot.odometryScaleErrorSigma * errorScale > 0)
+        scaleError_ += rng.drawGaussian1D(0, robot.odometryScaleErrorSigma * errorScale);
+    if (robot.odometryHeadingDriftSigma * errorScale > 0)
+        headingDrift_ += rng.drawGaussian1D(0, robot.odometryHeadingDriftSigma * errorScale);
 }
 
 void OdometrySensor::accumulate(const mrpt::poses::CPose2D& d,

@@ -53,7 +53,7 @@ SimulationResult Simulator::run(const std::function<void(const mrpt::obs::CObser
         return std::max<long>(1, std::lround(1.0 / (rate * sc.dt)));
     };
     for (size_t i = 0; i < fleet.size(); ++i) {
-        odometers.emplace_back(fleet.robot(i).options(), rng);
+        odometers.emplace_back(fleet.robot(i).options(), rng, sc.odometryErrorScale);
         odometryEvery.push_back(every(config_.robots[i].odometryRate));
     }
     const long steps = std::lround(sc.duration / sc.dt);

@@ -23,4 +23,10 @@ std::vector<method::WorkItem> formationWork(const FormationLocalizer& localizer,
 
 std::vector<std::string> formationExperiment(const method::ExperimentOf<FormationLocalizer>& in);
 
+/** One run of Table 1 (`mrloc trial`): every route at every speed, formation and dead
+ *  reckoning, drawn from the trial's seed. Run r of the experiment is seed experiment_seed +
+ *  r ([formation] experiment_seed, else [scenario] seed): a batch over those seeds gives
+ *  Table 1's means. */
+common::Headline formationTrial(const method::TrialOf<FormationLocalizer>& in);
+
 }  // namespace mrloc::formation

@@ -33,4 +33,9 @@ std::vector<method::WorkItem> framesyncWork(const FramesyncLocalizer& localizer,
 
 std::vector<std::string> framesyncExperiment(const method::ExperimentOf<FramesyncLocalizer>& in);
 
+/** One run of the experiment (`mrloc trial`): the scenario with its seed, at [framesync]
+ *  sonar_sigma ([scenario] odometry_error_scale standing for experiment_drift). A batch
+ *  over seeds, sonar_sigma or odometry_error_scale gives runExperiment's runs exactly. */
+common::Headline framesyncTrial(const method::TrialOf<FramesyncLocalizer>& in);
+
 }  // namespace mrloc::framesync

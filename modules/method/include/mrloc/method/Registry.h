@@ -48,9 +48,16 @@ struct ExperimentInput {
     bool quiet = true;  ///< no progress bar (-q, or stderr not a terminal)
 };
 
+/** One trial of a method's Monte Carlo experiment (`mrloc trial`, `mrloc batch`): the
+ *  scenario as loaded, with the trial's seed and its --set keys. */
+struct TrialInput {
+    const common::Localizer& localizer;   ///< configured from the INI and --set
+    const sim::ScenarioConfig& scenario;  ///< scenario.seed is the trial's
+};
+
 /** What a method's headline is computed from, after localization and its experiment. */
 struct HeadlineInput {
-    const common::Localizer& localizer;  ///< configured, after the whole rawlog
+    const common::Localizer& localizer;   ///< configured, after the whole rawlog
     const sim::ScenarioConfig* scenario;  ///< nullptr for a log recorded elsewhere
     const nlohmann::json& metrics;        ///< metrics.json as written
     std::string outDir;                   ///< the run folder: the experiment's files
@@ -82,6 +89,11 @@ struct Method {
     std::function<Scenario(const mrpt::config::CConfigFileBase&, const common::Localizer&)>
         scenario;
     std::function<std::vector<std::string>(const ExperimentInput&)> experiment;  ///< optional
+    /** One seed of the method's experiment, computed as the experiment computes each of its
+     *  runs, so that `mrloc batch` over seeds gives the experiment's figures; optional.
+     *  Without it, `mrloc trial` simulates and localizes the scenario, runs the experiment
+     *  and gives the run's headline, as `mrloc run --seed` would. */
+    std::function<common::Headline(const TrialInput&)> trial;
     /** The work the configuration asks of the method (its sensing in the simulation, its
      *  experiment), before anything runs; `scenario` is nullptr when nothing is simulated
      *  (Work.h). Optional: a method that names none adds nothing to the simulation's. */
@@ -98,6 +110,13 @@ struct ExperimentOf {
     const std::string& outDir;
     unsigned long seed;
     bool quiet;  ///< no progress bar
+};
+
+/** TrialInput with the method's own localizer type. */
+template <class LocalizerT>
+struct TrialOf {
+    const LocalizerT& localizer;
+    const sim::ScenarioConfig& scenario;
 };
 
 /** HeadlineInput with the method's own localizer type. */
@@ -122,6 +141,7 @@ struct MethodUnit {
     std::function<common::Headline(const HeadlineOf<LocalizerT>&)> headline;  ///< as Method's
     std::function<Scenario(const mrpt::config::CConfigFileBase&, const LocalizerT&)> scenario;
     std::function<std::vector<std::string>(const ExperimentOf<LocalizerT>&)> experiment;
+    std::function<common::Headline(const TrialOf<LocalizerT>&)> trial;  ///< as Method::trial
     std::function<std::vector<WorkItem>(const LocalizerT&, const sim::ScenarioConfig*)> work;
     report::Section report;
 };
@@ -179,6 +199,10 @@ void Registry::add(MethodUnit<LocalizerT> unit) {
                         name = unit.name](const ExperimentInput& in) {
             return f(ExperimentOf<LocalizerT>{localizerOf<LocalizerT>(in.localizer, name),
                                               in.scenario, in.truth, in.outDir, in.seed, in.quiet});
+        };
+    if (unit.trial)
+        m.trial = [f = std::move(unit.trial), name = unit.name](const TrialInput& in) {
+            return f(TrialOf<LocalizerT>{localizerOf<LocalizerT>(in.localizer, name), in.scenario});
         };
     if (unit.work)
         m.work = [f = std::move(unit.work), name = unit.name](const common::Localizer& l,

@@ -22,10 +22,14 @@ struct ScenarioOptions : public mrpt::config::CLoadableOptions {
      *  takes the one method whose sections the INI holds. */
     std::string method;
     unsigned long seed = 1;
-    double duration = 60;             ///< s
-    double dt = 0.01;                 ///< simulation step (s)
-    double startTime = 1.7e9;         ///< time stamp of t = 0 (seconds since 1970)
-    double groundTruthRate = 20;      ///< Hz
+    double duration = 60;         ///< s
+    double dt = 0.01;             ///< simulation step (s)
+    double startTime = 1.7e9;     ///< time stamp of t = 0 (seconds since 1970)
+    double groundTruthRate = 20;  ///< Hz
+    /** Multiplies every robot's systematic odometry errors (odometry_scale_error, its sigma,
+     *  odometry_heading_drift, its sigma): one key for a sweep of odometry quality, as
+     *  framesync's experiment_drift sweeps it (`mrloc batch --grid`). */
+    double odometryErrorScale = 1;
     std::vector<std::string> robots;  ///< robots = r1 r2 ... ; each has [robot.<name>]
     /** ground_truth, ground_truth_format, ground_truth_robot, ground_truth_offset: a file of
      *  ground truth for `mrloc localize` (a relative path is the INI's). */

@@ -13,8 +13,11 @@ namespace mrloc::sim {
  *  metre). */
 class OdometrySensor {
  public:
-    /** Draws the systematic errors from rng, in that order, only for a positive sigma. */
-    OdometrySensor(const RobotOptions& robot, mrpt::random::CRandomGenerator& rng);
+    /** Draws the systematic errors from rng, in that order, only for a positive sigma.
+     *  `errorScale` multiplies the robot's four systematic error keys ([scenario]
+     *  odometry_error_scale: one key sweeps a team's odometry quality). */
+    OdometrySensor(const RobotOptions& robot, mrpt::random::CRandomGenerator& rng,
+                   double errorScale = 1);
     double scaleError() const { return scaleError_; }
     double headingDrift() const { return headingDrift_; }  ///< rad/m
     void accumulate(const mrpt::poses::CPose2D& trueDelta, mrpt::random::CRandomGenerator& rng);

@@ -1,0 +1,368 @@
+// `mrloc batch`: trials over seeds and a grid of keys, run through GNU parallel (one machine,
+// or ssh hosts sharing the batch folder), or written out as a Slurm job array or a plain
+// list of commands; `--collect` sums them up (BatchSummary.cpp). mrloc schedules nothing
+// itself: parallel's job log is what `--resume` continues (doc/batch.md).
+#include <fcntl.h>
+#include <mrloc/common/AtomicFile.h>
+#include <mrloc/common/Error.h>
+#include <mrloc/common/Metrics.h>
+#include <mrloc/common/Names.h>
+#include <mrloc/common/Outcome.h>
+#include <mrloc/common/RunTransaction.h>
+#include <mrloc/common/Version.h>
+#include <signal.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <algorithm>
+#include <array>
+#include <cstring>
+#include <filesystem>
+#include <fstream>
+#include <iostream>
+#include <sstream>
+#include <thread>
+
+#include "BatchPlan.h"
+#include "BatchSummary.h"
+#include "Commands.h"
+
+namespace mrloc::app {
+
+namespace fs = std::filesystem;
+
+namespace {
+
+/** `text` as one word of a POSIX shell: single-quoted, a quote as '\''. The emitted
+ *  scripts and command lists are the only places mrloc writes shell; every user string
+ *  (the folder, the binary's path) reaches them through this. */
+std::string shellWord(const std::string& text) {
+    std::string out = "'";
+    for (const char c : text) out += c == '\'' ? std::string("'\\''") : std::string(1, c);
+    return out + "'";
+}
+
+std::string readText(const std::string& path) {
+    common::checkReadableFile(path, "batch INI", 16u << 20);
+    std::ifstream in(path, std::ios::binary);
+    std::stringstream text;
+    text << in.rdbuf();
+    return text.str();
+}
+
+/** This executable's absolute path: what the trials run (ssh hosts: the same path). */
+std::string selfPath() {
+    std::error_code ec;
+    const auto p = fs::read_symlink("/proc/self/exe", ec);
+    if (ec) throw Error("cannot find mrloc's own path (/proc/self/exe); give --mrloc");
+    return p.string();
+}
+
+/** GNU parallel's -S: hosts as parallel writes them ("4/user@host,:"), nothing a shell or
+ *  ssh would read as an option or a command. */
+void checkHosts(const std::string& hosts) {
+    const bool ok = !hosts.empty() && hosts.size() <= 4096 && hosts[0] != '-' &&
+                    hosts.find_first_not_of(
+                        "abcdefghijklmnopqrstuvwxyzABCDEFGHIJKLMNOPQRSTUVWXYZ"
+                        "0123456789@._:,/+-") == std::string::npos;
+    if (!ok)
+        throw Error("--hosts " + common::printable(hosts.substr(0, 80)) +
+                    ": expected parallel's -S list, e.g. 2/user@node1,node2,: (letters, digits "
+                    "and @ . _ : , / + -)");
+}
+
+/** The child run by waitChild, for the signal handler to pass SIGINT / SIGTERM on. */
+volatile sig_atomic_t childPid = 0;
+volatile sig_atomic_t childSignal = 0;
+extern "C" void forwardSignal(int sig) {
+    childSignal = sig;
+    if (childPid > 0) kill(pid_t(childPid), sig);
+}
+
+/** Runs `argv` (no shell) with stdout to /dev/null (trials write their records) or to
+ *  `captured`; passes SIGINT and SIGTERM on to it. Its exit status, or 128 + its signal. */
+int runProgram(const std::vector<std::string>& argv, std::string* captured = nullptr) {
+    int pipeFds[2] = {-1, -1};
+    if (captured && pipe(pipeFds) != 0) throw Error("cannot make a pipe");
+    const pid_t pid = fork();
+    if (pid < 0) throw Error("cannot start " + argv[0]);
+    if (pid == 0) {
+        if (captured) {
+            dup2(pipeFds[1], STDOUT_FILENO);
+            close(pipeFds[0]);
+            close(pipeFds[1]);
+        } else if (const int null = open("/dev/null", O_WRONLY); null >= 0) {
+            dup2(null, STDOUT_FILENO);
+        }
+        std::vector<char*> args;
+        for (const auto& a : argv) args.push_back(const_cast<char*>(a.c_str()));
+        args.push_back(nullptr);
+        execvp(args[0], args.data());
+        _exit(127);
+    }
+    if (captured) {
+        close(pipeFds[1]);
+        char buf[4096];
+        for (ssize_t n; (n = read(pipeFds[0], buf, sizeof buf)) > 0;)
+            if (captured->size() < (1u << 20)) captured->append(buf, size_t(n));
+        close(pipeFds[0]);
+    }
+    struct sigaction forward {
+    }, oldInt{}, oldTerm{};
+    forward.sa_handler = forwardSignal;
+    sigemptyset(&forward.sa_mask);
+    childPid = pid;
+    sigaction(SIGINT, &forward, &oldInt);
+    sigaction(SIGTERM, &forward, &oldTerm);
+    int status = 0;
+    while (waitpid(pid, &status, 0) < 0 && errno == EINTR) {
+    }
+    sigaction(SIGINT, &oldInt, nullptr);
+    sigaction(SIGTERM, &oldTerm, nullptr);
+    childPid = 0;
+    return WIFEXITED(status) ? WEXITSTATUS(status) : 128 + WTERMSIG(status);
+}
+
+/** GNU parallel, checked to be GNU's (moreutils installs another `parallel`). */
+void checkGnuParallel() {
+    std::string version;
+    const int code = runProgram({"parallel", "--version"}, &version);
+    if (code == 127)
+        throw Error(
+            "GNU parallel is not installed (scripts/install-deps.sh installs it: apt-get install "
+            "parallel); --emit commands or --emit slurm need none");
+    if (code != 0 || version.find("GNU parallel") == std::string::npos)
+        throw Error(
+            "`parallel` on the PATH is not GNU parallel (moreutils' is another program); "
+            "install Debian's package parallel");
+}
+
+/** The batch's trial command, as parallel, the command list and Slurm run it. */
+std::vector<std::string> trialCommand(const std::string& mrloc, const std::string& dir,
+                                      const std::string& point, const std::string& first,
+                                      const std::string& last) {
+    return {mrloc, "trial", "--batch", dir, "--point", point, "--seed", first, "--last-seed", last};
+}
+
+/** The jobs in order: point, first seed, last seed. */
+std::vector<std::array<unsigned long, 3>> jobsOf(const BatchPlan& plan) {
+    std::vector<std::array<unsigned long, 3>> jobs;
+    for (size_t p = 0; p < plan.pointCount(); ++p)
+        for (unsigned long s = plan.firstSeed; s <= plan.lastSeed; s += plan.chunk)
+            jobs.push_back({p, s, std::min<unsigned long>(plan.lastSeed, s + plan.chunk - 1)});
+    return jobs;
+}
+
+std::string jobsText(const BatchPlan& plan) {
+    std::string text;
+    for (const auto& [p, first, last] : jobsOf(plan))
+        text += std::to_string(p) + " " + std::to_string(first) + " " + std::to_string(last) + "\n";
+    return text;
+}
+
+std::string commandsText(const BatchPlan& plan, const std::string& mrloc, const std::string& dir) {
+    std::string text;
+    for (const auto& [p, first, last] : jobsOf(plan)) {
+        std::string line;
+        for (const auto& a : trialCommand(mrloc, dir, std::to_string(p), std::to_string(first),
+                                          std::to_string(last)))
+            line += (line.empty() ? "" : " ") + shellWord(a);
+        text += line + "\n";
+    }
+    return text;
+}
+
+/** A Slurm job array: task k runs line k + 1 of jobs.txt. Slurm's MaxArraySize (1001 by
+ *  default) bounds one array; a larger batch is split into arrays by --array's offset
+ *  (doc/batch.md). */
+std::string slurmScript(const BatchPlan& plan, const std::string& mrloc, const std::string& dir,
+                        const std::string& name, size_t throttle) {
+    std::ostringstream s;
+    const size_t n = plan.jobCount();
+    s << "#!/bin/bash\n"
+      << "# mrloc batch " << common::printable(name) << ": " << plan.trialCount() << " trials ("
+      << plan.seedCount() << " seeds x " << plan.pointCount() << " points) in " << n
+      << " jobs of up to " << plan.chunk << " seeds, one per task of a job array.\n"
+      << "# Submit: sbatch " << shellWord(dir + "/batch.slurm") << "   then: mrloc batch --collect "
+      << shellWord(dir) << "\n"
+      << "# The folder must be on a file system every node shares, and mrloc installed at\n"
+      << "# the same path on every node (doc/batch.md). Arrays over MaxArraySize: submit\n"
+      << "# again with --array=1000-1999 etc. A trial whose record exists is not run again.\n"
+      << "#SBATCH --job-name=mrloc-" << common::printable(name).substr(0, 40) << "\n"
+      << "#SBATCH --array=0-" << (n - 1) << (throttle ? "%" + std::to_string(throttle) : "") << "\n"
+      << "#SBATCH --ntasks=1\n"
+      << "#SBATCH --cpus-per-task=1\n"
+      << "#SBATCH --output=" << dir << "/slurm/%A_%a.out\n"
+      << "set -euo pipefail\n"
+      << "line=$(sed -n \"$((SLURM_ARRAY_TASK_ID + 1))p\" " << shellWord(dir + "/jobs.txt") << ")\n"
+      << "read -r point first last <<< \"$line\"\n"
+      << "exec";
+    for (const auto& a : trialCommand(mrloc, dir, "POINT", "FIRST", "LAST"))
+        s << " "
+          << (a == "POINT"   ? std::string("\"$point\"")
+              : a == "FIRST" ? std::string("\"$first\"")
+              : a == "LAST"  ? std::string("\"$last\"")
+                             : shellWord(a));
+    s << "\n";
+    return s.str();
+}
+
+int collectAndPrint(const std::string& dir) {
+    const BatchSummary summary = collectBatch(dir);
+    writeSummary(dir, summary);
+    std::cout << summaryText(summary);
+    std::cout << "summary: " << batch_dir::summary(dir) << "\n";
+    if (summary.failed.empty() && summary.missing.empty()) return 0;
+    std::cerr << "mrloc batch: " << summary.failed.size() << " of " << summary.trials
+              << " trials failed and " << summary.missing.size()
+              << " are missing (listed in summary.txt; mrloc batch ... --resume runs them)\n";
+    return common::kFailedExit;
+}
+
+}  // namespace
+
+int batch(const method::Registry& registry, int argc, char** argv) {
+    TCLAP::CmdLine cmd(
+        "mrloc batch: the INI's trials (mrloc trial) over a range of seeds and a grid of keys, "
+        "run through GNU parallel (--jobs on this machine, --hosts over ssh), or written as a "
+        "Slurm job array (--emit slurm) or a list of commands (--emit commands). Everything "
+        "goes to one folder; --collect sums it up per grid point, `mrloc report <folder>` "
+        "renders it (doc/batch.md).",
+        ' ', kVersion);
+    TCLAP::UnlabeledValueArg<std::string> ini("ini", "scenario INI file", false, "", "INI", cmd);
+    TCLAP::ValueArg<std::string> seeds("", "seeds", "seeds A..B (inclusive)", false, "", "A..B",
+                                       cmd);
+    TCLAP::MultiArg<std::string> grid(
+        "", "grid", "section.key=v1,v2,...: a key's values; several --grid make their product",
+        false, "KEY=VALUES", cmd);
+    TCLAP::MultiArg<std::string> set("", "set", "section.key=value: every trial's (repeatable)",
+                                     false, "KEY=VALUE", cmd);
+    TCLAP::ValueArg<unsigned> jobs("j", "jobs", "jobs at once (default: the cores)", false, 0, "N",
+                                   cmd);
+    TCLAP::ValueArg<unsigned> chunk("", "chunk",
+                                    "seeds per job, run by one process in a row (default 10: "
+                                    "mrloc's start-up shared; 1: a job per trial)",
+                                    false, 10, "K", cmd);
+    TCLAP::ValueArg<std::string> out(
+        "o", "out", "the batch folder (default: out/<scenario name>-batch)", false, "", "DIR", cmd);
+    TCLAP::SwitchArg resume("", "resume",
+                            "continue the batch in the folder: trials its job log holds as done "
+                            "are not run again",
+                            cmd);
+    TCLAP::ValueArg<std::string> hosts(
+        "", "hosts", "GNU parallel's -S: ssh hosts sharing the folder (2/user@node1,node2,:)",
+        false, "", "HOSTS", cmd);
+    TCLAP::ValueArg<std::string> emit("", "emit",
+                                      "write instead of running: slurm (batch.slurm, a job "
+                                      "array) or commands (commands.txt, one trial a line)",
+                                      false, "", "slurm|commands", cmd);
+    TCLAP::ValueArg<std::string> mrlocPath(
+        "", "mrloc", "the mrloc the trials run (default: this one; hosts: the same path)", false,
+        "", "PATH", cmd);
+    TCLAP::ValueArg<std::string> collect("", "collect", "sum up the batch in DIR", false, "", "DIR",
+                                         cmd);
+    if (const auto code = parseArgs(cmd, argc, argv)) return *code;
+
+    if (collect.isSet()) {
+        if (ini.isSet() || seeds.isSet())
+            throw Error("--collect takes the batch folder alone (mrloc batch --collect DIR)");
+        return collectAndPrint(collect.getValue());
+    }
+    if (!ini.isSet()) throw Error("missing <INI> (mrloc batch <ini> --seeds A..B)");
+    if (!seeds.isSet()) throw Error("missing --seeds A..B");
+    if (emit.isSet() && emit.getValue() != "slurm" && emit.getValue() != "commands")
+        throw Error("--emit " + common::printable(emit.getValue()) + ": slurm or commands");
+    if (hosts.isSet()) checkHosts(hosts.getValue());
+
+    BatchPlan plan;
+    plan.ini = ini.getValue();
+    std::tie(plan.firstSeed, plan.lastSeed) = parseSeeds(seeds.getValue());
+    if (chunk.getValue() < 1 || chunk.getValue() > 100000)
+        throw Error("--chunk " + std::to_string(chunk.getValue()) + ": 1 .. 100000 seeds per job");
+    plan.chunk = chunk.getValue();
+    for (const auto& k : set.getValue()) plan.sets.push_back(parseOverride(k, "--set"));
+    for (const auto& g : grid.getValue()) {
+        plan.grid.push_back(parseGridAxis(g));
+        for (const auto& other : plan.grid)
+            if (&other != &plan.grid.back() && other.name() == plan.grid.back().name())
+                throw Error("--grid " + other.name() + ": given twice");
+        if (plan.pointCount() > BatchPlan::kMaxPoints)
+            throw Error("--grid: more than 10,000 points");
+    }
+    if (double(plan.seedCount()) * double(plan.pointCount()) > double(BatchPlan::kMaxTrials))
+        throw Error("--seeds and --grid: more than 1,000,000 trials in one batch");
+
+    // every point's keys through the configuration's checks before anything is written
+    Setup first = loadSetup(registry, plan.ini, long(plan.firstSeed), true, "", plan.trialKeys(0));
+    if (!first.simulation)
+        throw Error(plan.ini + ": [scenario] describes no simulation; a batch simulates it");
+    for (size_t p = 1; p < plan.pointCount(); ++p)
+        loadSetup(registry, plan.ini, long(plan.firstSeed), true, "", plan.trialKeys(p));
+
+    const std::string dir = out.isSet() ? out.getValue() : "out/" + first.scenario.name + "-batch";
+    common::checkRunFolderPath(dir, out.isSet() ? "--out" : "[scenario] name");
+    const std::string dirAbs = fs::absolute(dir).lexically_normal().string();
+    const std::string mrloc = mrlocPath.isSet() ? mrlocPath.getValue() : selfPath();
+    const nlohmann::json planJson = toJson(plan);
+
+    if (batch_dir::isBatch(dir)) {
+        if (!resume.isSet() && !emit.isSet())
+            throw Error(common::pathInWords(dir) +
+                        ": holds a batch already (--resume continues it; another --out starts "
+                        "a new one)");
+        // the same trials, or the job log's numbers would name other ones
+        auto held = common::loadJson(batch_dir::plan(dir));
+        auto given = planJson;
+        held.erase("ini"), given.erase("ini");
+        if (held != given || readText(batch_dir::ini(dir)) != first.iniText)
+            throw Error(common::pathInWords(dir) +
+                        ": its batch has other seeds, keys or INI text than these (batch.json, "
+                        "batch.ini); give the same to --resume, or another --out");
+    } else {
+        if (resume.isSet())
+            throw Error(common::pathInWords(dir) + ": no batch to resume (no batch.json)");
+        if (fs::exists(fs::symlink_status(dir)) &&
+            (!fs::is_directory(fs::symlink_status(dir)) || !fs::is_empty(dir)))
+            throw Error(common::pathInWords(dir) +
+                        ": exists and is not a batch folder; give another --out");
+        common::makeDirectories(dir);
+        common::writeFileAtomically(batch_dir::ini(dir), first.iniText);
+        common::writeFileAtomically(batch_dir::jobs(dir), jobsText(plan));
+        common::saveJson(batch_dir::plan(dir), planJson);  // last: the folder is a batch now
+    }
+
+    if (emit.isSet()) {
+        const bool slurm = emit.getValue() == "slurm";
+        const std::string path =
+            (fs::path(dir) / (slurm ? "batch.slurm" : "commands.txt")).string();
+        common::writeFileAtomically(
+            path, slurm ? slurmScript(plan, mrloc, dirAbs, first.scenario.name, jobs.getValue())
+                        : commandsText(plan, mrloc, dirAbs));
+        if (slurm) fs::permissions(path, fs::perms::owner_exec, fs::perm_options::add);
+        std::cout << path << "\n";
+        return 0;
+    }
+
+    checkGnuParallel();
+    const unsigned cores = std::max(1u, std::thread::hardware_concurrency());
+    const unsigned j = jobs.isSet() && jobs.getValue() > 0 ? jobs.getValue() : cores;
+    std::vector<std::string> argvParallel = {
+        "parallel",   "--will-cite",          "--joblog", batch_dir::joblog(dirAbs),
+        "--jobs",     std::to_string(j),      "--colsep", " ",
+        "--arg-file", batch_dir::jobs(dirAbs)};
+    if (resume.isSet()) argvParallel.push_back("--resume-failed");
+    if (hosts.isSet()) argvParallel.insert(argvParallel.end(), {"-S", hosts.getValue()});
+    // -q: the command's words reach the trial as they are, never through a shell's parsing
+    argvParallel.push_back("-q");
+    for (const auto& a : trialCommand(mrloc, dirAbs, "{1}", "{2}", "{3}"))
+        argvParallel.push_back(a);
+    std::cerr << "mrloc batch: " << plan.trialCount() << " trials (" << plan.seedCount()
+              << " seeds x " << plan.pointCount() << " points) in " << plan.jobCount() << " jobs, "
+              << j << " at once, through GNU parallel; job log " << batch_dir::joblog(dir) << "\n";
+    const int code = runProgram(argvParallel);
+    if (code >= 128 + 1 && code <= 128 + 64) return code;  // interrupted: --resume continues
+    if (childSignal) return 128 + int(childSignal);
+    return collectAndPrint(dir);
+}
+
+}  // namespace mrloc::app

@@ -1,0 +1,163 @@
+// `mrloc trial`: one seed, one call, one JSON line (doc/batch.md). A method's own trial
+// (Method::trial: one run of its experiment, as the experiment computes it) when it has
+// one; otherwise the scenario simulated, localized and its experiment run in a scratch
+// folder: the headline `mrloc run --seed` gives. No report; the same INI, keys and seed give
+// the same line.
+#include <mrloc/common/AtomicFile.h>
+#include <mrloc/common/Error.h>
+#include <mrloc/common/Metrics.h>
+#include <mrloc/common/Version.h>
+#include <stdlib.h>
+#include <unistd.h>
+
+#include <filesystem>
+#include <iostream>
+#include <thread>
+
+#include "BatchPlan.h"
+#include "Commands.h"
+#include "RunSetup.h"
+
+namespace mrloc::app {
+
+namespace fs = std::filesystem;
+
+namespace {
+
+/** A scratch folder for one trial's rawlog, removed with everything in it when done. */
+class ScratchFolder {
+ public:
+    /** Under `<batch>/scratch` (a batch folder: nothing is written outside it; a trial
+     *  killed by a signal may leave its folder there), else the system's temporary folder;
+     *  unique to this process. */
+    explicit ScratchFolder(const std::string& batch) {
+        const fs::path base =
+            batch.empty() ? fs::temp_directory_path() : fs::path(batch) / "scratch";
+        common::makeDirectories(base.string());
+        std::string pattern = (base / "mrloc-trial-XXXXXX").string();
+        if (!mkdtemp(pattern.data()))
+            throw Error(common::pathInWords(base.string()) + ": cannot make a scratch folder");
+        path_ = pattern;
+    }
+    ~ScratchFolder() {
+        std::error_code ignored;
+        fs::remove_all(path_, ignored);
+    }
+    ScratchFolder(const ScratchFolder&) = delete;
+    ScratchFolder& operator=(const ScratchFolder&) = delete;
+    const std::string& path() const { return path_; }
+
+ private:
+    std::string path_;
+};
+
+/** The trial itself: its line. `scratchParent`: where a simulated rawlog may go. */
+nlohmann::json runTrial(const method::Registry& registry, const std::string& ini,
+                        unsigned long seed, const std::vector<KeyOverride>& keys,
+                        const std::string& scratchParent) {
+    Setup s = loadSetup(registry, ini, long(seed), true, "", keys);
+    if (!s.simulation)
+        throw Error(ini +
+                    ": [scenario] describes no simulation; a trial simulates the scenario "
+                    "with its seed");
+    const unsigned cores = std::max(1u, std::thread::hardware_concurrency());
+    method::checkWork(workOf(s, true, !s.method->trial), cores);
+    common::Headline h;
+    if (s.method->trial) {
+        h = s.method->trial({*s.localizer, s.simulation->config});
+    } else {
+        ScratchFolder scratch(scratchParent);
+        h = simulateAndLocalize(registry, s, scratch.path());
+    }
+    return trialLine(s.method->name, seed, keys, h);
+}
+
+}  // namespace
+
+int trial(const method::Registry& registry, int argc, char** argv) {
+    TCLAP::CmdLine cmd(
+        "mrloc trial: one seed of the INI's experiment (the method's own trial, else the "
+        "scenario simulated, localized and its experiment run), printed as one JSON line: the "
+        "seed, the --set keys "
+        "and the headline figures. No report, no pictures; the same INI, keys and seed give "
+        "the same line. `mrloc batch` runs many (doc/batch.md).",
+        ' ', kVersion);
+    TCLAP::UnlabeledValueArg<std::string> ini("ini", "scenario INI file", false, "", "INI", cmd);
+    TCLAP::ValueArg<long> seed("s", "seed", "the trial's seed (overrides [scenario] seed)", true, 0,
+                               "N", cmd);
+    TCLAP::MultiArg<std::string> set("", "set",
+                                     "section.key=value: a key of the INI, read through its "
+                                     "checks as if the INI held it (repeatable)",
+                                     false, "KEY=VALUE", cmd);
+    TCLAP::ValueArg<std::string> batchDir(
+        "", "batch",
+        "a batch folder (mrloc batch): the INI and keys are its, and the line is also written "
+        "to <folder>/trials/p<point>/s<seed>.json",
+        false, "", "DIR", cmd);
+    TCLAP::ValueArg<long> point("", "point", "the batch's grid point (with --batch)", false, 0, "P",
+                                cmd);
+    TCLAP::ValueArg<long> lastSeed("", "last-seed",
+                                   "with --batch: the seeds --seed .. this, each its own trial and "
+                                   "record, in one process (a batch's job)",
+                                   false, 0, "M", cmd);
+    if (const auto code = parseArgs(cmd, argc, argv)) return *code;
+    if (seed.getValue() < 0 || seed.getValue() > 4294967295L)
+        throw Error("--seed must be in [0, 4294967295]");
+    const auto n = (unsigned long)seed.getValue();
+
+    if (!batchDir.isSet()) {
+        if (!ini.isSet()) throw Error("missing <INI> (mrloc trial <ini> --seed N)");
+        if (point.isSet() || lastSeed.isSet())
+            throw Error("--point and --last-seed belong to a batch's jobs (with --batch)");
+        std::vector<KeyOverride> keys;
+        for (const auto& k : set.getValue()) keys.push_back(parseOverride(k, "--set"));
+        std::cout << runTrial(registry, ini.getValue(), n, keys, "").dump() << std::endl;
+        return 0;
+    }
+    if (ini.isSet() || set.isSet())
+        throw Error("--batch: the INI and keys are the batch's (batch.ini, batch.json)");
+    const std::string dir = batchDir.getValue();
+    const BatchPlan plan = batch_dir::readPlan(dir);
+    if (point.getValue() < 0 || size_t(point.getValue()) >= plan.pointCount())
+        throw Error("--point " + std::to_string(point.getValue()) + ": the batch has " +
+                    std::to_string(plan.pointCount()) + " points (0 .. " +
+                    std::to_string(plan.pointCount() - 1) + ")");
+    const long last = lastSeed.isSet() ? lastSeed.getValue() : long(n);
+    if (n < plan.firstSeed || last < long(n) || (unsigned long)last > plan.lastSeed)
+        throw Error("--seed " + std::to_string(n) + " .. " + std::to_string(last) +
+                    ": outside the batch's seeds " + std::to_string(plan.firstSeed) + ".." +
+                    std::to_string(plan.lastSeed));
+    const size_t p = size_t(point.getValue());
+    const auto keys = plan.trialKeys(p);
+    size_t failed = 0;
+    for (unsigned long seedNow = n; seedNow <= (unsigned long)last; ++seedNow) {
+        const std::string record = batch_dir::record(dir, p, seedNow);
+        if (fs::is_regular_file(fs::symlink_status(record))) {
+            // done already (a job cut short, a job log lost, Slurm's requeue): never run twice
+            const auto held = common::loadJson(record);
+            if (!held.contains("error")) {
+                std::cout << held.dump() << std::endl;
+                continue;
+            }
+        }
+        common::makeDirectories(fs::path(record).parent_path().string());
+        nlohmann::json line;
+        try {
+            line = runTrial(registry, batch_dir::ini(dir), seedNow, keys, dir);
+        } catch (const Error& e) {
+            // a trial that failed on its input says why in its record (`--collect` lists
+            // it); the job goes on with its next seed
+            line = {{"seed", seedNow}, {"error", oneLine(e.what())}};
+            std::cerr << "mrloc trial: seed " << seedNow << ": error: " << oneLine(e.what())
+                      << "\n";
+            ++failed;
+        }
+        line["point"] = p;
+        common::writeFileAtomically(record, line.dump() + "\n");
+        std::cout << line.dump() << std::endl;
+    }
+    return failed ? 1 : 0;
+    return 0;
+}
+
+}  // namespace mrloc::app

@@ -1,0 +1,341 @@
+// `mrloc trial` and `mrloc batch` (issue 33, doc/batch.md): a trial's line is the in-process
+// experiment's run for its seed (framesync's seeds and both sweeps, formation's Table 1, a
+// method without a trial of its own: the run's headline); a batch through GNU parallel
+// gives the experiment's figures, resumes without losing or repeating a trial, lists the
+// failed and missing ones, and writes Slurm scripts and command lists that run; hostile
+// arguments are refused before anything is written.
+#include <gtest/gtest.h>
+#include <mrloc/common/Metrics.h>
+#include <mrloc/formation/FormationFiles.h>
+#include <mrloc/framesync/FramesyncFiles.h>
+#include <mrloc/report/Plots.h>
+
+#include <cmath>
+#include <map>
+
+#include "MrlocCli.h"
+
+namespace fs = std::filesystem;
+using namespace mrloc;
+using namespace mrloc::testing_cli;
+
+namespace {
+
+/** The batch's tests need GNU parallel, which scripts/install-deps.sh installs. */
+void requireParallel() {
+    const auto r = Result{std::system("parallel --version > /dev/null 2>&1"), ""};
+    ASSERT_EQ(r.code, 0) << "GNU parallel is missing: scripts/install-deps.sh installs it";
+}
+
+/** The corridor with an experiment of `seeds` seeds and sweeps of `sweepSeeds` at sonar
+ *  noise 0.02 m and odometry drift x2. */
+std::string batchCorridorIni(const std::string& name, int seeds, int sweepSeeds) {
+    std::string ini =
+        writeIniFrom(config("framesync_corridor"), name, "experiment_seeds       = 50",
+                     "experiment_seeds = " + std::to_string(seeds));
+    return writeIniFrom(ini, name, "experiment_sweep_seeds = 20",
+                        "experiment_sweep_seeds = " + std::to_string(sweepSeeds) +
+                            "\nexperiment_noise = 0.02\nexperiment_drift = 2");
+}
+
+nlohmann::json lineOf(const std::string& output) {
+    const auto start = output.find('{');
+    EXPECT_NE(start, std::string::npos) << output;
+    return nlohmann::json::parse(output.substr(start == std::string::npos ? 0 : start));
+}
+
+/** A figure of a trial line or record by name. */
+double lineFigure(const nlohmann::json& line, const std::string& name) {
+    for (const auto& f : line.at("figures"))
+        if (f.at("name") == name) return f.at("value").get<double>();
+    ADD_FAILURE() << "no figure '" << name << "' in " << line.dump();
+    return std::nan("");
+}
+
+nlohmann::json trialRecord(const std::string& dir, int point, int seed) {
+    return common::loadJson(dir + "/trials/p" + std::to_string(point) + "/s" +
+                            std::to_string(seed) + ".json");
+}
+
+/** summary.json's figure at a point. */
+nlohmann::json summaryFigure(const std::string& dir, int point, const std::string& name) {
+    const auto s = common::loadJson(dir + "/summary.json");
+    for (const auto& f : s.at("points").at(point).at("figures"))
+        if (f.at("name") == name) return f;
+    ADD_FAILURE() << "no figure '" << name << "' at point " << point;
+    return {};
+}
+
+}  // namespace
+
+TEST(MrlocTrial, OneLineDeterministicPerSeedWithSetKeysThroughTheIniChecks) {
+    const std::string ini = batchCorridorIni("trial_corridor", 0, 0);
+    const auto a = mrlocCmd("trial " + ini + " --seed 3 --set framesync.sonar_sigma=0.02");
+    const auto b = mrlocCmd("trial " + ini + " --seed 3 --set framesync.sonar_sigma=0.02");
+    ASSERT_EQ(a.code, 0) << a.output;
+    EXPECT_EQ(a.output, b.output);
+    EXPECT_EQ(std::count(a.output.begin(), a.output.end(), '\n'), 1) << a.output;
+    const auto line = lineOf(a.output);
+    EXPECT_EQ(line["seed"], 3);
+    EXPECT_EQ(line["method"], "framesync");
+    EXPECT_EQ(line["set"]["framesync.sonar_sigma"], "0.02");
+    // the key reaches the run: another noise, other walls
+    const auto plain = lineOf(mrlocCmd("trial " + ini + " --seed 3").output);
+    EXPECT_NE(lineFigure(line, "walls"), lineFigure(plain, "walls"));
+    // refused as the INI's own key would be, named as given
+    for (const auto& [args, says] : std::vector<std::pair<std::string, std::string>>{
+             {"--set framesync.sonar_sigma=5", "--set framesync.sonar_sigma=5: value 5 is out"},
+             {"--set framesync.sonar_sigmq=0.1", "sonar_sigmq"},
+             {"--set framesync.no_such_key=1", "--set framesync.no_such_key=1: unknown key"},
+             {"--set scenario.seed=4", "the seed is --seed's"},
+             {"--set nowhere.key=1", "[nowhere] is not a section mrloc reads"},
+             {"--set framesync=1", "expected section.key=value"},
+             {"--set 'framesync.x;y=1'", "a section or key name holds ';'"}}) {
+        const auto r = mrlocCmd("trial " + ini + " --seed 1 " + args);
+        EXPECT_EQ(r.code, 1) << args << ": " << r.output;
+        EXPECT_NE(r.output.find(says), std::string::npos) << args << ": " << r.output;
+    }
+}
+
+TEST(MrlocTrial, AMethodWithoutATrialOfItsOwnGivesTheRunsHeadline) {
+    // polymap and beacons register no trial: theirs is `mrloc run --seed` without the report,
+    // experiment included (polymap's starts, the beacon study)
+    for (const std::string ini : {"polymap_steps76", "beacons_paper_room"}) {
+        const std::string out = tmp("trial_run_" + ini);
+        ASSERT_EQ(mrlocCmd("run " + config(ini) + " --seed 2 -q --out " + out).code, 0) << ini;
+        const auto headline = common::loadJson(out + "/metrics.json")["headline"];
+        const auto r = mrlocCmd("trial " + config(ini) + " --seed 2");
+        ASSERT_EQ(r.code, 0) << r.output;
+        const auto line = lineOf(r.output);
+        ASSERT_EQ(line["figures"].size(), headline["figures"].size()) << ini;
+        for (size_t k = 0; k < line["figures"].size(); ++k) {
+            EXPECT_EQ(line["figures"][k]["name"], headline["figures"][k]["name"]);
+            EXPECT_EQ(line["figures"][k]["value"], headline["figures"][k]["value"]) << ini << k;
+        }
+        EXPECT_EQ(line["reached"], headline["reached"]);
+    }
+    // polymap's experiment figures are there: the bounds from its starts
+    EXPECT_NE(mrlocCmd("trial " + config("polymap_steps76") + " --seed 2")
+                  .output.find("bound: first separation"),
+              std::string::npos);
+}
+
+TEST(MrlocBatch, FramesyncSeedsAndSweepsEqualTheInProcessExperiment) {
+    requireParallel();
+    const std::string ini = batchCorridorIni("batch_corridor", 3, 2);
+    const std::string run = tmp("batch_corridor_run"), dir = tmp("batch_corridor");
+    ASSERT_EQ(mrlocCmd("run " + ini + " -q --out " + run).code, 0);
+    const auto experiment = framesync::FramesyncExperimentFile::read(run);
+    // the paper's point, the noise sweep's and the drift sweep's (and their product)
+    const auto r = mrlocCmd("batch " + ini +
+                            " --seeds 1..3 --grid framesync.sonar_sigma=0.01,0.02"
+                            " --grid scenario.odometry_error_scale=1,2 --jobs 2 --out " +
+                            dir);
+    ASSERT_EQ(r.code, 0) << r.output;
+    // points: (0.01, 1) (0.01, 2) (0.02, 1) (0.02, 2), the last axis fastest
+    const std::map<std::string, int> pointOf{{"paper", 0}, {"drift", 1}, {"noise", 2}};
+    size_t compared = 0;
+    for (const auto& run : experiment.runs) {
+        const auto line = trialRecord(dir, pointOf.at(run.kind), int(run.seed));
+        EXPECT_EQ(lineFigure(line, "end discrepancy, shared frame"), run.sharedError)
+            << run.kind << " seed " << run.seed;
+        EXPECT_EQ(lineFigure(line, "own odometry"), run.odometryError);
+        EXPECT_EQ(lineFigure(line, "walls"), double(run.walls));
+        EXPECT_EQ(lineFigure(line, "redefinitions"), double(run.redefinitions));
+        ++compared;
+    }
+    EXPECT_EQ(compared, 3u + 2 + 2);
+    // the summary's mean over the paper's seeds is the run's headline mean
+    const auto headline = common::loadJson(run + "/metrics.json")["headline"]["figures"];
+    double inProcess = std::nan("");
+    for (const auto& f : headline)
+        if (f["name"] == "shared frame (mean over 3 seeds)") inProcess = f["value"];
+    const auto summary = summaryFigure(dir, 0, "end discrepancy, shared frame");
+    EXPECT_EQ(summary["count"], 3);
+    EXPECT_NEAR(summary["mean"].get<double>(), inProcess, 1e-15);
+    const std::string text = slurp(dir + "/summary.txt");
+    EXPECT_NE(text.find("0 failed, 0 missing"), std::string::npos) << text;
+    EXPECT_NE(text.find("## framesync.sonar_sigma=0.02 scenario.odometry_error_scale=2"),
+              std::string::npos);
+
+    // the report: a table and a plot per figure, from summary.json
+    const auto rep = mrlocCmd("report " + dir);
+    ASSERT_EQ(rep.code, 0) << rep.output;
+    const std::string page = slurp(dir + "/report.html");
+    EXPECT_NE(page.find("end discrepancy, shared frame"), std::string::npos);
+    for (int k = 0; k < 4; ++k)
+        EXPECT_TRUE(report::isCompletePng(dir + "/batch.figure" + std::to_string(k) + ".png"));
+}
+
+TEST(MrlocBatch, FormationTableOneEqualsTheInProcessExperiment) {
+    requireParallel();
+    const std::string ini = writeIniFrom(config("formation_many_turns"), "batch_formation",
+                                         "runs        = 100", "runs = 3\nexperiment_seed = 7");
+    const std::string run = tmp("batch_formation_run"), dir = tmp("batch_formation");
+    ASSERT_EQ(mrlocCmd("run " + ini + " -q --out " + run).code, 0);
+    const auto table = formation::FormationExperimentFile::read(run).table;
+    ASSERT_EQ(table.size(), 4u);
+    // run r of the experiment is seed experiment_seed + r
+    const auto r = mrlocCmd("batch " + ini + " --seeds 7..9 --jobs 2 --out " + dir);
+    ASSERT_EQ(r.code, 0) << r.output;
+    for (const auto& row : table) {
+        const std::string where =
+            row.route + (row.wheelSpeed > 5 ? " at 5.8" : " at 2.9") + " rad/s: ";
+        const auto f = summaryFigure(dir, 0, where + "formation");
+        const auto d = summaryFigure(dir, 0, where + "dead reckoning");
+        EXPECT_EQ(f["count"], 3);
+        // the experiment sums e / n, the summary sums e then divides: equal to rounding
+        EXPECT_NEAR(f["mean"].get<double>(), row.formation, 1e-14) << where;
+        EXPECT_NEAR(d["mean"].get<double>(), row.deadReckoning, 1e-13) << where;
+    }
+}
+
+TEST(MrlocBatch, ResumeRunsOnlyWhatIsMissingAndCollectListsFailedAndMissingTrials) {
+    requireParallel();
+    const std::string ini = batchCorridorIni("batch_resume", 0, 0);
+    const std::string dir = tmp("batch_resume");
+    // a job per trial: the job log's numbers are the trials'
+    ASSERT_EQ(mrlocCmd("batch " + ini + " --seeds 1..6 --chunk 1 --jobs 2 --out " + dir).code, 0);
+    const auto seedFour = slurp(dir + "/trials/p0/s4.json");
+    // an interruption: trials 2 and 5 never ran (no record, not in the job log)
+    fs::remove(dir + "/trials/p0/s2.json");
+    fs::remove(dir + "/trials/p0/s5.json");
+    std::string log;
+    {
+        std::istringstream in(slurp(dir + "/joblog.txt"));
+        for (std::string line; std::getline(in, line);)
+            if (line.rfind("2\t", 0) != 0 && line.rfind("5\t", 0) != 0) log += line + "\n";
+    }
+    std::ofstream(dir + "/joblog.txt") << log;
+    // the same folder without --resume, or with other trials, is refused
+    auto r = mrlocCmd("batch " + ini + " --seeds 1..6 --chunk 1 --jobs 2 --out " + dir);
+    EXPECT_EQ(r.code, 1);
+    EXPECT_NE(r.output.find("holds a batch already"), std::string::npos) << r.output;
+    r = mrlocCmd("batch " + ini + " --seeds 1..7 --chunk 1 --jobs 2 --out " + dir + " --resume");
+    EXPECT_EQ(r.code, 1);
+    EXPECT_NE(r.output.find("other seeds, keys or INI text"), std::string::npos) << r.output;
+    r = mrlocCmd("batch " + ini + " --seeds 1..6 --chunk 1 --jobs 2 --out " + dir + " --resume");
+    ASSERT_EQ(r.code, 0) << r.output;
+    // the job log: 6 - 2 lines kept, then exactly the 2 missing trials
+    std::istringstream in(slurp(dir + "/joblog.txt"));
+    std::map<std::string, int> runs;
+    for (std::string line; std::getline(in, line);) ++runs[line.substr(0, line.find('\t'))];
+    EXPECT_EQ(runs.size(), 1u + 6) << slurp(dir + "/joblog.txt");
+    for (const char* seq : {"1", "2", "3", "4", "5", "6"}) EXPECT_EQ(runs[seq], 1) << seq;
+    EXPECT_EQ(slurp(dir + "/trials/p0/s4.json"), seedFour);
+    EXPECT_EQ(common::loadJson(dir + "/summary.json")["rerun"], 0);
+
+    // a lost record and a failed trial are listed, never dropped; collect exits 3
+    fs::remove(dir + "/trials/p0/s3.json");
+    std::ofstream(dir + "/trials/p0/s6.json")
+        << R"({"seed":6,"point":0,"set":{},"method":"","error":"the disk was full"})"
+        << "\n";
+    r = mrlocCmd("batch --collect " + dir);
+    EXPECT_EQ(r.code, 3) << r.output;
+    EXPECT_NE(r.output.find("missing point 0 seed 3: not run"), std::string::npos) << r.output;
+    EXPECT_NE(r.output.find("failed point 0 seed 6: the disk was full"), std::string::npos);
+    EXPECT_NE(r.output.find("1 failed, 1 missing"), std::string::npos);
+    EXPECT_EQ(summaryFigure(dir, 0, "walls")["count"], 4);
+}
+
+TEST(MrlocBatch, AJobCutShortRunsAgainOnlyItsSeedsWithoutARecord) {
+    requireParallel();
+    const std::string ini = batchCorridorIni("batch_chunks", 0, 0);
+    const std::string dir = tmp("batch_chunks");
+    // jobs of 3 seeds: 1-3 and 4-6
+    ASSERT_EQ(mrlocCmd("batch " + ini + " --seeds 1..6 --chunk 3 --jobs 2 --out " + dir).code, 0);
+    EXPECT_EQ(slurp(dir + "/jobs.txt"), "0 1 3\n0 4 6\n");
+    // the second job cut short after seed 4: 4 recorded (marked, to see it is not run again),
+    // 5 and 6 not, and the job not in the log
+    auto four = trialRecord(dir, 0, 4);
+    four["figures"][0]["value"] = 123.0;
+    std::ofstream(dir + "/trials/p0/s4.json") << four.dump() << "\n";
+    fs::remove(dir + "/trials/p0/s5.json");
+    fs::remove(dir + "/trials/p0/s6.json");
+    std::string log;
+    {
+        std::istringstream in(slurp(dir + "/joblog.txt"));
+        for (std::string line; std::getline(in, line);)
+            if (line.rfind("2\t", 0) != 0) log += line + "\n";
+    }
+    std::ofstream(dir + "/joblog.txt") << log;
+    const auto r =
+        mrlocCmd("batch " + ini + " --seeds 1..6 --chunk 3 --jobs 2 --out " + dir + " --resume");
+    ASSERT_EQ(r.code, 0) << r.output;
+    EXPECT_EQ(lineFigure(trialRecord(dir, 0, 4), "end discrepancy, shared frame"), 123.0);
+    EXPECT_EQ(trialRecord(dir, 0, 5)["seed"], 5);
+    EXPECT_EQ(trialRecord(dir, 0, 6)["seed"], 6);
+    EXPECT_EQ(summaryFigure(dir, 0, "walls")["count"], 6);
+}
+
+TEST(MrlocBatch, EmittedSlurmScriptAndCommandListRunTrialsWhateverTheFolderName) {
+    const std::string ini = batchCorridorIni("batch_emit", 0, 0);
+    // a folder name a shell would run if it were not quoted
+    const std::string dir = tmp("batch_emit") + "/it's $(touch PWNED) `touch PWNED`";
+    std::string quoted = "'";  // for the test's own shell
+    for (const char c : dir) quoted += c == '\'' ? std::string("'\\''") : std::string(1, c);
+    quoted += "'";
+    fs::create_directories(fs::path(dir).parent_path());
+    auto r = mrlocCmd(
+        "batch " + ini +
+        " --seeds 4..5 --grid framesync.sonar_sigma=0.01,0.02 --chunk 1 --emit slurm --out " +
+        quoted);
+    ASSERT_EQ(r.code, 0) << r.output;
+    const std::string script = slurp(dir + "/batch.slurm");
+    EXPECT_NE(script.find("#SBATCH --array=0-3\n"), std::string::npos) << script;
+    EXPECT_NE(script.find("'\\''s $(touch PWNED)"), std::string::npos) << script;
+    EXPECT_EQ(std::system(("bash -n " + quoted + "/batch.slurm").c_str()), 0);
+    // task 3 is jobs.txt's fourth line: point 1, seed 5; run as Slurm would, without Slurm
+    const std::string cwd = tmp("batch_emit_cwd");
+    fs::create_directories(cwd);
+    const std::string task =
+        "cd " + cwd + " && SLURM_ARRAY_TASK_ID=3 bash " + quoted + "/batch.slurm > /dev/null";
+    ASSERT_EQ(std::system(task.c_str()), 0) << script;
+    const auto line = trialRecord(dir, 1, 5);
+    EXPECT_EQ(line["seed"], 5);
+    EXPECT_EQ(line["set"]["framesync.sonar_sigma"], "0.02");
+    const auto direct =
+        lineOf(mrlocCmd("trial " + ini + " --seed 5 --set framesync.sonar_sigma=0.02").output);
+    EXPECT_EQ(lineFigure(line, "end discrepancy, shared frame"),
+              lineFigure(direct, "end discrepancy, shared frame"));
+
+    r = mrlocCmd(
+        "batch " + ini +
+        " --seeds 4..5 --grid framesync.sonar_sigma=0.01,0.02 --chunk 1 --emit commands --out " +
+        quoted);
+    ASSERT_EQ(r.code, 0) << r.output;
+    std::istringstream commands(slurp(dir + "/commands.txt"));
+    std::vector<std::string> lines;
+    for (std::string l; std::getline(commands, l);) lines.push_back(l);
+    ASSERT_EQ(lines.size(), 4u);
+    ASSERT_EQ(std::system(("cd " + cwd + " && " + lines[0] + " > /dev/null").c_str()), 0);
+    EXPECT_EQ(trialRecord(dir, 0, 4)["seed"], 4);
+    EXPECT_FALSE(fs::exists(cwd + "/PWNED"));
+    EXPECT_FALSE(fs::exists("PWNED"));
+}
+
+TEST(MrlocBatch, BadArgumentsAreRefusedBeforeAnythingIsWritten) {
+    const std::string ini = batchCorridorIni("batch_bad", 0, 0);
+    const std::string dir = tmp("batch_bad");
+    for (const auto& [args, says] : std::vector<std::pair<std::string, std::string>>{
+             {"--seeds 5..1", "the last seed is before the first"},
+             {"--seeds 1..x", "expected A..B"},
+             {"--seeds 1..2000000", "more than 1,000,000 trials"},
+             {"--seeds 1..2 --grid framesync.sonar_sigma=0.01,7",
+              "--grid framesync.sonar_sigma=7: value 7 is out of range"},
+             {"--seeds 1..2 --grid framesync.sonar_sigma=0.01,,0.02", "an empty value"},
+             {"--seeds 1..2 --grid framesync.sonar_sigma=1 --grid framesync.sonar_sigma=2",
+              "given twice"},
+             {"--seeds 1..2 --hosts 'node1;rm -rf ~'", "expected parallel's -S list"},
+             {"--seeds 1..2 --hosts 'node$(id)'", "expected parallel's -S list"},
+             {"--seeds 1..2 --emit pbs", "--emit pbs: slurm or commands"},
+             {"--seeds 1..2 --resume", "no batch to resume"}}) {
+        const auto r = mrlocCmd("batch " + ini + " " + args + " --out " + dir);
+        EXPECT_EQ(r.code, 1) << args << ": " << r.output;
+        EXPECT_NE(r.output.find(says), std::string::npos) << args << ": " << r.output;
+        EXPECT_FALSE(fs::exists(dir)) << args;
+    }
+    const auto r = mrlocCmd("batch --collect " + tmp("batch_nothing"));
+    EXPECT_EQ(r.code, 1);
+    EXPECT_NE(r.output.find("not a batch folder"), std::string::npos) << r.output;
+}
