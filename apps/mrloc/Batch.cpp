@@ -182,7 +182,8 @@ std::string slurmScript(const BatchPlan& plan, const std::string& mrloc, const s
     s << "#!/bin/bash\n"
       << "# mrloc batch " << common::printable(name) << ": " << plan.trialCount() << " trials ("
       << plan.seedCount() << " seeds x " << plan.pointCount() << " points) in " << n
-      << " jobs of up to " << plan.chunk << " seeds, one per task of a job array.\n"
+      << " jobs of up to " << plan.chunk << (plan.chunk == 1 ? " seed" : " seeds")
+      << ", one per task of a job array.\n"
       << "# Submit: sbatch " << shellWord(dir + "/batch.slurm") << "   then: mrloc batch --collect "
       << shellWord(dir) << "\n"
       << "# The folder must be on a file system every node shares, and mrloc installed at\n"
@@ -192,8 +193,12 @@ std::string slurmScript(const BatchPlan& plan, const std::string& mrloc, const s
       << "#SBATCH --array=0-" << (n - 1) << (throttle ? "%" + std::to_string(throttle) : "") << "\n"
       << "#SBATCH --ntasks=1\n"
       << "#SBATCH --cpus-per-task=1\n"
-      << "#SBATCH --output=" << dir << "/slurm/%A_%a.out\n"
+      // sbatch would read a folder's blanks, quotes and '%' in --output: the task's output
+      // goes where the shell, quoting it, sends it
+      << "#SBATCH --output=/dev/null\n"
       << "set -euo pipefail\n"
+      << "exec >> " << shellWord(dir + "/slurm/")
+      << "\"${SLURM_ARRAY_JOB_ID:-0}_${SLURM_ARRAY_TASK_ID}.out\" 2>&1\n"
       << "line=$(sed -n \"$((SLURM_ARRAY_TASK_ID + 1))p\" " << shellWord(dir + "/jobs.txt") << ")\n"
       << "read -r point first last <<< \"$line\"\n"
       << "exec";
@@ -338,7 +343,11 @@ int batch(const method::Registry& registry, int argc, char** argv) {
         common::writeFileAtomically(
             path, slurm ? slurmScript(plan, mrloc, dirAbs, first.scenario.name, jobs.getValue())
                         : commandsText(plan, mrloc, dirAbs));
-        if (slurm) fs::permissions(path, fs::perms::owner_exec, fs::perm_options::add);
+        if (slurm) {
+            fs::permissions(path, fs::perms::owner_exec, fs::perm_options::add);
+            // Slurm opens each task's --output there and makes no folder
+            common::makeDirectories((fs::path(dir) / "slurm").string());
+        }
         std::cout << path << "\n";
         return 0;
     }

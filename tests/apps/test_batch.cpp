@@ -292,6 +292,8 @@ TEST(MrlocBatch, EmittedSlurmScriptAndCommandListRunTrialsWhateverTheFolderName)
         "cd " + cwd + " && SLURM_ARRAY_TASK_ID=3 bash " + quoted + "/batch.slurm > /dev/null";
     ASSERT_EQ(std::system(task.c_str()), 0) << script;
     const auto line = trialRecord(dir, 1, 5);
+    // the task's output, where the script sends it
+    EXPECT_NE(slurp(dir + "/slurm/0_3.out").find("\"seed\":5"), std::string::npos);
     EXPECT_EQ(line["seed"], 5);
     EXPECT_EQ(line["set"]["framesync.sonar_sigma"], "0.02");
     const auto direct =
