@@ -30,6 +30,9 @@ long+='|TriangleSearch\.AChanceLayoutOfAFewRobotsIsNotKept|TriangleSearch\.AHund
 long+='|MrlocFormation\.APixelMarchCutShortWithCameraStartsExitsCleanly'
 # formation's Table 1 in process and as a batch: the marches MrlocFormation runs sanitized
 long+='|MrlocBatch\.FormationTableOneEqualsTheInProcessExperiment'
+# a trial that is a whole run, beacon study included (83 s sanitized): the study and the run
+# are sanitized by their own tests
+long+='|MrlocTrial\.AMethodWithoutATrialOfItsOwnGivesTheRunsHeadline'
 long+='|Elimination\.OfficeFloorOfTwentyFourIdenticalRooms|MrlocPolymap\.DrivingWithEveryAlgorithm'
 long+='|MrlocFormation\.PatrolRoute|Visibility\.Star5000|Elimination\.FromNoisyScans'
 long+='|FormationMarch\.ErrorDoesNotGrow|FormationAlgorithmOne\.ConvergesFromEveryStart'

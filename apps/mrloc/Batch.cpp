@@ -251,15 +251,15 @@ int batch(const method::Registry& registry, int argc, char** argv) {
     TCLAP::ValueArg<std::string> out(
         "o", "out", "the batch folder (default: out/<scenario name>-batch)", false, "", "DIR", cmd);
     TCLAP::SwitchArg resume("", "resume",
-                            "continue the batch in the folder: trials its job log holds as done "
-                            "are not run again",
+                            "continue the batch in the folder: jobs its job log holds as done, "
+                            "and seeds with a record, are not run again",
                             cmd);
     TCLAP::ValueArg<std::string> hosts(
         "", "hosts", "GNU parallel's -S: ssh hosts sharing the folder (2/user@node1,node2,:)",
         false, "", "HOSTS", cmd);
     TCLAP::ValueArg<std::string> emit("", "emit",
                                       "write instead of running: slurm (batch.slurm, a job "
-                                      "array) or commands (commands.txt, one trial a line)",
+                                      "array) or commands (commands.txt, one job a line)",
                                       false, "", "slurm|commands", cmd);
     TCLAP::ValueArg<std::string> mrlocPath(
         "", "mrloc", "the mrloc the trials run (default: this one; hosts: the same path)", false,
