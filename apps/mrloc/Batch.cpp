@@ -18,7 +18,6 @@
 #include <array>
 #include <cstring>
 #include <filesystem>
-#include <fstream>
 #include <iostream>
 #include <sstream>
 #include <thread>
@@ -26,6 +25,7 @@
 #include "BatchPlan.h"
 #include "BatchSummary.h"
 #include "Commands.h"
+#include "IniFile.h"
 
 namespace mrloc::app {
 
@@ -40,14 +40,6 @@ std::string shellWord(const std::string& text) {
     std::string out = "'";
     for (const char c : text) out += c == '\'' ? std::string("'\\''") : std::string(1, c);
     return out + "'";
-}
-
-std::string readText(const std::string& path) {
-    common::checkReadableFile(path, "batch INI", 16u << 20);
-    std::ifstream in(path, std::ios::binary);
-    std::stringstream text;
-    text << in.rdbuf();
-    return text.str();
 }
 
 /** This executable's absolute path: what the trials run (ssh hosts: the same path). */
@@ -319,7 +311,7 @@ int batch(const method::Registry& registry, int argc, char** argv) {
         auto held = common::loadJson(batch_dir::plan(dir));
         auto given = planJson;
         held.erase("ini"), given.erase("ini");
-        if (held != given || readText(batch_dir::ini(dir)) != first.iniText)
+        if (held != given || readIniText(batch_dir::ini(dir)) != first.iniText)
             throw Error(common::pathInWords(dir) +
                         ": its batch has other seeds, keys or INI text than these (batch.json, "
                         "batch.ini); give the same to --resume, or another --out");

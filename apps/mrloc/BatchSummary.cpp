@@ -29,14 +29,12 @@ FigureStats statsOf(const std::string& name, const std::string& unit, bool basel
     f.name = name, f.unit = unit, f.baseline = baseline;
     f.count = values.size();
     if (values.empty()) return f;
-    double sum = 0;
-    for (const double v : values) sum += v;  // in seed order, as the experiments sum
-    f.mean = sum / double(values.size());
-    auto sorted = values;
-    std::sort(sorted.begin(), sorted.end());
-    f.median = quantileOfSorted(sorted, 0.5);
-    f.p95 = quantileOfSorted(sorted, 0.95);
-    f.min = sorted.front(), f.max = sorted.back();
+    // mean (summed in seed order, as the experiments sum), median and p95 as every run's
+    // error statistics; min and max here, as figures may be negative
+    const auto stats = common::computeStats(values);
+    f.mean = stats.mean, f.median = stats.median, f.p95 = stats.p95;
+    const auto [lo, hi] = std::minmax_element(values.begin(), values.end());
+    f.min = *lo, f.max = *hi;
     double ss = 0;
     for (const double v : values) ss += (v - f.mean) * (v - f.mean);
     f.sd = values.size() > 1 ? std::sqrt(ss / double(values.size() - 1)) : 0;
@@ -172,13 +170,6 @@ BatchSummary summaryFromJson(const nlohmann::json& j, const std::string& where) 
 std::string number(double v) { return mrpt::format("%.4g", v); }
 
 }  // namespace
-
-double quantileOfSorted(const std::vector<double>& sorted, double q) {
-    if (sorted.empty()) return std::nan("");
-    const double rank = q * double(sorted.size() - 1);
-    const size_t lo = size_t(std::floor(rank)), hi = std::min(lo + 1, sorted.size() - 1);
-    return sorted[lo] + (rank - double(lo)) * (sorted[hi] - sorted[lo]);
-}
 
 BatchSummary collectBatch(const std::string& dir) {
     BatchSummary s;

@@ -51,8 +51,6 @@ BatchSummary collectBatch(const std::string& dir);
 void writeSummary(const std::string& dir, const BatchSummary& s);
 /** The summary as summary.txt holds it: one table per point, then the problems. */
 std::string summaryText(const BatchSummary& s);
-/** Quantile q of sorted values, linear between ranks (q (n - 1)). */
-double quantileOfSorted(const std::vector<double>& sorted, double q);
 
 /** `mrloc report` on a batch folder: report.html and one plot per figure, from
  *  summary.json; returns the page's path. */
