@@ -5,10 +5,12 @@
 #include <fcntl.h>
 #include <mrloc/common/AtomicFile.h>
 #include <mrloc/common/Error.h>
+#include <mrloc/common/FolderLock.h>
 #include <mrloc/common/Metrics.h>
 #include <mrloc/common/Names.h>
 #include <mrloc/common/Outcome.h>
 #include <mrloc/common/RunTransaction.h>
+#include <mrloc/common/ShellWord.h>
 #include <mrloc/common/Version.h>
 #include <signal.h>
 #include <sys/wait.h>
@@ -33,14 +35,7 @@ namespace fs = std::filesystem;
 
 namespace {
 
-/** `text` as one word of a POSIX shell: single-quoted, a quote as '\''. The emitted
- *  scripts and command lists are the only places mrloc writes shell; every user string
- *  (the folder, the binary's path) reaches them through this. */
-std::string shellWord(const std::string& text) {
-    std::string out = "'";
-    for (const char c : text) out += c == '\'' ? std::string("'\\''") : std::string(1, c);
-    return out + "'";
-}
+using common::shellWord;
 
 /** This executable's absolute path: what the trials run (ssh hosts: the same path). */
 std::string selfPath() {
@@ -50,17 +45,53 @@ std::string selfPath() {
     return p.string();
 }
 
-/** GNU parallel's -S: hosts as parallel writes them ("4/user@host,:"), nothing a shell or
- *  ssh would read as an option or a command. */
+/** GNU parallel's -S, parsed against its grammar ("[@groups/][ncpus/]sshlogin,..."): each
+ *  entry is `[N/][user@]host`, or `[N/]:` (this machine). Refused: the special sshlogins
+ *  `-` (read logins from standard input) and `..` (from ~/.parallel/sshloginfile), an ssh
+ *  command of its own (`/path/ssh -p 22 host`: a word with a blank or a '/'), `user:password@`
+ *  (sshpass), host groups, ports and anything a shell or ssh would read as an option. */
 void checkHosts(const std::string& hosts) {
-    const bool ok = !hosts.empty() && hosts.size() <= 4096 && hosts[0] != '-' &&
-                    hosts.find_first_not_of(
-                        "abcdefghijklmnopqrstuvwxyzABCDEFGHIJKLMNOPQRSTUVWXYZ"
-                        "0123456789@._:,/+-") == std::string::npos;
-    if (!ok)
-        throw Error("--hosts " + common::printable(hosts.substr(0, 80)) +
-                    ": expected parallel's -S list, e.g. 2/user@node1,node2,: (letters, digits "
-                    "and @ . _ : , / + -)");
+    const auto refuse = [&](const std::string& entry, const std::string& why) {
+        throw Error("--hosts " + common::printable(hosts.substr(0, 80)) + ": " +
+                    (entry.empty() ? std::string("an empty entry")
+                                   : "'" + common::printable(entry.substr(0, 80)) + "'") +
+                    " " + why + " (expected [N/][user@]host or [N/]: entries, comma-separated: "
+                    "2/user@node1,node2,:)");
+    };
+    if (hosts.empty() || hosts.size() > 4096) refuse(hosts, "is not a host list");
+    const auto isName = [](const std::string& w, const char* extra) {
+        if (w.empty() || w.size() > 253 || w[0] == '-' || w[0] == '.') return false;
+        const std::string allowed = std::string("abcdefghijklmnopqrstuvwxyzABCDEFGHIJKLMNOPQRSTUVWXYZ"
+                                                "0123456789-") + extra;
+        return w.find_first_not_of(allowed) == std::string::npos && w.find("..") == std::string::npos;
+    };
+    size_t from = 0;
+    while (true) {
+        const auto comma = hosts.find(',', from);
+        std::string entry = hosts.substr(from, comma == std::string::npos ? comma : comma - from);
+        from = comma + 1;
+        if (entry == "-") refuse(entry, "reads ssh logins from standard input");
+        if (entry == "..") refuse(entry, "reads ~/.parallel/sshloginfile");
+        std::string login = entry;
+        if (const auto slash = login.find('/'); slash != std::string::npos) {
+            const std::string cpus = login.substr(0, slash);
+            if (cpus.empty() || cpus.size() > 4 ||
+                cpus.find_first_not_of("0123456789") != std::string::npos || std::stoul(cpus) == 0)
+                refuse(entry, "has a '/' that is not after a number of CPUs (N/host)");
+            login = login.substr(slash + 1);
+        }
+        if (login != ":") {
+            const auto at = login.find('@');
+            const std::string user = at == std::string::npos ? "" : login.substr(0, at);
+            const std::string host = at == std::string::npos ? login : login.substr(at + 1);
+            if (at != std::string::npos && !isName(user, "._"))
+                refuse(entry, "has no user name a login can have before '@'");
+            if (!isName(host, "."))
+                refuse(entry, "is not a host name (letters, digits, '-' and '.'; no port, "
+                              "password, blank or ssh command)");
+        }
+        if (comma == std::string::npos) break;
+    }
 }
 
 /** The child run by waitChild, for the signal handler to pass SIGINT / SIGTERM on. */
@@ -71,9 +102,16 @@ extern "C" void forwardSignal(int sig) {
     if (childPid > 0) kill(pid_t(childPid), sig);
 }
 
+/** What runProgram's child gets besides its arguments: a working folder and environment. */
+struct ChildSetting {
+    std::string workdir;                                       ///< "" : this process's
+    std::vector<std::pair<std::string, std::string>> environment;  ///< set in the child
+};
+
 /** Runs `argv` (no shell) with stdout to /dev/null (trials write their records) or to
  *  `captured`; passes SIGINT and SIGTERM on to it. Its exit status, or 128 + its signal. */
-int runProgram(const std::vector<std::string>& argv, std::string* captured = nullptr) {
+int runProgram(const std::vector<std::string>& argv, std::string* captured = nullptr,
+               const ChildSetting& setting = {}) {
     int pipeFds[2] = {-1, -1};
     if (captured && pipe(pipeFds) != 0) throw Error("cannot make a pipe");
     const pid_t pid = fork();
@@ -86,6 +124,8 @@ int runProgram(const std::vector<std::string>& argv, std::string* captured = nul
         } else if (const int null = open("/dev/null", O_WRONLY); null >= 0) {
             dup2(null, STDOUT_FILENO);
         }
+        if (!setting.workdir.empty() && chdir(setting.workdir.c_str()) != 0) _exit(126);
+        for (const auto& [name, value] : setting.environment) setenv(name.c_str(), value.c_str(), 1);
         std::vector<char*> args;
         for (const auto& a : argv) args.push_back(const_cast<char*>(a.c_str()));
         args.push_back(nullptr);
@@ -134,6 +174,28 @@ std::vector<std::string> trialCommand(const std::string& mrloc, const std::strin
                                       const std::string& point, const std::string& first,
                                       const std::string& last) {
     return {mrloc, "trial", "--batch", dir, "--point", point, "--seed", first, "--last-seed", last};
+}
+
+/** The environment that carries the batch's folder and mrloc's path to parallel's jobs. */
+constexpr const char* kEnvMrloc = "MRLOC_BATCH_MRLOC";
+constexpr const char* kEnvFolder = "MRLOC_BATCH_FOLDER";
+
+/** GNU parallel's command line, run in the batch folder. GNU parallel expands replacement
+ *  strings ({}, {1}, {= perl =}) in every word of the command, -q or not, and in some of its
+ *  options' values: so no word of it holds anything but mrloc's own text and the job's
+ *  numbers from jobs.txt. The folder and mrloc's path are environment variables that the
+ *  job's shell expands, quoted ("$VAR": one word, never parsed again); --env carries them to
+ *  ssh hosts, quoted by parallel as values, never expanded. -S is checked by checkHosts. */
+std::vector<std::string> parallelCommand(unsigned jobs, bool resume, const std::string& hosts) {
+    std::vector<std::string> argv = {"parallel",   "--will-cite", "--joblog", batch_dir::joblog("."),
+                                     "--jobs",     std::to_string(jobs),  "--colsep", " ",
+                                     "--arg-file", batch_dir::jobs(".")};
+    if (resume) argv.push_back("--resume-failed");
+    if (!hosts.empty())
+        argv.insert(argv.end(), {"-S", hosts, "--env", kEnvMrloc, "--env", kEnvFolder});
+    argv.push_back(std::string("\"$") + kEnvMrloc + "\" trial --batch \"$" + kEnvFolder +
+                   "\" --point {1} --seed {2} --last-seed {3}");
+    return argv;
 }
 
 /** The jobs in order: point, first seed, last seed. */
@@ -205,6 +267,7 @@ std::string slurmScript(const BatchPlan& plan, const std::string& mrloc, const s
 }
 
 int collectAndPrint(const std::string& dir) {
+    batch_dir::checkFolder(dir);
     const BatchSummary summary = collectBatch(dir);
     writeSummary(dir, summary);
     std::cout << summaryText(summary);
@@ -263,6 +326,8 @@ int batch(const method::Registry& registry, int argc, char** argv) {
     if (collect.isSet()) {
         if (ini.isSet() || seeds.isSet())
             throw Error("--collect takes the batch folder alone (mrloc batch --collect DIR)");
+        batch_dir::readPlan(collect.getValue());  // a batch folder, before its lock is made
+        common::FolderLock lock(collect.getValue());
         return collectAndPrint(collect.getValue());
     }
     if (!ini.isSet()) throw Error("missing <INI> (mrloc batch <ini> --seeds A..B)");
@@ -302,13 +367,17 @@ int batch(const method::Registry& registry, int argc, char** argv) {
     const std::string mrloc = mrlocPath.isSet() ? mrlocPath.getValue() : selfPath();
     const nlohmann::json planJson = toJson(plan);
 
+    // one mrloc at a time in a batch folder (the rule of run folders), and nothing in it a
+    // link: parallel's job log, the records and the summary are written where they seem
+    common::FolderLock lock(dir);
+    if (batch_dir::isBatch(dir)) batch_dir::checkFolder(dir);
     if (batch_dir::isBatch(dir)) {
         if (!resume.isSet() && !emit.isSet())
             throw Error(common::pathInWords(dir) +
                         ": holds a batch already (--resume continues it; another --out starts "
                         "a new one)");
         // the same trials, or the job log's numbers would name other ones
-        auto held = common::loadJson(batch_dir::plan(dir));
+        auto held = common::readJsonFile(batch_dir::plan(dir));
         auto given = planJson;
         held.erase("ini"), given.erase("ini");
         if (held != given || readIniText(batch_dir::ini(dir)) != first.iniText)
@@ -322,10 +391,26 @@ int batch(const method::Registry& registry, int argc, char** argv) {
             (!fs::is_directory(fs::symlink_status(dir)) || !fs::is_empty(dir)))
             throw Error(common::pathInWords(dir) +
                         ": exists and is not a batch folder; give another --out");
-        common::makeDirectories(dir);
-        common::writeFileAtomically(batch_dir::ini(dir), first.iniText);
-        common::writeFileAtomically(batch_dir::jobs(dir), jobsText(plan));
-        common::saveJson(batch_dir::plan(dir), planJson);  // last: the folder is a batch now
+        // written whole beside the folder, then renamed into its place: a full disk leaves
+        // no half batch that neither a new batch nor --resume would take
+        const fs::path abs = fs::path(dirAbs);
+        const std::string staging = (abs.parent_path() / ("." + abs.filename().string() +
+                                                          ".staging." + std::to_string(getpid())))
+                                        .string();
+        std::error_code ec;
+        try {
+            fs::remove_all(staging, ec);
+            common::makeDirectories(staging);
+            common::writeFileAtomically(batch_dir::ini(staging), first.iniText);
+            common::writeFileAtomically(batch_dir::jobs(staging), jobsText(plan));
+            common::saveJson(batch_dir::plan(staging), planJson);
+            if (::rename(staging.c_str(), dirAbs.c_str()) != 0)  // replaces an empty folder
+                throw Error(common::pathInWords(dir) + ": cannot make the batch folder: " +
+                            std::strerror(errno));
+        } catch (...) {
+            fs::remove_all(staging, ec);
+            throw;
+        }
     }
 
     if (emit.isSet()) {
@@ -347,20 +432,14 @@ int batch(const method::Registry& registry, int argc, char** argv) {
     checkGnuParallel();
     const unsigned cores = std::max(1u, std::thread::hardware_concurrency());
     const unsigned j = jobs.isSet() && jobs.getValue() > 0 ? jobs.getValue() : cores;
-    std::vector<std::string> argvParallel = {
-        "parallel",   "--will-cite",          "--joblog", batch_dir::joblog(dirAbs),
-        "--jobs",     std::to_string(j),      "--colsep", " ",
-        "--arg-file", batch_dir::jobs(dirAbs)};
-    if (resume.isSet()) argvParallel.push_back("--resume-failed");
-    if (hosts.isSet()) argvParallel.insert(argvParallel.end(), {"-S", hosts.getValue()});
-    // -q: the command's words reach the trial as they are, never through a shell's parsing
-    argvParallel.push_back("-q");
-    for (const auto& a : trialCommand(mrloc, dirAbs, "{1}", "{2}", "{3}"))
-        argvParallel.push_back(a);
+    const std::vector<std::string> argvParallel = parallelCommand(j, resume.isSet(), hosts.getValue());
     std::cerr << "mrloc batch: " << plan.trialCount() << " trials (" << plan.seedCount()
               << " seeds x " << plan.pointCount() << " points) in " << plan.jobCount() << " jobs, "
               << j << " at once, through GNU parallel; job log " << batch_dir::joblog(dir) << "\n";
-    const int code = runProgram(argvParallel);
+    // parallel runs in the batch folder, and the folder and mrloc's path reach the trials
+    // through the environment: no argument parallel parses holds a user's string
+    const int code = runProgram(argvParallel, nullptr,
+                                {dirAbs, {{kEnvMrloc, mrloc}, {kEnvFolder, dirAbs}}});
     if (code >= 128 + 1 && code <= 128 + 64) return code;  // interrupted: --resume continues
     if (childSignal) return 128 + int(childSignal);
     return collectAndPrint(dir);

@@ -2,6 +2,7 @@
 
 #include <mrloc/common/AtomicFile.h>
 #include <mrloc/common/Error.h>
+#include <mrloc/common/FolderLock.h>
 #include <mrloc/common/Metrics.h>
 #include <mrloc/common/Names.h>
 
@@ -137,12 +138,17 @@ std::string record(const std::string& dir, size_t point, unsigned long seed) {
 std::string summary(const std::string& dir) { return (fs::path(dir) / "summary.json").string(); }
 std::string summaryText(const std::string& dir) { return (fs::path(dir) / "summary.txt").string(); }
 bool isBatch(const std::string& dir) { return fs::is_regular_file(fs::symlink_status(plan(dir))); }
+void checkFolder(const std::string& dir) {
+    // a record per trial, a folder per point, the plan's files and the report's
+    common::checkFolderHoldsNoLink(dir, "batch folder",
+                                   BatchPlan::kMaxTrials + BatchPlan::kMaxPoints + 1000);
+}
 BatchPlan readPlan(const std::string& dir) {
     if (!isBatch(dir))
         throw Error(common::pathInWords(dir) +
                     ": not a batch folder (no batch.json; mrloc batch "
                     "<ini> --seeds A..B --out <folder> makes one)");
-    return planFromJson(common::loadJson(plan(dir)), plan(dir));
+    return planFromJson(common::readJsonFile(plan(dir)), plan(dir));
 }
 }  // namespace batch_dir
 

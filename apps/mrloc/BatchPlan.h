@@ -77,6 +77,10 @@ std::string summary(const std::string& dir);
 std::string summaryText(const std::string& dir);
 /** The folder holds a batch (its batch.json). */
 bool isBatch(const std::string& dir);
+/** Refuses a batch folder that is a link or holds one (or a FIFO, socket or device), or
+ *  holds more entries than a batch of kMaxTrials can: every file of it is then written and
+ *  read where it seems (doc/batch.md). */
+void checkFolder(const std::string& dir);
 /** batch.json of `dir`, read and checked. */
 BatchPlan readPlan(const std::string& dir);
 }  // namespace batch_dir

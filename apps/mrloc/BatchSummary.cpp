@@ -197,7 +197,7 @@ BatchSummary collectBatch(const std::string& dir) {
                     s.missing.push_back({p, seed, "not run"});
                 continue;
             }
-            const auto line = common::loadJson(path);
+            const auto line = common::readJsonFile(path);
             try {
                 if (line.contains("error")) {
                     s.failed.push_back({p, seed, line.at("error").get<std::string>()});
@@ -231,6 +231,10 @@ BatchSummary collectBatch(const std::string& dir) {
         s.points.push_back(point);
     }
     return s;
+}
+
+BatchSummary readSummary(const std::string& path) {
+    return summaryFromJson(common::readJsonFile(path), path);
 }
 
 void writeSummary(const std::string& dir, const BatchSummary& s) {
@@ -348,7 +352,7 @@ std::string renderBatchReport(const std::string& dir) {
     if (!fs::is_regular_file(fs::symlink_status(path)))
         throw Error(dir + ": a batch without its summary (mrloc batch --collect " + dir +
                     " writes it)");
-    const BatchSummary s = summaryFromJson(common::loadJson(path), path);
+    const BatchSummary s = readSummary(path);
     using namespace report;
     Html body = heading(1, "mrloc batch: " + s.method);
     body += paragraph(

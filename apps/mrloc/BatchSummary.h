@@ -47,6 +47,9 @@ struct BatchSummary {
 
 /** Reads batch.json, every trial record and the job log (when there is one). */
 BatchSummary collectBatch(const std::string& dir);
+/** summary.json read back and checked (readJsonFile's bounds, then every field's type and
+ *  range); throws mrloc::Error naming the file. */
+BatchSummary readSummary(const std::string& path);
 /** summary.json and summary.txt, atomically. */
 void writeSummary(const std::string& dir, const BatchSummary& s);
 /** The summary as summary.txt holds it: one table per point, then the problems. */

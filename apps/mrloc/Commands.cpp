@@ -4,6 +4,7 @@
 
 #include <mrloc/common/AtomicFile.h>
 #include <mrloc/common/Error.h>
+#include <mrloc/common/FolderLock.h>
 #include <mrloc/common/LocalizationRun.h>
 #include <mrloc/common/Metrics.h>
 #include <mrloc/common/Outcome.h>
@@ -118,11 +119,18 @@ std::string doReport(const method::Registry& registry, const std::string& dir) {
     const std::string metricsPath = common::run_dir::metrics(dir);
     if (!fs::exists(metricsPath))
         throw Error(dir + ": not a run directory (no metrics.json; run `mrloc localize` first)");
-    const auto metrics = common::loadJson(metricsPath);
+    const auto metrics = common::readMetricsFile(metricsPath);
     const std::string name = metrics.value("method", "");
     if (!registry.has(name))
         throw Error(metricsPath + ": method '" + name + "' is not one this mrloc knows");
-    return report::makeReport(dir, registry.get(name).report);
+    try {
+        return report::makeReport(dir, registry.get(name).report);
+    } catch (const nlohmann::json::exception& e) {
+        // a method's section reads its own part of metrics.json: a file from elsewhere
+        // holding another type there is named, not an "unexpected error"
+        throw Error(metricsPath + ": a value of another type than mrloc writes there (" +
+                    oneLine(e.what()) + ")");
+    }
 }
 
 std::optional<long> seedOf(TCLAP::ValueArg<long>& seed) {
@@ -276,6 +284,8 @@ int report(const method::Registry& registry, int argc, char** argv) {
     TCLAP::UnlabeledValueArg<std::string> dir("run-dir", "run directory", true, "", "DIR", cmd);
     if (const auto code = parseArgs(cmd, argc, argv)) return *code;
     if (batch_dir::isBatch(dir.getValue())) {  // a batch folder: its summary, plotted
+        common::FolderLock lock(dir.getValue());
+        batch_dir::checkFolder(dir.getValue());
         std::cout << renderBatchReport(dir.getValue()) << "\n";
         return 0;
     }

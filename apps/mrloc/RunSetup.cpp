@@ -57,8 +57,14 @@ std::string cpuModel() {
  *  values then meet the section's own checks (range, unknown key) as the INI's do. */
 void applyOverrides(const method::Registry& registry, mrpt::config::CConfigFile& ini,
                     const std::vector<KeyOverride>& overrides) {
+    std::set<std::string> given;  // a key given twice: which value is meant?
     for (const auto& o : overrides) {
         const std::string origin = o.from + " " + common::printable(o.text());
+        std::string name = o.section + "." + o.key;
+        for (char& c : name) c = char(std::tolower(static_cast<unsigned char>(c)));
+        if (!given.insert(name).second)
+            throw Error(origin + ": " + common::printable(o.section + "." + o.key) +
+                        " is given twice (--set and --grid give each key once)");
         if (!isMrlocSection(o.section, registry))
             throw Error(origin + ": [" + common::printable(o.section) +
                         "] is not a section mrloc reads (sections: scenario, world, "
@@ -205,7 +211,7 @@ void writeProvenance(const Setup& s, const std::string& dir, const std::string& 
     common::writeFileAtomically(common::run_dir::effectiveIni(dir), effectiveIni(s));
     nlohmann::json p = nlohmann::json::object();
     const std::string path = common::run_dir::provenance(dir);
-    if (fs::is_regular_file(fs::symlink_status(path))) p = common::loadJson(path);
+    if (fs::is_regular_file(fs::symlink_status(path))) p = common::readProvenanceFile(path);
     if (!p.is_object()) p = nlohmann::json::object();  // not ours: begun again
     if (!p.contains("steps") || !p["steps"].is_object()) p["steps"] = nlohmann::json::object();
     p["ini"] = s.iniPath;

@@ -5,7 +5,9 @@
 // the same line.
 #include <mrloc/common/AtomicFile.h>
 #include <mrloc/common/Error.h>
+#include <mrloc/common/FolderLock.h>
 #include <mrloc/common/Metrics.h>
+#include <mrloc/common/RunTransaction.h>
 #include <mrloc/common/Version.h>
 #include <stdlib.h>
 #include <unistd.h>
@@ -31,6 +33,7 @@ class ScratchFolder {
      *  killed by a signal may leave its folder there), else the system's temporary folder;
      *  unique to this process. */
     explicit ScratchFolder(const std::string& batch) {
+        if (!batch.empty()) common::checkNoLinkInPath(batch, "scratch");
         const fs::path base =
             batch.empty() ? fs::temp_directory_path() : fs::path(batch) / "scratch";
         common::makeDirectories(base.string());
@@ -38,10 +41,12 @@ class ScratchFolder {
         if (!mkdtemp(pattern.data()))
             throw Error(common::pathInWords(base.string()) + ": cannot make a scratch folder");
         path_ = pattern;
+        slot_ = common::holdTemporaryOnSignal(path_);  // Ctrl-C leaves no scratch folder
     }
     ~ScratchFolder() {
         std::error_code ignored;
         fs::remove_all(path_, ignored);
+        common::releaseTemporaryOnSignal(slot_);
     }
     ScratchFolder(const ScratchFolder&) = delete;
     ScratchFolder& operator=(const ScratchFolder&) = delete;
@@ -49,6 +54,7 @@ class ScratchFolder {
 
  private:
     std::string path_;
+    int slot_ = -1;
 };
 
 /** The trial itself: its line. `scratchParent`: where a simulated rawlog may go. */
@@ -132,9 +138,12 @@ int trial(const method::Registry& registry, int argc, char** argv) {
     size_t failed = 0;
     for (unsigned long seedNow = n; seedNow <= (unsigned long)last; ++seedNow) {
         const std::string record = batch_dir::record(dir, p, seedNow);
+        // the record's folders are the batch's own, not links out of it (a trial of Slurm
+        // or a command list runs without `mrloc batch`'s check of the whole folder)
+        common::checkNoLinkInPath(dir, fs::path(record).lexically_relative(dir).string());
         if (fs::is_regular_file(fs::symlink_status(record))) {
             // done already (a job cut short, a job log lost, Slurm's requeue): never run twice
-            const auto held = common::loadJson(record);
+            const auto held = common::readJsonFile(record);
             if (!held.contains("error")) {
                 std::cout << held.dump() << std::endl;
                 continue;

@@ -201,7 +201,7 @@ TEST(BadPath, NonUtf8RawlogPathRunsToTheEnd) {
     const auto r = mrlocCmd("localize " + config("quickstart") + " " + quoted(rawlog) +
                             " --quiet --out " + out);
     ASSERT_EQ(r.code, 0) << r.output;
-    const auto m = common::loadJson(out + "/metrics.json");
+    const auto m = common::readJsonFile(out + "/metrics.json");
     expectHas(m["rawlog"].get<std::string>(), "q\xef\xbf\xbd.rawlog");
     EXPECT_EQ(m["observations"].get<int>(), 1499);  // all of quickstart.rawlog
 }

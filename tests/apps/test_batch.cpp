@@ -10,6 +10,10 @@
 #include <mrloc/framesync/FramesyncFiles.h>
 #include <mrloc/report/Plots.h>
 
+#include <fcntl.h>
+#include <sys/file.h>
+#include <unistd.h>
+
 #include <cmath>
 #include <map>
 
@@ -53,13 +57,13 @@ double lineFigure(const nlohmann::json& line, const std::string& name) {
 }
 
 nlohmann::json trialRecord(const std::string& dir, int point, int seed) {
-    return common::loadJson(dir + "/trials/p" + std::to_string(point) + "/s" +
+    return common::readJsonFile(dir + "/trials/p" + std::to_string(point) + "/s" +
                             std::to_string(seed) + ".json");
 }
 
 /** summary.json's figure at a point. */
 nlohmann::json summaryFigure(const std::string& dir, int point, const std::string& name) {
-    const auto s = common::loadJson(dir + "/summary.json");
+    const auto s = common::readJsonFile(dir + "/summary.json");
     for (const auto& f : s.at("points").at(point).at("figures"))
         if (f.at("name") == name) return f;
     ADD_FAILURE() << "no figure '" << name << "' at point " << point;
@@ -103,7 +107,7 @@ TEST(MrlocTrial, AMethodWithoutATrialOfItsOwnGivesTheRunsHeadline) {
     for (const std::string ini : {"polymap_steps76", "beacons_paper_room"}) {
         const std::string out = tmp("trial_run_" + ini);
         ASSERT_EQ(mrlocCmd("run " + config(ini) + " --seed 2 -q --out " + out).code, 0) << ini;
-        const auto headline = common::loadJson(out + "/metrics.json")["headline"];
+        const auto headline = common::readJsonFile(out + "/metrics.json")["headline"];
         const auto r = mrlocCmd("trial " + config(ini) + " --seed 2");
         ASSERT_EQ(r.code, 0) << r.output;
         const auto line = lineOf(r.output);
@@ -146,7 +150,7 @@ TEST(MrlocBatch, FramesyncSeedsAndSweepsEqualTheInProcessExperiment) {
     }
     EXPECT_EQ(compared, 3u + 2 + 2);
     // the summary's mean over the paper's seeds is the run's headline mean
-    const auto headline = common::loadJson(run + "/metrics.json")["headline"]["figures"];
+    const auto headline = common::readJsonFile(run + "/metrics.json")["headline"]["figures"];
     double inProcess = std::nan("");
     for (const auto& f : headline)
         if (f["name"] == "shared frame (mean over 3 seeds)") inProcess = f["value"];
@@ -223,7 +227,7 @@ TEST(MrlocBatch, ResumeRunsOnlyWhatIsMissingAndCollectListsFailedAndMissingTrial
     EXPECT_EQ(runs.size(), 1u + 6) << slurp(dir + "/joblog.txt");
     for (const char* seq : {"1", "2", "3", "4", "5", "6"}) EXPECT_EQ(runs[seq], 1) << seq;
     EXPECT_EQ(slurp(dir + "/trials/p0/s4.json"), seedFour);
-    EXPECT_EQ(common::loadJson(dir + "/summary.json")["rerun"], 0);
+    EXPECT_EQ(common::readJsonFile(dir + "/summary.json")["rerun"], 0);
 
     // a lost record and a failed trial are listed, never dropped; collect exits 3
     fs::remove(dir + "/trials/p0/s3.json");
@@ -328,8 +332,21 @@ TEST(MrlocBatch, BadArgumentsAreRefusedBeforeAnythingIsWritten) {
              {"--seeds 1..2 --grid framesync.sonar_sigma=0.01,,0.02", "an empty value"},
              {"--seeds 1..2 --grid framesync.sonar_sigma=1 --grid framesync.sonar_sigma=2",
               "given twice"},
-             {"--seeds 1..2 --hosts 'node1;rm -rf ~'", "expected parallel's -S list"},
-             {"--seeds 1..2 --hosts 'node$(id)'", "expected parallel's -S list"},
+             {"--seeds 1..2 --hosts 'node1;rm -rf ~'", "is not a host name"},
+             {"--seeds 1..2 --hosts 'node$(id)'", "is not a host name"},
+             // parallel's special sshlogins and forms that run or read something else
+             {"--seeds 1..2 --hosts 'x,-'", "reads ssh logins from standard input"},
+             {"--seeds 1..2 --hosts ..", "reads ~/.parallel/sshloginfile"},
+             {"--seeds 1..2 --hosts 'user:pw@node1'", "no user name a login can have"},
+             {"--seeds 1..2 --hosts '/usr/bin/ssh -p 2 node1'", "not after a number of CPUs"},
+             {"--seeds 1..2 --hosts '@group/node1'", "not after a number of CPUs"},
+             {"--seeds 1..2 --hosts node1:22", "is not a host name"},
+             {"--seeds 1..2 --hosts -oProxyCommand=id", "is not a host name"},
+             {"--seeds 1..2 --hosts 'node1,'", "an empty entry"},
+             {"--seeds 1..2 --set framesync.sonar_sigma=0.01 --set FRAMESYNC.sonar_sigma=0.02",
+              "is given twice"},
+             {"--seeds 1..2 --set framesync.sonar_sigma=0.01 --grid framesync.sonar_sigma=0.02",
+              "is given twice"},
              {"--seeds 1..2 --emit pbs", "--emit pbs: slurm or commands"},
              {"--seeds 1..2 --resume", "no batch to resume"}}) {
         const auto r = mrlocCmd("batch " + ini + " " + args + " --out " + dir);
@@ -340,4 +357,150 @@ TEST(MrlocBatch, BadArgumentsAreRefusedBeforeAnythingIsWritten) {
     const auto r = mrlocCmd("batch --collect " + tmp("batch_nothing"));
     EXPECT_EQ(r.code, 1);
     EXPECT_NE(r.output.find("not a batch folder"), std::string::npos) << r.output;
+}
+
+namespace {
+
+/** `text` quoted for the test's own shell. */
+std::string quotedForShell(const std::string& text) {
+    std::string q = "'";
+    for (const char c : text) q += c == '\'' ? std::string("'\\''") : std::string(1, c);
+    return q + "'";
+}
+
+/** The records of a batch folder's point 0, seeds first..last, as text. */
+std::string recordsText(const std::string& dir, int first, int last) {
+    std::string text;
+    for (int s = first; s <= last; ++s)
+        text += slurp(dir + "/trials/p0/s" + std::to_string(s) + ".json");
+    return text;
+}
+
+}  // namespace
+
+// issue 51, item 1: GNU parallel expands {}, {1} and {= perl =} in every word it is given, -q
+// or not; the folder, the current folder and mrloc's path reach the trials through the
+// environment, never as parallel's words
+TEST(MrlocBatch, NoFolderNameOrPathIsCodeToParallel) {
+    requireParallel();
+    const std::string ini = batchCorridorIni("batch_names", 0, 0);
+    const std::string base = tmp("batch_names");
+    fs::create_directories(base);
+    const std::string reference = base + "/plain";
+    ASSERT_EQ(mrlocCmd("batch " + ini + " --seeds 1..2 --out " + reference).code, 0);
+    const std::string expected = recordsText(reference, 1, 2);
+    ASSERT_NE(expected.find("\"seed\":2"), std::string::npos) << expected;
+
+    const std::string perl = "{=system(\"touch PWNED\")=}";
+    // --out with parallel's replacement strings (and the folder that once failed every trial)
+    for (const std::string& name : std::vector<std::string>{"b" + perl, "res{}", "r{1}{2} {#}"}) {
+        const std::string dir = base + "/" + name;
+        const auto r =
+            mrlocCmd("batch " + ini + " --seeds 1..2 --out " + quotedForShell(dir));
+        EXPECT_EQ(r.code, 0) << name << ": " << r.output;
+        EXPECT_EQ(recordsText(dir, 1, 2), expected) << name;
+    }
+    // --mrloc's path, and a current folder of that name with no --out (out/<scenario>-batch)
+    const std::string cwd = base + "/c" + perl;
+    const std::string bin = base + "/m" + perl;
+    fs::create_directories(cwd);
+    fs::create_directories(bin);
+    fs::create_symlink(MRLOC_BINARY, bin + "/mrloc");
+    auto r = mrlocCmd("batch " + ini + " --seeds 1..2 --out " + base + "/m --mrloc " +
+                      quotedForShell(bin + "/mrloc"));
+    EXPECT_EQ(r.code, 0) << r.output;
+    EXPECT_EQ(recordsText(base + "/m", 1, 2), expected) << r.output;
+    const std::string inCwd = "cd " + quotedForShell(cwd) + " && " + MRLOC_BINARY + " batch " +
+                              ini + " --seeds 1..2 > /dev/null 2>&1";
+    EXPECT_EQ(std::system(inCwd.c_str()), 0) << inCwd;
+    EXPECT_EQ(recordsText(cwd + "/out/framesync_corridor-batch", 1, 2), expected);
+    for (const auto& e : fs::recursive_directory_iterator(base))
+        EXPECT_NE(e.path().filename(), "PWNED") << e.path();
+    EXPECT_FALSE(fs::exists("PWNED"));
+}
+
+// issue 51, item 1 over ssh hosts: --env carries the folder and mrloc's path, quoted by
+// parallel; a stand-in for ssh (PARALLEL_SSH) runs the remote side here
+TEST(MrlocBatch, HostsGetTheFolderThroughTheEnvironmentWhateverItsName) {
+    requireParallel();
+    const std::string ini = batchCorridorIni("batch_hosts", 0, 0);
+    const std::string base = tmp("batch_hosts");
+    fs::create_directories(base);
+    const std::string ssh = base + "/fake-ssh";
+    std::ofstream(ssh) << "#!/bin/bash\n"
+                          "# drops ssh's options and the host, runs the command here\n"
+                          "while [[ \"$1\" == -* ]]; do case \"$1\" in -o|-p|-l) shift 2;; "
+                          "*) shift;; esac; done\n"
+                          "shift; [ \"$1\" = -- ] && shift\n"
+                          "echo \"$*\" >> \"$(dirname \"$0\")/hosts.log\"\n"
+                          "exec bash -c \"$*\"\n";
+    fs::permissions(ssh, fs::perms::owner_all);
+    const std::string dir = base + "/h'$(touch PWNED){=system(\"touch PWNED\")=}";
+    const std::string command = "PARALLEL_SSH=" + ssh + " " + MRLOC_BINARY + " batch " + ini +
+                                " --seeds 1..3 --chunk 1 --hosts 1/node1 --out " +
+                                quotedForShell(dir) + " > /dev/null 2>&1";
+    ASSERT_EQ(std::system(command.c_str()), 0) << command;
+    EXPECT_NE(slurp(base + "/hosts.log").find("exec perl"), std::string::npos)
+        << "the jobs did not go through the ssh stand-in";
+    const auto line = trialRecord(dir, 0, 3);
+    EXPECT_EQ(line["seed"], 3);
+    EXPECT_EQ(lineFigure(line, "end discrepancy, shared frame"),
+              lineFigure(lineOf(mrlocCmd("trial " + ini + " --seed 3").output),
+                         "end discrepancy, shared frame"));
+    for (const auto& e : fs::recursive_directory_iterator(base))
+        EXPECT_NE(e.path().filename(), "PWNED") << e.path();
+}
+
+// issue 51, items 3 and 5: nothing in a batch folder is followed through a link, and one
+// mrloc at a time holds it
+TEST(MrlocBatch, LinksInABatchFolderAreRefusedAndItsLockIsHeld) {
+    requireParallel();
+    const std::string ini = batchCorridorIni("batch_links", 0, 0);
+    const std::string base = tmp("batch_links");
+    const std::string dir = base + "/b";
+    fs::create_directories(base);
+    ASSERT_EQ(mrlocCmd("batch " + ini + " --seeds 1..2 --chunk 1 --out " + dir).code, 0);
+    const std::string target = base + "/target.txt";
+    std::ofstream(target) << "not parallel's\n";
+    const std::string elsewhere = base + "/elsewhere";
+    fs::create_directories(elsewhere);
+    const std::string resume = "batch " + ini + " --seeds 1..2 --chunk 1 --resume --out " + dir;
+
+    fs::remove(dir + "/joblog.txt");
+    fs::create_symlink(target, dir + "/joblog.txt");
+    auto r = mrlocCmd(resume);
+    EXPECT_EQ(r.code, 1) << r.output;
+    EXPECT_NE(r.output.find("joblog.txt: a symbolic link in the batch folder"), std::string::npos)
+        << r.output;
+    EXPECT_EQ(slurp(target), "not parallel's\n");
+    r = mrlocCmd("batch --collect " + dir);
+    EXPECT_EQ(r.code, 1) << r.output;
+    fs::remove(dir + "/joblog.txt");
+
+    fs::remove_all(dir + "/trials/p0");
+    fs::create_directory_symlink(elsewhere, dir + "/trials/p0");
+    r = mrlocCmd(resume);
+    EXPECT_EQ(r.code, 1) << r.output;
+    EXPECT_NE(r.output.find("trials/p0: a symbolic link"), std::string::npos) << r.output;
+    // a trial run alone (Slurm, a command list) checks its record's path itself
+    r = mrlocCmd("trial --batch " + dir + " --seed 1");
+    EXPECT_EQ(r.code, 1) << r.output;
+    EXPECT_NE(r.output.find("trials/p0: a symbolic link"), std::string::npos) << r.output;
+    EXPECT_TRUE(fs::is_empty(elsewhere));
+    fs::remove(dir + "/trials/p0");
+
+    // the folder's lock held by another process: --resume and --collect are refused
+    const int fd = ::open((base + "/.b.lock").c_str(), O_RDWR | O_CREAT, 0644);
+    ASSERT_GE(fd, 0);
+    ASSERT_EQ(::flock(fd, LOCK_EX | LOCK_NB), 0);
+    for (const std::string& args : {resume, "batch --collect " + dir, "report " + dir}) {
+        r = mrlocCmd(args);
+        EXPECT_EQ(r.code, 1) << args << ": " << r.output;
+        EXPECT_NE(r.output.find("in use by another mrloc process"), std::string::npos)
+            << args << ": " << r.output;
+    }
+    ::close(fd);
+    r = mrlocCmd(resume);
+    EXPECT_EQ(r.code, 0) << r.output;
+    EXPECT_EQ(trialRecord(dir, 0, 1)["seed"], 1);
 }

@@ -31,7 +31,7 @@ TEST(MrlocFormation, ObstacleRunKeepsEveryRobotOutOfTheSafetyZonesAndArrives) {
     const std::string out = tmp("formation_obstacles");
     const auto r = mrlocCmd("run " + config("formation_obstacles") + " -q --out " + out);
     ASSERT_EQ(r.code, 0) << r.output;
-    const auto m = common::loadJson(out + "/metrics.json");
+    const auto m = common::readJsonFile(out + "/metrics.json");
     const auto& f = m["formation"];
     EXPECT_EQ(f["state"], "arrived") << f.dump(2);
     // Measured: 18 moves (12 on the same route without the pillars: the detour costs 6).
@@ -177,7 +177,7 @@ TEST(MrlocFormation, PixelModeMarchIsSteeredByTheCamerasAndTheMidpointRuleBeatsT
     const std::string out = tmp("formation_pixel");
     const auto r = mrlocCmd("run " + config("formation_pixel") + " -q --out " + out);
     ASSERT_EQ(r.code, 0) << r.output;
-    const auto m = common::loadJson(out + "/metrics.json");
+    const auto m = common::readJsonFile(out + "/metrics.json");
     EXPECT_EQ(m["formation"]["state"], "arrived") << m.dump(2);
     EXPECT_EQ(m["formation"]["moves"], 11);
     EXPECT_EQ(m["formation"]["camera_lost_moves"], 0);
@@ -208,7 +208,7 @@ TEST(MrlocFormation, PixelModeMarchIsSteeredByTheCamerasAndTheMidpointRuleBeatsT
         ini = writeIniFrom(ini, "formation_pixel_far", "size       = 17 8 1", "size = 44 35 1");
         const std::string far = tmp("formation_pixel_far");
         ASSERT_EQ(mrlocCmd("run " + ini + " -q --out " + far).code, 0);
-        const auto j = common::loadJson(far + "/metrics.json")["formation"];
+        const auto j = common::readJsonFile(far + "/metrics.json")["formation"];
         EXPECT_EQ(j["camera_lost_moves"], 0) << j.dump(2);
         EXPECT_LT(j["final_error_m"].get<double>(), 0.1);
     }
@@ -237,7 +237,7 @@ TEST(MrlocFormation, PixelModeMarchIsSteeredByTheCamerasAndTheMidpointRuleBeatsT
         ini = writeIniFrom(ini, "formation_pixel_" + rule, "size       = 17 8 1", "size = 29 8 1");
         const std::string dir = tmp("formation_pixel_" + rule);
         EXPECT_EQ(mrlocCmd("run " + ini + " -q --out " + dir).code, 0);
-        const auto j = common::loadJson(dir + "/metrics.json")["formation"];
+        const auto j = common::readJsonFile(dir + "/metrics.json")["formation"];
         EXPECT_EQ(j["moves"], 25) << rule;
         return j["final_error_m"].get<double>();
     };
@@ -256,7 +256,7 @@ TEST(MrlocFormation, AMarchWhoseCamerasFindNoTagSaysSoInTheHeadline) {
     const std::string out = tmp("formation_blind");
     const auto r = mrlocCmd("run " + ini + " --out " + out);
     ASSERT_EQ(r.code, 0) << r.output;
-    const auto m = common::loadJson(out + "/metrics.json")["formation"];
+    const auto m = common::readJsonFile(out + "/metrics.json")["formation"];
     const int lost = m["camera_lost_moves"].get<int>();
     EXPECT_EQ(lost, m["moves"].get<int>()) << m.dump(2);
     EXPECT_NE(r.output.find(std::to_string(lost) + " moves lost the beacons and went on blind"),
@@ -271,7 +271,7 @@ TEST(MrlocFormation, PatrolRouteEndsWhereItStartsAndDeadReckoningDrivesAllOfIt) 
     const std::string out = tmp("formation_patrol");
     const auto r = mrlocCmd("run " + config("formation_patrol") + " -q --out " + out);
     ASSERT_EQ(r.code, 0) << r.output;
-    const auto f = common::loadJson(out + "/metrics.json")["formation"];
+    const auto f = common::readJsonFile(out + "/metrics.json")["formation"];
     EXPECT_EQ(f["state"], "arrived") << f.dump(2);
     EXPECT_EQ(f["moves"], 126);
     EXPECT_GT(f["dead_reckoning_readings"].get<int>(), 9000);

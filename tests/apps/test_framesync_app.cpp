@@ -44,7 +44,7 @@ TEST(MrlocFramesync, CorridorRunSharesTheFrameAndTheReportShowsThePapersMeasure)
     const std::string out = tmp("framesync_corridor");
     const auto r = mrlocCmd("run " + corridorIni("fs_corridor", 10, 4) + " -q --out " + out);
     ASSERT_EQ(r.code, 0) << r.output;
-    const auto m = common::loadJson(out + "/metrics.json");
+    const auto m = common::readJsonFile(out + "/metrics.json");
     const auto& f = m["framesync"];
     const double shared = f["end_relative_error_shared_m"],
                  odometry = f["end_relative_error_odometry_m"];
@@ -127,7 +127,7 @@ TEST(MrlocFramesync, WithoutSharingEveryRobotKeepsItsOdometry) {
                                          "[framesync]\nsharing = false");
     const std::string out = tmp("fs_off");
     ASSERT_EQ(mrlocCmd("run " + ini + " -q --out " + out).code, 0);
-    const auto f = common::loadJson(out + "/metrics.json")["framesync"];
+    const auto f = common::readJsonFile(out + "/metrics.json")["framesync"];
     EXPECT_EQ(f["redefinitions"], 0);
     EXPECT_GT(f["walls"].get<int>(), 50);  // walls are still found, only not shared
     EXPECT_DOUBLE_EQ(f["end_relative_error_shared_m"].get<double>(),
@@ -176,7 +176,7 @@ TEST(MrlocFramesync, SonarInMrptsOwnFormatRecordedElsewhereIsLocalized) {
     const std::string out = tmp("fs_other_out");
     const auto r = mrlocCmd("localize " + ini + " " + log + " -q --out " + out);
     ASSERT_EQ(r.code, 0) << r.output;
-    const auto f = common::loadJson(out + "/metrics.json")["framesync"];
+    const auto f = common::readJsonFile(out + "/metrics.json")["framesync"];
     EXPECT_GT(f["robots"]["robot"]["walls"].get<int>(), 40) << f.dump(2);
     EXPECT_EQ(f["redefinitions"], 0);  // alone: nobody to share with
     // in the robot's odometry frame (from (0, 0, 0) at the world's (1, 1.1), facing east),
@@ -201,7 +201,7 @@ TEST(MrlocFramesync, TeamOfFourSharesTheTopRobotsFrameWithoutLoops) {
     const std::string out = tmp("fs_team");
     const auto r = mrlocCmd("run " + ini + " -q --out " + out);
     ASSERT_EQ(r.code, 0) << r.output;
-    const auto f = common::loadJson(out + "/metrics.json")["framesync"];
+    const auto f = common::readJsonFile(out + "/metrics.json")["framesync"];
     const double shared = f["end_relative_error_shared_m"],
                  odometry = f["end_relative_error_odometry_m"];
     std::cout << "team: shared " << shared << " m, odometry " << odometry << " m\n";

@@ -93,7 +93,7 @@ TEST(FrontDoor, MrptGroundTruthIsPickedUpWhereMrptsAppsLook) {
     auto r = mrlocCmd("localize " + ini + " " + kMrptDatasets +
                       "/uwb_ro-localization_demo.rawlog -q --out " + out);
     ASSERT_EQ(r.code, 0) << r.output;
-    auto m = common::loadJson(out + "/metrics.json");
+    auto m = common::readJsonFile(out + "/metrics.json");
     EXPECT_TRUE(contains(m["ground_truth_from"].get<std::string>(),
                          "MRPT's [ro-localization] groundTruthFile"));
     // the same figures as with the hand-written [scenario] block of MrptData's test
@@ -107,14 +107,14 @@ TEST(FrontDoor, MrptGroundTruthIsPickedUpWhereMrptsAppsLook) {
     const std::string out1 = tmp("mrpt_copy1");
     r = mrlocCmd("localize " + ini + " " + folder + "/uwb.rawlog -q --out " + out1);
     ASSERT_EQ(r.code, 0) << r.output;
-    m = common::loadJson(testing::TempDir() + "/apps_mrpt_copy1/metrics.json");
+    m = common::readJsonFile(testing::TempDir() + "/apps_mrpt_copy1/metrics.json");
     EXPECT_FALSE(m.contains("ground_truth_from")) << m.dump();
     EXPECT_FALSE(m["ground_truth"].get<bool>());
     fs::copy_file(kMrptDatasets + "/uwb_ro-localization_demo_GT.txt", folder + "/uwb_GT.txt");
     const std::string out2 = tmp("mrpt_copy2");
     r = mrlocCmd("localize " + ini + " " + folder + "/uwb.rawlog -q --out " + out2);
     ASSERT_EQ(r.code, 0) << r.output;
-    m = common::loadJson(out2 + "/metrics.json");
+    m = common::readJsonFile(out2 + "/metrics.json");
     EXPECT_EQ(m["ground_truth_from"], "uwb_GT.txt beside the rawlog (MRPT's naming)");
     EXPECT_EQ(m["n"], 337);
     // the report says where the truth came from, and that the log was recorded elsewhere
@@ -166,7 +166,7 @@ TEST(FrontDoor, TheReportOpensWithWhatRanTheHeadlineAndProvenance) {
     EXPECT_LT(provenance, errors);
     EXPECT_TRUE(contains(page, "simulated by mrloc, seed 1"));
     EXPECT_TRUE(contains(page, "odometry alone RMSE (baseline)"));
-    const auto p = common::loadJson(out + "/provenance.json");
+    const auto p = common::readJsonFile(out + "/provenance.json");
     for (const char* key : {"date_utc", "commit", "mrpt_version", "cpu", "cores"})
         EXPECT_TRUE(p.contains(key)) << key;
     EXPECT_EQ(p["date_utc"].get<std::string>().size(), 19u);  // 2026-12-02 15:22:35
@@ -188,7 +188,7 @@ TEST(FrontDoor, TheIndexShowsEveryRunsHeadlineAndLinksItsReport) {
     EXPECT_TRUE(contains(page, "<a href='beacons/report.html'>beacons</a>")) << page;
     EXPECT_TRUE(contains(page, "<a href='polymap/report.html'>polymap</a>")) << page;
     // the beacons run's RMSE as metrics.json has it, to 3 digits
-    const auto m = common::loadJson(tour + "/beacons/metrics.json");
+    const auto m = common::readJsonFile(tour + "/beacons/metrics.json");
     char rmse[32];
     std::snprintf(rmse, sizeof rmse, "%.3g\u00a0m", m["rmse_m"].get<double>());  // no-break space
     EXPECT_TRUE(contains(page, rmse)) << rmse;

@@ -456,3 +456,79 @@ TEST(Import, BrokenBagsAreOneLineAndWriteNothing) {
 }
 
 }  // namespace
+
+// issue 51, items 7, 12 and 13: an import writes nothing mrloc would refuse (what localize
+// checks, checked as written), the truth is bounded where it enters, and names are names
+TEST(Import, WritesNothingLocalizeWouldRefuse) {
+    const std::string dir = tmp("import_bounds");
+    fs::create_directories(dir);
+    const std::string in = dir + "/in.txt", gt = dir + "/gt.txt", out = dir + "/o.rawlog";
+    std::string many = "odom2diff 0.1 0 0 0 0.1 0 0 0\n";
+    for (int i = 0; i < 1001; ++i)  // 1,001 anchors heard at one stamp: one observation
+        many += "range2 0.2 2.0 0.01 " + std::to_string(i) + " 0 " + std::to_string(i) + " 0\n";
+    std::ofstream(in) << many;
+    auto r = mrlocCmd("import librsf " + in + " --out " + out);
+    EXPECT_EQ(r.code, 1) << r.output;
+    EXPECT_NE(r.output.find(in + ":2: 1001 beacon ranges in one observation, more than the 1000"),
+              std::string::npos)
+        << r.output;
+    EXPECT_FALSE(fs::exists(out));
+
+    std::ofstream(in) << "range2 0.1 2.0 0.01 0 0 1 0\nodom2diff 0.1 0 0 0 0.1 0 0 0\n";
+    std::ofstream(gt) << "point2 0.1 0 0\npoint2 0.2 1e19 0\n";
+    r = mrlocCmd("import librsf " + in + " " + gt + " --out " + out);
+    EXPECT_EQ(r.code, 1) << r.output;
+    EXPECT_NE(r.output.find(gt + ":2: ground truth: position (1e+19, 0, 0) m is not within 1,000 km"),
+              std::string::npos)
+        << r.output;
+    EXPECT_FALSE(fs::exists(out));
+
+    r = mrlocCmd("import librsf " + in + " --out '" + dir + "/o\nx.rawlog'");
+    EXPECT_EQ(r.code, 1) << r.output;
+    EXPECT_NE(r.output.find("a control character (a newline?) in the name"), std::string::npos)
+        << r.output;
+    // the beacon map's comment gives a command a user may paste: its names quoted
+    r = mrlocCmd("import librsf " + in + " --out '" + dir + "/o $(touch PWNED).rawlog'");
+    ASSERT_EQ(r.code, 0) << r.output;
+    EXPECT_NE(slurp(dir + "/o $(touch PWNED).beacons.ini")
+                  .find("# mrloc localize 'o $(touch PWNED).beacons.ini' 'o $(touch "
+                        "PWNED).rawlog'\n"),
+              std::string::npos);
+}
+
+// issue 51, item 10: a /tf rotation never filled, (0, 0, 0, 0), is read as Odometry's is (no
+// rotation), not refused in MRPT's quaternion words; a rotation that is not a number is one line
+TEST(Import, RosbagTransformRotationsReadAsOdometrysAre) {
+    if (std::system("/usr/bin/python3 -c 'import rosbag, tf2_msgs.msg' 2>/dev/null") != 0)
+        GTEST_SKIP() << "Debian's python3-rosbag is not installed (scripts/install-deps.sh)";
+    const std::string dir = tmp("import_rosbag_tf");
+    fs::create_directories(dir);
+    std::ofstream(dir + "/make.py")
+        << "import sys, rosbag, rospy\n"
+           "from geometry_msgs.msg import TransformStamped\n"
+           "from tf2_msgs.msg import TFMessage\n"
+           "with rosbag.Bag(sys.argv[1], 'w') as bag:\n"
+           "    for k in range(3):\n"
+           "        t = TransformStamped()\n"
+           "        t.header.stamp = rospy.Time.from_sec(1000 + k)\n"
+           "        t.header.frame_id, t.child_frame_id = 'odom', 'base_link'\n"
+           "        t.transform.translation.x = 0.5 * k\n"
+           "        t.transform.rotation.w = float(sys.argv[2])\n"
+           "        bag.write('/tf', TFMessage(transforms=[t]), t.header.stamp)\n";
+    ASSERT_EQ(std::system(("/usr/bin/python3 " + dir + "/make.py " + dir + "/zero.bag 0").c_str()),
+              0);
+    ASSERT_EQ(std::system(("/usr/bin/python3 " + dir + "/make.py " + dir + "/nan.bag nan").c_str()),
+              0);
+    auto r = mrlocCmd("import rosbag " + dir + "/zero.bag --out " + dir + "/z.rawlog");
+    ASSERT_EQ(r.code, 0) << r.output;
+    EXPECT_NE(r.output.find("robot.tf_odometry    mrpt::obs::CObservationOdometry            3"),
+              std::string::npos)
+        << r.output;
+    r = mrlocCmd("import rosbag " + dir + "/nan.bag --out " + dir + "/n.rawlog");
+    EXPECT_EQ(r.code, 1) << r.output;
+    EXPECT_NE(r.output.find("nan.bag: /tf: a transform with a value that is not a number"),
+              std::string::npos)
+        << r.output;
+    EXPECT_EQ(std::count(r.output.begin(), r.output.end(), '\n'), 1) << r.output;
+    EXPECT_FALSE(fs::exists(dir + "/n.rawlog"));
+}

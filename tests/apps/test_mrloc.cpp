@@ -44,7 +44,7 @@ TEST(MrlocRun, QuickstartEndToEndWithinBound) {
     const std::string out = tmp("run");
     const auto r = mrlocCmd("run " + quickstart() + " --out " + out + " --quiet");
     ASSERT_EQ(r.code, 0) << r.output;
-    const auto m = common::loadJson(out + "/metrics.json");
+    const auto m = common::readJsonFile(out + "/metrics.json");
     // Four active ceiling beacons, 1 cm range noise, 2 % late echoes, 2 % dropouts, a
     // pillar, and the link's trigger delay (ranges 2-4 m away read 1-4 cm long), which the
     // tracker estimates online (per-beacon offsets and a common scale). Measured: RMSE
@@ -194,7 +194,7 @@ TEST(MrlocLocalize, ForeignRawlogInActionsSensoryFrameFormat) {
            "[beacons]\nrange_sigma = 0.01\n";
     const auto r = mrlocCmd("localize " + dir + "/mrpt.ini " + dst + " -q --out " + dir + "/out");
     ASSERT_EQ(r.code, 0) << r.output;
-    const auto m = common::loadJson(dir + "/out/metrics.json");
+    const auto m = common::readJsonFile(dir + "/out/metrics.json");
     EXPECT_EQ(m["rawlog_format"], "actions+sensory-frames");
     EXPECT_TRUE(m["robots"].contains("robot"));
     EXPECT_LT(m["rmse_m"].get<double>(), 0.04) << m.dump(2);
@@ -348,7 +348,7 @@ TEST(MrlocErrors, RangesFromBeaconsNotInTheMapAreAWarningAndTheHeadlineKeepsOdom
     EXPECT_NE(r.output.find("warning: beacons: 292 ranges from beacons not in the map (of 1164"),
               std::string::npos)
         << r.output;
-    const auto m = common::loadJson(out + "/metrics.json");
+    const auto m = common::readJsonFile(out + "/metrics.json");
     ASSERT_EQ(m["warnings"].size(), 1u);
     EXPECT_EQ(m["use"]["seen"], 1164);
     EXPECT_EQ(m["use"]["used"], 872);
@@ -410,7 +410,7 @@ TEST(MrlocCli, ARunIntoAUsedFolderLeavesNoStaleOutputsAndKeepsTheUsersFiles) {
         EXPECT_FALSE(fs::exists(dir + gone)) << gone;
     EXPECT_TRUE(fs::exists(dir + "/estimates.medium.txt"));
     EXPECT_EQ(slurp(dir + "/notes.txt"), "mine\n");  // not mrloc's: kept
-    const auto p = common::loadJson(dir + "/provenance.json");
+    const auto p = common::readJsonFile(dir + "/provenance.json");
     EXPECT_EQ(p["outputs"]["run"].size(), 19u) << p.dump(2);  // 2 robots x 5 + 9
 }
 
@@ -422,7 +422,7 @@ TEST(MrlocCli, ARunIntoAUsedFolderLeavesNoStaleOutputsAndKeepsTheUsersFiles) {
 TEST(MrlocRun, ThirtyPercentBadRangesNeverLoseTheTrack) {
     const std::string out = tmp("bad_ranges");
     ASSERT_EQ(mrlocCmd("run " + config("beacons_bad_ranges") + " -q --out " + out).code, 0);
-    const auto m = common::loadJson(out + "/metrics.json");
+    const auto m = common::readJsonFile(out + "/metrics.json");
     EXPECT_LT(m["rmse_m"].get<double>(), 0.010) << m.dump(2);
     EXPECT_LT(m["max_m"].get<double>(), 0.040) << m.dump(2);
     EXPECT_GT(m["beacons"]["ranges_gated"].get<int>(), 250);  // the long ones were refused
@@ -479,7 +479,7 @@ TEST(MrlocRun, BeaconReportsShowTheDistanceBetweenFixesPerScheduling) {
                   std::string::npos);
         // the reception rate is of the shots fired; "fixes" is one thing in metrics.json
         EXPECT_NE(page.find("a reception rate of"), std::string::npos);
-        const auto b = common::loadJson(out + "/metrics.json")["beacons"];
+        const auto b = common::readJsonFile(out + "/metrics.json")["beacons"];
         EXPECT_FALSE(b.contains("reception_rate"));
         EXPECT_FALSE(b.contains("fixes"));
         EXPECT_TRUE(b.contains("multilateration_fixes"));

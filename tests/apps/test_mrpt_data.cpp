@@ -181,7 +181,7 @@ TEST(MrptData, RangeOnlyInisRunUnchangedWithRealTimes) {
                             "their sensory frame's time"),
               std::string::npos)
         << r.output;
-    EXPECT_EQ(common::loadJson(out + "/metrics.json")["restamped_observations"]["(no label)"], 339);
+    EXPECT_EQ(common::readJsonFile(out + "/metrics.json")["restamped_observations"]["(no label)"], 339);
 }
 
 TEST(MrptData, OtherProgramsSectionsAreLeftAloneAndMisspeltOnesOfOursCaught) {
@@ -229,7 +229,7 @@ TEST(MrptData, UwbDemoAgainstItsGroundTruthFile) {
     const auto r = mrlocCmd("localize " + ini + " " + kDatasets +
                             "/uwb_ro-localization_demo.rawlog -q --out " + out);
     ASSERT_EQ(r.code, 0) << r.output;
-    const auto m = common::loadJson(out + "/metrics.json");
+    const auto m = common::readJsonFile(out + "/metrics.json");
     EXPECT_TRUE(m["ground_truth"].get<bool>());
     // Measured: the range tracker 0.266 m RMSE over 337 estimates with the INI's own range
     // noise (beaconRangesStd = 0.17 m; 0.357 m with our default 0.03 m), odometry alone

@@ -98,7 +98,7 @@ void classify(const std::string& ini, const std::string& rawlog, const std::stri
         return;
     }
     ASSERT_EQ(r.code, 0) << what << ": neither one line nor a run: " << r.output;
-    const auto m = common::loadJson(out + "/metrics.json");
+    const auto m = common::readJsonFile(out + "/metrics.json");
     // no NaN in what was written (covariance files say nan for terms a method has none of)
     for (const auto& e : fs::directory_iterator(out))
         if (e.path().filename().string().rfind("estimates.", 0) == 0) {

@@ -21,7 +21,7 @@ TEST(MrlocOmnivision, FiveRobotsFromRenderedPanoramas) {
     const std::string out = tmp("omni5");
     const auto r = mrlocCmd("run " + config("omnivision_5robots") + " -q --out " + out);
     ASSERT_EQ(r.code, 0) << r.output;
-    const auto m = common::loadJson(out + "/metrics.json");
+    const auto m = common::readJsonFile(out + "/metrics.json");
     const auto& o = m["omnivision"];
     EXPECT_EQ(o["camera"], "render");
     EXPECT_EQ(o["pair"], "A B") << o.dump(2);
@@ -141,7 +141,7 @@ TEST(MrlocOmnivision, SwarmOfThirty) {
     const std::string out = tmp("omniswarm");
     const auto r = mrlocCmd("run " + config("omnivision_swarm") + " -q --out " + out);
     ASSERT_EQ(r.code, 0) << r.output;
-    const auto m = common::loadJson(out + "/metrics.json");
+    const auto m = common::readJsonFile(out + "/metrics.json");
     const auto& o = m["omnivision"];
     EXPECT_EQ(o["robots"], 30);
     EXPECT_TRUE(o["restarts"].empty()) << o.dump(2);
@@ -166,7 +166,7 @@ TEST(MrlocOmnivision, SwarmOfAHundredBehindEachOthersBands) {
     const std::string out = tmp("omniswarm100");
     const auto r = mrlocCmd("run " + config("omnivision_swarm100") + " -q --out " + out);
     ASSERT_EQ(r.code, 0) << r.output;
-    const auto m = common::loadJson(out + "/metrics.json");
+    const auto m = common::readJsonFile(out + "/metrics.json");
     const auto& o = m["omnivision"];
     EXPECT_EQ(o["robots"], 100);
     EXPECT_LE(o["snapshots"]["t_e"]["unresolved"].size(), 10u);
@@ -190,7 +190,7 @@ TEST(MrlocOmnivision, SwarmOfAHundredRenderedFromPixels) {
     const std::string out = tmp("omniswarm100r");
     const auto r = mrlocCmd("run " + config("omnivision_swarm100_rendered") + " -q --out " + out);
     ASSERT_EQ(r.code, 0) << r.output;
-    const auto m = common::loadJson(out + "/metrics.json");
+    const auto m = common::readJsonFile(out + "/metrics.json");
     const auto& o = m["omnivision"];
     EXPECT_EQ(o["robots"], 100);
     EXPECT_EQ(m["headline"]["status"], "every robot identified") << m["headline"].dump(2);
@@ -210,7 +210,7 @@ TEST(MrlocOmnivision, LocalizedSearchAtTbGivesThePapersSolution) {
     const std::string out = tmp("omnilocal");
     const auto r = mrlocCmd("run " + ini + " -q --out " + out);
     ASSERT_EQ(r.code, 0) << r.output;
-    const auto m = common::loadJson(out + "/metrics.json");
+    const auto m = common::readJsonFile(out + "/metrics.json");
     const auto& o = m["omnivision"];
     EXPECT_EQ(o["search_at_tb"], "localized");
     EXPECT_EQ(o["snapshots"]["t_b"]["search"], "localized");
@@ -238,7 +238,7 @@ TEST(MrlocOmnivision, ConventionalMethodAndByteIdenticalRepeats) {
         const std::string out = tmp("omniconv" + std::to_string(i));
         const auto r = mrlocCmd("run " + ini + " -q --out " + out);
         ASSERT_EQ(r.code, 0) << r.output;
-        const auto m = common::loadJson(out + "/metrics.json");
+        const auto m = common::readJsonFile(out + "/metrics.json");
         EXPECT_EQ(m["omnivision"]["method"], "conventional");
         EXPECT_LT(m["omnivision"]["relative_distance_error_refined"]["median"].get<double>(), 0.01);
         const std::string both =

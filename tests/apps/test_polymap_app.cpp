@@ -21,7 +21,7 @@ TEST(MrlocPolymap, StepsMapRunFindsTwelveHypothesesWithTheTruthAmongThem) {
     const std::string out = tmp("polymap_steps");
     const auto r = mrlocCmd("run " + config("polymap_steps") + " -q --out " + out);
     ASSERT_EQ(r.code, 0) << r.output;
-    const auto m = common::loadJson(out + "/metrics.json");
+    const auto m = common::readJsonFile(out + "/metrics.json");
     const auto& p = m["polymap"];
     EXPECT_EQ(p["map_vertices"], 148);
     EXPECT_EQ(p["robots"]["r1"]["hypotheses"], 12) << p.dump(2);
@@ -47,7 +47,7 @@ TEST(MrlocPolymap, MapFileRunWithTwoRoomsAndByteIdenticalRepeats) {
         const std::string out = tmp("polymap_file" + std::to_string(i));
         const auto r = mrlocCmd("run " + config("polymap_file") + " -q --out " + out);
         ASSERT_EQ(r.code, 0) << r.output;
-        const auto m = common::loadJson(out + "/metrics.json");
+        const auto m = common::readJsonFile(out + "/metrics.json");
         EXPECT_EQ(m["polymap"]["robots"]["r1"]["hypotheses"], 2) << m.dump(2);
         EXPECT_TRUE(m["robots"]["r1"]["truth_in_hypotheses"].get<bool>());
         const std::string both =
@@ -247,7 +247,7 @@ TEST(MrlocPolymap, DrivingRobotEliminatesAndLocalizeReplaysIt) {
     const std::string out = tmp("polymap_drive76");
     const auto r = mrlocCmd("run " + config("polymap_steps76") + " -q --out " + out);
     ASSERT_EQ(r.code, 0) << r.output;
-    const auto m = common::loadJson(out + "/metrics.json");
+    const auto m = common::readJsonFile(out + "/metrics.json");
     const auto& e = m["polymap"]["robots"]["r1"]["elimination"];
     EXPECT_TRUE(e["localized"].get<bool>()) << e.dump();
     EXPECT_EQ(e["left"], 1);
@@ -282,7 +282,7 @@ TEST(MrlocPolymap, DrivingWithEveryAlgorithmFromTwoStarts) {
             const std::string out = tmp(std::string("polymap_drive_") + strategy);
             const auto r = mrlocCmd("run " + ini + " -q --out " + out);
             ASSERT_EQ(r.code, 0) << r.output;
-            const auto m = common::loadJson(out + "/metrics.json");
+            const auto m = common::readJsonFile(out + "/metrics.json");
             EXPECT_TRUE(m["polymap"]["robots"]["r1"]["elimination"]["localized"].get<bool>())
                 << strategy << " start " << site;
             EXPECT_LT(m["rmse_m"].get<double>(), 0.002) << strategy << " start " << site;
@@ -302,7 +302,7 @@ TEST(MrlocPolymap, AFastRobotWithLongStepsIsFoundAtItsProbes) {
     const std::string out = tmp("polymap_fast");
     const auto r = mrlocCmd("run " + ini + " -q --out " + out);
     ASSERT_EQ(r.code, 0) << r.output;
-    const auto m = common::loadJson(out + "/metrics.json");
+    const auto m = common::readJsonFile(out + "/metrics.json");
     const auto& e = m["polymap"]["robots"]["r1"]["elimination"];
     EXPECT_TRUE(e["localized"].get<bool>()) << e.dump();
     EXPECT_EQ(e["left"], 1);
@@ -351,7 +351,7 @@ RoomsRun runDrivingRooms(const std::string& name, const std::string& strategy, i
  *  `rmse` m of the truth. */
 void expectLocalized(const std::string& out, const std::string& strategy, double travel,
                      double rmse) {
-    const auto m = common::loadJson(out + "/metrics.json");
+    const auto m = common::readJsonFile(out + "/metrics.json");
     const auto& e = m["polymap"]["robots"]["r1"]["elimination"];
     EXPECT_TRUE(e["localized"].get<bool>()) << strategy << " " << e.dump();
     EXPECT_LT(e["travel_m"].get<double>(), travel) << strategy;
@@ -383,7 +383,7 @@ TEST(MrlocPolymap, IdenticalRoomsBehindNarrowPassagesSayWhy) {
     EXPECT_EQ(r.code, 3) << r.output;
     EXPECT_NE(r.output.find("no probe separates the 2 hypotheses left"), std::string::npos)
         << r.output;
-    const auto m = common::loadJson(out + "/metrics.json");
+    const auto m = common::readJsonFile(out + "/metrics.json");
     EXPECT_FALSE(m["polymap"]["robots"]["r1"]["elimination"]["localized"].get<bool>());
     EXPECT_EQ(m["polymap"]["robots"]["r1"]["elimination"]["left"], 2);
 }
@@ -439,7 +439,7 @@ TEST(MrlocPolymap, RoomsWithPillarsLocalizeFromAGeneratedMapAndFromItsPolyFile) 
     const std::string fromFile = tmp("polymap_pillars_file");
     const auto r = mrlocCmd("run " + ini + " -q --out " + fromFile);
     ASSERT_EQ(r.code, 0) << r.output;
-    const auto m = common::loadJson(fromFile + "/metrics.json");
+    const auto m = common::readJsonFile(fromFile + "/metrics.json");
     EXPECT_TRUE(m["polymap"]["robots"]["r1"]["elimination"]["localized"].get<bool>());
     EXPECT_EQ(m["polymap"]["robots"]["r1"]["hypotheses"].get<int>(), 3);
     EXPECT_LT(m["rmse_m"].get<double>(), 0.005);

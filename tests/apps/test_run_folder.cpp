@@ -152,7 +152,7 @@ TEST(RunFolder, ASecondMrlocOnTheSameFolderIsRefused) {
     // the folder is the first run's alone
     EXPECT_TRUE(fs::exists(out + "/busy.rawlog"));
     EXPECT_FALSE(fs::exists(out + "/polymap_steps.rawlog"));
-    EXPECT_EQ(common::loadJson(out + "/metrics.json")["method"], "beacons");
+    EXPECT_EQ(common::readJsonFile(out + "/metrics.json")["method"], "beacons");
     EXPECT_TRUE(leftBeside(out).empty());  // the lock released and removed
 }
 
@@ -198,7 +198,7 @@ TEST(RunFolder, ACraftedProvenanceOrSymlinksReachNothingOutsideTheFolder) {
     std::ofstream(out + "/notes.txt") << "the user's\n";
     // provenance.json as a stranger might send it: names outside the folder, a link, a file
     // of the user's with a forged hash
-    auto p = common::loadJson(out + "/provenance.json");
+    auto p = common::readJsonFile(out + "/provenance.json");
     auto& outputs = p["outputs"]["run"];
     outputs["../outside.txt"] = common::sha1OfFile(outside);
     outputs[outside] = common::sha1OfFile(outside);
@@ -234,7 +234,7 @@ TEST(RunFolder, ACraftedProvenanceOrSymlinksReachNothingOutsideTheFolder) {
         }
     EXPECT_NE(r.output.find("left out of the new run"), std::string::npos) << r.output;
     // the outputs recorded are the run's own names, each with its content's hash
-    const auto now = common::loadJson(out + "/provenance.json")["outputs"]["run"];
+    const auto now = common::readJsonFile(out + "/provenance.json")["outputs"]["run"];
     EXPECT_FALSE(now.contains("../outside.txt"));
     EXPECT_EQ(now["metrics.json"], common::sha1OfFile(out + "/metrics.json"));
 }

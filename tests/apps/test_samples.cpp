@@ -56,7 +56,7 @@ TEST(Samples, EachLocalizesWithItsIniToItsHeadline) {
         const auto r = mrlocCmd("localize " + config(s.ini) + " " + sample(s.ini + ".rawlog") +
                                 " -q --out " + out);
         ASSERT_EQ(r.code, 0) << r.output;
-        const auto m = common::loadJson(out + "/metrics.json");
+        const auto m = common::readJsonFile(out + "/metrics.json");
         EXPECT_GT(m["use"]["used"].get<size_t>(), 0u);
         EXPECT_TRUE(m["headline"]["reached"].get<bool>()) << m["headline"].dump();
         EXPECT_TRUE(m["ground_truth"].get<bool>()) << "the truth beside the sample was not read";

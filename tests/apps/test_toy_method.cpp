@@ -178,7 +178,7 @@ TEST(ToyMethod, PlugsInThroughTheRegistryAlone) {
     ASSERT_EQ(runMrloc(registry, {"run", dir + "/toy.ini", "--out", dir + "/run", "-q"}), 0);
 
     // Localized: the sensed positions are the truth at the same instants.
-    const auto m = common::loadJson(dir + "/run/metrics.json");
+    const auto m = common::readJsonFile(dir + "/run/metrics.json");
     EXPECT_EQ(m["method"], "toy");
     EXPECT_EQ(m["robots"]["r1"]["estimates"], 25);  // 12 s at 2 Hz, both ends
     EXPECT_LT(m["max_m"].get<double>(), 1e-6);      // float storage of the readings

@@ -98,3 +98,35 @@ TEST(Covariances, TextFormatRoundTripsExactlyWithUnknownTerms) {
     std::ofstream(path) << "1 2 3\n";
     EXPECT_THROW(common::loadCovariances(path), Error);  // 3 fields for 7, named
 }
+
+// issue 51, item 7: a truth (or estimate) of 1e19 m was an "RMSE" of 3.8e17 m, exit 0; every
+// trajectory is bounded where it enters (common::checkTrajectoryPose), in each format
+TEST(GroundTruthFile, ValuesBeyondTheBoundsAreRefusedAtTheirLine) {
+    const std::string dir = testing::TempDir();
+    const auto errorOf = [](const GroundTruthSource& s, size_t n) {
+        try {
+            common::loadGroundTruth(s, steps(n));
+        } catch (const Error& e) {
+            return std::string(e.what());
+        }
+        return std::string();
+    };
+    GroundTruthSource tum;
+    tum.path = dir + "/gt_far.txt";
+    tum.format = "tum";
+    std::ofstream(tum.path) << "1000 0 0 0 0 0 0 1\n1000.5 1e19 0 0 0 0 0 1\n";
+    EXPECT_EQ(errorOf(tum, 2), "trajectory " + tum.path +
+                                   ":2: position (1e+19, 0, 0) m is not within 1,000 km of the "
+                                   "origin");
+    std::ofstream(tum.path) << "1000 999999 -999999 0 0 0 0 1\n";  // just inside: read
+    EXPECT_EQ(errorOf(tum, 1), "");
+    std::ofstream(tum.path) << "1e12 0 0 0 0 0 0 1\n";
+    EXPECT_EQ(errorOf(tum, 1), "trajectory " + tum.path + ":1: time 1e+12 s is not within +/-1e11 s");
+    GroundTruthSource indexed;
+    indexed.path = dir + "/gt_far_indexed.txt";
+    indexed.format = "index_x_y_phi";
+    std::ofstream(indexed.path) << "0 0 0 0\n1 0 -2e6 0\n";
+    EXPECT_EQ(errorOf(indexed, 2), indexed.path +
+                                       ":2: position (0, -2e+06, 0) m is not within 1,000 km of "
+                                       "the origin");
+}

@@ -1,4 +1,4 @@
-// common::Polygon: validation, orientation, .poly I/O and the predicates.
+// mrloc::common::Polygon: validation, orientation, .poly I/O and the predicates.
 #include <gtest/gtest.h>
 #include <mrloc/common/Error.h>
 #include <mrloc/common/ExactPredicates.h>
@@ -234,7 +234,7 @@ TEST(Polygon, RingsAreValidatedTogether) {
     for (size_t r = 1; r < P.ringCount(); ++r) {
         double twice = 0;
         for (size_t i = P.ringBegin(r); i < P.ringEnd(r); ++i)
-            twice += common::cross(P[i], P[P.next(i)]);
+            twice += mrloc::common::cross(P[i], P[P.next(i)]);
         EXPECT_LT(twice, 0) << "ring " << r;
     }
     // the edges' sweep sees every ring: a pillar crossing the outer wall is refused even

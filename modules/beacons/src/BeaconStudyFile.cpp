@@ -1,4 +1,5 @@
 #include <mrloc/beacons/BeaconStudyFile.h>
+#include <mrloc/common/JsonFile.h>
 #include <mrloc/common/Error.h>
 #include <mrloc/common/Progress.h>
 #include <mrpt/core/bits_math.h>
@@ -101,11 +102,11 @@ void BeaconStudyFile::write(const std::string& dir) const {
 
 BeaconStudyFile BeaconStudyFile::read(const std::string& dir) {
     const std::string p = path(dir);
-    std::ifstream f(p);
-    if (!f) throw Error(p + ": cannot read");
+    // the study of seed 001's largest grids writes under 1 MB: 16 MiB bounds what a hostile
+    // file can make the report hold
+    const json j = common::readJsonFile(p, {16u << 20, 16});
     BeaconStudyFile out;
     try {
-        const json j = json::parse(f);
         out.method = j.at("method").get<std::string>();
         out.roomX = j.at("room_m").at(0).get<double>();
         out.roomY = j.at("room_m").at(1).get<double>();
@@ -163,7 +164,7 @@ BeaconStudyFile BeaconStudyFile::read(const std::string& dir) {
             out.agents.push_back(r);
         }
     } catch (const json::exception& e) {
-        throw Error(p + ": not a beacon study file (" + e.what() + ")");
+        throw Error(p + ": not a beacon study file (" + oneLine(e.what()) + ")");
     }
     return out;
 }

@@ -19,7 +19,7 @@ Trajectory loadGroundTruth(const GroundTruthSource& source, const std::vector<do
         for (auto p : loadTum(source.path)) out.push_back({p.t, source.offset + p.pose});
         return out;
     }
-    checkReadableFile(source.path, "ground truth", 1u << 30);
+    checkReadableFile(source.path, "ground truth", TrajectoryLimits::kMaxBytes);
     std::ifstream in(source.path);
     if (!in) throw Error("ground truth " + source.path + ": cannot open");
     const bool indexed = source.format == "index_x_y_phi";
@@ -50,6 +50,11 @@ Trajectory loadGroundTruth(const GroundTruthSource& source, const std::vector<do
             throw Error(source.path + ":" + std::to_string(lineNo) + ": the step index " +
                         std::to_string(step) + " is not a whole number");
         if (size_t(step) >= stepTimes.size()) continue;  // past the log's last step
+        checkTrajectoryPose(stepTimes[size_t(step)], v[indexed ? 1 : 0], v[indexed ? 2 : 1],
+                            indexed ? 0.0 : v[2], source.path + ":" + std::to_string(lineNo));
+        if (out.size() >= TrajectoryLimits::kMaxPoses)
+            throw Error(source.path + ":" + std::to_string(lineNo) +
+                        ": more than 2,000,000 poses in one trajectory");
         const mrpt::poses::CPose3D pose =
             indexed ? mrpt::poses::CPose3D(v[1], v[2], 0, v[3], 0, 0)
                     : mrpt::poses::CPose3D(v[0], v[1], v[2], v[3], v[4], v[5]);

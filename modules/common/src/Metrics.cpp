@@ -4,7 +4,6 @@
 
 #include <algorithm>
 #include <cmath>
-#include <fstream>
 
 namespace mrloc::common {
 
@@ -59,15 +58,43 @@ void saveJson(const std::string& path, const nlohmann::json& j) {
                         j.dump(2, ' ', false, nlohmann::json::error_handler_t::replace) + "\n");
 }
 
-nlohmann::json loadJson(const std::string& path) {
-    checkReadableFile(path, "JSON file", 64u << 20);  // a run's files are far smaller
-    std::ifstream in(path);
-    if (!in) throw Error(path + ": cannot open");
-    try {
-        return nlohmann::json::parse(in);
-    } catch (const std::exception& e) {
-        throw Error(path + ": not valid JSON: " + e.what());
-    }
+nlohmann::json readMetricsFile(const std::string& path) {
+    auto j = readJsonFile(path);
+    using T = JsonType;
+    checkJsonShape(j,
+                   {{"/method", T::String},
+                    {"/rawlog", T::String},
+                    {"/rawlog_format", T::String},
+                    {"/ground_truth_from", T::String},
+                    {"/robots", T::Object},
+                    {"/warnings", T::Array},
+                    {"/headline", T::Object},
+                    {"/headline/reached", T::Boolean},
+                    {"/headline/failed", T::Boolean},
+                    {"/headline/status", T::String},
+                    {"/headline/figures", T::Array}},
+                   path);
+    if (j.contains("robots"))
+        for (const auto& [robot, r] : j["robots"].items())
+            if (!r.is_object())
+                throw Error(path + ": /robots/" + robot + " is not an object (a robot's errors)");
+    return j;
+}
+
+nlohmann::json readProvenanceFile(const std::string& path) {
+    // mrloc's own is a few kB; its outputs list grows with a run's files (at most 100,000)
+    auto j = readJsonFile(path, {16u << 20, JsonLimits{}.maxDepth});
+    using T = JsonType;
+    checkJsonShape(j,
+                   {{"/ini", T::String},
+                    {"/seed", T::Number},
+                    {"/version", T::String},
+                    {"/steps", T::Object},
+                    {"/outputs", T::Object},
+                    {"/simulated", T::Boolean},
+                    {"/date_utc", T::String}},
+                   path);
+    return j;
 }
 
 }  // namespace mrloc::common

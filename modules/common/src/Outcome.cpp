@@ -39,7 +39,7 @@ Headline headlineFromJson(const nlohmann::json& j, const std::string& where) {
         throw Error(where + ": headline: not an object with 'reached' and 'figures'");
     Headline h;
     h.reached = j["reached"].get<bool>();
-    h.failed = j.value("failed", false) == true;
+    h.failed = j.contains("failed") && j["failed"].is_boolean() && j["failed"].get<bool>();
     h.status = text(j, "status");
     for (const auto& fj : j["figures"]) {
         if (!fj.is_object()) throw Error(where + ": headline.figures: not an object");
@@ -48,7 +48,7 @@ Headline headlineFromJson(const nlohmann::json& j, const std::string& where) {
         f.unit = text(fj, "unit");
         f.paper = text(fj, "paper");
         f.differs = text(fj, "differs");
-        f.baseline = fj.value("baseline", false);
+        f.baseline = fj.contains("baseline") && fj["baseline"].is_boolean() && fj["baseline"].get<bool>();
         if (fj.contains("value") && fj["value"].is_number()) f.value = fj["value"].get<double>();
         h.figures.push_back(std::move(f));
     }

@@ -2,6 +2,7 @@
 #include <fcntl.h>
 #include <mrloc/common/AtomicFile.h>
 #include <mrloc/common/Error.h>
+#include <mrloc/common/FolderLock.h>
 #include <mrloc/common/Metrics.h>
 #include <mrloc/common/RunTransaction.h>
 #include <signal.h>
@@ -77,12 +78,21 @@ void removeTreeAt(int dirFd, const char* name, int depth) {
 
 void removeTree(const char* path) { removeTreeAt(AT_FDCWD, path, 0); }
 
+/** The temporaries held by holdTemporaryOnSignal, in fixed slots for the same reason. */
+struct LiveTemporary {
+    std::atomic<int> state{0};  // 0 free, 1 being filled, 2 live
+    char path[4096];
+};
+LiveTemporary g_temporaries[kTemporarySlots];
+
 extern "C" void removeStagingAndExit(int sig) {
     for (auto& t : g_live)
         if (t.state.load() == 2) {
             removeTree(t.staging);
             ::unlink(t.lock);
         }
+    for (auto& t : g_temporaries)
+        if (t.state.load() == 2) removeTree(t.path);
     _exit(128 + sig);
 }
 
@@ -127,30 +137,25 @@ std::optional<struct stat> entryStatus(const std::string& path) {
     return st;
 }
 
-/** Takes the lock file, refusing (not waiting) when another process holds it. The file is
- *  checked to be the one at `path` after locking: a holder that just finished unlinks it. */
-int takeLock(const std::string& path, const std::string& folder) {
-    for (int attempt = 0; attempt < 8; ++attempt) {
-        const int fd = ::open(path.c_str(), O_RDWR | O_CREAT | O_NOFOLLOW | O_CLOEXEC, 0644);
-        if (fd < 0)
-            throw Error("run folder " + folder + ": cannot create its lock " + path + ": " +
-                        std::strerror(errno));
-        if (::flock(fd, LOCK_EX | LOCK_NB) != 0) {
-            ::close(fd);
-            throw Error("run folder " + folder + ": in use by another mrloc process (its lock " +
-                        path + " is held); wait for it or choose another --out");
+}  // namespace
+
+int holdTemporaryOnSignal(const std::string& path) {
+    const std::string abs = fs::absolute(path).string();  // the handler runs in any folder
+    if (abs.size() >= sizeof g_temporaries[0].path) return -1;
+    for (int i = 0; i < kTemporarySlots; ++i) {
+        int expected = 0;
+        if (g_temporaries[i].state.compare_exchange_strong(expected, 1)) {
+            std::memcpy(g_temporaries[i].path, abs.c_str(), abs.size() + 1);
+            g_temporaries[i].state.store(2);
+            return i;
         }
-        struct stat held {
-        }, now{};
-        if (::fstat(fd, &held) == 0 && ::lstat(path.c_str(), &now) == 0 &&
-            held.st_ino == now.st_ino && held.st_dev == now.st_dev)
-            return fd;
-        ::close(fd);  // unlinked by its last holder meanwhile: take the new one
     }
-    throw Error("run folder " + folder + ": cannot take its lock " + path);
+    return -1;
 }
 
-}  // namespace
+void releaseTemporaryOnSignal(int slot) {
+    if (slot >= 0 && slot < kTemporarySlots) g_temporaries[slot].state.store(0);
+}
 
 void installSignalCleanup() {
     struct sigaction action {};
@@ -216,9 +221,9 @@ RunTransaction::RunTransaction(const std::string& folder, const std::string& ste
     std::error_code ec;
     fs::create_directories(parent, ec);
     if (ec) throw Error("cannot create folder " + parent.string() + ": " + ec.message());
-    lockPath_ = (parent / ("." + name + ".lock")).string();
+    lockPath_ = folderLockPath(absFolder_);
     staging_ = (parent / ("." + name + ".staging." + std::to_string(::getpid()))).string();
-    lockFd_ = takeLock(lockPath_, folder_);
+    lockFd_ = takeFolderLock(lockPath_, folder_);
     try {
         // What an earlier run left when it was killed: its staging folder, or the previous
         // run set aside during a swap (put back when the folder itself is missing).
@@ -327,7 +332,7 @@ std::vector<std::string> RunTransaction::written() const {
 void RunTransaction::recordOutputs() {
     const std::string path = staging_ + "/provenance.json";
     if (!fs::is_regular_file(fs::symlink_status(path))) return;
-    auto p = loadJson(path);
+    auto p = readProvenanceFile(path);
     if (!p.is_object()) throw Error(folder_ + "/provenance.json: not a JSON object");
     std::map<std::string, std::string> now;
     for (const auto& n : written())

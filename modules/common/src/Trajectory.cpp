@@ -33,8 +33,17 @@ void saveTum(const std::string& path, const Trajectory& traj) {
     writeFileAtomically(path, out);
 }
 
+void checkTrajectoryPose(double t, double x, double y, double z, const std::string& where) {
+    if (!std::isfinite(t) || std::abs(t) > TrajectoryLimits::kMaxTime)
+        throw Error(where + ": time " + mrpt::format("%g", t) + " s is not within +/-1e11 s");
+    for (const double v : {x, y, z})
+        if (!std::isfinite(v) || std::abs(v) > TrajectoryLimits::kMaxCoordinate)
+            throw Error(where + ": position (" + mrpt::format("%g, %g, %g", x, y, z) +
+                        ") m is not within 1,000 km of the origin");
+}
+
 Trajectory loadTum(const std::string& path) {
-    checkReadableFile(path, "trajectory", 1u << 30);
+    checkReadableFile(path, "trajectory", TrajectoryLimits::kMaxBytes);
     std::ifstream in(path);
     if (!in) throw Error("trajectory " + path + ": cannot open");
     Trajectory traj;
@@ -49,6 +58,10 @@ Trajectory loadTum(const std::string& path) {
                 throw Error("trajectory " + path + ":" + std::to_string(lineNo) +
                             ": expected 't x y z qx qy qz qw'");
         }
+        const std::string where = "trajectory " + path + ":" + std::to_string(lineNo);
+        checkTrajectoryPose(v[0], v[1], v[2], v[3], where);
+        if (traj.size() >= TrajectoryLimits::kMaxPoses)
+            throw Error(where + ": more than 2,000,000 poses in one trajectory");
         mrpt::math::CQuaternionDouble q(v[7], v[4], v[5], v[6]);
         const double norm =
             std::sqrt(q.r() * q.r() + q.x() * q.x() + q.y() * q.y() + q.z() * q.z());

@@ -1,4 +1,5 @@
 #include <mrloc/common/Error.h>
+#include <mrloc/common/JsonFile.h>
 #include <mrloc/common/Names.h>
 #include <mrloc/logimport/Format.h>
 #include <mrloc/logimport/TextLog.h>
@@ -174,7 +175,8 @@ ImportSummary convertIsolated(const Format& format, const ImportRequest& request
     close(fds[0]);
     int status = 0;
     waitpid(pid, &status, 0);
-    if (!reply.empty() && reply[0] == 'O') return fromJson(nlohmann::json::parse(reply.substr(1)));
+    if (!reply.empty() && reply[0] == 'O')
+        return fromJson(common::parseJson(reply.substr(1), "the importer's reply"));
     if (!reply.empty() && reply[0] == 'E') throw Error(reply.substr(1));
     // the reader died: what it left under temporary names goes
     const fs::path out(rawlogPath);

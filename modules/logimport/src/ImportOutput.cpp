@@ -15,6 +15,10 @@ namespace {
 
 std::string checkedRawlogPath(const std::string& path) {
     const fs::path p(path);
+    for (const unsigned char c : path)
+        if (c < 0x20 || c == 0x7f)
+            throw Error("--out " + common::printable(path) +
+                        ": a control character (a newline?) in the name");
     if (p.extension() != ".rawlog")
         throw Error("--out " + path + ": the output must be a .rawlog file");
     const fs::path dir = p.parent_path().empty() ? fs::path(".") : p.parent_path();
@@ -42,15 +46,25 @@ void ImportOutput::add(const mrpt::obs::CObservation::Ptr& obs, const std::strin
                     mrpt::format("%.6f", t) + " s" +
                     (window_ > 0 ? mrpt::format(" (beyond the %g s reorder window)", window_)
                                  : std::string()));
-    held_.emplace(t, obs);  // equal stamps keep their arrival order
+    held_.emplace(t, std::make_pair(obs, where));  // equal stamps keep their arrival order
     newest_ = std::max(newest_, t);
     writeHeldBefore(window_ > 0 ? newest_ - window_ : INFINITY);
 }
 
 void ImportOutput::writeHeldBefore(double limit) {
     for (; !held_.empty() && held_.begin()->first < limit; held_.erase(held_.begin())) {
-        const auto& [t, obs] = *held_.begin();
+        const auto& [t, held] = *held_.begin();
+        const auto& [obs, where] = held;
         lastTime_ = t;
+        try {
+            check_.check(*obs);
+            if (check_.isCopyOfTheOneBefore(obs)) {
+                ++copies_;
+                continue;
+            }
+        } catch (const Error& e) {
+            throw Error(where + ": " + e.what());
+        }
         writer_.write(*obs);
         auto& s = summary_.streams[{obs->sensorLabel, obs->GetRuntimeClass()->className}];
         if (s.count++ == 0) s.t0 = t;
@@ -64,8 +78,11 @@ void ImportOutput::addGroundTruth(const std::string& robot, double t,
                                   const mrpt::poses::CPose3D& pose, const std::string& where) {
     // the observations' stamps are mrpt::Clock's (100 ns): the truth on the same grid, so
     // that a first reading and the truth's first pose at one time are at one time
+    common::checkTrajectoryPose(t, pose.x(), pose.y(), pose.z(), where + ": ground truth");
     t = mrpt::Clock::toDouble(mrpt::Clock::fromDouble(t));
     auto& traj = truth_[robot];
+    if (traj.size() >= common::TrajectoryLimits::kMaxPoses)
+        throw Error(where + ": ground truth of more than 2,000,000 poses for robot " + robot);
     if (!traj.empty() && t < traj.back().t)
         throw Error(where + ": ground truth time goes back, from " +
                     mrpt::format("%.6f", traj.back().t) + " to " + mrpt::format("%.6f", t) + " s");
@@ -78,6 +95,8 @@ void ImportOutput::addSideFile(const std::string& suffix, const std::string& con
 
 ImportSummary ImportOutput::commit() {
     writeHeldBefore(INFINITY);
+    if (copies_)
+        note(mrpt::format("%zu observations left out: exact copies of the one before them", copies_));
     if (summary_.observations == 0)
         throw Error("no observation was converted: nothing to write to " + rawlogPath_);
     // every file under its temporary name first; then the renames, which do not fail on a

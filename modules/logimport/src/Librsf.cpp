@@ -2,6 +2,7 @@
 // by its type. doc/import.md#librsf says what maps to what.
 #include <mrloc/common/Error.h>
 #include <mrloc/common/Names.h>
+#include <mrloc/common/ShellWord.h>
 #include <mrloc/logimport/Format.h>
 #include <mrloc/logimport/TextLog.h>
 #include <mrloc/logimport/Unicycle.h>
@@ -35,10 +36,12 @@ std::string beaconIni(const std::string& source, const std::string& stem,
     std::string s = "# Beacon map of " + common::printable(source) +
                     " (libRSF range2 anchors), written by mrloc import librsf.\n"
                     "# mrloc localize " +
-                    common::printable(std::filesystem::path(stem).filename().string()) +
-                    ".beacons.ini " +
-                    common::printable(std::filesystem::path(stem).filename().string()) +
-                    ".rawlog\n[scenario]\nmethod = beacons\n\n[beacons]\n";
+                    common::shellWord(std::filesystem::path(stem).filename().string() +
+                                      ".beacons.ini") +
+                    " " +
+                    common::shellWord(std::filesystem::path(stem).filename().string() +
+                                      ".rawlog") +
+                    "\n[scenario]\nmethod = beacons\n\n[beacons]\n";
     for (const auto& [id, a] : anchors)
         s += mrpt::format("beacon_%ld = %.6f %.6f %.6f\n", id, a.x, a.y, anchorZ);
     s += "# the median of the log's own range variances, as a standard deviation\n";

@@ -17,6 +17,7 @@
 #include <sensor_msgs/Range.h>
 #include <tf2_msgs/TFMessage.h>
 
+#include <algorithm>
 #include <cmath>
 #include <filesystem>
 #include <map>
@@ -35,10 +36,22 @@ double yawOf(const geometry_msgs::Quaternion& q) {
     return std::atan2(2 * (q.w * q.z + q.x * q.y), 1 - 2 * (q.y * q.y + q.z * q.z));
 }
 
-CPose3D poseOf(const geometry_msgs::Transform& t) {
-    return CPose3D(
-        mrpt::math::CQuaternionDouble(t.rotation.w, t.rotation.x, t.rotation.y, t.rotation.z),
-        t.translation.x, t.translation.y, t.translation.z);
+/** A transform as a pose. Its rotation is read as yawOf reads Odometry's: (0, 0, 0, 0), never
+ *  filled, is no rotation, and another is normalized (MRPT's CQuaternion refuses one that is
+ *  not of unit norm); a rotation or translation that is not a number is refused at `where`. */
+CPose3D poseOf(const geometry_msgs::Transform& t, const std::string& where) {
+    const auto& r = t.rotation;
+    const double big = std::max({std::abs(r.w), std::abs(r.x), std::abs(r.y), std::abs(r.z)});
+    if (!std::isfinite(big) || !std::isfinite(t.translation.x) ||
+        !std::isfinite(t.translation.y) || !std::isfinite(t.translation.z))
+        throw Error(where + ": a transform with a value that is not a number");
+    if (big == 0) return CPose3D(t.translation.x, t.translation.y, t.translation.z, 0, 0, 0);
+    // scaled by the largest first: tiny or huge components normalize without under- or
+    // overflow
+    const double w = r.w / big, x = r.x / big, y = r.y / big, z = r.z / big;
+    const double norm = std::sqrt(w * w + x * x + y * y + z * z);
+    return CPose3D(mrpt::math::CQuaternionDouble(w / norm, x / norm, y / norm, z / norm),
+                   t.translation.x, t.translation.y, t.translation.z);
 }
 
 /** A message's time: its header's stamp, or the bag's receive time when the stamp is 0. */
@@ -104,7 +117,8 @@ void convert(const ImportRequest& req, ImportOutput& out) {
         for (const auto& m : statics)
             if (const auto tf = m.instantiate<tf2_msgs::TFMessage>())
                 for (const auto& t : tf->transforms)
-                    if (t.header.frame_id == base) mounts[t.child_frame_id] = poseOf(t.transform);
+                    if (t.header.frame_id == base)
+                        mounts[t.child_frame_id] = poseOf(t.transform, req.inputs[0] + ": /tf_static");
     }
     std::map<std::string, size_t> unmounted, dropped;
     const auto mountOf = [&](const std::string& frame) {
@@ -185,7 +199,7 @@ void convert(const ImportRequest& req, ImportOutput& out) {
                 auto obs = mrpt::obs::CObservationOdometry::Create();
                 obs->sensorLabel = robot + ".tf_odometry";
                 obs->timestamp = mrpt::Clock::fromDouble(timeOf(t.header.stamp, m));
-                const CPose3D p = poseOf(t.transform);
+                const CPose3D p = poseOf(t.transform, at);
                 obs->odometry = CPose2D(p.x(), p.y(), p.yaw());
                 out.add(obs, at);
             }

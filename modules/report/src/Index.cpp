@@ -33,7 +33,7 @@ bool isRunName(const std::string& name) {
 std::string iniOf(const std::string& runFolder) {
     const std::string path = common::run_dir::provenance(runFolder);
     if (!fs::is_regular_file(path)) return "";
-    const auto p = common::loadJson(path);
+    const auto p = common::readProvenanceFile(path);
     if (!p.is_object() || !p.contains("ini") || !p["ini"].is_string()) return "";
     return fs::path(p["ini"].get<std::string>()).filename().string();
 }
@@ -58,7 +58,7 @@ std::string makeIndex(const std::string& folder, const std::string& title) {
              "how this run differs from the paper's"});
     for (const auto& run : runs) {
         const std::string metricsPath = common::run_dir::metrics(folder + "/" + run);
-        const auto metrics = common::loadJson(metricsPath);
+        const auto metrics = common::readMetricsFile(metricsPath);
         const std::string method = metrics.value("method", "?");
         const bool hasReport = fs::is_regular_file(common::run_dir::report(folder + "/" + run));
         Html runCell = hasReport ? link(run + "/report.html", run) : Html(run + " (no report)");

@@ -75,7 +75,7 @@ RunView readRun(const std::string& dir) {
         throw Error(dir + ": not a run directory (no metrics.json; run `mrloc localize` first)");
     RunView run;
     run.dir = dir;
-    run.metrics = common::loadJson(common::run_dir::metrics(dir));
+    run.metrics = common::readMetricsFile(common::run_dir::metrics(dir));
     if (!run.metrics.contains("robots") || !run.metrics["robots"].is_object())
         throw Error(common::run_dir::metrics(dir) + ": no 'robots'");
     run.effective = std::make_shared<mrpt::config::CConfigFileMemory>();
@@ -118,7 +118,7 @@ common::Trajectories odometryPaths(const RunView& run) {
 nlohmann::json provenanceOf(const std::string& dir) {
     const std::string path = common::run_dir::provenance(dir);
     if (!std::filesystem::exists(path)) return nlohmann::json::object();
-    auto p = common::loadJson(path);
+    auto p = common::readProvenanceFile(path);
     return p.is_object() ? p : nlohmann::json::object();
 }
 

@@ -1,5 +1,6 @@
 #pragma once
 // Error statistics of estimates against ground truth, and the metrics.json they go to.
+#include <mrloc/common/JsonFile.h>
 #include <mrloc/common/Trajectory.h>
 
 #include <nlohmann/json.hpp>
@@ -29,8 +30,14 @@ std::vector<TimedError> positionErrors(const Trajectory& estimate, const Traject
  *  n = 0). */
 nlohmann::json statsToJson(const ErrorStats& s);
 
+/** A run folder's metrics.json (readJsonFile), its keys that every reader uses (method,
+ *  rawlog, robots, warnings, headline...) checked for their types: a file from elsewhere with
+ *  a wrong type is refused naming the file and key. */
+nlohmann::json readMetricsFile(const std::string& path);
+/** A run folder's provenance.json, likewise (ini, seed, steps, outputs, simulated...). */
+nlohmann::json readProvenanceFile(const std::string& path);
+
 /** Pretty JSON text written atomically. */
 void saveJson(const std::string& path, const nlohmann::json& j);
-nlohmann::json loadJson(const std::string& path);
 
 }  // namespace mrloc::common

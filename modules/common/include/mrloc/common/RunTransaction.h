@@ -66,6 +66,15 @@ class RunTransaction {
  *  and lock file, then exit with 128 + the signal (130, 143). */
 void installSignalCleanup();
 
+/** Registers a temporary path (a file, or a folder with what it holds) that the SIGINT /
+ *  SIGTERM handler removes while it is held: what an interrupted import or trial would
+ *  otherwise leave (x.rawlog.tmp, a trial's scratch folder). Returns the slot for
+ *  releaseTemporaryOnSignal, or -1 when all kTemporarySlots are held (then the path is left
+ *  to its owner's destructor, as before). */
+int holdTemporaryOnSignal(const std::string& path);
+void releaseTemporaryOnSignal(int slot);
+inline constexpr int kTemporarySlots = 64;
+
 /** SHA-1 of a file's bytes, in hex (provenance's record of what mrloc wrote). */
 std::string sha1OfFile(const std::string& path);
 

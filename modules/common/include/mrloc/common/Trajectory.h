@@ -31,9 +31,23 @@ using CovarianceTrack = std::vector<StampedCovariance>;
 void saveCovariances(const std::string& path, const CovarianceTrack& track);
 CovarianceTrack loadCovariances(const std::string& path);
 
+/** Where a trajectory comes in (a TUM file, MRPT's ground truth formats, an importer's
+ *  truth), its values are bounded here, in one place (doc/errors.md, "Trajectories"). */
+struct TrajectoryLimits {
+    static constexpr double kMaxCoordinate = 1e6;  ///< m: as an odometry pose (ObservationCheck)
+    static constexpr double kMaxTime = 1e11;       ///< s from 1970, either way (year 5138)
+    static constexpr size_t kMaxPoses = 2000000;   ///< a file's: 5.5 h at 100 Hz
+    static constexpr size_t kMaxBytes = 256u << 20;  ///< a TUM file's (2 M lines of 128 bytes)
+};
+
+/** Throws mrloc::Error "<where>: ..." unless the time and position are finite and within
+ *  TrajectoryLimits: a truth of 1e19 m would be an "RMSE" of 1e17 m. */
+void checkTrajectoryPose(double t, double x, double y, double z, const std::string& where);
+
 /** Writes atomically; times with 9 decimals, positions with 6 (micrometres). */
 void saveTum(const std::string& path, const Trajectory& traj);
-/** Reads a TUM file; errors name the file and line. Times must not decrease. */
+/** Reads a TUM file; errors name the file and line. Times must not decrease; times,
+ *  positions, the file's size and its poses are bounded (TrajectoryLimits). */
 Trajectory loadTum(const std::string& path);
 
 /** Pose at time t by linear interpolation of the position (and yaw); nullopt outside the

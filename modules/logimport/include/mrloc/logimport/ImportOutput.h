@@ -3,6 +3,7 @@
 // truth as TUM beside it, and any side files (a beacon map INI). Nothing appears under a final
 // name until commit(): a failed import leaves what was there before.
 #include <mrloc/common/AtomicFile.h>
+#include <mrloc/common/ObservationCheck.h>
 #include <mrloc/common/Rawlog.h>
 #include <mrloc/common/Trajectory.h>
 #include <mrpt/obs/CObservation.h>
@@ -63,7 +64,13 @@ class ImportOutput {
     /** Writes the held observations stamped before `limit`, in stamp order. */
     void writeHeldBefore(double limit);
     double lastTime_ = -INFINITY, window_ = 0, newest_ = -INFINITY;
-    std::multimap<double, mrpt::obs::CObservation::Ptr> held_;  ///< the reorder window
+    /** The reorder window: each observation with where it was read. */
+    std::multimap<double, std::pair<mrpt::obs::CObservation::Ptr, std::string>> held_;
+    /** What `mrloc localize` checks, checked as written: an import never writes a log
+     *  that mrloc refuses (an observation over ObservationBounds, a sensor's two readings at
+     *  one instant); the refusal names the input's file and line. */
+    common::ObservationCheck check_;
+    size_t copies_ = 0;  ///< exact copies of the observation before, left out
     ImportSummary summary_;
 };
 
