@@ -72,7 +72,7 @@ def run(cmd, limit=120):
         return "accepted", dt, ""
     last = err[-1] if err else ""
     clean = p.returncode == 1 and len([l for l in err if "error" in l]) == 1 and \
-        "unexpected" not in last and ": error: " in last
+        "unexpected error" not in last and ": error: " in last
     return ("refused" if clean else "unclean"), dt, last
 
 
@@ -87,9 +87,15 @@ def main():
         if kind.startswith("import:"):
             os.makedirs(case)
             inputs = source.split(",")
-            copies = [shutil.copy(i, case) for i in inputs]
-            target = rng.choice(copies)
-            cmd = [MRLOC, "import", kind.split(":", 1)[1]] + copies + ["--out", case + "/o.rawlog"]
+            if os.path.isdir(inputs[0]):  # MRCLAM: a folder of files
+                copies = [shutil.copytree(inputs[0], case + "/in")]
+                files = [os.path.join(copies[0], f) for f in os.listdir(copies[0])]
+            else:
+                copies = files = [shutil.copy(i, case) for i in inputs]
+            target = rng.choice(files)
+            options = sum((["--opt", o] for o in os.environ.get("MUTATE_OPTS", "").split()), [])
+            cmd = [MRLOC, "import", kind.split(":", 1)[1]] + copies + options + \
+                ["--out", case + "/o.rawlog"]
         else:
             shutil.copytree(source, case, symlinks=True)
             files = [os.path.join(d, f) for d, _, fs in os.walk(case) for f in fs

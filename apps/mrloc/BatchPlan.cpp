@@ -82,6 +82,12 @@ GridAxis parseGridAxis(const std::string& text) {
     return a;
 }
 
+size_t wholeNumber(const nlohmann::json& v) {
+    if (!v.is_number_unsigned())
+        throw Error("expected a whole number, not " + v.dump().substr(0, 40));
+    return v.get<size_t>();
+}
+
 nlohmann::json toJson(const BatchPlan& plan) {
     nlohmann::json j;
     j["ini"] = plan.ini;
@@ -100,11 +106,12 @@ BatchPlan planFromJson(const nlohmann::json& j, const std::string& where) {
     BatchPlan p;
     try {
         p.ini = j.at("ini").get<std::string>();
-        const auto seeds = j.at("seeds").get<std::vector<unsigned long>>();
+        std::vector<unsigned long> seeds;
+        for (const auto& v : j.at("seeds")) seeds.push_back(wholeNumber(v));
         if (seeds.size() != 2 || seeds[1] < seeds[0] || seeds[1] > 4294967295UL)
             throw Error("seeds: expected [first, last]");
         p.firstSeed = seeds[0], p.lastSeed = seeds[1];
-        p.chunk = j.at("chunk").get<size_t>();
+        p.chunk = wholeNumber(j.at("chunk"));
         if (p.chunk < 1 || p.chunk > 100000) throw Error("chunk: expected 1 .. 100000");
         for (const auto& s : j.at("set"))
             p.sets.push_back(parseOverride(s.get<std::string>(), "--set"));

@@ -63,6 +63,10 @@ std::pair<unsigned long, unsigned long> parseSeeds(const std::string& text);
 /** "section.key=v1,v2,...": throws mrloc::Error naming --grid. */
 GridAxis parseGridAxis(const std::string& text);
 
+/** A whole number of a batch's file: checked before nlohmann's get<size_t>, which casts 2e19
+ *  or -1 with undefined behaviour (found by fuzz_json_readers); throws mrloc::Error. */
+size_t wholeNumber(const nlohmann::json& v);
+
 nlohmann::json toJson(const BatchPlan& plan);
 /** batch.json read back; throws mrloc::Error naming `where` for anything malformed. */
 BatchPlan planFromJson(const nlohmann::json& j, const std::string& where);

@@ -23,6 +23,7 @@ namespace {
 
 constexpr size_t kBins = 20;
 
+
 FigureStats statsOf(const std::string& name, const std::string& unit, bool baseline,
                     const std::vector<double>& values) {
     FigureStats f;
@@ -122,21 +123,21 @@ BatchSummary summaryFromJson(const nlohmann::json& j, const std::string& where) 
     try {
         s.plan = planFromJson(j.at("plan"), "plan");
         s.method = j.at("method").get<std::string>();
-        s.trials = j.at("trials").get<size_t>();
+        s.trials = wholeNumber(j.at("trials"));
         for (const auto& jp : j.at("points")) {
             PointSummary p;
-            p.index = jp.at("index").get<size_t>();
+            p.index = wholeNumber(jp.at("index"));
             if (p.index >= s.plan.pointCount()) throw Error("a point outside the plan");
             p.name = s.plan.pointName(p.index);
             p.keys = s.plan.pointKeys(p.index);
-            p.done = jp.at("done").get<size_t>();
-            p.reached = jp.at("reached").get<size_t>();
+            p.done = wholeNumber(jp.at("done"));
+            p.reached = wholeNumber(jp.at("reached"));
             for (const auto& jf : jp.at("figures")) {
                 FigureStats f;
                 f.name = jf.at("name").get<std::string>();
                 f.unit = jf.at("unit").get<std::string>();
                 f.baseline = jf.at("baseline").get<bool>();
-                f.count = jf.at("count").get<size_t>();
+                f.count = wholeNumber(jf.at("count"));
                 for (auto [field, key] : {std::pair{&f.mean, "mean"},
                                           {&f.median, "median"},
                                           {&f.p95, "p95"},
@@ -144,7 +145,7 @@ BatchSummary summaryFromJson(const nlohmann::json& j, const std::string& where) 
                                           {&f.min, "min"},
                                           {&f.max, "max"}})
                     *field = jf.at(key).get<double>();
-                f.histogram = jf.at("histogram").get<std::vector<size_t>>();
+                for (const auto& h : jf.at("histogram")) f.histogram.push_back(wholeNumber(h));
                 if (f.histogram.size() > kBins) throw Error("a histogram of more than 20 bins");
                 p.figures.push_back(f);
             }
@@ -154,9 +155,9 @@ BatchSummary summaryFromJson(const nlohmann::json& j, const std::string& where) 
         for (const char* list : {"failed", "missing"})
             for (const auto& jt : j.at(list))
                 (std::string(list) == "failed" ? s.failed : s.missing)
-                    .push_back({jt.at("point").get<size_t>(), jt.at("seed").get<unsigned long>(),
+                    .push_back({wholeNumber(jt.at("point")), wholeNumber(jt.at("seed")),
                                 jt.at("why").get<std::string>()});
-        s.rerun = j.at("rerun").get<size_t>();
+        s.rerun = wholeNumber(j.at("rerun"));
     } catch (const Error& e) {
         throw Error(where + ": " + e.what());
     } catch (const std::exception& e) {
@@ -203,8 +204,8 @@ BatchSummary collectBatch(const std::string& dir) {
                     s.failed.push_back({p, seed, line.at("error").get<std::string>()});
                     continue;
                 }
-                if (line.at("seed").get<unsigned long>() != seed ||
-                    line.at("point").get<size_t>() != p)
+                if (wholeNumber(line.at("seed")) != seed ||
+                    wholeNumber(line.at("point")) != p)
                     throw Error("its seed or point is not its name's");
                 if (s.method.empty()) s.method = line.at("method").get<std::string>();
                 ++point.done;

@@ -474,6 +474,17 @@ TEST(Import, WritesNothingLocalizeWouldRefuse) {
         << r.output;
     EXPECT_FALSE(fs::exists(out));
 
+    std::string anchors;  // 100,001 anchors: a beacon map INI localize would refuse
+    for (int i = 0; i <= 100000; ++i)
+        anchors += "range2 " + std::to_string(1 + i) + " 2.0 0.01 " + std::to_string(i % 1000) +
+                   " " + std::to_string(i / 1000) + " " + std::to_string(i) + " 0\n";
+    std::ofstream(in) << anchors;
+    r = mrlocCmd("import librsf " + in + " --out " + out);
+    EXPECT_EQ(r.code, 1) << r.output;
+    EXPECT_NE(r.output.find(in + ":100001: more than 100000 anchors"), std::string::npos)
+        << r.output;
+    EXPECT_FALSE(fs::exists(out));
+
     std::ofstream(in) << "range2 0.1 2.0 0.01 0 0 1 0\nodom2diff 0.1 0 0 0 0.1 0 0 0\n";
     std::ofstream(gt) << "point2 0.1 0 0\npoint2 0.2 1e19 0\n";
     r = mrlocCmd("import librsf " + in + " " + gt + " --out " + out);

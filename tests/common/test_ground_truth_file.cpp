@@ -130,3 +130,26 @@ TEST(GroundTruthFile, ValuesBeyondTheBoundsAreRefusedAtTheirLine) {
                                        ":2: position (0, -2e+06, 0) m is not within 1,000 km of "
                                        "the origin");
 }
+
+// found by fuzz_json_readers: a TUM quaternion off unit norm reached MRPT's CQuaternion, which
+// threw "quaternion is not normalized" past mrloc's errors; it is normalized first, whatever
+// its scale, and a zero one is refused at its line
+TEST(GroundTruthFile, TumQuaternionsOfAnyScaleAreNormalized) {
+    GroundTruthSource tum;
+    tum.path = testing::TempDir() + "/gt_quaternions.txt";
+    tum.format = "tum";
+    std::ofstream(tum.path) << "1000 0 0 0 0 0 1e300 1e300\n1000.5 0 0 0 0 0 3e-5 3e-5\n"
+                               "1001 0 0 0 0 0 0.5 0\n";
+    const auto gt = common::loadGroundTruth(tum, steps(3));
+    ASSERT_EQ(gt.size(), 3u);
+    EXPECT_NEAR(gt[0].pose.yaw(), M_PI / 2, 1e-12);
+    EXPECT_NEAR(gt[1].pose.yaw(), M_PI / 2, 1e-12);
+    EXPECT_NEAR(std::abs(gt[2].pose.yaw()), M_PI, 1e-12);
+    std::ofstream(tum.path) << "1000 0 0 0 0 0 0 1e-7\n";
+    try {
+        common::loadGroundTruth(tum, steps(1));
+        ADD_FAILURE() << "a zero quaternion was read";
+    } catch (const Error& e) {
+        EXPECT_EQ(std::string(e.what()), "trajectory " + tum.path + ":1: zero quaternion");
+    }
+}

@@ -62,12 +62,19 @@ Trajectory loadTum(const std::string& path) {
         checkTrajectoryPose(v[0], v[1], v[2], v[3], where);
         if (traj.size() >= TrajectoryLimits::kMaxPoses)
             throw Error(where + ": more than 2,000,000 poses in one trajectory");
-        mrpt::math::CQuaternionDouble q(v[7], v[4], v[5], v[6]);
-        const double norm =
-            std::sqrt(q.r() * q.r() + q.x() * q.x() + q.y() * q.y() + q.z() * q.z());
-        if (norm < 1e-6)
+        // normalized before MRPT sees it (its CQuaternion refuses one off unit norm by 1e-3, in
+        // its own words, found by fuzz_json_readers); scaled by the largest component first, so
+        // that 1e300 does not overflow (under 1e-6 it is a zero quaternion, refused)
+        const double big =
+            std::max({std::abs(v[4]), std::abs(v[5]), std::abs(v[6]), std::abs(v[7])});
+        double n2 = 0;
+        for (int k = 4; k < 8; ++k) n2 += (v[k] / big) * (v[k] / big);
+        const double norm = big * std::sqrt(n2);
+        if (!(norm >= 1e-6))
             throw Error("trajectory " + path + ":" + std::to_string(lineNo) + ": zero quaternion");
-        q.normalize();
+        const double unit = std::sqrt(n2);
+        const mrpt::math::CQuaternionDouble q(v[7] / big / unit, v[4] / big / unit,
+                                              v[5] / big / unit, v[6] / big / unit);
         if (!traj.empty() && v[0] < traj.back().t)
             throw Error("trajectory " + path + ":" + std::to_string(lineNo) +
                         ": time goes backwards");

@@ -30,6 +30,9 @@ struct Anchor {
     std::string where;  ///< the line that first placed it
 };
 
+/** Anchors an import takes: the beacon map INI it writes must be one localize reads. */
+constexpr size_t kMaxAnchors = 100000;
+
 /** The beacons method's INI for the anchors the log names: ready to run on the rawlog. */
 std::string beaconIni(const std::string& source, const std::string& stem,
                       const std::map<long, Anchor>& anchors, double anchorZ, double rangeSigma) {
@@ -92,6 +95,12 @@ void convert(const ImportRequest& req, ImportOutput& out) {
             if (std::abs(ax) > 1e6 || std::abs(ay) > 1e6) log.fail("anchor beyond 1000 km");
             const long id = log.integer(6, "anchor id", 0, 2147483647);
             auto [it, added] = anchors.try_emplace(id, Anchor{ax, ay, log.where()});
+            // the beacon map INI lists every anchor: 100,000 lines stay far inside the 16 MiB
+            // an INI may hold (a 43 MB map was written once, and localize refused it)
+            if (added && anchors.size() > kMaxAnchors)
+                log.fail(mrpt::format("more than %zu anchors: not a map the beacons method "
+                                      "can be given",
+                                      kMaxAnchors));
             if (!added && std::hypot(it->second.x - ax, it->second.y - ay) > 1e-3)
                 log.fail(mrpt::format("anchor %ld moved by %.3f m since ", id,
                                       std::hypot(it->second.x - ax, it->second.y - ay)) +
