@@ -185,7 +185,8 @@ constexpr const char* kEnvFolder = "MRLOC_BATCH_FOLDER";
  *  options' values: so no word of it holds anything but mrloc's own text and the job's
  *  numbers from jobs.txt. The folder and mrloc's path are environment variables that the
  *  job's shell expands, quoted ("$VAR": one word, never parsed again); --env carries them to
- *  ssh hosts, quoted by parallel as values, never expanded. -S is checked by checkHosts. */
+ *  ssh hosts, quoted by parallel as values, never expanded. The one user string, -S's host
+ *  list, holds only what checkHosts lets through: letters, digits and - . _ @ / : (no '{'). */
 std::vector<std::string> parallelCommand(unsigned jobs, bool resume, const std::string& hosts) {
     std::vector<std::string> argv = {"parallel",   "--will-cite", "--joblog", batch_dir::joblog("."),
                                      "--jobs",     std::to_string(jobs),  "--colsep", " ",
@@ -193,8 +194,11 @@ std::vector<std::string> parallelCommand(unsigned jobs, bool resume, const std::
     if (resume) argv.push_back("--resume-failed");
     if (!hosts.empty())
         argv.insert(argv.end(), {"-S", hosts, "--env", kEnvMrloc, "--env", kEnvFolder});
-    argv.push_back(std::string("\"$") + kEnvMrloc + "\" trial --batch \"$" + kEnvFolder +
-                   "\" --point {1} --seed {2} --last-seed {3}");
+    std::string command;
+    for (const auto& word : trialCommand(std::string("\"$") + kEnvMrloc + "\"",
+                                         std::string("\"$") + kEnvFolder + "\"", "{1}", "{2}", "{3}"))
+        command += (command.empty() ? "" : " ") + word;
+    argv.push_back(command);
     return argv;
 }
 
@@ -266,8 +270,9 @@ std::string slurmScript(const BatchPlan& plan, const std::string& mrloc, const s
     return s.str();
 }
 
+/** The summary of a batch folder checked by batch_dir::checkFolder (before parallel ran, or
+ *  by --collect itself), written and printed; exit 3 while trials failed or are missing. */
 int collectAndPrint(const std::string& dir) {
-    batch_dir::checkFolder(dir);
     const BatchSummary summary = collectBatch(dir);
     writeSummary(dir, summary);
     std::cout << summaryText(summary);
@@ -328,6 +333,7 @@ int batch(const method::Registry& registry, int argc, char** argv) {
             throw Error("--collect takes the batch folder alone (mrloc batch --collect DIR)");
         batch_dir::readPlan(collect.getValue());  // a batch folder, before its lock is made
         common::FolderLock lock(collect.getValue());
+        batch_dir::checkFolder(collect.getValue());
         return collectAndPrint(collect.getValue());
     }
     if (!ini.isSet()) throw Error("missing <INI> (mrloc batch <ini> --seeds A..B)");
@@ -370,8 +376,8 @@ int batch(const method::Registry& registry, int argc, char** argv) {
     // one mrloc at a time in a batch folder (the rule of run folders), and nothing in it a
     // link: parallel's job log, the records and the summary are written where they seem
     common::FolderLock lock(dir);
-    if (batch_dir::isBatch(dir)) batch_dir::checkFolder(dir);
     if (batch_dir::isBatch(dir)) {
+        batch_dir::checkFolder(dir);
         if (!resume.isSet() && !emit.isSet())
             throw Error(common::pathInWords(dir) +
                         ": holds a batch already (--resume continues it; another --out starts "
@@ -398,6 +404,7 @@ int batch(const method::Registry& registry, int argc, char** argv) {
                                                           ".staging." + std::to_string(getpid())))
                                         .string();
         std::error_code ec;
+        const int slot = common::holdTemporaryOnSignal(staging);  // Ctrl-C leaves none
         try {
             fs::remove_all(staging, ec);
             common::makeDirectories(staging);
@@ -409,8 +416,10 @@ int batch(const method::Registry& registry, int argc, char** argv) {
                             std::strerror(errno));
         } catch (...) {
             fs::remove_all(staging, ec);
+            common::releaseTemporaryOnSignal(slot);
             throw;
         }
+        common::releaseTemporaryOnSignal(slot);
     }
 
     if (emit.isSet()) {

@@ -23,7 +23,6 @@ namespace {
 
 constexpr size_t kBins = 20;
 
-
 FigureStats statsOf(const std::string& name, const std::string& unit, bool baseline,
                     const std::vector<double>& values) {
     FigureStats f;

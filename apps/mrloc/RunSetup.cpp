@@ -211,8 +211,8 @@ void writeProvenance(const Setup& s, const std::string& dir, const std::string& 
     common::writeFileAtomically(common::run_dir::effectiveIni(dir), effectiveIni(s));
     nlohmann::json p = nlohmann::json::object();
     const std::string path = common::run_dir::provenance(dir);
+    // an object (readProvenanceFile refuses anything else)
     if (fs::is_regular_file(fs::symlink_status(path))) p = common::readProvenanceFile(path);
-    if (!p.is_object()) p = nlohmann::json::object();  // not ours: begun again
     if (!p.contains("steps") || !p["steps"].is_object()) p["steps"] = nlohmann::json::object();
     p["ini"] = s.iniPath;
     p["seed"] = s.scenario.seed;

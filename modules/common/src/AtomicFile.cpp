@@ -5,37 +5,11 @@
 #include <cerrno>
 #include <cstring>
 #include <filesystem>
-#include <map>
-#include <mutex>
 #include <fstream>
 
 namespace fs = std::filesystem;
 
 namespace mrloc::common {
-
-namespace {
-
-/** Each pending file's signal slot (holdTemporaryOnSignal), by its temporary path: an
- *  interrupted command leaves no "<name>.tmp" behind. */
-std::mutex g_slotsMutex;
-std::map<std::string, int> g_slots;
-
-void holdOnSignal(const std::string& temp) {
-    const int slot = holdTemporaryOnSignal(temp);
-    if (slot < 0) return;
-    std::lock_guard<std::mutex> lock(g_slotsMutex);
-    g_slots[temp] = slot;
-}
-
-void releaseOnSignal(const std::string& temp) {
-    std::lock_guard<std::mutex> lock(g_slotsMutex);
-    if (const auto it = g_slots.find(temp); it != g_slots.end()) {
-        releaseTemporaryOnSignal(it->second);
-        g_slots.erase(it);
-    }
-}
-
-}  // namespace
 
 PendingFile::PendingFile(std::string finalPath, const std::string& tempSuffix)
     : final_(std::move(finalPath)), temp_(final_ + tempSuffix) {
@@ -44,7 +18,7 @@ PendingFile::PendingFile(std::string finalPath, const std::string& tempSuffix)
     std::error_code ec;
     fs::remove(temp_, ec);  // a link or a stale temporary at the name: never written through
     if (ec) throw Error("cannot write " + final_ + ": cannot clear " + temp_ + ": " + ec.message());
-    holdOnSignal(temp_);
+    signalSlot_ = holdTemporaryOnSignal(temp_);
 }
 
 PendingFile::~PendingFile() {
@@ -52,14 +26,15 @@ PendingFile::~PendingFile() {
         std::error_code ec;
         fs::remove(temp_, ec);
     }
-    releaseOnSignal(temp_);
+    releaseTemporaryOnSignal(signalSlot_);
 }
 
 void PendingFile::commit() {
     std::error_code ec;
     fs::rename(temp_, final_, ec);
     if (ec) throw Error("cannot rename " + temp_ + " to " + final_ + ": " + ec.message());
-    releaseOnSignal(temp_);
+    releaseTemporaryOnSignal(signalSlot_);
+    signalSlot_ = -1;
     committed_ = true;
 }
 

@@ -28,7 +28,6 @@ const char* typeName(JsonType t) {
         case JsonType::String: return "a string";
         case JsonType::Number: return "a number";
         case JsonType::Boolean: return "true or false";
-        case JsonType::NullOrNumber: return "a number or null";
     }
     return "?";
 }
@@ -40,7 +39,6 @@ bool holds(const nlohmann::json& v, JsonType t) {
         case JsonType::String: return v.is_string();
         case JsonType::Number: return v.is_number();
         case JsonType::Boolean: return v.is_boolean();
-        case JsonType::NullOrNumber: return v.is_null() || v.is_number();
     }
     return false;
 }

@@ -34,12 +34,17 @@ Headline headlineFromJson(const nlohmann::json& j, const std::string& where) {
         if (!o[key].is_string()) throw Error(where + ": headline." + key + ": not a string");
         return o[key].get<std::string>();
     };
+    const auto flag = [&](const nlohmann::json& o, const char* key) {
+        if (!o.contains(key)) return false;
+        if (!o[key].is_boolean()) throw Error(where + ": headline." + key + ": not true or false");
+        return o[key].get<bool>();
+    };
     if (!j.is_object() || !j.contains("reached") || !j["reached"].is_boolean() ||
         !j.contains("figures") || !j["figures"].is_array())
         throw Error(where + ": headline: not an object with 'reached' and 'figures'");
     Headline h;
     h.reached = j["reached"].get<bool>();
-    h.failed = j.contains("failed") && j["failed"].is_boolean() && j["failed"].get<bool>();
+    h.failed = flag(j, "failed");
     h.status = text(j, "status");
     for (const auto& fj : j["figures"]) {
         if (!fj.is_object()) throw Error(where + ": headline.figures: not an object");
@@ -48,7 +53,7 @@ Headline headlineFromJson(const nlohmann::json& j, const std::string& where) {
         f.unit = text(fj, "unit");
         f.paper = text(fj, "paper");
         f.differs = text(fj, "differs");
-        f.baseline = fj.contains("baseline") && fj["baseline"].is_boolean() && fj["baseline"].get<bool>();
+        f.baseline = flag(fj, "baseline");
         if (fj.contains("value") && fj["value"].is_number()) f.value = fj["value"].get<double>();
         h.figures.push_back(std::move(f));
     }

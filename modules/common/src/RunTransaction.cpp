@@ -332,15 +332,14 @@ std::vector<std::string> RunTransaction::written() const {
 void RunTransaction::recordOutputs() {
     const std::string path = staging_ + "/provenance.json";
     if (!fs::is_regular_file(fs::symlink_status(path))) return;
-    auto p = readProvenanceFile(path);
-    if (!p.is_object()) throw Error(folder_ + "/provenance.json: not a JSON object");
+    auto p = readProvenanceFile(path);  // an object, its outputs one if present
     std::map<std::string, std::string> now;
     for (const auto& n : written())
         if (n != "provenance.json") now[n] = sha1OfFile(staging_ + "/" + n);
     // The same step's previous outputs that it did not write again: removed from the new run
     // only if still what mrloc wrote (same name in this folder, same SHA-1).
     const auto old =
-        p.contains("outputs") && p["outputs"].is_object() && p["outputs"].contains(step_)
+        p.contains("outputs") && p["outputs"].contains(step_)
             ? p["outputs"][step_]
             : nlohmann::json();
     if (old.is_object())
@@ -351,8 +350,7 @@ void RunTransaction::recordOutputs() {
             if (s && S_ISREG(s->st_mode) && sha1OfFile(file) == hash.get<std::string>())
                 fs::remove(file);
         }
-    if (!p.contains("outputs") || !p["outputs"].is_object())
-        p["outputs"] = nlohmann::json::object();
+    if (!p.contains("outputs")) p["outputs"] = nlohmann::json::object();
     p["outputs"][step_] = now;
     saveJson(path, p);
 }

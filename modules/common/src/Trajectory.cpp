@@ -42,6 +42,16 @@ void checkTrajectoryPose(double t, double x, double y, double z, const std::stri
                         ") m is not within 1,000 km of the origin");
 }
 
+std::optional<mrpt::math::CQuaternionDouble> unitQuaternion(double w, double x, double y,
+                                                            double z, double minNorm) {
+    const double big = std::max({std::abs(w), std::abs(x), std::abs(y), std::abs(z)});
+    if (!(big > 0)) return std::nullopt;
+    w /= big, x /= big, y /= big, z /= big;
+    const double unit = std::sqrt(w * w + x * x + y * y + z * z);  // in [1, 2]
+    if (big * unit < minNorm) return std::nullopt;
+    return mrpt::math::CQuaternionDouble(w / unit, x / unit, y / unit, z / unit);
+}
+
 Trajectory loadTum(const std::string& path) {
     checkReadableFile(path, "trajectory", TrajectoryLimits::kMaxBytes);
     std::ifstream in(path);
@@ -62,23 +72,14 @@ Trajectory loadTum(const std::string& path) {
         checkTrajectoryPose(v[0], v[1], v[2], v[3], where);
         if (traj.size() >= TrajectoryLimits::kMaxPoses)
             throw Error(where + ": more than 2,000,000 poses in one trajectory");
-        // normalized before MRPT sees it (its CQuaternion refuses one off unit norm by 1e-3, in
-        // its own words, found by fuzz_json_readers); scaled by the largest component first, so
-        // that 1e300 does not overflow (under 1e-6 it is a zero quaternion, refused)
-        const double big =
-            std::max({std::abs(v[4]), std::abs(v[5]), std::abs(v[6]), std::abs(v[7])});
-        double n2 = 0;
-        for (int k = 4; k < 8; ++k) n2 += (v[k] / big) * (v[k] / big);
-        const double norm = big * std::sqrt(n2);
-        if (!(norm >= 1e-6))
-            throw Error("trajectory " + path + ":" + std::to_string(lineNo) + ": zero quaternion");
-        const double unit = std::sqrt(n2);
-        const mrpt::math::CQuaternionDouble q(v[7] / big / unit, v[4] / big / unit,
-                                              v[5] / big / unit, v[6] / big / unit);
+        // normalized before MRPT sees it (found by fuzz_json_readers: a quaternion off unit
+        // norm ended in MRPT's words); under 1e-6 it is a zero quaternion, refused
+        const auto q = unitQuaternion(v[7], v[4], v[5], v[6], 1e-6);
+        if (!q) throw Error(where + ": zero quaternion");
         if (!traj.empty() && v[0] < traj.back().t)
             throw Error("trajectory " + path + ":" + std::to_string(lineNo) +
                         ": time goes backwards");
-        traj.push_back({v[0], mrpt::poses::CPose3D(q, v[1], v[2], v[3])});
+        traj.push_back({v[0], mrpt::poses::CPose3D(*q, v[1], v[2], v[3])});
     }
     return traj;
 }

@@ -4,6 +4,7 @@
 // as one line. doc/import.md#rosbag says what maps to what.
 #include <mrloc/common/Error.h>
 #include <mrloc/common/Names.h>
+#include <mrloc/common/Trajectory.h>
 #include <mrloc/logimport/Format.h>
 #include <mrpt/config/CConfigFile.h>
 #include <mrpt/core/format.h>
@@ -41,17 +42,12 @@ double yawOf(const geometry_msgs::Quaternion& q) {
  *  not of unit norm); a rotation or translation that is not a number is refused at `where`. */
 CPose3D poseOf(const geometry_msgs::Transform& t, const std::string& where) {
     const auto& r = t.rotation;
-    const double big = std::max({std::abs(r.w), std::abs(r.x), std::abs(r.y), std::abs(r.z)});
-    if (!std::isfinite(big) || !std::isfinite(t.translation.x) ||
-        !std::isfinite(t.translation.y) || !std::isfinite(t.translation.z))
-        throw Error(where + ": a transform with a value that is not a number");
-    if (big == 0) return CPose3D(t.translation.x, t.translation.y, t.translation.z, 0, 0, 0);
-    // scaled by the largest first: tiny or huge components normalize without under- or
-    // overflow
-    const double w = r.w / big, x = r.x / big, y = r.y / big, z = r.z / big;
-    const double norm = std::sqrt(w * w + x * x + y * y + z * z);
-    return CPose3D(mrpt::math::CQuaternionDouble(w / norm, x / norm, y / norm, z / norm),
-                   t.translation.x, t.translation.y, t.translation.z);
+    // each checked: std::max of several may drop a NaN, by where it stands
+    for (const double v : {r.w, r.x, r.y, r.z, t.translation.x, t.translation.y, t.translation.z})
+        if (!std::isfinite(v)) throw Error(where + ": a transform with a value that is not a number");
+    const auto q = common::unitQuaternion(r.w, r.x, r.y, r.z, 0);
+    if (!q) return CPose3D(t.translation.x, t.translation.y, t.translation.z, 0, 0, 0);
+    return CPose3D(*q, t.translation.x, t.translation.y, t.translation.z);
 }
 
 /** A message's time: its header's stamp, or the bag's receive time when the stamp is 0. */

@@ -33,8 +33,8 @@ bool isRunName(const std::string& name) {
 std::string iniOf(const std::string& runFolder) {
     const std::string path = common::run_dir::provenance(runFolder);
     if (!fs::is_regular_file(path)) return "";
-    const auto p = common::readProvenanceFile(path);
-    if (!p.is_object() || !p.contains("ini") || !p["ini"].is_string()) return "";
+    const auto p = common::readProvenanceFile(path);  // "ini", when there, a string
+    if (!p.contains("ini")) return "";
     return fs::path(p["ini"].get<std::string>()).filename().string();
 }
 

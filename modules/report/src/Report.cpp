@@ -118,8 +118,7 @@ common::Trajectories odometryPaths(const RunView& run) {
 nlohmann::json provenanceOf(const std::string& dir) {
     const std::string path = common::run_dir::provenance(dir);
     if (!std::filesystem::exists(path)) return nlohmann::json::object();
-    auto p = common::readProvenanceFile(path);
-    return p.is_object() ? p : nlohmann::json::object();
+    return common::readProvenanceFile(path);
 }
 
 std::string textAt(const nlohmann::json& j, const char* key) {

@@ -30,6 +30,9 @@ class PendingFile {
  private:
     std::string final_, temp_;
     bool committed_ = false;
+    /** The temporary's slot in the SIGINT / SIGTERM clean-up (holdTemporaryOnSignal): an
+     *  interrupted command leaves no "<name>.tmp" behind. */
+    int signalSlot_ = -1;
 };
 
 /** Creates a directory and its parents; an error names the directory. */

@@ -25,7 +25,7 @@ nlohmann::json parseJson(const std::string& text, const std::string& where,
 nlohmann::json readJsonFile(const std::string& path, const JsonLimits& limits = {});
 
 /** What a key of a file must hold, when it is there. */
-enum class JsonType { Object, Array, String, Number, Boolean, NullOrNumber };
+enum class JsonType { Object, Array, String, Number, Boolean };
 
 struct JsonField {
     std::string pointer;  ///< RFC 6901: "/robots", "/headline/figures"

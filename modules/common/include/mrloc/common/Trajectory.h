@@ -3,6 +3,7 @@
 // "t x y z qx qy qz qw", '#' comments. Ground truth and estimates share it.
 #include <mrpt/core/Clock.h>
 #include <mrpt/math/CMatrixFixed.h>
+#include <mrpt/math/CQuaternion.h>
 #include <mrpt/poses/CPose3D.h>
 
 #include <optional>
@@ -43,6 +44,12 @@ struct TrajectoryLimits {
 /** Throws mrloc::Error "<where>: ..." unless the time and position are finite and within
  *  TrajectoryLimits: a truth of 1e19 m would be an "RMSE" of 1e17 m. */
 void checkTrajectoryPose(double t, double x, double y, double z, const std::string& where);
+
+/** (w, x, y, z) of any scale, finite, as a unit quaternion: MRPT's CQuaternion refuses one off
+ *  unit norm in its own words. Scaled by its largest component first, so that 1e300 does not
+ *  overflow. nullopt when it is zero or its norm is under `minNorm`. */
+std::optional<mrpt::math::CQuaternionDouble> unitQuaternion(double w, double x, double y,
+                                                            double z, double minNorm);
 
 /** Writes atomically; times with 9 decimals, positions with 6 (micrometres). */
 void saveTum(const std::string& path, const Trajectory& traj);
