@@ -447,8 +447,11 @@ int batch(const method::Registry& registry, int argc, char** argv) {
               << j << " at once, through GNU parallel; job log " << batch_dir::joblog(dir) << "\n";
     // parallel runs in the batch folder, and the folder and mrloc's path reach the trials
     // through the environment: no argument parallel parses holds a user's string
-    const int code = runProgram(argvParallel, nullptr,
-                                {dirAbs, {{kEnvMrloc, mrloc}, {kEnvFolder, dirAbs}}});
+    // The command is POSIX sh: PARALLEL_SHELL says so to parallel, here and on hosts, whatever
+    // the login shell (with SHELL unset, as under cron or CI, a host's job ran nothing, exit 0)
+    const int code = runProgram(
+        argvParallel, nullptr,
+        {dirAbs, {{kEnvMrloc, mrloc}, {kEnvFolder, dirAbs}, {"PARALLEL_SHELL", "/bin/sh"}}});
     if (code >= 128 + 1 && code <= 128 + 64) return code;  // interrupted: --resume continues
     if (childSignal) return 128 + int(childSignal);
     return collectAndPrint(dir);

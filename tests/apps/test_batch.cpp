@@ -436,10 +436,12 @@ TEST(MrlocBatch, HostsGetTheFolderThroughTheEnvironmentWhateverItsName) {
                           "exec bash -c \"$*\"\n";
     fs::permissions(ssh, fs::perms::owner_all);
     const std::string dir = base + "/h'$(touch PWNED){=system(\"touch PWNED\")=}";
-    const std::string command = "PARALLEL_SSH=" + ssh + " " + MRLOC_BINARY + " batch " + ini +
-                                " --seeds 1..3 --chunk 1 --hosts 1/node1 --out " +
-                                quotedForShell(dir) + " > /dev/null 2>&1";
-    ASSERT_EQ(std::system(command.c_str()), 0) << command;
+    // SHELL unset, as under cron and CI: parallel's remote side once ran nothing then, exit 0
+    const std::string log = base + "/batch.log";
+    const std::string command = "env -u SHELL PARALLEL_SSH=" + ssh + " " + MRLOC_BINARY +
+                                " batch " + ini + " --seeds 1..3 --chunk 1 --hosts 1/node1 --out " +
+                                quotedForShell(dir) + " > " + log + " 2>&1";
+    ASSERT_EQ(std::system(command.c_str()), 0) << command << "\n" << slurp(log);
     EXPECT_NE(slurp(base + "/hosts.log").find("exec perl"), std::string::npos)
         << "the jobs did not go through the ssh stand-in";
     const auto line = trialRecord(dir, 0, 3);
