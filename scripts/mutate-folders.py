@@ -64,14 +64,15 @@ def run(cmd, limit=120):
         return "hang", time.time() - t0, ""
     dt = time.time() - t0
     err = p.stderr.decode(errors="replace").strip().split("\n")
-    err = [l for l in err if l and not l.startswith("warning") and not l.startswith("mrloc batch: ")
-           or "error" in l]
+    # mrloc's own progress lines aside, a refusal is one line: any other (a library's console
+    # text before it, say) makes it unclean
+    err = [l for l in err if l and not (l.startswith("mrloc batch: ") and ": error: " not in l)]
     if p.returncode < 0 or p.returncode >= 128:
         return "crash", dt, err[-1] if err else ""
     if p.returncode in (0, 3):
         return "accepted", dt, ""
     last = err[-1] if err else ""
-    clean = p.returncode == 1 and len([l for l in err if "error" in l]) == 1 and \
+    clean = p.returncode == 1 and len(err) == 1 and \
         "unexpected error" not in last and ": error: " in last
     return ("refused" if clean else "unclean"), dt, last
 

@@ -8,6 +8,10 @@
 //                         dominates)
 //   BM_Import/mrclam      MRCLAM dataset 6's robot 1 (113,000 lines; skipped without
 //                         ../shared/data/mrclam-ds6)
+//   BM_ImportRosbagTopics/N  a bag of N topics, one message each (half Odometry, half
+//                         String, left out): the time order is merged in O(M log C), and
+//                         rosbag::View was quadratic in topics (written by Debian's
+//                         python3-rosbag; skipped without it)
 // Run: build/tests/bench/bench_import --benchmark_repetitions=5
 //      --benchmark_report_aggregates_only=true   (report the medians)
 #include <benchmark/benchmark.h>
@@ -92,6 +96,50 @@ BENCHMARK_CAPTURE(BM_Import, rosbag,
     ->UseRealTime();
 BENCHMARK_CAPTURE(BM_Import, mrclam_robot1,
                   Case{"mrclam", {kMrclam}, {"robots=1"}, 61785 + 1942 + 49241})
+    ->Unit(benchmark::kMillisecond)
+    ->UseRealTime();
+
+/** A bag of `topics` topics, one message each, written once per size. */
+std::string topicsBag(long topics) {
+    const std::string path =
+        fs::temp_directory_path() / ("bench_import_topics" + std::to_string(topics) + ".bag");
+    if (fs::exists(path)) return path;
+    const std::string script = fs::temp_directory_path() / "bench_import_topics.py";
+    std::ofstream(script) << "import sys, rosbag, rospy\n"
+                             "from nav_msgs.msg import Odometry\n"
+                             "from std_msgs.msg import String\n"
+                             "with rosbag.Bag(sys.argv[2], 'w') as bag:\n"
+                             "    for k in range(int(sys.argv[1])):\n"
+                             "        t = rospy.Time.from_sec(1000 + 0.001 * k)\n"
+                             "        if k % 2:\n"
+                             "            bag.write('/s%d' % k, String(data='x'), t)\n"
+                             "            continue\n"
+                             "        o = Odometry()\n"
+                             "        o.header.stamp, o.pose.pose.orientation.w = t, 1.0\n"
+                             "        bag.write('/odom%d' % k, o, t)\n";
+    const std::string tmp = path + ".tmp.bag";
+    if (std::system(("/usr/bin/python3 " + script + " " + std::to_string(topics) + " " + tmp +
+                     " 2>/dev/null")
+                        .c_str()) != 0)
+        return "";
+    fs::rename(tmp, path);
+    return path;
+}
+
+void BM_ImportRosbagTopics(benchmark::State& state) {
+    const std::string bag = topicsBag(state.range(0));
+    if (bag.empty()) return state.SkipWithError("Debian's python3-rosbag is not installed");
+    li::FormatRegistry registry;
+    li::registerAllFormats(registry);
+    const std::string out = fs::temp_directory_path() / "bench_import_topics.rawlog";
+    for (auto _ : state) li::runImport(registry.get("rosbag"), {bag}, {}, out);
+    state.counters["topics_per_s"] =
+        benchmark::Counter(double(state.range(0)), benchmark::Counter::kIsIterationInvariantRate);
+}
+BENCHMARK(BM_ImportRosbagTopics)
+    ->Arg(2500)
+    ->Arg(10000)
+    ->Arg(40000)
     ->Unit(benchmark::kMillisecond)
     ->UseRealTime();
 

@@ -3,6 +3,7 @@
 #include <mrloc/common/Names.h>
 #include <mrloc/logimport/Format.h>
 #include <mrloc/logimport/TextLog.h>
+#include <fcntl.h>
 #include <sys/wait.h>
 #include <unistd.h>
 
@@ -143,8 +144,8 @@ ImportSummary fromJson(const nlohmann::json& j) {
     return s;
 }
 
-/** convertAll in a child process: its summary or its error comes back through a pipe; a
- *  crash is one line, and the temporary files it left are removed. */
+/** convertAll in a child process: its summary or its error comes back through a pipe (its
+ *  console goes nowhere); a crash is one line, and the temporary files it left are removed. */
 ImportSummary convertIsolated(const Format& format, const ImportRequest& request,
                               const std::string& rawlogPath) {
     const auto& inputs = request.inputs;
@@ -155,6 +156,14 @@ ImportSummary convertIsolated(const Format& format, const ImportRequest& request
     if (pid < 0) throw Error("cannot fork to convert " + inputs[0]);
     if (pid == 0) {
         close(fds[0]);
+        // the reader's libraries print their own console text (ROS: "Error reading CONNECTION
+        // header" before it throws): the child speaks through its reply only, and mrloc's one
+        // line says what went wrong
+        if (const int null = open("/dev/null", O_WRONLY); null >= 0) {
+            dup2(null, STDOUT_FILENO);
+            dup2(null, STDERR_FILENO);
+            close(null);
+        }
         std::string reply;
         try {
             reply = "O" + toJson(convertAll(format, request, rawlogPath)).dump();

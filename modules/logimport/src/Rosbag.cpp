@@ -22,6 +22,10 @@
 #include <cmath>
 #include <filesystem>
 #include <map>
+#include <memory>
+#include <queue>
+#include <set>
+#include <tuple>
 
 namespace mrloc::logimport {
 
@@ -54,6 +58,59 @@ CPose3D poseOf(const geometry_msgs::Transform& t, const std::string& where) {
 double timeOf(const ros::Time& stamp, const rosbag::MessageInstance& m) {
     return stamp.isZero() ? m.getTime().toSec() : stamp.toSec();
 }
+
+/** All of a bag's messages in time order (ties in file order), merged through a heap of one
+ *  cursor per connection: O(M log C) for M messages on C connections. Built on the ranges
+ *  rosbag::View keeps for its subclasses, because View itself is quadratic in connections
+ *  twice (librosbag-storage 1.15, 20,000 topics took 10.6 s): its iterator sorts the C
+ *  cursors again at every message, and building the ranges searches those made so far for
+ *  each connection. That search is kept empty: the query, asked once per connection before
+ *  it, parks the ranges made so far, and all are put back once built (each connection is
+ *  met once, so the search never had anything to find). */
+class TimeOrderedView : public rosbag::View {
+ public:
+    explicit TimeOrderedView(const rosbag::Bag& bag) {
+        try {
+            addQuery(bag, [this](const rosbag::ConnectionInfo*) {
+                parked_.insert(parked_.end(), ranges_.begin(), ranges_.end());
+                ranges_.clear();
+                return true;
+            });
+        } catch (...) {
+            unpark();  // ~View deletes them
+            throw;
+        }
+        unpark();
+    }
+
+    template <typename Visit>
+    void forEach(Visit&& visit) {
+        using Cursor = std::pair<std::multiset<rosbag::IndexEntry>::const_iterator,
+                                 const rosbag::MessageRange*>;
+        const auto later = [](const Cursor& a, const Cursor& b) {
+            const rosbag::IndexEntry &x = *a.first, &y = *b.first;
+            return std::tie(x.time, x.chunk_pos, x.offset) > std::tie(y.time, y.chunk_pos, y.offset);
+        };
+        std::priority_queue<Cursor, std::vector<Cursor>, decltype(later)> heads(later);
+        for (const rosbag::MessageRange* range : ranges_)
+            if (range->begin != range->end) heads.emplace(range->begin, range);
+        while (!heads.empty()) {
+            auto [entry, range] = heads.top();
+            heads.pop();
+            const std::unique_ptr<rosbag::MessageInstance> m(
+                newMessageInstance(range->connection_info, *entry, *range->bag_query->bag));
+            visit(*m);
+            if (++entry != range->end) heads.emplace(entry, range);
+        }
+    }
+
+ private:
+    void unpark() {
+        ranges_.insert(ranges_.begin(), parked_.begin(), parked_.end());
+        parked_.clear();
+    }
+    std::vector<rosbag::MessageRange*> parked_;
+};
 
 /** Labels of the topics: `[topics] /scan = robot.laser` in the option's INI, or by name. */
 class TopicLabels {
@@ -125,14 +182,13 @@ void convert(const ImportRequest& req, ImportOutput& out) {
         return CPose3D();
     };
     const std::string where = req.inputs[0];
-    rosbag::View view(bag);
-    for (const rosbag::MessageInstance& m : view) {
+    TimeOrderedView(bag).forEach([&](const rosbag::MessageInstance& m) {
         const std::string topic = m.getTopic();
-        if (topic == "/tf_static") continue;
+        if (topic == "/tf_static") return;
         const auto label = labels.of(topic);
         if (!label) {
             ++dropped[common::printable(topic.substr(0, 64)) + " (not in the topic map)"];
-            continue;
+            return;
         }
         const std::string at = where + ": " + common::printable(topic.substr(0, 64));
         if (const auto odo = m.instantiate<nav_msgs::Odometry>()) {
@@ -203,7 +259,7 @@ void convert(const ImportRequest& req, ImportOutput& out) {
             ++dropped[common::printable(topic.substr(0, 64)) + " (" +
                       common::printable(m.getDataType().substr(0, 64)) + ")"];
         }
-    }
+    });
     for (const auto& [what, n] : dropped)
         out.note(mrpt::format("%zu messages of %s left out", n, what.c_str()));
     for (const auto& [frame, n] : unmounted)
