@@ -40,6 +40,32 @@ void BM_TableOneMonteCarlo(benchmark::State& state) {
     state.counters["moves per march"] = double(moves) / (400.0 * double(state.iterations()));
 }
 
+/** The work estimate's costs (formationWork, doc/errors.md "Work"): an error-model march per
+ *  move, for N robots and a triangle side; dead reckoning per step, at two wheel speeds (its
+ *  steps are the route over speed x period). */
+void BM_ErrorModelMarch(benchmark::State& state) {
+    const auto route = formation::route(state.range(2) ? "patrol" : "many_turns");
+    formation::MarchOptions o;
+    o.formation.side = double(state.range(1)) / 10;
+    mrpt::random::CRandomGenerator rng(1);
+    size_t moves = 0;
+    for (auto _ : state) moves += formation::march(size_t(state.range(0)), route, {}, o, {}, rng).moves.size();
+    state.counters["moves"] = double(moves) / double(state.iterations());
+    state.counters["us per move"] = benchmark::Counter(
+        double(moves) * 1e-6, benchmark::Counter::kIsRate | benchmark::Counter::kInvert);
+}
+
+void BM_DeadReckonSteps(benchmark::State& state) {
+    const auto route = formation::route(state.range(1) ? "patrol" : "many_turns");
+    const double w = double(state.range(0)) / 10;
+    mrpt::random::CRandomGenerator rng(1);
+    size_t steps = 0;
+    for (auto _ : state) steps += formation::deadReckon(route, 0.035, w, {}, rng).size() - 1;
+    state.counters["steps"] = double(steps) / double(state.iterations());
+    state.counters["ns per step"] = benchmark::Counter(
+        double(steps) * 1e-9, benchmark::Counter::kIsRate | benchmark::Counter::kInvert);
+}
+
 /** The camera path's perception per frame: the rear camera (1280 x 720) renders three beacon
  *  robots with their tags, and ArUco finds them (seed 003 fig. 3g). */
 void BM_RenderAndDetect(benchmark::State& state) {
@@ -174,5 +200,11 @@ BENCHMARK(BM_RenderAndDetect)
     ->Unit(benchmark::kMillisecond)
     ->UseRealTime();
 BENCHMARK(BM_TableOneMonteCarlo)->Unit(benchmark::kMillisecond);
+// robots, side in dm, route (0 many turns, 1 patrol); wheel speed in 0.1 rad/s, route
+BENCHMARK(BM_ErrorModelMarch)
+    ->ArgsProduct({{4, 6, 8, 10, 16, 24, 32, 50}, {15}, {0, 1}})
+    ->ArgsProduct({{4}, {5, 30}, {0, 1}})
+    ->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_DeadReckonSteps)->ArgsProduct({{58, 29, 1}, {0, 1}})->Unit(benchmark::kMillisecond);
 
 BENCHMARK_MAIN();

@@ -282,7 +282,9 @@ std::vector<method::WorkItem> beaconsWork(const BeaconLocalizer& l,
     method::WorkItem w;
     w.what = "the beacon study's trials";
     w.keys =
-        "[beacons_study] trials x test points (grid, sizes) x beacon counts, sweeps and agents";
+        "[beacons_study] trials x the test points (grid, wall_margin) of coverage_sizes, "
+        "count_sizes x count_max and the room x (beam_angles + beacon_counts + speeds); "
+        "choice_trials; agents x agents_layouts x agents_time";
     w.seconds =
         kSecondsPerTrial * l.study().trialsAtMost(scenario->robots.size(), scenario->world.sizeX,
                                                   scenario->world.sizeY);

@@ -282,62 +282,6 @@ FormationExperimentFile runFormationExperiment(const FormationConfig& c, bool qu
     return f;
 }
 
-std::vector<method::WorkItem> formationWork(const FormationLocalizer& localizer,
-                                            const sim::ScenarioConfig* scenario) {
-    const auto& c = localizer.config();
-    // Measured (doc/errors.md, "Work"): about 1 ms per error-model march of 4 robots along
-    // the many-turns route (113 m), dead reckoning included, growing about as N; 0.17 s per
-    // camera start (Algorithm 1 on rendered frames); the pixel mode's simulation 150 us per
-    // robot and step (formation_pixel.ini: 6,000 steps, 5 robots, 4.4 s).
-    constexpr double kSecondsPerMarchMetre = 1e-3 / 113, kSecondsPerCameraStart = 0.17;
-    constexpr double kPixelSecondsPerRobotStep = 1.5e-4;
-    const auto length = [](const std::string& name) {
-        const auto w = route(name);
-        double m = 0;
-        for (size_t i = 1; i < w.size(); ++i) m += (w[i] - w[i - 1]).norm();
-        return m;
-    };
-    std::vector<method::WorkItem> out;
-    if (scenario && c.mode == FormationConfig::Mode::Pixel) {
-        method::WorkItem w;
-        w.what = "the pixel mode's rendered frames";
-        w.keys = "[formation] mode = pixel, [scenario] duration / dt x robots";
-        w.seconds = scenario->scenario.duration / scenario->scenario.dt * double(c.robots + 1) *
-                    kPixelSecondsPerRobotStep;
-        w.simulation = true;
-        out.push_back(w);
-    }
-    if (c.pixelRuns > 0) {
-        // Measured: 8 pixel marches (both routes, both speeds) in 29 s on 2 cores with the
-        // default 640 x 200 camera: 7.2 s per march on a core, growing with the pixels
-        constexpr double kSecondsPerPixelMarch = 7.2;
-        const double pixels = double(c.cameraWidth * c.cameraRows) / (640.0 * 200.0);
-        method::WorkItem p;
-        p.what = mrpt::format("the pixel experiment's %zu marches",
-                              c.pixelRuns * c.experimentRoutes.size() * c.experimentSpeeds.size());
-        p.keys = "[formation] pixel_runs x experiment_routes x experiment_speeds, robots / 4";
-        p.seconds = double(c.pixelRuns * c.experimentRoutes.size() * c.experimentSpeeds.size()) *
-                    kSecondsPerPixelMarch * std::max(1.0, pixels) * double(c.robots) / 4;
-        p.parallel = true;  // pixelTable's pool
-        out.push_back(p);
-    }
-    if (c.runs == 0) return out;
-    double marchMetres = 0;  // Table 1 and fig. 14, then fig. 15 on the first route
-    for (const auto& name : c.experimentRoutes)
-        marchMetres += double(c.experimentSpeeds.size()) * length(name) * double(c.robots) / 4;
-    for (size_t n = 4; n <= c.experimentRobotsMax; ++n)
-        marchMetres += length(c.experimentRoutes.front()) * double(n) / 4;
-    method::WorkItem e;
-    e.what = mrpt::format("the experiment's %zu x %zu marches", c.runs, marchesPerRun(c));
-    e.keys =
-        "[formation] runs x (experiment_routes x experiment_speeds + "
-        "experiment_robots_max - 3)";
-    e.seconds = double(c.runs) * marchMetres * kSecondsPerMarchMetre +
-                (c.cameraStarts > 0 ? double(kCameraGridStarts) * kSecondsPerCameraStart : 0);
-    out.push_back(e);
-    return out;
-}
-
 std::vector<std::string> formationExperiment(const method::ExperimentOf<FormationLocalizer>& in) {
     const auto& loc = in.localizer;
     if (loc.config().runs == 0 && loc.config().pixelRuns == 0) return {};

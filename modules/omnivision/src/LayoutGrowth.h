@@ -104,7 +104,8 @@ struct Candidate {
 class ImageTable {
  public:
     explicit ImageTable(const Snapshot& s, size_t maxVisits = size_t(-1));
-    /** Angle pairs forPairsNear has handed out so far. */
+    /** Angle pairs forPairsNear has handed out and images findImage has looked at so far:
+     *  the search's work, bounded by maxVisits. */
     size_t visits() const { return visits_; }
 
     const Snapshot& snapshot() const { return snapshot_; }

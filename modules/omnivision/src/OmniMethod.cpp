@@ -186,15 +186,34 @@ std::vector<method::WorkItem> omnivisionWork(const OmniLocalizer& localizer,
     // (render target and image, 3 bytes a pixel); a trial of the accuracy sweep 2.1 ms with
     // 5 robots, taken to grow as N^3 (the refinement's normal equations).
     constexpr double kSecondsPerPixel = 3.2e-8, kSecondsPerTrial = 2.1e-3;
-    const double robots = scenario ? double(scenario->robots.size()) : double(o.swarm);
+    // a swarm's robots are generated: [scenario] robots stays empty
+    const double robots =
+        o.swarm > 0 || !scenario ? double(o.swarm) : double(scenario->robots.size());
+    const double snapshots = double(o.snapshotTimes().size());
     std::vector<method::WorkItem> out;
+    if (robots >= 3) {
+        // The identification's table holds every ordered pair of every robot's images, N^3
+        // of them at 16 bytes; measured with omnivision_swarm.ini's bearings: 76 MB at N = 30,
+        // 168 MB at N = 120, about 53 bytes per N^3 at the peak; its time 2.5 us per N^3
+        // per snapshot at N = 100 (5 s for the run). The search beyond the table depends on
+        // the bearings: it is bounded by its work meter (maxPairVisits), not estimated here.
+        constexpr double kBytesPerRobotCubed = 56, kSecondsPerRobotCubed = 2.5e-6;
+        const double cubed = robots * robots * robots;
+        method::WorkItem w;
+        w.what = mrpt::format("the identification of %.0f robots at %.0f snapshots", robots,
+                              snapshots);
+        w.keys = "[scenario] robots or [omnivision] swarm, cubed, x pairs";
+        w.seconds = snapshots * cubed * kSecondsPerRobotCubed;
+        w.memory = cubed * kBytesPerRobotCubed;
+        out.push_back(w);
+    }
     if (scenario && o.render) {
         const double pixels =
             double(o.panorama.views) * double(o.panorama.viewWidth) * double(o.panorama.height);
         method::WorkItem w;
-        w.what = mrpt::format("%.0f rendered panoramas", double(o.snapshotTimes().size()) * robots);
-        w.keys = "[omnivision] views x view_width x view_height, per robot and snapshot";
-        w.seconds = pixels * double(o.snapshotTimes().size()) * robots * kSecondsPerPixel;
+        w.what = mrpt::format("%.0f rendered panoramas", snapshots * robots);
+        w.keys = "[omnivision] views x view_width x view_height x pairs, per robot";
+        w.seconds = pixels * snapshots * robots * kSecondsPerPixel;
         w.memory = 2 * 3 * pixels;
         w.simulation = true;
         out.push_back(w);

@@ -12,7 +12,7 @@ namespace mrloc::omnivision::seedgrow {
 Error ImageTable::tooMuchWork() const {
     return Error(mrpt::format(
         "[omnivision] sum_tolerance, bearing_tolerance, bearing_sigma: the identification of "
-        "%zu robots examined over %zu angle pairs without settling (tolerances too loose for "
+        "%zu robots examined over %zu angle pairs and images without settling (tolerances too loose for "
         "the bearings' noise; doc/errors.md, \"Work\")",
         snapshot_.robots(), maxVisits_));
 }
@@ -48,6 +48,9 @@ int ImageTable::findImage(const Labels& labels, int r, double b, double tol) con
     int best = -1;
     double bestD = tol;
     const auto consider = [&](size_t i) {
+        // the work meter counts the images looked at too: with loose tolerances this scan,
+        // not the angle pairs, is where the time goes (30 deg: 27 s before the pairs' bound)
+        if (++visits_ > maxVisits_) throw tooMuchWork();
         const double d = std::abs(wrapToPi(v[i] - b));
         if (d > tol) return false;
         if ((labels.empty() || labels[size_t(r)][i] < 0) && d <= bestD) best = int(i), bestD = d;

@@ -307,7 +307,8 @@ std::vector<method::WorkItem> polymapWork(const PolymapLocalizer& localizer,
                                   : double(localizer.generatedMap().sites.size());
         method::WorkItem w;
         w.what = mrpt::format("the experiment's %.0f localizations", starts * columns);
-        w.keys = "[polymap] elimination (and random_points), the map's hypotheses";
+        w.keys = "[polymap] elimination (and random_points) x hypotheses, growing with the vertices "
+                 "(steps x branches_per_step)";
         w.seconds = starts * columns * perStart(n);
         out.push_back(w);
     }
@@ -331,7 +332,8 @@ std::vector<method::WorkItem> polymapWork(const PolymapLocalizer& localizer,
         const double scans = scenario->scenario.duration * o.scanRate;
         method::WorkItem w;
         w.what = mrpt::format("%.0f scans of %d rays", scans, o.scanRays);
-        w.keys = "[polymap] scan_rate x scan_rays x [scenario] duration";
+        w.keys = "[polymap] scan_rate x scan_rays, the vertices (steps x branches_per_step), x "
+                 "[scenario] duration";
         w.seconds = scans * (kSecondsPerScan + double(o.scanRays) * kSecondsPerRay) * mapFactor;
         w.bytes = scans * double(o.scanRays) * kBytesPerRay;
         w.simulation = true;

@@ -14,13 +14,13 @@ namespace mrloc::formation {
  *  same seed gives the same file. */
 FormationExperimentFile runFormationExperiment(const FormationConfig& config, bool quiet = true);
 
-/** The registered experiment step: runs it when runs > 0 and writes
- *  formation.experiment.txt. */
-/** The work the configuration asks (method/Work.h): the pixel mode's frames and the
- *  experiment's marches. */
+/** The work the configuration asks (method/Work.h; FormationWork.cpp): the pixel mode's
+ *  frames, the experiment's marches and dead-reckoned drives, and the pixel experiment. */
 std::vector<method::WorkItem> formationWork(const FormationLocalizer& localizer,
                                             const sim::ScenarioConfig* scenario);
 
+/** The registered experiment step: runs it when runs > 0 and writes
+ *  formation.experiment.txt. */
 std::vector<std::string> formationExperiment(const method::ExperimentOf<FormationLocalizer>& in);
 
 /** One run of Table 1 (`mrloc trial`): every route at every speed, formation and dead
