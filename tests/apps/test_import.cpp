@@ -219,6 +219,42 @@ TEST(Import, MrclamExcerptAsItsFilesCountIt) {
     EXPECT_NEAR(length, 0.291281, 0.002) << length;  // chords of the arcs: a little less
 }
 
+TEST(Import, MrclamSubjectSeenTwiceAtOneStampKeepsTheFirst) {
+    // r1's first measurement time (1248444189.599) given barcode 14 (robot 2) a second time at
+    // another range: MRPT writes no observation holding a landmark twice, and the import once
+    // ended "cannot write rawlog (is the disk full?)". The first sighting is kept, and said.
+    const std::string src = tmp("import_mrclam_twice");
+    fs::remove_all(src);
+    fs::copy(std::string(MRLOC_SOURCE_DIR) + "/tests/data/mrclam-excerpt", src);
+    {
+        std::ifstream in(src + "/Robot1_Measurement.dat");
+        std::stringstream text;
+        text << in.rdbuf();
+        std::string s = text.str();
+        const std::string line = "1248444189.599 \t  14 \t  3.787 \t -0.257\n";
+        const auto at = s.find(line);
+        ASSERT_NE(at, std::string::npos);
+        s.insert(at + line.size(), "1248444189.599 \t  14 \t  4.500 \t -0.300\n");
+        std::ofstream(src + "/Robot1_Measurement.dat") << s;
+    }
+    const std::string dir = tmp("import_mrclam_twice_out");
+    fs::create_directories(dir);
+    const auto s = li::runImport(formatNamed("mrclam"), {src}, {"robots=1,3"}, dir + "/x.rawlog");
+    EXPECT_EQ(streamCount(s, "r1.camera"), 26u);  // as without the line
+    ASSERT_EQ(s.notes.size(), 1u);
+    EXPECT_EQ(s.notes[0],
+              "1 sightings of a subject already seen at that time stamp left out: the first is "
+              "kept");
+    for (const auto& o : readAll(dir + "/x.rawlog")) {
+        auto camera = std::dynamic_pointer_cast<mrpt::obs::CObservationBearingRange>(o);
+        if (!camera || camera->sensorLabel != "r1.camera") continue;
+        ASSERT_EQ(camera->sensedData.size(), 2u);
+        EXPECT_EQ(camera->sensedData[0].landmarkID, 2);
+        EXPECT_NEAR(camera->sensedData[0].range, 3.787, 1e-6);
+        break;
+    }
+}
+
 TEST(Import, MrclamDataset6AsTheSourceCountsIt) {
     const std::string src = kShared + "/mrclam-ds6";
     if (!fs::is_directory(src))

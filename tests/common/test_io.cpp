@@ -3,6 +3,7 @@
 #include <mrloc/common/AtomicFile.h>
 #include <mrloc/common/Error.h>
 #include <mrloc/common/Metrics.h>
+#include <mrloc/common/ObservationCheck.h>
 #include <mrloc/common/Rawlog.h>
 #include <mrloc/common/Trajectory.h>
 #include <mrpt/io/CFileGZOutputStream.h>
@@ -10,6 +11,7 @@
 #include <mrpt/obs/CActionCollection.h>
 #include <mrpt/obs/CActionRobotMovement2D.h>
 #include <mrpt/obs/CObservationBeaconRanges.h>
+#include <mrpt/obs/CObservationBearingRange.h>
 #include <mrpt/obs/CObservationOdometry.h>
 #include <mrpt/poses/CPose3DInterpolator.h>
 #include <mrpt/serialization/CArchive.h>
@@ -224,4 +226,37 @@ TEST(Metrics, StatsOfKnownValues) {
     EXPECT_DOUBLE_EQ(s.median, 2.5);
     EXPECT_DOUBLE_EQ(s.rmse, std::sqrt(55.0 / 6.0));
     EXPECT_DOUBLE_EQ(common::percentile({0, 10}, 95), 9.5);
+}
+
+TEST(Rawlog, AnObservationMrptRefusesToWriteIsRefusedForItsCauseNotTheDisk) {
+    // a landmark twice in one CObservationBearingRange: MRPT's writer throws "Duplicate
+    // landmark ID", which mrloc once reported as "(is the disk full?)"; ObservationCheck
+    // refuses it first, naming the landmark
+    auto o = mrpt::obs::CObservationBearingRange::Create();
+    o->sensorLabel = "r1.camera";
+    o->sensedData.push_back({3.0f, 0.1f, 0.0f, 14, {}});
+    o->sensedData.push_back({3.1f, 0.2f, 0.0f, 14, {}});
+    const std::string path = tmp("duplicate_landmark.rawlog");
+    {
+        common::RawlogWriter w(path);
+        try {
+            w.write(*o);
+            ADD_FAILURE() << "MRPT wrote a landmark twice";
+        } catch (const Error& e) {
+            const std::string what = e.what();
+            EXPECT_EQ(what.find("disk"), std::string::npos) << what;
+            EXPECT_NE(what.find("Duplicate landmark ID=14"), std::string::npos) << what;
+        }
+    }
+    EXPECT_FALSE(std::filesystem::exists(path));
+    common::ObservationCheck check;
+    try {
+        check.check(*o);
+        ADD_FAILURE() << "a landmark twice passed the check";
+    } catch (const Error& e) {
+        EXPECT_STREQ(e.what(), "landmark 14 is seen twice in one observation");
+    }
+    o->sensedData[1].landmarkID = mrpt::obs::INVALID_LANDMARK_ID;  // without IDs: any number of them
+    o->sensedData[0].landmarkID = mrpt::obs::INVALID_LANDMARK_ID;
+    EXPECT_NO_THROW(check.check(*o));
 }

@@ -11,6 +11,7 @@
 #include <mrpt/serialization/CArchive.h>
 
 #include <cmath>
+#include <set>
 
 namespace mrloc::common {
 
@@ -106,10 +107,16 @@ void ObservationCheck::check(const mrpt::obs::CObservation& obs) {
     } else if (const auto* br = dynamic_cast<const CObservationBearingRange*>(&obs)) {
         count(br->sensedData.size(), B::kMaxBearings, "bearings");
         sensorPose(br->sensorLocationOnRobot);
+        std::set<int32_t> landmarks;
         for (const auto& m : br->sensedData) {
             finite(m.yaw, "a bearing's yaw");
             finite(m.pitch, "a bearing's pitch");
             range(m.range, "a bearing's range");
+            // MRPT's own rule (CObservationBearingRange refuses to be written so): with IDs,
+            // each landmark once an observation
+            if (m.landmarkID != INVALID_LANDMARK_ID && !landmarks.insert(m.landmarkID).second)
+                throw Error(mrpt::format("landmark %d is seen twice in one observation",
+                                         int(m.landmarkID)));
         }
     } else if (const auto* r = dynamic_cast<const CObservationRange*>(&obs)) {
         count(r->sensedData.size(), B::kMaxSonars, "range sensors");

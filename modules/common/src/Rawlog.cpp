@@ -192,8 +192,9 @@ void RawlogWriter::write(const mrpt::serialization::CSerializable& obj) {
     try {
         archive << obj;
     } catch (const std::exception& e) {
-        throw Error("cannot write rawlog " + pending_.finalPath() +
-                    " (is the disk full?): " + oneLine(e.what()));
+        // MRPT's own checks throw here too (a landmark twice in one observation): its text
+        // says the cause, which need not be the disk
+        throw Error("cannot write rawlog " + pending_.finalPath() + ": " + oneLine(e.what()));
     }
 }
 

@@ -162,7 +162,7 @@ void convert(const ImportRequest& req, ImportOutput& out) {
     std::map<int, mrpt::poses::CPose2D> odo;
     std::map<int, std::pair<double, std::array<double, 3>>> lastCommand;  // time, (v, w)
     std::map<long, size_t> unknownBarcodes;
-    size_t sameTimeCommands = 0;
+    size_t sameTimeCommands = 0, repeatedSightings = 0;
     for (;;) {
         Stream* next = nullptr;
         for (auto& s : streams)
@@ -203,11 +203,16 @@ void convert(const ImportRequest& req, ImportOutput& out) {
             auto ranges = mrpt::obs::CObservationBeaconRanges::Create();
             ranges->sensorLabel = name + ".ranges";
             ranges->timestamp = stamp;
+            std::set<long> seen;  // an observation holds each subject once (MRPT's rule)
             for (const auto& row : next->rows) {
                 const long barcode = long(row[0]);
                 const auto it = subjectOf.find(barcode);
                 if (it == subjectOf.end()) {
                     ++unknownBarcodes[barcode];
+                    continue;
+                }
+                if (!seen.insert(it->second).second) {
+                    ++repeatedSightings;
                     continue;
                 }
                 camera->sensedData.push_back(
@@ -232,6 +237,10 @@ void convert(const ImportRequest& req, ImportOutput& out) {
             mrpt::format("%zu odometry commands at the time stamp of the one before: the "
                          "later holds from there, one reading written",
                          sameTimeCommands));
+    if (repeatedSightings)
+        out.note(mrpt::format("%zu sightings of a subject already seen at that time stamp left "
+                              "out: the first is kept",
+                              repeatedSightings));
     if (!withOdometry) out.note("odometry left out (--opt odometry=no)");
     if (duration > 0) out.note(mrpt::format("the first %g s only (--opt duration)", duration));
     out.addSideFile(".beacons.ini", beaconIni(landmarks));
