@@ -26,11 +26,14 @@ struct Stream {
     size_t count = 0;
     size_t restamped = 0;  ///< stamped 0, given the sensory frame's time
     size_t missing = 0;    ///< stamped 0 with no time to take: not in the span
+    size_t before1970 = 0;  ///< which localize refuses (ObservationCheck)
     double t0 = 0, t1 = 0;
     bool timed = false;
 };
 
 std::string utc(double t) {
+    // MRPT's date text wraps before 1970 (the year 60425), as its toDouble does
+    if (t < 0) return "before 1970";
     return mrpt::system::dateTimeToString(mrpt::Clock::fromDouble(t)) + " UTC";
 }
 
@@ -62,7 +65,8 @@ int info(int argc, char** argv) {
             ++s.missing;
             continue;
         }
-        const double t = mrpt::Clock::toDouble(obs->timestamp);
+        const double t = common::stampSeconds(obs->timestamp);
+        s.before1970 += t <= 0;
         if (!s.timed) s.t0 = t, s.t1 = t, s.timed = true;
         s.t0 = std::min(s.t0, t), s.t1 = std::max(s.t1, t);
         if (!comment) first = std::min(first, t), last = std::max(last, t);
@@ -122,6 +126,9 @@ int info(int argc, char** argv) {
         if (s.missing)
             stamps += (stamps.empty() ? "" : "; ") +
                       mrpt::format("%zu stamped 0 with no time: left out", s.missing);
+        if (s.before1970)
+            stamps += (stamps.empty() ? "" : "; ") +
+                      mrpt::format("%zu before 1970: localize refuses them", s.before1970);
         if (stamps.empty()) stamps = "all valid";
         const std::string label = std::get<1>(key).empty() ? "(none)" : std::get<1>(key);
         const double rate = span > 0 ? double(s.count - s.missing - 1) / span : 0.0;

@@ -70,6 +70,29 @@ TEST(BadRawlog, CorruptGzipStreamIsAnErrorNotAnEmptyRawlog) {
     expectHas(line, "corrupt gzip stream near byte 105 (invalid literal/lengths set)");
 }
 
+TEST(BadRawlog, AStampBefore1970IsRefusedNotReadAsTheYear60425) {
+    // -10.5 s: MRPT's unsigned toDouble made it 1844674407360.455 s, which the check's
+    // "before 1970" never caught (common::stampSeconds is signed)
+    expectHas(refused("localize", badInput("before_1970.rawlog"),
+                      std::string(MRLOC_SOURCE_DIR) + "/config/quickstart.ini"),
+              "entry 1, observation 1 ('robot.odometry', mrpt::obs::CObservationOdometry): time "
+              "stamp -10.500000 s is before 1970");
+    // info describes it, saying so
+    const auto info = mrlocCmd("info " + badInput("before_1970.rawlog"));
+    EXPECT_EQ(info.code, 0) << info.output;
+    expectHas(info.output, "start: before 1970 (-10.500000)");
+    expectHas(info.output, "1 before 1970: localize refuses them");
+    // and the import that wrote it now refuses its source, at the line
+    const std::string dir = tmp("import_before_1970");
+    fs::create_directories(dir);
+    const std::string clf = dir + "/a.clf";
+    std::ofstream(clf) << "ODOM 1.0 2.0 0.5 0.3 0.1 0.0 -10.5 host 10.01\n";
+    const auto r = mrlocCmd("import carmen " + clf + " --out " + dir + "/a.rawlog");
+    EXPECT_EQ(r.code, 1) << r.output;
+    EXPECT_EQ(r.output, "mrloc import: error: " + clf + ":1: time stamp -10.500000 s is before 1970\n");
+    EXPECT_FALSE(fs::exists(dir + "/a.rawlog"));
+}
+
 TEST(BadRawlog, HeaderOnlyGzipIsTruncated) {
     const auto line = refused("info", badInput("header_only_10B.rawlog"));
     expectHas(line,

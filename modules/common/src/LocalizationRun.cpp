@@ -126,7 +126,7 @@ LocalizationResult runLocalization(Localizer& localizer, const LocalizationRunOp
         ++classCounts[shortClassName(*obs)];
         // only a comment may be unstamped here (the others were left out above)
         const bool stamped = obs->timestamp != INVALID_TIMESTAMP;
-        const double stamp = stamped ? mrpt::Clock::toDouble(obs->timestamp) : 0.0;
+        const double stamp = stamped ? stampSeconds(obs->timestamp) : 0.0;
         if (stamped) logStart = std::min(logStart, stamp), logEnd = std::max(logEnd, stamp);
         if (const auto odo = std::dynamic_pointer_cast<mrpt::obs::CObservationOdometry>(obs)) {
             const std::string robot = robotOfLabel(odo->sensorLabel);
@@ -144,7 +144,7 @@ LocalizationResult runLocalization(Localizer& localizer, const LocalizationRunOp
             throw Error(mrpt::format("rawlog %s: observation %zu ('%s', %s, t = %.3f s): %s",
                                      o.rawlogPath.c_str(), n + 1, obs->sensorLabel.c_str(),
                                      obs->GetRuntimeClass()->className,
-                                     mrpt::Clock::toDouble(obs->timestamp), e.what()));
+                                     stampSeconds(obs->timestamp), e.what()));
         }
         progress.updateFraction(reader.fractionRead(), ++n);
     }

@@ -1,3 +1,4 @@
+#include <mrloc/common/Trajectory.h>
 #include <mrloc/common/Error.h>
 #include <mrloc/common/Names.h>
 #include <mrloc/common/ObservationCheck.h>
@@ -55,7 +56,7 @@ void sensorPose(const mrpt::poses::CPose3D& p) {
 void ObservationCheck::check(const mrpt::obs::CObservation& obs) {
     using namespace mrpt::obs;
     checkSensorLabel(obs.sensorLabel, "sensor label");
-    const double seconds = mrpt::Clock::toDouble(obs.timestamp);
+    const double seconds = stampSeconds(obs.timestamp);
     LabelState& label = labels_[obs.sensorLabel];
     // a comment is an on-board event (its label dropped by MRPT): no stream of its own
     if (!IS_CLASS(obs, CObservationComment)) {
@@ -65,7 +66,7 @@ void ObservationCheck::check(const mrpt::obs::CObservation& obs) {
             throw Error(mrpt::format("time stamp %.6f s is before 1970", seconds));
         if (label.stamp && obs.timestamp < *label.stamp)
             throw Error(mrpt::format("time runs backwards: %.6f s after %.6f s of the same label",
-                                     seconds, mrpt::Clock::toDouble(*label.stamp)));
+                                     seconds, stampSeconds(*label.stamp)));
         label.stamp = obs.timestamp;
         if (previousSeconds_ && std::abs(seconds - *previousSeconds_) > B::kMaxTimeJump)
             throw Error(
@@ -148,7 +149,7 @@ bool ObservationCheck::isCopyOfTheOneBefore(const mrpt::obs::CObservation::Ptr& 
             throw Error(
                 mrpt::format("a second, different reading of this sensor at the same "
                              "time stamp (%.6f s)",
-                             mrpt::Clock::toDouble(obs->timestamp)));
+                             stampSeconds(obs->timestamp)));
     }
     if (!copy) p = {obs, std::move(bytes)};
     return copy;

@@ -33,6 +33,12 @@ void saveTum(const std::string& path, const Trajectory& traj) {
     writeFileAtomically(path, out);
 }
 
+double stampSeconds(mrpt::Clock::time_point stamp) {
+    // MRPT's ticks are 100 ns from 1601 (Windows' FILETIME); 1970 is this many after
+    constexpr int64_t kTicksAt1970 = 116444736000000000LL;
+    return double(stamp.time_since_epoch().count() - kTicksAt1970) / 1e7;
+}
+
 void checkTrajectoryPose(double t, double x, double y, double z, const std::string& where) {
     if (!std::isfinite(t) || std::abs(t) > TrajectoryLimits::kMaxTime)
         throw Error(where + ": time " + mrpt::format("%g", t) + " s is not within +/-1e11 s");

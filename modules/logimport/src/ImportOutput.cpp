@@ -1,3 +1,4 @@
+#include <mrloc/common/Trajectory.h>
 #include <mrloc/common/Error.h>
 #include <mrloc/common/Names.h>
 #include <mrloc/logimport/ImportOutput.h>
@@ -40,7 +41,7 @@ ImportOutput::ImportOutput(const std::string& rawlogPath)
 void ImportOutput::add(const mrpt::obs::CObservation::Ptr& obs, const std::string& where) {
     if (obs->timestamp == INVALID_TIMESTAMP)
         throw Error(where + ": time 0, which MRPT takes for no time stamp");
-    const double t = mrpt::Clock::toDouble(obs->timestamp);
+    const double t = common::stampSeconds(obs->timestamp);
     if (t < lastTime_)
         throw Error(where + ": time goes back, from " + mrpt::format("%.6f", lastTime_) + " to " +
                     mrpt::format("%.6f", t) + " s" +
@@ -79,7 +80,7 @@ void ImportOutput::addGroundTruth(const std::string& robot, double t,
     // the observations' stamps are mrpt::Clock's (100 ns): the truth on the same grid, so
     // that a first reading and the truth's first pose at one time are at one time
     common::checkTrajectoryPose(t, pose.x(), pose.y(), pose.z(), where + ": ground truth");
-    t = mrpt::Clock::toDouble(mrpt::Clock::fromDouble(t));
+    t = common::stampSeconds(mrpt::Clock::fromDouble(t));
     auto& traj = truth_[robot];
     if (traj.size() >= common::TrajectoryLimits::kMaxPoses)
         throw Error(where + ": ground truth of more than 2,000,000 poses for robot " + robot);

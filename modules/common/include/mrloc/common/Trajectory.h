@@ -12,8 +12,13 @@
 
 namespace mrloc::common {
 
+/** Seconds since 1970 of an MRPT time stamp, negative before it. mrpt::Clock::toDouble
+ *  computes in unsigned ticks: a stamp before 1970 (-5 s) comes out 1.8e12 s, and a check
+ *  "before 1970" on it never fired (negative stamps reached a report as 1.8e12 s). */
+double stampSeconds(mrpt::Clock::time_point stamp);
+
 struct StampedPose {
-    double t = 0;  ///< seconds since 1970 (mrpt::Clock::toDouble of the observation's stamp)
+    double t = 0;  ///< seconds since 1970 (stampSeconds of the observation's stamp)
     mrpt::poses::CPose3D pose;
 };
 
