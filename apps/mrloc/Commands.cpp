@@ -292,6 +292,9 @@ int report(const method::Registry& registry, int argc, char** argv) {
     if (!fs::is_regular_file(fs::symlink_status(common::run_dir::metrics(dir.getValue()))))
         throw Error(dir.getValue() +
                     ": not a run directory (no metrics.json; run `mrloc localize` first)");
+    // report reads the folder as it is: a link in it would be left out of the new run (the
+    // transaction never follows one) and then missed as "no such file"; named instead
+    common::checkFolderHoldsNoLink(dir.getValue(), "run folder", 100000);
     common::RunTransaction tx(dir.getValue(), "report");
     std::string page;
     try {
