@@ -14,6 +14,7 @@
 #include <sys/file.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <cmath>
 #include <map>
 
@@ -505,4 +506,38 @@ TEST(MrlocBatch, LinksInABatchFolderAreRefusedAndItsLockIsHeld) {
     r = mrlocCmd(resume);
     EXPECT_EQ(r.code, 0) << r.output;
     EXPECT_EQ(trialRecord(dir, 0, 1)["seed"], 1);
+}
+
+// issue 51, item 2, and fuzz_json_readers' finding: a batch plan from someone else is read
+// by one bounded reader; a count of 2e19 was a cast with undefined behaviour, and a nesting of
+// 300,000 brackets crashed the parser. Each is one line naming the file.
+TEST(MrlocBatch, AHostileBatchPlanIsOneLineNamingIt) {
+    requireParallel();
+    const std::string ini = batchCorridorIni("batch_hostile_plan", 0, 0);
+    const std::string dir = tmp("batch_hostile_plan") + "/b";
+    fs::create_directories(fs::path(dir).parent_path());
+    ASSERT_EQ(mrlocCmd("batch " + ini + " --seeds 1..1 --out " + dir).code, 0);
+    ASSERT_EQ(mrlocCmd("batch --collect " + dir).code, 0);
+    const auto plan = common::readJsonFile(dir + "/batch.json");
+
+    auto huge = plan;
+    huge["chunk"] = 2e19;
+    std::ofstream(dir + "/batch.json") << huge.dump();
+    auto r = mrlocCmd("batch --collect " + dir);
+    EXPECT_EQ(r.code, 1) << r.output;
+    EXPECT_NE(r.output.find("batch.json: expected a whole number, not 2e+19"),
+              std::string::npos)
+        << r.output;
+    EXPECT_EQ(std::count(r.output.begin(), r.output.end(), '\n'), 1) << r.output;
+
+    std::ofstream(dir + "/batch.json")
+        << std::string(300000, '[') + std::string(300000, ']');
+    r = mrlocCmd("batch --collect " + dir);
+    EXPECT_EQ(r.code, 1) << r.output;
+    EXPECT_NE(r.output.find("batch.json: JSON nested more than 32 levels deep"), std::string::npos)
+        << r.output;
+    EXPECT_EQ(std::count(r.output.begin(), r.output.end(), '\n'), 1) << r.output;
+
+    std::ofstream(dir + "/batch.json") << plan.dump();
+    EXPECT_EQ(mrlocCmd("batch --collect " + dir).code, 0);
 }
