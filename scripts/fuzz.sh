@@ -43,22 +43,41 @@ max_len() { declared "$1" fuzz-max-len 65536; }
 # libFuzzer stops at any malloc above this (fuzz-malloc-limit-mb, 4096 unless declared).
 malloc_limit() { declared "$1" fuzz-malloc-limit-mb 4096 | cut -d' ' -f1; }
 
-status=0
-for t in "${targets[@]}"; do
-  corpus="$work/corpus/$t" seed_dir="$work/seeds/$t"
+# fuzz_one <target>: one target for `seconds`; its lines printed together when it ends; fails
+# on a finding.
+fuzz_one() {
+  local t="$1" corpus="$work/corpus/$1" seed_dir="$work/seeds/$1" i=0 out
   mkdir -p "$corpus" "$seed_dir"
-  i=0
   while IFS= read -r f; do cp "$f" "$seed_dir/seed_$((i++))"; done < <(seeds "$t")
-  echo "fuzz_$t: ${seconds} s, $(ls "$seed_dir" | wc -l) seeds, corpus $(ls "$corpus" | wc -l)" >&2
+  out="fuzz_$t: ${seconds} s, $(ls "$seed_dir" | wc -l) seeds, corpus $(ls "$corpus" | wc -l)"
   # The INI target reads its paths (map = maps/...) from the project's root.
   if ! (cd "$root" && "$root/build-asan/tests/fuzz/fuzz_$t" "$corpus" "$seed_dir" \
           -max_total_time="$seconds" -max_len="$(max_len "$t")" -timeout=60 \
           -rss_limit_mb=4096 -malloc_limit_mb="$(malloc_limit "$t")" -print_final_stats=1 -close_fd_mask=1 \
           -artifact_prefix="$work/findings/${t}-" ${MRLOC_FUZZ_FLAGS:-} 2> "$work/$t.log"); then
-    echo "fuzz_$t: FINDING (log: $work/$t.log, inputs: $work/findings/)" >&2
-    tail -40 "$work/$t.log" >&2
-    status=1
+    { echo "$out"; echo "fuzz_$t: FINDING (log: $work/$t.log, inputs: $work/findings/)"
+      tail -40 "$work/$t.log"; } >&2
+    return 1
   fi
-  grep -E '^stat::number_of_executed_units|^stat::peak_rss_mb|^Done [0-9]+ runs' "$work/$t.log" >&2 || true
+  { echo "$out"
+    grep -E '^stat::number_of_executed_units|^stat::peak_rss_mb|^Done [0-9]+ runs' "$work/$t.log" || true
+  } >&2
+}
+
+# Each target is one process on one core: as many run at once as there are cores, so CI's
+# fuzzing takes its seconds per target divided by the cores.
+status=0
+running=0
+for t in "${targets[@]}"; do
+  if [ "$running" -ge "$(nproc)" ]; then
+    wait -n || status=1
+    running=$((running - 1))
+  fi
+  fuzz_one "$t" &
+  running=$((running + 1))
+done
+while [ "$running" -gt 0 ]; do
+  wait -n || status=1
+  running=$((running - 1))
 done
 exit $status

@@ -9,7 +9,7 @@ packages=(
   libeigen3-dev liboctomap-dev zlib1g-dev
   libopencv-dev          # imgproc (omnivision's bands), calib3d (formation's lens model); with libopencv-contrib-dev, which it pulls
   libopencv-contrib-dev  # in: aruco, the detector formation measures AprilTag 3 against
-  libapriltag-dev        # AprilTag 3 (BSD-2): formation's tag detector (seed 003), the better one
+  libapriltag-dev        # AprilTag 3 (BSD-2): formation's tag detector (paper 003), the better one
   nlohmann-json3-dev     # metrics.json writing and reading
   libboost-dev           # Boost.Geometry: the overlay region of polymap (polygon booleans)
   libgtest-dev libbenchmark-dev

@@ -60,6 +60,15 @@ long+='|RunFolder\.ASecondMrlocOnTheSameFolderIsRefused|Samples\.MrptsRawlogEdit
 long+='|MrlocOmnivision\.ConventionalMethodAndByteIdenticalRepeats|MrlocRun\.SameIniAndSeedGiveByteIdenticalOutputs'
 # the pixel experiment's marches (the pixel march's code stays sanitized in PixelMarch.NineMetres)
 long+='|PixelMarch\.TableOneFromPixelsBeatsDeadReckoningAndRepeats'
+# batch orchestration through GNU parallel (processes, folders, locks): the readers it uses
+# are sanitized by fuzz_json_readers and MrlocBatch.AHostileBatchPlan, a trial by MrlocTrial.*
+long+='|MrlocBatch\.(FramesyncSeedsAndSweeps|NoFolderNameOrPathIsCode|ResumeRunsOnlyWhatIsMissing|AJobCutShort|EmittedSlurmScript|HostsGetTheFolder)'
+# a rawlog asking for gigabytes (the memory cap is the probe child's; ASan's allocator changes
+# what it measures), thirty hostile labels end to end (the escaping is sanitized in Plots.* and
+# HostileNames.InAnIni), every cost key's estimate (arithmetic the other Work.* tests run), and
+# polymap's randomized draws from two seeds (the elimination is sanitized in Elimination.*)
+long+='|BadRawlog\.CorruptSizeMeetsTheMemoryCap|HostileNames\.InARawlogsLabels'
+long+='|Work\.TheCostKeysTheEstimateMissed|MrlocPolymap\.TheRunsSeedReachesTheRandomizedDraws'
 if [ "${MRLOC_SANITIZE_ALL:-0}" = 1 ]; then
   ctest --output-on-failure -j "$(nproc)" "$@"
 else

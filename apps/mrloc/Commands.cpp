@@ -6,8 +6,10 @@
 #include <mrloc/common/Error.h>
 #include <mrloc/common/FolderLock.h>
 #include <mrloc/common/LocalizationRun.h>
+#include <mrloc/common/Log.h>
 #include <mrloc/common/Metrics.h>
 #include <mrloc/common/Outcome.h>
+#include <mrloc/common/ParallelFor.h>
 #include <mrloc/common/RunDirectory.h>
 #include <mrloc/common/RunTransaction.h>
 #include <mrloc/common/Version.h>
@@ -19,7 +21,6 @@
 #include <iostream>
 #include <map>
 #include <optional>
-#include <thread>
 
 #include "Advice.h"
 #include "BatchPlan.h"
@@ -27,6 +28,7 @@
 #include "IniFile.h"
 #include "MrptTruth.h"
 #include "RunSetup.h"
+#include "StderrLog.h"
 
 namespace mrloc::app {
 
@@ -35,10 +37,28 @@ namespace fs = std::filesystem;
 namespace {
 
 /** --out and --quiet, shared by the commands that write a run directory. */
+constexpr long kMaxThreads = 1024;
+constexpr const char* kThreadsHelp =
+    "threads for the experiments and searches (default: every core); the work estimate "
+    "divides by the same number";
+
 struct OutputArgs {
     TCLAP::ValueArg<std::string> out{
         "o", "out", "output directory (default: out/<scenario name>)", false, "", "DIR"};
     TCLAP::SwitchArg quiet{"q", "quiet", "no progress bar, only errors"};
+    TCLAP::ValueArg<long> threads{"", "threads", kThreadsHelp, false, 0, "N"};
+    void addTo(TCLAP::CmdLine& cmd) {
+        cmd.add(out);
+        cmd.add(quiet);
+        cmd.add(threads);
+    }
+    /** Every parallelFor of this process runs on --threads threads, when given. */
+    void applyThreads() {
+        if (!threads.isSet()) return;
+        if (threads.getValue() < 1 || threads.getValue() > kMaxThreads)
+            throw Error("--threads must be 1 to " + std::to_string(kMaxThreads));
+        common::setThreadCount(unsigned(threads.getValue()));
+    }
     std::string dirOr(const std::string& name) {
         const std::string dir = out.isSet() ? out.getValue() : "out/" + name;
         common::checkRunFolderPath(dir, out.isSet() ? "--out" : "[scenario] name");
@@ -54,14 +74,13 @@ std::string commandLine(int argc, char** argv) {
 
 /** Refuses work beyond the budget before anything is written; announces long work. */
 void checkWorkOf(const Setup& s, bool simulating, bool localizing, bool quiet) {
-    const unsigned cores = std::max(1u, std::thread::hardware_concurrency());
-    const auto line = method::checkWork(workOf(s, simulating, localizing), cores);
+    const auto line = method::checkWork(workOf(s, simulating, localizing), common::threadCount());
     if (line && !quiet) std::cerr << "mrloc: " << *line << "\n";
 }
 
-std::string doSimulate(Setup& s, const std::string& dir, bool quiet) {
+std::string doSimulate(Setup& s, const std::string& dir, const common::Log& log) {
     const auto files =
-        sim::simulateToFiles(s.simulation->config, dir, quiet, s.simulation->payload.get());
+        sim::simulateToFiles(s.simulation->config, dir, log, s.simulation->payload.get());
     // The payload's on-board parts (formation's camera among them) go now, while their EGL
     // context lives: MRPT's CFBORender terminates the EGL display every renderer shares
     // when it is destroyed, so a camera that outlived the experiment's cameras or the
@@ -74,9 +93,10 @@ std::string doSimulate(Setup& s, const std::string& dir, bool quiet) {
  *  staging folder's, for a rawlog this command simulated). Returns the method's headline,
  *  also written into metrics.json. */
 common::Headline doLocalize(const method::Registry& registry, Setup& s, const std::string& rawlog,
-                            const std::string& dir, bool quiet, const std::string& rawlogShownAs) {
+                            const std::string& dir, const common::Log& log,
+                            const std::string& rawlogShownAs) {
     const std::string& name = s.method->name;
-    common::LocalizationRunOptions options{name, rawlog, dir, quiet, s.scenario.groundTruth};
+    common::LocalizationRunOptions options{name, rawlog, dir, &log, s.scenario.groundTruth};
     if (options.groundTruth.path.empty() && !s.simulation) {
         // a log recorded elsewhere: its truth where MRPT's apps look for it
         std::string note;
@@ -84,7 +104,7 @@ common::Headline doLocalize(const method::Registry& registry, Setup& s, const st
             options.groundTruth = found->source;
             options.groundTruthFrom = found->from;
         }
-        if (!note.empty() && !quiet) std::cerr << "note: " << note << "\n";
+        if (!note.empty() && log.showsProgress()) std::cerr << "note: " << note << "\n";
     }
     options.rawlogShownAs = rawlogShownAs;
     options.fitHint = [&registry, &name](const std::map<std::string, size_t>& classes) {
@@ -93,7 +113,7 @@ common::Headline doLocalize(const method::Registry& registry, Setup& s, const st
     auto result = common::runLocalization(*s.localizer, options);
     const sim::ScenarioConfig* scenario = s.simulation ? &s.simulation->config : nullptr;
     if (s.method->experiment)
-        s.method->experiment({*s.localizer, scenario, result.truth, dir, s.scenario.seed, quiet});
+        s.method->experiment({*s.localizer, scenario, result.truth, dir, s.scenario.seed, log});
     auto headline = s.method->headline({*s.localizer, scenario, result.metrics, dir});
     if (result.metrics["robots"].empty() && headline.reached) {
         // whatever the method's figures, a run without a single estimate reached nothing
@@ -109,8 +129,9 @@ common::Headline doLocalize(const method::Registry& registry, Setup& s, const st
 
 common::Headline simulateAndLocalize(const method::Registry& registry, Setup& s,
                                      const std::string& dir) {
-    const std::string rawlog = doSimulate(s, dir, true);
-    return doLocalize(registry, s, rawlog, dir, true, rawlog);
+    const StderrLog log(true);  // a trial's warnings, and no progress
+    const std::string rawlog = doSimulate(s, dir, log);
+    return doLocalize(registry, s, rawlog, dir, log, rawlog);
 }
 
 namespace {
@@ -204,8 +225,7 @@ struct ScenarioCommand {
     OutputArgs output;
 
     explicit ScenarioCommand(const std::string& description) : cmd(description, ' ', kVersion) {
-        cmd.add(output.out);
-        cmd.add(output.quiet);
+        output.addTo(cmd);
     }
     Setup setup(const method::Registry& registry) {
         return loadSetup(registry, ini.getValue(), seedOf(seed), true);
@@ -220,13 +240,15 @@ int simulate(const method::Registry& registry, int argc, char** argv) {
         "(<out>/<name>.rawlog), ground truth (<out>/<name>.<robot>.gt.txt) and "
         "effective.ini");
     if (const auto code = parseArgs(c.cmd, argc, argv)) return *code;
+    c.output.applyThreads();
     Setup s = c.setup(registry);
     checkWorkOf(s, true, false, c.output.quiet.getValue());
     const std::string dir = c.output.dirOr(s.scenario.name);
-    common::RunTransaction tx(dir, "simulate");
+    const StderrLog log(c.output.quiet.getValue());
+    common::RunTransaction tx(dir, "simulate", log);
     std::string rawlog;
     try {
-        rawlog = doSimulate(s, tx.staging(), c.output.quiet.getValue());
+        rawlog = doSimulate(s, tx.staging(), log);
         writeProvenance(s, tx.staging(), "simulate", commandLine(argc, argv));
         tx.commit();
     } catch (const Error& e) {
@@ -247,9 +269,9 @@ int localize(const method::Registry& registry, int argc, char** argv) {
     TCLAP::UnlabeledValueArg<std::string> iniArg("ini", "INI file", true, "", "INI", cmd);
     TCLAP::UnlabeledValueArg<std::string> rawlog("rawlog", "rawlog file", true, "", "RAWLOG", cmd);
     OutputArgs o;
-    cmd.add(o.out);
-    cmd.add(o.quiet);
+    o.addTo(cmd);
     if (const auto code = parseArgs(cmd, argc, argv)) return *code;
+    o.applyThreads();
     if (looksLikeRawlog(iniArg.getValue()) && !looksLikeRawlog(rawlog.getValue())) {
         std::cerr << "mrloc localize: the arguments are swapped: the INI comes first, "
                      "mrloc localize <ini> <rawlog> ("
@@ -260,11 +282,11 @@ int localize(const method::Registry& registry, int argc, char** argv) {
     Setup s = loadSetup(registry, iniArg.getValue(), std::nullopt, false, rawlog.getValue());
     checkWorkOf(s, false, true, o.quiet.getValue());
     const std::string dir = o.dirOr(s.scenario.name);
-    common::RunTransaction tx(dir, "localize");
+    const StderrLog log(o.quiet.getValue());
+    common::RunTransaction tx(dir, "localize", log);
     common::Headline headline;
     try {
-        headline = doLocalize(registry, s, rawlog.getValue(), tx.staging(), o.quiet.getValue(),
-                              rawlog.getValue());
+        headline = doLocalize(registry, s, rawlog.getValue(), tx.staging(), log, rawlog.getValue());
         writeProvenance(s, tx.staging(), "localize", commandLine(argc, argv));
         tx.commit();
     } catch (const Error& e) {
@@ -312,14 +334,16 @@ int run(const method::Registry& registry, int argc, char** argv) {
         "mrloc run: simulate, localize and report in a row; everything goes to "
         "<out> (default out/<scenario name>)");
     if (const auto code = parseArgs(c.cmd, argc, argv)) return *code;
+    c.output.applyThreads();
     Setup s = c.setup(registry);
     checkWorkOf(s, true, true, c.output.quiet.getValue());
     const std::string dir = c.output.dirOr(s.scenario.name);
-    common::RunTransaction tx(dir, "run");
+    const StderrLog log(c.output.quiet.getValue());
+    common::RunTransaction tx(dir, "run", log);
     common::Headline headline;
     try {
-        const std::string rawlog = doSimulate(s, tx.staging(), c.output.quiet.getValue());
-        headline = doLocalize(registry, s, rawlog, tx.staging(), c.output.quiet.getValue(),
+        const std::string rawlog = doSimulate(s, tx.staging(), log);
+        headline = doLocalize(registry, s, rawlog, tx.staging(), log,
                               (fs::path(dir) / fs::path(rawlog).filename()).string());
         writeProvenance(s, tx.staging(), "run", commandLine(argc, argv));
         doReport(registry, tx.staging());

@@ -204,6 +204,25 @@ std::string effectiveIni(const Setup& s) {
     return eff.getContent();
 }
 
+namespace {
+
+/** "[section] key = value" for each `*_seed` key of the INI, comma-separated. */
+std::string seedOverrides(const mrpt::config::CConfigFileBase& ini) {
+    std::string out;
+    std::vector<std::string> sections, keys;
+    ini.getAllSections(sections);
+    for (const auto& section : sections) {
+        ini.getAllKeys(section, keys);
+        for (const auto& key : keys)
+            if (key.size() > 5 && key.compare(key.size() - 5, 5, "_seed") == 0)
+                out += (out.empty() ? "" : ", ") + ("[" + section + "] " + key + " = ") +
+                       ini.read_string(section, key, "");
+    }
+    return out;
+}
+
+}  // namespace
+
 void writeProvenance(const Setup& s, const std::string& dir, const std::string& step,
                      const std::string& command) {
     common::makeDirectories(dir);
@@ -216,6 +235,11 @@ void writeProvenance(const Setup& s, const std::string& dir, const std::string& 
     if (!p.contains("steps") || !p["steps"].is_object()) p["steps"] = nlohmann::json::object();
     p["ini"] = s.iniPath;
     p["seed"] = s.scenario.seed;
+    // the sub-seeds the INI fixes instead of drawing them from the run's seed (common/Seeds.h)
+    if (const auto fixed = seedOverrides(*s.ini); !fixed.empty())
+        p["seed_overrides"] = fixed;
+    else
+        p.erase("seed_overrides");
     p["version"] = kVersion;
     p["steps"][step] = command;
     // what made the run, for a reader comparing figures and timings across machines

@@ -7,6 +7,7 @@
 #include <mrloc/common/Error.h>
 #include <mrloc/common/FolderLock.h>
 #include <mrloc/common/Metrics.h>
+#include <mrloc/common/ParallelFor.h>
 #include <mrloc/common/RunTransaction.h>
 #include <mrloc/common/Version.h>
 #include <stdlib.h>
@@ -14,7 +15,6 @@
 
 #include <filesystem>
 #include <iostream>
-#include <thread>
 
 #include "BatchPlan.h"
 #include "Commands.h"
@@ -66,8 +66,7 @@ nlohmann::json runTrial(const method::Registry& registry, const std::string& ini
         throw Error(ini +
                     ": [scenario] describes no simulation; a trial simulates the scenario "
                     "with its seed");
-    const unsigned cores = std::max(1u, std::thread::hardware_concurrency());
-    method::checkWork(workOf(s, true, !s.method->trial), cores);
+    method::checkWork(workOf(s, true, !s.method->trial), common::threadCount());
     common::Headline h;
     if (s.method->trial) {
         h = s.method->trial({*s.localizer, s.simulation->config});

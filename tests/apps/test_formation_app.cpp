@@ -133,7 +133,7 @@ TEST(MrlocFormation, ExperimentWritesTableOneAndFiguresIntoTheReport) {
     EXPECT_NEAR(e.steps[1].lateralMean, 0.036, 0.002);
     EXPECT_NEAR(e.steps[1].longitudinalMean, 0.013, 0.001);
     const std::string page = slurp(out + "/report.html");
-    for (const char* s : {"Seed 003 Table 1", "formation.fig14.many_turns.png",
+    for (const char* s : {"Paper 003 Table 1", "formation.fig14.many_turns.png",
                           "formation.fig15.png", "fig. 11: per-step vertex errors"})
         EXPECT_NE(page.find(s), std::string::npos) << s;
     mrpt::img::CImage png;

@@ -100,7 +100,7 @@ TEST(MrlocFramesync, CorridorRunSharesTheFrameAndTheReportShowsThePapersMeasure)
     EXPECT_GT(o, 0.28);
     const std::string page = slurp(out + "/report.html");
     for (const char* s :
-         {"Shared frame from walls (seed 004)", "framesync.run.png", "framesync.seeds.png",
+         {"Shared frame from walls (paper 004)", "framesync.run.png", "framesync.seeds.png",
           "framesync.noise.png", "framesync.drift.png", "about 30 cm", "under 10 cm"})
         EXPECT_NE(page.find(s), std::string::npos) << s;
     mrpt::img::CImage png;

@@ -293,7 +293,7 @@ TEST(MrlocRun, BeaconsFixedReportShowsReceptionBesideSeed001Table3) {
     ASSERT_EQ(r.code, 0) << r.output;
     const std::string page = slurp(out + "/report.html");
     EXPECT_NE(page.find("successful receiving rate"), std::string::npos);
-    EXPECT_NE(page.find("seed 001 Table 3"), std::string::npos);
+    EXPECT_NE(page.find("paper 001 Table 3"), std::string::npos);
     // Beacon 2 at point 4 (p4): our rate, computed here from the shot log, beside the
     // paper's 40 %.
     const auto shots = beacons::loadShotLog(out + "/beacons_fixed.shots.txt");
@@ -538,4 +538,29 @@ TEST(MrlocRun, BeaconStudyReachesTheReportWithItsPictures) {
     EXPECT_EQ(study["agents"].size(), 5u);
     // effective.ini keeps the study as run
     EXPECT_NE(slurp(out + "/effective.ini").find("count_max"), std::string::npos);
+}
+
+// issue 52: one pool (common::parallelFor) whose thread count --threads sets, and which the
+// work estimate divides by. The experiment's file does not depend on it.
+TEST(MrlocCli, ThreadsSetsTheExperimentsThreadsWithoutChangingTheirResults) {
+    std::string ini = writeIniFrom(config("framesync_corridor"), "threads",
+                                   "experiment_seeds       = 50", "experiment_seeds = 6");
+    ini = writeIniFrom(ini, "threads", "experiment_sweep_seeds = 20", "experiment_sweep_seeds = 0");
+    std::string files[2];
+    for (const int threads : {1, 3}) {
+        const std::string out = tmp("threads_" + std::to_string(threads));
+        const auto r =
+            mrlocCmd("run " + ini + " -q --threads " + std::to_string(threads) + " --out " + out);
+        ASSERT_EQ(r.code, 0) << r.output;
+        files[threads == 1 ? 0 : 1] = slurp(out + "/framesync.experiment.txt");
+    }
+    EXPECT_NE(files[0].find("run paper"), std::string::npos) << files[0];
+    EXPECT_EQ(files[0], files[1]);
+    for (const char* bad : {"0", "5000", "-2"}) {
+        const std::string out = tmp(std::string("threads_bad") + bad);
+        const auto r = mrlocCmd("run " + ini + " -q --threads " + bad + " --out " + out);
+        EXPECT_EQ(r.code, 1) << r.output;
+        EXPECT_NE(r.output.find("--threads must be 1 to 1024"), std::string::npos) << r.output;
+        EXPECT_FALSE(fs::exists(out));
+    }
 }

@@ -93,7 +93,8 @@ TEST(Simulator, NoiseFreeRangesAreTheGeometricDistancesAndNlosIsDropped) {
     auto s = scenario();
     const auto& cfg = s.config;
     const std::string dir = testing::TempDir() + "/simtest";
-    const std::string path = sim::simulateToFiles(cfg, dir, true, s.payload.get()).rawlog;
+    const std::string path =
+        sim::simulateToFiles(cfg, dir, common::silentLog(), s.payload.get()).rawlog;
     mrpt::config::CConfigFileMemory ini(kIni);
     common::IniSection section(ini, "beacons");
     const auto beaconMap = beacons::loadBeaconMap(ini, section);
@@ -129,19 +130,19 @@ TEST(Simulator, SameSeedGivesByteIdenticalRawlogAndOtherSeedDoesNot) {
     const std::vector<std::array<std::string, 3>> noisy = {{"sensors", "range_sigma", "0.02"},
                                                            {"sensors", "range_dropout", "0.1"}};
     auto sa = scenario(noisy), sb = scenario(noisy), sc = scenario(noisy);
-    const std::string a =
-        sim::simulateToFiles(sa.config, testing::TempDir() + "/det_a", true, sa.payload.get())
-            .rawlog;
-    const std::string b =
-        sim::simulateToFiles(sb.config, testing::TempDir() + "/det_b", true, sb.payload.get())
-            .rawlog;
+    const std::string a = sim::simulateToFiles(sa.config, testing::TempDir() + "/det_a",
+                                               common::silentLog(), sa.payload.get())
+                              .rawlog;
+    const std::string b = sim::simulateToFiles(sb.config, testing::TempDir() + "/det_b",
+                                               common::silentLog(), sb.payload.get())
+                              .rawlog;
     EXPECT_EQ(slurp(a), slurp(b));
     EXPECT_EQ(slurp(common::groundTruthPath(a, "r1")), slurp(common::groundTruthPath(b, "r1")));
     EXPECT_EQ(slurp(beacons::shotLogPath(a)), slurp(beacons::shotLogPath(b)));
     sc.config.scenario.seed = 8;
-    const std::string c =
-        sim::simulateToFiles(sc.config, testing::TempDir() + "/det_c", true, sc.payload.get())
-            .rawlog;
+    const std::string c = sim::simulateToFiles(sc.config, testing::TempDir() + "/det_c",
+                                               common::silentLog(), sc.payload.get())
+                              .rawlog;
     EXPECT_NE(slurp(a), slurp(c));
 }
 
@@ -161,9 +162,9 @@ namespace {
 beacons::ShotLog shotsWith(const std::vector<std::array<std::string, 3>>& changes,
                            const std::string& name) {
     auto s = scenario(changes);
-    const std::string rawlog =
-        sim::simulateToFiles(s.config, testing::TempDir() + "/" + name, true, s.payload.get())
-            .rawlog;
+    const std::string rawlog = sim::simulateToFiles(s.config, testing::TempDir() + "/" + name,
+                                                    common::silentLog(), s.payload.get())
+                                   .rawlog;
     return beacons::loadShotLog(beacons::shotLogPath(rawlog));
 }
 

@@ -54,8 +54,8 @@ Outcome runOn(const std::string& iniText, const std::string& tag, double settle 
     mrpt::config::CConfigFileMemory ini(iniText);
     auto scenario = beacons::loadScenario(ini);  // its payload aims the heads, schedules epochs
     const std::string rawlog =
-        sim::simulateToFiles(scenario.config, testing::TempDir() + "/loc_" + tag, true,
-                             scenario.payload.get())
+        sim::simulateToFiles(scenario.config, testing::TempDir() + "/loc_" + tag,
+                             common::silentLog(), scenario.payload.get())
             .rawlog;
     beacons::BeaconLocalizer loc;
     loc.configure(ini);
@@ -102,8 +102,8 @@ TEST(BeaconLocalizer, MotionCompensationRemovesTheEpochsSpread) {
     mrpt::config::CConfigFileMemory ini(text);
     auto scenario = beacons::loadScenario(ini);
     const std::string rawlog =
-        sim::simulateToFiles(scenario.config, testing::TempDir() + "/loc_motion", true,
-                             scenario.payload.get())
+        sim::simulateToFiles(scenario.config, testing::TempDir() + "/loc_motion",
+                             common::silentLog(), scenario.payload.get())
             .rawlog;
     const auto gt = common::loadTum(common::groundTruthPath(rawlog, "r1"));
     const auto rmseWith = [&](const std::string& shotInterval) {

@@ -6,6 +6,7 @@
 #include <mrloc/beacons/BeaconStudyFile.h>
 #include <mrloc/beacons/BeaconsMethod.h>
 #include <mrloc/common/Error.h>
+#include <mrloc/common/ParallelFor.h>
 #include <mrpt/config/CConfigFileMemory.h>
 
 #include <cmath>
@@ -113,15 +114,19 @@ TEST(BeaconStudy, CoverageDoesNotDependOnTheThreadsAndStopsAtTheFirstFailure) {
     const auto hw = paperHardware();
     const auto points = testGrid(6, 6, 1.0, 0.5);
     const auto room = spreadRoom(6, 3, true);
-    const auto one = evaluateCoverage(room, hw, kMrlocFix, points, 5, 11, {}, false, 1);
-    const auto two = evaluateCoverage(room, hw, kMrlocFix, points, 5, 11, {}, false, 2);
+    common::setThreadCount(1);
+    const auto one = evaluateCoverage(room, hw, kMrlocFix, points, 5, 11, {}, false);
+    common::setThreadCount(2);
+    const auto two = evaluateCoverage(room, hw, kMrlocFix, points, 5, 11, {}, false);
     ASSERT_EQ(one.points.size(), two.points.size());
     for (size_t i = 0; i < one.points.size(); ++i) {
         EXPECT_EQ(one.points[i].fixes, two.points[i].fixes);
         EXPECT_EQ(one.points[i].maxError, two.points[i].maxError);
     }
     // a bound nobody meets: the search stops with a partial, failing result
-    const auto strict = evaluateCoverage(room, hw, kMrlocFix, points, 5, 11, {0.9, 1e-4}, true, 1);
+    common::setThreadCount(1);
+    const auto strict = evaluateCoverage(room, hw, kMrlocFix, points, 5, 11, {0.9, 1e-4}, true);
+    common::setThreadCount(0);
     EXPECT_FALSE(strict.complete);
     EXPECT_FALSE(strict.covers({0.9, 1e-4}));
     EXPECT_LT(std::count_if(strict.points.begin(), strict.points.end(),
@@ -168,7 +173,7 @@ TEST(BeaconStudy, ThePapersRoomStudyMeetsTheGoalAndIsDeterministic) {
     l.configure(*ini);
     const auto scenario = sim::ScenarioConfig::load(*ini, BeaconRobotOptions::keys());
     const StudySetup setup{l.study(), l.studyUltrasonic(), l.studySensors()};
-    const auto f = runStudy(setup, l.options(), scenario, 1, true);
+    const auto f = runStudy(setup, l.options(), scenario, 1);
     // the method choices: the run's own method at the 5 points, active heads, 100 trials each
     const StudyChoiceRow* ours = nullptr;
     const StudyChoiceRow* paper = nullptr;
@@ -208,7 +213,7 @@ TEST(BeaconStudy, ThePapersRoomStudyMeetsTheGoalAndIsDeterministic) {
     EXPECT_TRUE(f.grids[1].covers);   // active
     EXPECT_EQ(f.agents.size(), 5u);   // fixed: shared, simultaneous; active: the three
     // the same seed gives the same file
-    const auto again = runStudy(setup, l.options(), scenario, 1, true);
+    const auto again = runStudy(setup, l.options(), scenario, 1);
     const std::string a = testing::TempDir() + "/study_a", b = testing::TempDir() + "/study_b";
     std::filesystem::create_directories(a);
     std::filesystem::create_directories(b);

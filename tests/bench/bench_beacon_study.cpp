@@ -5,6 +5,7 @@
 //      --benchmark_report_aggregates_only=true   (report the medians)
 #include <benchmark/benchmark.h>
 #include <mrloc/beacons/BeaconStudy.h>
+#include <mrloc/common/ParallelFor.h>
 
 using namespace mrloc::beacons;
 
@@ -51,10 +52,12 @@ void BM_CoverageOneThread(benchmark::State& state) {
     const auto hw = hardware();
     const StudyMethod method{false, Residual::Range, true, 4};
     const auto points = testGrid(room.sizeX, room.sizeY, 0.5, 0.5);
+    mrloc::common::setThreadCount(1);
     for (auto _ : state) {
-        const auto r = evaluateCoverage(room, hw, method, points, 10, 1, {}, false, 1);
+        const auto r = evaluateCoverage(room, hw, method, points, 10, 1, {}, false);
         benchmark::DoNotOptimize(r);
     }
+    mrloc::common::setThreadCount(0);
     state.counters["trials"] = double(points.size() * 10);
 }
 BENCHMARK(BM_CoverageOneThread)

@@ -17,14 +17,14 @@ TEST(Outcome, HeadlineRoundTripsThroughJson) {
     common::Headline h;
     h.reached = false;
     h.status = "not localized: 3 hypotheses left";
-    h.figures.push_back({"travel", 12.5, "m", "0.978 of cells (seed 002)", "another map", false});
+    h.figures.push_back({"travel", 12.5, "m", "0.978 of cells (paper 002)", "another map", false});
     h.figures.push_back({"dead reckoning", std::nullopt, "m", "", "", true});
     const auto back = common::headlineFromJson(common::toJson(h), "here");
     EXPECT_FALSE(back.reached);
     EXPECT_EQ(back.status, h.status);
     ASSERT_EQ(back.figures.size(), 2u);
     EXPECT_DOUBLE_EQ(*back.figures[0].value, 12.5);
-    EXPECT_EQ(back.figures[0].paper, "0.978 of cells (seed 002)");
+    EXPECT_EQ(back.figures[0].paper, "0.978 of cells (paper 002)");
     EXPECT_EQ(back.figures[0].differs, "another map");
     EXPECT_FALSE(back.figures[1].value.has_value());
     EXPECT_TRUE(back.figures[1].baseline);

@@ -51,7 +51,7 @@ TEST(OmniSimulation, SnapshotsStopsAndLidarGoToTheRawlog) {
     setup.lidar = omnivision::OmniSetup::Lidar{"A", "B", 0.0};
     omnivision::OmniPayload payload(setup, cfg.world);
     const std::string dir = testing::TempDir() + "/omni_sim";
-    const auto path = sim::simulateToFiles(cfg, dir, true, &payload).rawlog;
+    const auto path = sim::simulateToFiles(cfg, dir, common::silentLog(), &payload).rawlog;
     common::RawlogReader reader(path);
     int bearings = 0, lidar = 0;
     std::vector<mrpt::obs::CObservation::Ptr> all;

@@ -1,5 +1,7 @@
 #include <mrloc/beacons/BeaconStudy.h>
 #include <mrloc/common/Error.h>
+#include <mrloc/common/ParallelFor.h>
+#include <mrloc/common/Seeds.h>
 #include <mrpt/core/bits_math.h>
 #include <mrpt/core/format.h>
 
@@ -7,9 +9,7 @@
 #include <atomic>
 #include <cmath>
 #include <limits>
-#include <mutex>
 #include <numeric>
-#include <thread>
 
 namespace mrloc::beacons {
 
@@ -27,13 +27,8 @@ std::string StudyMethod::describe() const {
 
 namespace {
 
-/** splitmix64: a generator seed per point or layout, whatever the thread. */
-uint32_t mixSeed(uint64_t a, uint64_t b) {
-    uint64_t z = a * 0x9E3779B97F4A7C15ull + b + 0x632BE59BD9B4E019ull;
-    z = (z ^ (z >> 30)) * 0xBF58476D1CE4E5B9ull;
-    z = (z ^ (z >> 27)) * 0x94D049BB133111EBull;
-    return uint32_t((z ^ (z >> 31)) & 0xffffffffu);
-}
+/** A generator seed per point or layout, whatever the thread. */
+using common::streamSeed;
 
 Eigen::Vector3d vec(const TPoint3D& p) { return {p.x, p.y, p.z}; }
 
@@ -189,53 +184,37 @@ size_t CoverageResult::pointsCovered(const CoverageCriteria& c) const {
 CoverageResult evaluateCoverage(const StudyRoom& room, const StudyHardware& hw,
                                 const StudyMethod& method, const std::vector<TPoint2D>& points,
                                 int trials, uint64_t seed, const CoverageCriteria& criteria,
-                                bool stopAtFailure, unsigned threads) {
+                                bool stopAtFailure) {
     CoverageResult out;
     out.points.resize(points.size());
-    std::atomic<size_t> next{0};
     std::atomic<bool> failed{false};
-    std::exception_ptr failure;
-    std::mutex failureLock;
     // a point fails once its misses exceed what the reception rate allows, or one error
     // is over the bound: a search for the verdict stops there
     const int missesAllowed = int(std::floor((1.0 - criteria.reception) * trials + 1e-9));
-    const auto work = [&] {
-        try {
-            for (size_t i; (i = next++) < points.size();) {
-                if (stopAtFailure && failed) return;
-                // a runner per point: nothing a fix leaves behind reaches another point's
-                TrialRunner runner(room, hw, method);
-                PointStats& p = out.points[i];
-                p.at = points[i];
-                mrpt::random::CRandomGenerator rng(mixSeed(seed, i));
-                double sum = 0;
-                for (int k = 0; k < trials; ++k) {
-                    const auto t = runner.trial(points[i], rng);
-                    ++p.trials;
-                    if (t.fixed) {
-                        ++p.fixes;
-                        sum += t.error;
-                        p.maxError = std::max(p.maxError, t.error);
-                    }
-                    if (stopAtFailure &&
-                        (p.trials - p.fixes > missesAllowed || p.maxError > criteria.errorBound)) {
-                        failed = true;
-                        break;
-                    }
-                }
-                p.meanError = p.fixes ? sum / p.fixes : 0.0;
+    common::parallelFor(points.size(), [&](size_t i) {
+        if (stopAtFailure && failed) return;
+        // a runner per point: nothing a fix leaves behind reaches another point's
+        TrialRunner runner(room, hw, method);
+        PointStats& p = out.points[i];
+        p.at = points[i];
+        mrpt::random::CRandomGenerator rng(streamSeed(seed, i));
+        double sum = 0;
+        for (int k = 0; k < trials; ++k) {
+            const auto t = runner.trial(points[i], rng);
+            ++p.trials;
+            if (t.fixed) {
+                ++p.fixes;
+                sum += t.error;
+                p.maxError = std::max(p.maxError, t.error);
             }
-        } catch (...) {
-            std::lock_guard<std::mutex> lock(failureLock);
-            if (!failure) failure = std::current_exception();
+            if (stopAtFailure &&
+                (p.trials - p.fixes > missesAllowed || p.maxError > criteria.errorBound)) {
+                failed = true;
+                break;
+            }
         }
-    };
-    if (threads == 0) threads = std::clamp<unsigned>(std::thread::hardware_concurrency(), 1, 8);
-    std::vector<std::thread> pool;
-    for (unsigned t = 1; t < threads; ++t) pool.emplace_back(work);
-    work();
-    for (auto& t : pool) t.join();
-    if (failure) std::rethrow_exception(failure);
+        p.meanError = p.fixes ? sum / p.fixes : 0.0;
+    });
     if (stopAtFailure && failed) out.complete = false;
     return out;
 }
@@ -362,7 +341,7 @@ AgentsResult serveAgents(const StudyRoom& room, const StudyHardware& hw, const S
     double sumError = 0, sumRate = 0, minRate = std::numeric_limits<double>::infinity();
     size_t epochs = 0, served = 0;
     for (int layout = 0; layout < layouts; ++layout) {
-        mrpt::random::CRandomGenerator rng(mixSeed(seed, uint64_t(layout)));
+        mrpt::random::CRandomGenerator rng(streamSeed(seed, uint64_t(layout)));
         // agents at random places, at least 1 m apart (a robot's footprint and some room)
         std::vector<TPoint3D> at;
         for (int tries = 0; int(at.size()) < agents; ++tries) {

@@ -1,7 +1,8 @@
 #include <mrloc/beacons/BeaconStudyFile.h>
-#include <mrloc/common/JsonFile.h>
 #include <mrloc/common/Error.h>
+#include <mrloc/common/JsonFile.h>
 #include <mrloc/common/Progress.h>
+#include <mrloc/common/Seeds.h>
 #include <mrpt/core/bits_math.h>
 #include <mrpt/core/format.h>
 
@@ -175,13 +176,9 @@ const char* kActive = "active (at the receiver)";
 const char* kDown = "fixed (each straight down)";
 const char* kSectionAim = "fixed (at the section's aim point)";
 
-/** A seed from what an evaluation is (FNV-1a over its description): the same room, beacons,
- *  aiming and method draw the same trials in every part of the study. */
-uint64_t seedOf(uint64_t seed, const std::string& what) {
-    uint64_t h = 1469598103934665603ull ^ seed;
-    for (const unsigned char c : what) h = (h ^ c) * 1099511628211ull;
-    return h;
-}
+/** A seed from what an evaluation is (common::seedOf over its description): the same room,
+ *  beacons, aiming and method draw the same trials in every part of the study. */
+using common::seedOf;
 
 StudyGridRow gridRow(const std::string& part, double value, const std::string& variant,
                      const StudyRoom& room, const CoverageResult& r, const CoverageCriteria& c) {
@@ -204,7 +201,8 @@ StudyGridRow gridRow(const std::string& part, double value, const std::string& v
 }  // namespace
 
 BeaconStudyFile runStudy(const StudySetup& setup, const BeaconOptions& run,
-                         const sim::ScenarioConfig& scenario, uint64_t seed, bool quiet) {
+                         const sim::ScenarioConfig& scenario, uint64_t seed,
+                         const common::Log& log) {
     const StudyOptions& o = setup.options;
     StudyHardware hw;
     hw.ultrasonic = setup.ultrasonic;
@@ -256,7 +254,7 @@ BeaconStudyFile runStudy(const StudySetup& setup, const BeaconOptions& run,
     const size_t steps = (o.choiceTrials > 0 ? 2 : 0) + 2 * o.coverageSizes.size() +
                          2 * o.countSizes.size() + o.beamAngles.size() + o.beaconCounts.size() +
                          o.speeds.size() + o.agents.size();
-    common::Progress progress("beacon study", steps, quiet);
+    common::Progress progress("beacon study", steps, log);
     size_t done = 0;
     const auto step = [&] { progress.update(++done); };
 
@@ -268,7 +266,7 @@ BeaconStudyFile runStudy(const StudySetup& setup, const BeaconOptions& run,
         all.beaconsPerFix = int(run.map.size());
         const auto shots = std::max(2, configured.shotsPerBeacon);
         std::vector<std::pair<std::string, StudyMethod>> variants{
-            {"seed 001's fix (eq. 4-10)", StudyMethod::paper()},
+            {"paper 001's fix (eq. 4-10)", StudyMethod::paper()},
             {"alone: the height known (2-D)", {false, Residual::SquaredRange, false, 1, false}},
             {"alone: range residual", {true, Residual::Range, false, 1, false}},
             {"alone: delay compensation", {true, Residual::SquaredRange, true, 1, false}},
@@ -297,7 +295,7 @@ BeaconStudyFile runStudy(const StudySetup& setup, const BeaconOptions& run,
         for (const auto* room : {&runSection, &runDown})
             for (const auto& m : {StudyMethod::paper(), configured})
                 add(*room, room == &runSection ? kSectionAim : kDown,
-                    m == StudyMethod::paper() ? "seed 001's fix (eq. 4-10)" : "this run's method",
+                    m == StudyMethod::paper() ? "paper 001's fix (eq. 4-10)" : "this run's method",
                     m);
         step();
     }

@@ -45,9 +45,9 @@ Html choicesSection(const BeaconStudyFile& f) {
     if (f.choices.empty()) return {};
     Html out = report::heading(3, "Method choices at this run's test points");
     out += report::paragraph(mrpt::format(
-        "%d trials per test point (seed 001: 10), each choice alone and in turn; each cell is the "
+        "%d trials per test point (paper 001: 10), each choice alone and in turn; each cell is the "
         "horizontal error's mean / max in mm and the share of trials with a fix. The link model "
-        "is the one calibrated on seed 001 Table 3, not tuned to this room. Seed 001 "
+        "is the one calibrated on paper 001 Table 3, not tuned to this room. Paper 001 "
         "(section 5.3, Fig. 11, active beacons): average error over %.0f mm, maximal over %.0f "
         "mm; its next goal: maximal under 50 mm.",
         f.choiceTrials, 1000 * paper::kActiveMeanErrorM, 1000 * paper::kActiveMaxErrorM));
@@ -88,7 +88,7 @@ Html choicesSection(const BeaconStudyFile& f) {
         else if (x.fixes)
             line += mrpt::format("; where it fixes, mean %s mm, max %s mm", mm(x.mean).c_str(),
                                  mm(x.max).c_str());
-        lines.push_back(line + " (seed 001: active halves both).");
+        lines.push_back(line + " (paper 001: active halves both).");
     }
     if (!lines.empty()) out += report::bulletList(lines);
     return out;
@@ -168,7 +168,7 @@ Html gridPlot(const GridPart& part, const std::string& dir, const std::string& p
         "set ylabel 'share (%)'\nset yrange [0:105]\nset title 'test points covered, and "
         "the lowest reception over them'\nplot " +
         reception +
-        "90 with lines dt 3 lw 2 lc rgb '#555555' title 'seed 001: 90 % reception'\nunset "
+        "90 with lines dt 3 lw 2 lc rgb '#555555' title 'paper 001: 90 % reception'\nunset "
         "multiplot\n";
     report::runGnuplot(body, dir + "/" + png, "1200,800");
     return report::Figure{png, caption}.html();
@@ -206,7 +206,7 @@ Html gridSection(const BeaconStudyFile& f, const std::string& dir, const std::st
             lines.push_back(name + ": " +
                             (largest > 0 ? mrpt::format("covers square rooms up to %g m", largest)
                                          : std::string("covers none of these rooms")) +
-                            mrpt::format(" (seed 001's goal: over %g m x %g m)",
+                            mrpt::format(" (paper 001's goal: over %g m x %g m)",
                                          paper::kGoalCoverageSide, paper::kGoalCoverageSide));
         }
         out += report::bulletList(lines);
@@ -218,7 +218,7 @@ Html gridSection(const BeaconStudyFile& f, const std::string& dir, const std::st
 Html countSection(const BeaconStudyFile& f, const std::string& dir) {
     if (f.counts.empty()) return {};
     Html out = report::heading(
-        3, "The fewest beacons that cover a room (seed 001: active needs about half)");
+        3, "The fewest beacons that cover a room (paper 001: active needs about half)");
     out += report::paragraph(
         "Square rooms; beacons spread by a centroidal Voronoi layout; a room is covered when "
         "every test point gets a fix in at least " +
@@ -231,7 +231,7 @@ Html countSection(const BeaconStudyFile& f, const std::string& dir) {
         (c.aiming.rfind("active", 0) == 0 ? by[c.size].second : by[c.size].first) = &c;
     report::Table table(
         {"room (m)", "fixed: fewest beacons", "active: fewest beacons",
-         mrpt::format("active / fixed (seed 001: about %.1f)", paper::kActiveBeaconShare),
+         mrpt::format("active / fixed (paper 001: about %.1f)", paper::kActiveBeaconShare),
          "fixed: mean / max (mm)", "active: mean / max (mm)"});
     std::vector<std::pair<double, double>> fx, ac;
     const auto count = [](const StudyCountRow* c) {
@@ -275,7 +275,7 @@ Html agentsSection(const BeaconStudyFile& f, const std::string& dir) {
         "Agents stand at random places at least 1 m apart; per epoch the RF beacon serves the "
         "longest waiting agent on a shared channel, or, simultaneously, every agent it can give "
         "its own loudest beacons whose bursts the link predicts inaudible at the other served "
-        "receivers (seed 001 section 1: heads turned to different agents). Bursts of one slot "
+        "receivers (paper 001 section 1: heads turned to different agents). Bursts of one slot "
         "fly at once; a receiver triggers on the earliest it hears, so an interfering burst "
         "that arrives first becomes a wrong range (counted below).");
     report::Table table({"agents", "heads", "channel", "fixes per s per agent: mean / least",
@@ -323,17 +323,17 @@ Html studySection(const std::string& dir) {
     Html out = report::heading(2, "Beacon study: coverage, beacon count, sweeps and agents");
     out += report::paragraph(mrpt::format(
         "Monte Carlo of the beacon system's trials with the simulator's shot physics (the "
-        "[ultrasonic] link as calibrated on seed 001 Table 3 and the [sensors] noise, neither "
+        "[ultrasonic] link as calibrated on paper 001 Table 3 and the [sensors] noise, neither "
         "tuned here) and this run's receiver method (%s). %d trials per test point; test "
         "points on a grid; beacons fired per trial: %s. A room is covered when every point is "
-        "fixed in at least %s %% of its trials (seed 001's 90 %%) with every error under %s mm "
+        "fixed in at least %s %% of its trials (paper 001's 90 %%) with every error under %s mm "
         "(its next goal).",
         f.method.c_str(), f.trials, f.beaconsPerFix.c_str(), pct(f.criteria.reception).c_str(),
         mm(f.criteria.errorBound).c_str()));
     out += choicesSection(f);
     out +=
-        gridSection(f, dir, "coverage", "One beacon set over growing rooms (seed 001: 6 m x 6 m)",
-                    "One set of beacons (seed 001's section is 3) spread over square rooms.",
+        gridSection(f, dir, "coverage", "One beacon set over growing rooms (paper 001: 6 m x 6 m)",
+                    "One set of beacons (paper 001's section is 3) spread over square rooms.",
                     "side of the square room (m)", "beacons.study.coverage.png");
     out += countSection(f, dir);
     out += gridSection(f, dir, "beam", "Error against the transducer's beam angle",

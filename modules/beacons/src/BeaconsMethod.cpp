@@ -138,9 +138,9 @@ report::Html receptionSection(const report::RunView& run) {
     out += report::paragraph(
         "Scheduling: " +
         report::bold(options.system.scheduling == Scheduling::Priority
-                         ? "priority (slots in proportion to speed, seed 001 sec. 4)"
+                         ? "priority (slots in proportion to speed, paper 001 sec. 4)"
                          : "round robin") +
-        ". Seed 001's point: with priority scheduling the distance a robot moves between two "
+        ". Paper 001's point: with priority scheduling the distance a robot moves between two "
         "fixes stays about the same whatever its speed; round robin lets a fast robot go "
         "further.");
     size_t detected = 0;
@@ -212,7 +212,7 @@ std::vector<common::HeadlineFigure> studyFigures(const BeaconStudyFile& f) {
         out.push_back(
             {mrpt::format("side of the largest square room %d active beacons cover", beacons),
              largest, "m",
-             mrpt::format("goal: over %g m (seed 001 sec. 6)", paper::kGoalCoverageSide), how,
+             mrpt::format("goal: over %g m (paper 001 sec. 6)", paper::kGoalCoverageSide), how,
              false});
     // the largest room both aimings cover within count_max
     std::map<double, std::pair<int, int>> counts;  // side -> fixed, active
@@ -224,7 +224,7 @@ std::vector<common::HeadlineFigure> studyFigures(const BeaconStudyFile& f) {
             out.push_back(
                 {mrpt::format("active / fixed beacons covering %g x %g m", it->first, it->first),
                  double(it->second.second) / it->second.first, "",
-                 mrpt::format("about %.1f (seed 001 abstract)", paper::kActiveBeaconShare),
+                 mrpt::format("about %.1f (paper 001 abstract)", paper::kActiveBeaconShare),
                  how + "; fixed heads point straight down", false});
             break;
         }
@@ -242,18 +242,18 @@ common::Headline beaconsHeadline(const method::HeadlineOf<BeaconLocalizer>& in) 
     common::HeadlineFigure max{"max error", common::numberAt(in.metrics, "max_m"), "m", "", "",
                                false};
     if (in.localizer.options().system.activeAiming) {
-        mean.paper = "over 0.030 m (seed 001 sec. 5.3, active beacons)";
-        max.paper = "over 0.060 m (seed 001 sec. 5.3)";
+        mean.paper = "over 0.030 m (paper 001 sec. 5.3, active beacons)";
+        max.paper = "over 0.060 m (paper 001 sec. 5.3)";
         // seed 001 gives no test points for its 4 x 5.7 m room: even there, the points are
         // the INI's, so the experiment always differs from the paper's in that
         const std::string room =
             roomDifference(in.scenario, paper::kActiveRoomX, paper::kActiveRoomY);
         mean.differs = max.differs =
-            room.empty() ? "the paper's room; its test points are this INI's (seed 001 gives "
+            room.empty() ? "the paper's room; its test points are this INI's (paper 001 gives "
                            "none for this room)"
                          : room;
     } else {
-        mean.paper = "Fig. 10, a chart: about twice the active beacons' (seed 001 sec. 5.3)";
+        mean.paper = "Fig. 10, a chart: about twice the active beacons' (paper 001 sec. 5.3)";
         mean.differs = roomDifference(in.scenario, paper::kFixedRoomX, paper::kFixedRoomY);
     }
     if (const auto method = methodDifference(in.localizer.options()); !method.empty())
@@ -269,7 +269,7 @@ std::vector<std::string> beaconsStudy(const method::ExperimentOf<BeaconLocalizer
     const auto& l = in.localizer;
     if (!l.study().enabled || !in.scenario) return {};  // a log recorded elsewhere: no room
     StudySetup setup{l.study(), l.studyUltrasonic(), l.studySensors()};
-    runStudy(setup, l.options(), *in.scenario, in.seed, in.quiet).write(in.outDir);
+    runStudy(setup, l.options(), *in.scenario, in.seed, in.log).write(in.outDir);
     return {BeaconStudyFile::path(in.outDir)};
 }
 
@@ -307,7 +307,7 @@ void registerMethod(method::Registry& registry) {
     m.scenario = [](const mrpt::config::CConfigFileBase& ini, const BeaconLocalizer&) {
         return loadScenario(ini);
     };
-    m.report.subject = "active ultrasonic beacons (seed 001)";
+    m.report.subject = "active ultrasonic beacons (paper 001)";
     m.report.html = [](const report::RunView& run) {
         return receptionSection(run) + studySection(run.dir);
     };

@@ -15,7 +15,6 @@
 #include <chrono>
 #include <cmath>
 #include <filesystem>
-#include <iostream>
 #include <map>
 
 namespace mrloc::common {
@@ -94,7 +93,7 @@ std::vector<std::string> earlyEnds(const Trajectories& estimates, const Trajecto
 LocalizationResult runLocalization(Localizer& localizer, const LocalizationRunOptions& o) {
     RawlogReader reader(o.rawlogPath);
     const auto start = std::chrono::steady_clock::now();
-    Progress progress("localizing", 0, o.quiet);
+    Progress progress("localizing", 0, *o.log);
     size_t n = 0;
     // odometry alone per robot, as MRPT's pf-localization writes it: the robot's odometry
     // stream (<robot>.odom, or MRPT's actions), the first such label seen
@@ -153,22 +152,24 @@ LocalizationResult runLocalization(Localizer& localizer, const LocalizationRunOp
     nlohmann::json restamped = nlohmann::json::object();
     for (const auto& [key, count] : reader.restamped()) {
         const auto& [label, cls] = key;
-        std::cerr << "warning: rawlog " << o.rawlogPath << ": " << count << " "
-                  << (label.empty() ? std::string("unlabelled") : "'" + label + "'") << " " << cls
-                  << " stamped 0 took their sensory frame's time\n";
+        o.log->warning("rawlog " + o.rawlogPath + ": " + std::to_string(count) + " " +
+                       (label.empty() ? std::string("unlabelled") : "'" + label + "'") + " " + cls +
+                       " stamped 0 took their sensory frame's time");
         restamped[label.empty() ? "(no label)" : label] = count;
     }
     nlohmann::json unstamped = nlohmann::json::object();
     for (const auto& [label, count] : unstampedCount) {
-        std::cerr << "warning: rawlog " << o.rawlogPath << ": " << count << " '" << printable(label)
-                  << "' observation(s) stamped 0 with no sensory frame time to take: left out\n";
+        o.log->warning("rawlog " + o.rawlogPath + ": " + std::to_string(count) + " '" +
+                       printable(label) +
+                       "' observation(s) stamped 0 with no sensory frame time to take: left out");
         unstamped[label] = count;
     }
     nlohmann::json copies = nlohmann::json::object();
     for (const auto& [label, count] : copiesCount) {
-        std::cerr << "warning: rawlog " << o.rawlogPath << ": " << count << " '" << printable(label)
-                  << "' observation(s) were exact copies of the one before (same time stamp): "
-                     "left out\n";
+        o.log->warning("rawlog " + o.rawlogPath + ": " + std::to_string(count) + " '" +
+                       printable(label) +
+                       "' observation(s) were exact copies of the one before (same time stamp): "
+                       "left out");
         copies[label] = count;
     }
     const double wall =
@@ -192,7 +193,7 @@ LocalizationResult runLocalization(Localizer& localizer, const LocalizationRunOp
     const auto estimates = localizer.estimates();
     for (auto& w : earlyEnds(estimates, odometry, logStart, logEnd))
         warnings.push_back(std::move(w));
-    for (const auto& w : warnings) std::cerr << "warning: " << o.methodName << ": " << w << "\n";
+    for (const auto& w : warnings) o.log->warning(o.methodName + ": " + w);
     makeDirectories(o.outDir);
     LocalizationResult result;
     auto& metrics = result.metrics;

@@ -88,6 +88,7 @@ nlohmann::json readProvenanceFile(const std::string& path) {
     checkJsonShape(j,
                    {{"/ini", T::String},
                     {"/seed", T::Number},
+                    {"/seed_overrides", T::String},
                     {"/version", T::String},
                     {"/steps", T::Object},
                     {"/outputs", T::Object},

@@ -1,10 +1,8 @@
 #include <mrloc/common/Progress.h>
 #include <mrpt/core/format.h>
-#include <unistd.h>
 
 #include <algorithm>
 #include <cmath>
-#include <cstdio>
 
 namespace mrloc::common {
 
@@ -41,11 +39,12 @@ std::string progressText(const std::string& label, double fraction, size_t done,
     return text;
 }
 
-Progress::Progress(std::string label, size_t total, bool quiet)
+Progress::Progress(std::string label, size_t total, const Log& log)
     : label_(std::move(label)),
+      log_(log),
       total_(total),
-      enabled_(!quiet),
-      terminal_(isatty(fileno(stderr)) != 0),
+      enabled_(log.showsProgress()),
+      terminal_(log.redraws()),
       start_(Clock::now()),
       lastDraw_(start_) {}
 
@@ -69,23 +68,22 @@ void Progress::show(double fraction, size_t done, size_t total) {
     const double elapsed = std::chrono::duration<double>(now - start_).count();
     const std::string text = progressText(label_, fraction, done, total, elapsed);
     if (!terminal_) {
-        std::fprintf(stderr, "mrloc: %s\n", text.c_str());
+        log_.progress(text);
         return;
     }
     shown_ = true;
     if (fraction >= 0) {
         const int width = 30;
         const int fill = int(std::min(1.0, fraction) * width);
-        std::fprintf(stderr, "\r\033[K[%.*s%*s] %s", fill, "##############################",
-                     width - fill, "", text.c_str());
+        log_.progress("[" + std::string(size_t(fill), '#') +
+                      std::string(size_t(width - fill), ' ') + "] " + text);
     } else {
-        std::fprintf(stderr, "\r\033[K%s", text.c_str());
+        log_.progress(text);
     }
-    std::fflush(stderr);
 }
 
 void Progress::finish() {
-    if (shown_) std::fprintf(stderr, "\r\033[K");
+    if (shown_) log_.clearProgress();
     shown_ = false;
 }
 

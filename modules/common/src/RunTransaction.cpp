@@ -20,7 +20,6 @@
 #include <cstring>
 #include <filesystem>
 #include <fstream>
-#include <iostream>
 #include <optional>
 
 namespace fs = std::filesystem;
@@ -210,7 +209,7 @@ void checkRunFolderPath(const std::string& folder, const std::string& what) {
     }
 }
 
-RunTransaction::RunTransaction(const std::string& folder, const std::string& step)
+RunTransaction::RunTransaction(const std::string& folder, const std::string& step, const Log& log)
     : folder_(folder), step_(step) {
     checkRunFolderPath(folder, "run folder " + folder);
     fs::path abs = fs::absolute(fs::path(folder).lexically_normal());
@@ -240,7 +239,7 @@ RunTransaction::RunTransaction(const std::string& folder, const std::string& ste
             }
         }
         slot_ = claimLiveSlot(staging_, lockPath_);
-        stageCopyOfFolder();
+        stageCopyOfFolder(log);
     } catch (...) {
         if (slot_ >= 0) fs::remove_all(staging_, ec);
         releaseLiveSlot(slot_);
@@ -250,7 +249,7 @@ RunTransaction::RunTransaction(const std::string& folder, const std::string& ste
     }
 }
 
-void RunTransaction::stageCopyOfFolder() {
+void RunTransaction::stageCopyOfFolder(const Log& log) {
     std::error_code ec;
     const auto st = entryStatus(absFolder_);
     if (st && S_ISLNK(st->st_mode))
@@ -302,9 +301,9 @@ void RunTransaction::stageCopyOfFolder() {
     }
     if (ec) throw Error("run folder " + folder_ + ": cannot list: " + ec.message());
     if (links > 0)
-        std::cerr << "warning: run folder " << folder_ << ": " << links
-                  << " symbolic link(s) or special file(s) left out of the new run (mrloc never "
-                     "follows them)\n";
+        log.warning("run folder " + folder_ + ": " + std::to_string(links) +
+                    " symbolic link(s) or special file(s) left out of the new run (mrloc never "
+                    "follows them)");
 }
 
 std::string RunTransaction::inFolderTerms(const std::string& message) const {

@@ -1,3 +1,4 @@
+#include <mrloc/common/ParallelFor.h>
 #include <mrloc/common/Progress.h>
 #include <mrloc/formation/AlgorithmOne.h>
 #include <mrloc/formation/FormationExperiment.h>
@@ -9,9 +10,6 @@
 #include <algorithm>
 #include <atomic>
 #include <cmath>
-#include <exception>
-#include <mutex>
-#include <thread>
 
 namespace mrloc::formation {
 
@@ -42,7 +40,8 @@ struct PixelJob {
  *  worker thread renders with its own camera (an EGL context is current on one thread) and
  *  each march draws from its own generator, seeded from the experiment's seed and the
  *  march's place in the table: the same file whatever the thread count. */
-std::vector<FormationExperimentFile::PixelRow> pixelTable(const FormationConfig& c, bool quiet,
+std::vector<FormationExperimentFile::PixelRow> pixelTable(const FormationConfig& c,
+                                                          const common::Log& log,
                                                           std::vector<double>& lateral,
                                                           std::vector<double>& longitudinal) {
     std::vector<PixelJob> jobs;
@@ -51,39 +50,29 @@ std::vector<FormationExperimentFile::PixelRow> pixelTable(const FormationConfig&
             for (size_t run = 0; run < c.pixelRuns; ++run) jobs.push_back({r, w, run, {}, 0});
     std::vector<std::vector<TPoint2D>> routes;
     for (const auto& name : c.experimentRoutes) routes.push_back(route(name));
-    std::atomic<size_t> next{0}, done{0};
-    common::Progress progress("formation pixel experiment", jobs.size(), quiet);
-    std::exception_ptr failure;
-    std::mutex failureLock;
-    const auto work = [&](bool draws) {
-        try {
-            sim::PinholeCamera camera(renderIntrinsics(pixelMarchOptions(c, c.wheelSpeed)));
-            for (size_t k; (k = next++) < jobs.size();) {
+    std::atomic<size_t> done{0};
+    common::Progress progress("formation pixel experiment", jobs.size(), log);
+    common::parallelForWorkers(
+        jobs.size(),
+        [&] {
+            // a camera per thread: its EGL context is current on the thread that made it
+            auto camera = std::make_shared<sim::PinholeCamera>(
+                renderIntrinsics(pixelMarchOptions(c, c.wheelSpeed)));
+            return [&, camera](size_t k) {
                 auto& j = jobs[k];
                 mrpt::random::CRandomGenerator rng(
                     uint32_t(c.experimentSeed * 2654435761u + 7919u * (k + 1)));
                 const double w = c.experimentSpeeds[j.speed];
-                j.march =
-                    pixelMarch(c.robots, routes[j.route], {}, pixelMarchOptions(c, w), camera, rng);
+                j.march = pixelMarch(c.robots, routes[j.route], {}, pixelMarchOptions(c, w),
+                                     *camera, rng);
                 j.deadReckoning =
                     deadReckon(routes[j.route], c.wheelRadius, w, c.deadReckoning, rng)
                         .back()
                         .error;
                 ++done;
-                if (draws) progress.update(done);
-            }
-        } catch (...) {
-            std::lock_guard<std::mutex> lock(failureLock);
-            if (!failure) failure = std::current_exception();
-            next = jobs.size();  // the others stop at their next march
-        }
-    };
-    const size_t threads = std::clamp<size_t>(std::thread::hardware_concurrency(), 1, 8);
-    std::vector<std::thread> pool;
-    for (size_t t = 1; t < threads; ++t) pool.emplace_back(work, false);
-    work(true);  // the calling thread works too and draws the bar
-    for (auto& t : pool) t.join();
-    if (failure) std::rethrow_exception(failure);
+            };
+        },
+        [&] { progress.update(done); });  // the calling thread draws the bar
     std::vector<FormationExperimentFile::PixelRow> rows;
     for (size_t r = 0; r < c.experimentRoutes.size(); ++r)
         for (size_t w = 0; w < c.experimentSpeeds.size(); ++w) {
@@ -173,17 +162,17 @@ common::Headline formationTrial(const method::TrialOf<FormationLocalizer>& in) {
     return h;
 }
 
-FormationExperimentFile runFormationExperiment(const FormationConfig& c, bool quiet) {
+FormationExperimentFile runFormationExperiment(const FormationConfig& c, const common::Log& log) {
     FormationExperimentFile f;
     if (c.pixelRuns > 0) {
         std::vector<double> lateral, longitudinal;
-        f.pixel = pixelTable(c, quiet, lateral, longitudinal);
+        f.pixel = pixelTable(c, log, lateral, longitudinal);
         const auto [lm, ls] = absMoments(lateral);
         const auto [om, os] = absMoments(longitudinal);
         f.steps.push_back({"pixel_march", lm, ls, om, os, lateral.size()});
     }
     if (c.runs == 0) return f;
-    common::Progress progress("formation experiment", c.runs * marchesPerRun(c), quiet);
+    common::Progress progress("formation experiment", c.runs * marchesPerRun(c), log);
     size_t marches = 0;
     // Table 1's runs, each from its own seed (formationTrial's), summed as they come (a run
     // is dropped once summed: memory stays that of one run); then the rest from one
@@ -287,7 +276,7 @@ std::vector<std::string> formationExperiment(const method::ExperimentOf<Formatio
     if (loc.config().runs == 0 && loc.config().pixelRuns == 0) return {};
     FormationConfig config = loc.config();
     if (!config.experimentSeedGiven) config.experimentSeed = in.seed;
-    runFormationExperiment(config, in.quiet).write(in.outDir);
+    runFormationExperiment(config, in.log).write(in.outDir);
     return {FormationExperimentFile::path(in.outDir)};
 }
 

@@ -59,7 +59,7 @@ FormationRunFile FormationRunFile::fromRun(const Team& team, const common::Traje
 
 void FormationRunFile::write(const std::string& dir) const {
     std::ostringstream out;
-    out << "# formation run (seed 003): route, strip, moves, shared obstacles, world frame (m)\n"
+    out << "# formation run (paper 003): route, strip, moves, shared obstacles, world frame (m)\n"
         << "# route x y | start x y | move t robot believed_x believed_y true_x true_y lateral "
            "longitudinal\n"
         << "# obstacle x y radius | dead_reckoning t final_error\n";
@@ -111,7 +111,7 @@ FormationRunFile FormationRunFile::read(const std::string& dir) {
 
 void FormationExperimentFile::write(const std::string& dir) const {
     std::ostringstream out;
-    out << "# formation Monte Carlo experiment (seed 003 sec. 5), errors in m, times in s\n"
+    out << "# formation Monte Carlo experiment (paper 003 sec. 5), errors in m, times in s\n"
         << "# table route wheel_speed runs moves formation dead_reckoning formation_time "
            "dead_reckoning_time\n"
         << "# curve route wheel_speed kind time error | robots n runs error\n"

@@ -163,7 +163,7 @@ report::Html experimentSection(const std::string& dir) {
     using report::heading, report::paragraph;
     const auto e = FormationExperimentFile::read(dir);
     report::Html out =
-        heading(3, "Seed 003 Table 1: error at the destination") +
+        heading(3, "Paper 003 Table 1: error at the destination") +
         paragraph(
             "Mean over the runs, in the error-model mode. The formation's error is the last "
             "moving robot's, against the vertex that perfect triangles give; dead reckoning's "
@@ -213,7 +213,7 @@ report::Html experimentSection(const std::string& dir) {
                                  b.formation / a.formation));
     std::set<std::string> routes;
     for (const auto& r : e.table) routes.insert(r.route);
-    out += heading(3, "Seed 003 fig. 14: error against time") +
+    out += heading(3, "Paper 003 fig. 14: error against time") +
            paragraph(
                "Dead reckoning's mean error grows with time; the formation's is known only when "
                "a triangle is built (dots), and depends on the number of triangles, not on the "
@@ -236,7 +236,7 @@ report::Html experimentSection(const std::string& dir) {
             ns.push_back(std::to_string(r.robots));
             errors.push_back(mrpt::format("%.3f", r.error));
         }
-        out += heading(3, "Seed 003 fig. 15: error against the number of robots") +
+        out += heading(3, "Paper 003 fig. 15: error against the number of robots") +
                paragraph(
                    "The paper: \"the localization error remains consistent despite an increase "
                    "in the number of robots\".") +
@@ -244,7 +244,7 @@ report::Html experimentSection(const std::string& dir) {
                report::Table().headedRow("N", ns).headedRow("error (m)", errors).html();
     }
     out +=
-        heading(3, "Seed 003 fig. 11: per-step vertex errors") +
+        heading(3, "Paper 003 fig. 11: per-step vertex errors") +
         paragraph(
             "Mean absolute error and standard deviation along the new triangle's base "
             "(lateral) and across it (longitudinal). " +
@@ -261,7 +261,7 @@ report::Html experimentSection(const std::string& dir) {
 }
 
 report::Html formationSection(const report::RunView& run) {
-    report::Html out = report::heading(2, "Formation (seed 003)");
+    report::Html out = report::heading(2, "Formation (paper 003)");
     const auto f = FormationRunFile::read(run.dir);
     const auto m = run.metrics.value("formation", nlohmann::json::object());
     const double last = f.moves.empty() ? NAN : f.moves.back().error();
@@ -271,7 +271,7 @@ report::Html formationSection(const report::RunView& run) {
     const bool arrived = state == "arrived";
     out += report::paragraph(mrpt::format(
         "%zu moves; the team %s. The last moving robot's error %s: %s m "
-        "(seed 003 Table 1's measure); the dead-reckoning robot's: %s m.",
+        "(paper 003 Table 1's measure); the dead-reckoning robot's: %s m.",
         f.moves.size(), arrived ? "reached the destination" : ("ended " + state).c_str(),
         arrived ? "at the destination" : "at its last move (the destination was never reached)",
         std::isfinite(last) ? mrpt::format("%.3f", last).c_str() : "none",
@@ -292,7 +292,7 @@ report::Html formationSection(const report::RunView& run) {
                 : "this run's moves (error-model mode)";
         auto steps = stepErrorTable();
         addStepErrors(steps,
-                      "seed 003 fig. 11 (" + std::to_string(paper::kFig11Runs) + " lab runs)",
+                      "paper 003 fig. 11 (" + std::to_string(paper::kFig11Runs) + " lab runs)",
                       paper::kFig11Runs, paper::kLateralMean, paper::kLateralSd,
                       paper::kLongitudinalMean, paper::kLongitudinalSd);
         addStepErrors(steps, mode, lat.size(), lm, ls, om, os);
@@ -339,7 +339,7 @@ common::Headline formationHeadline(const method::HeadlineOf<FormationLocalizer>&
     else if (c.routeName == "custom")
         differs = "a route of this INI's; the paper's are its figs. 12-13";
     const std::string claim =
-        "below dead reckoning's, the gap growing with travel (seed 003 "
+        "below dead reckoning's, the gap growing with travel (paper 003 "
         "Table 1)";
     const auto own = common::numberAt(in.metrics, "formation/final_error_m");
     const auto dr = common::numberAt(in.metrics, "formation/dead_reckoning_final_error_m");
@@ -369,7 +369,7 @@ void registerMethod(method::Registry& registry) {
     m.experiment = formationExperiment;  // seed 003 Table 1, figs. 11, 14, 15
     m.trial = formationTrial;            // one run of Table 1 (mrloc trial, mrloc batch)
     m.work = formationWork;
-    m.report.subject = "swarm localization by triangle formations (seed 003)";
+    m.report.subject = "swarm localization by triangle formations (paper 003)";
     m.report.html = formationSection;  // its own picture: no world top view
     registry.add(std::move(m));
 }

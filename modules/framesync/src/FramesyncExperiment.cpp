@@ -1,3 +1,4 @@
+#include <mrloc/common/ParallelFor.h>
 #include <mrloc/common/Progress.h>
 #include <mrloc/framesync/FramesyncExperiment.h>
 #include <mrloc/framesync/FramesyncLocalizer.h>
@@ -8,9 +9,6 @@
 #include <algorithm>
 #include <atomic>
 #include <cmath>
-#include <exception>
-#include <mutex>
-#include <thread>
 
 namespace mrloc::framesync {
 
@@ -47,7 +45,7 @@ ExperimentRun simulateRun(const sim::ScenarioConfig& scenario, const FramesyncCo
 }
 
 FramesyncExperimentFile runExperiment(const sim::ScenarioConfig& scenario,
-                                      const FramesyncConfig& config, bool quiet) {
+                                      const FramesyncConfig& config, const common::Log& log) {
     struct Job {
         std::string kind;
         double value, sigma, drift;
@@ -67,36 +65,19 @@ FramesyncExperimentFile runExperiment(const sim::ScenarioConfig& scenario,
     const auto slices = sliceWorld(*world, config.rig);
     FramesyncExperimentFile out;
     out.runs.resize(jobs.size());
-    std::atomic<size_t> next{0}, done{0};
-    common::Progress progress("framesync experiment", jobs.size(), quiet);
-    std::exception_ptr failure;
-    std::mutex failureLock;
-    const auto runJob = [&](size_t k) {
-        try {
+    std::atomic<size_t> done{0};
+    common::Progress progress("framesync experiment", jobs.size(), log);
+    // the calling thread draws the bar between its runs (Progress is not shared)
+    common::parallelFor(
+        jobs.size(),
+        [&](size_t k) {
             const Job& j = jobs[k];
             out.runs[k] = simulateRun(scenario, config, world, slices, j.seed, j.sigma, j.drift);
             out.runs[k].kind = j.kind;
             out.runs[k].value = j.value;
             ++done;
-        } catch (...) {
-            std::lock_guard<std::mutex> lock(failureLock);
-            if (!failure) failure = std::current_exception();
-        }
-    };
-    const size_t threads = std::clamp<size_t>(std::thread::hardware_concurrency(), 1, 8);
-    std::vector<std::thread> pool;
-    for (size_t t = 1; t < threads; ++t)
-        pool.emplace_back([&] {
-            for (size_t k; (k = next++) < jobs.size();) runJob(k);
-        });
-    // the calling thread works too, and draws the bar between its runs (Progress is not
-    // shared between threads)
-    for (size_t k; (k = next++) < jobs.size();) {
-        runJob(k);
-        progress.update(done);
-    }
-    for (auto& t : pool) t.join();
-    if (failure) std::rethrow_exception(failure);
+        },
+        [&] { progress.update(done); });
     return out;
 }
 
@@ -159,7 +140,7 @@ std::vector<std::string> framesyncExperiment(const method::ExperimentOf<Framesyn
     if (config.experimentSeeds == 0 &&
         (config.sweepSeeds == 0 || (config.sweepNoise.empty() && config.sweepDrift.empty())))
         return {};
-    const auto file = runExperiment(*in.scenario, config, in.quiet);
+    const auto file = runExperiment(*in.scenario, config, in.log);
     file.write(in.outDir);
     return {FramesyncExperimentFile::path(in.outDir)};
 }

@@ -60,7 +60,7 @@ std::pair<double, double> meanPairErrors(const std::vector<PairFigure>& pairs) {
 
 void FramesyncRunFile::write(const std::string& dir) const {
     std::ostringstream out;
-    out << "# framesync run (seed 004): walls, redefinitions, end figures; m, rad, s\n"
+    out << "# framesync run (paper 004): walls, redefinitions, end figures; m, rad, s\n"
         << "# wall robot sonar t frame_version ax ay bx by normal residual erps\n"
         << "# redefinition robot reference t version rotation shift overlap own_wall "
            "reference_wall\n"
@@ -126,7 +126,7 @@ FramesyncRunFile FramesyncRunFile::read(const std::string& dir) {
 
 void FramesyncExperimentFile::write(const std::string& dir) const {
     std::ostringstream out;
-    out << "# framesync experiment (seed 004 sec. 5.2 over many runs): errors in m\n"
+    out << "# framesync experiment (paper 004 sec. 5.2 over many runs): errors in m\n"
         << "# run kind value seed shared_error odometry_error walls redefinitions\n";
     for (const auto& r : runs)
         out << "run " << r.kind << " " << formatNumber(r.value) << " " << r.seed << " "

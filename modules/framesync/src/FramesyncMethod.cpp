@@ -115,7 +115,7 @@ report::Html runPicture(const report::RunView& run, const FramesyncRunFile& f) {
         "set xlabel 'x (m)'\nset ylabel 'y (m)'\nset size ratio -1\nset key outside right top "
         "noenhanced\nset multiplot layout 2,1\nset title 'independent: each robot on its own "
         "odometry'\n" +
-        odometryPlot + "\nset title 'with the shared frame (seed 004)'\n" + sharedPlot +
+        odometryPlot + "\nset title 'with the shared frame (paper 004)'\n" + sharedPlot +
         "\nunset multiplot\n";
     report::runGnuplot(body, run.dir + "/framesync.run.png", "1100,900");
     return report::Figure{"framesync.run.png", "estimates without and with the shared frame"}
@@ -138,7 +138,7 @@ report::Html experimentSection(const std::string& dir) {
     report::Html out;
     if (!shared.empty()) {
         report::Table table({"frames", "mean (cm)", "median (cm)", "90th percentile (cm)",
-                             "max (cm)", "runs under 10 cm", "seed 004 (one run)"});
+                             "max (cm)", "runs under 10 cm", "paper 004 (one run)"});
         auto row = [&](const char* name, const std::vector<double>& xs, const char* paper) {
             double mean = 0;
             size_t under = 0;
@@ -149,8 +149,8 @@ report::Html experimentSection(const std::string& dir) {
                        mrpt::format("%.0f %%", 100.0 * double(under) / double(xs.size())), paper});
         };
         row("each robot's own odometry", odometry, "about 30 cm");
-        row("shared (seed 004)", shared, "under 10 cm");
-        out += heading(3, mrpt::format("Seed 004 sec. 5.2 over %zu seeds", shared.size())) +
+        row("shared (paper 004)", shared, "under 10 cm");
+        out += heading(3, mrpt::format("Paper 004 sec. 5.2 over %zu seeds", shared.size())) +
                paragraph(
                    "At the end of each run, where each robot is as another sees it (its "
                    "position in the other's frame and heading), estimated against true, mean "
@@ -172,8 +172,8 @@ report::Html experimentSection(const std::string& dir) {
                 "\nset ylabel 'fraction of runs'\nset yrange [0:1.05]\nset xrange [0:*]\n"
                 "set key outside right top\nset arrow from 10, graph 0 to 10, graph 1 nohead dt 2 "
                 "lc rgb '#2ca02c'\nset arrow from 30, graph 0 to 30, graph 1 nohead dt 2 lc "
-                "rgb '#d62728'\nset label 'seed 004: < 10 cm' at 10.5, graph 0.08 tc rgb "
-                "'#2ca02c'\nset label 'seed 004: about 30 cm' at 30.5, graph 0.16 tc rgb "
+                "rgb '#d62728'\nset label 'paper 004: < 10 cm' at 10.5, graph 0.08 tc rgb "
+                "'#2ca02c'\nset label 'paper 004: about 30 cm' at 30.5, graph 0.16 tc rgb "
                 "'#d62728'\nplot $o using 1:2 with steps lw 2 lc rgb '#d62728' title 'own "
                 "odometry', $s using 1:2 with steps lw 2 lc rgb '#1f77b4' title 'shared frame'\n",
             dir + "/framesync.seeds.png", "800,450");
@@ -222,7 +222,7 @@ report::Html experimentSection(const std::string& dir) {
 }
 
 report::Html framesyncSection(const report::RunView& run) {
-    report::Html out = report::heading(2, "Shared frame from walls (seed 004)");
+    report::Html out = report::heading(2, "Shared frame from walls (paper 004)");
     const auto f = FramesyncRunFile::read(run.dir);
     const auto m = run.metrics.value("framesync", nlohmann::json::object());
     const auto [shared, odometry] = meanPairErrors(f.pairs);
@@ -233,7 +233,7 @@ report::Html framesyncSection(const report::RunView& run) {
             "the pairs: " +
             report::bold(cm(shared) + " cm with the shared frame, " + cm(odometry) +
                          " cm with each robot's own odometry") +
-            mrpt::format(" (seed 004: under 10 cm and about 30 cm). %zu walls announced, %zu "
+            mrpt::format(" (paper 004: under 10 cm and about 30 cm). %zu walls announced, %zu "
                          "redefinitions.",
                          f.walls.size(), f.events.size()));
     else
@@ -284,8 +284,8 @@ common::Headline framesyncHeadline(const method::HeadlineOf<FramesyncLocalizer>&
     else if (in.scenario->robots.size() != 2)
         differs =
             mrpt::format("%zu robots; the paper's experiment has 2", in.scenario->robots.size());
-    const char* shared = "under 0.10 m (seed 004 sec. 5.2, one run)";
-    const char* own = "about 0.30 m (seed 004 sec. 5.2)";
+    const char* shared = "under 0.10 m (paper 004 sec. 5.2, one run)";
+    const char* own = "about 0.30 m (paper 004 sec. 5.2)";
     h.figures.push_back({"end discrepancy, shared frame",
                          common::numberAt(in.metrics, "framesync/end_relative_error_shared_m"), "m",
                          shared, differs, false});
@@ -321,7 +321,7 @@ void registerMethod(method::Registry& registry) {
     m.experiment = framesyncExperiment;  // seed 004 sec. 5.2 over seeds, noises, drifts
     m.trial = framesyncTrial;            // one run of it (mrloc trial, mrloc batch)
     m.work = framesyncWork;
-    m.report.subject = "one frame shared through walls seen by sonar (seed 004)";
+    m.report.subject = "one frame shared through walls seen by sonar (paper 004)";
     m.report.html = framesyncSection;  // its own picture (fig. 7): no world top view
     registry.add(std::move(m));
 }

@@ -31,7 +31,7 @@ Snapshot noisyViews(const std::vector<mrpt::poses::CPose2D>& poses,
 }  // namespace
 
 std::vector<AccuracyPoint> accuracySweep(const AccuracyLayout& truth, int trials,
-                                         unsigned long seed, bool quiet) {
+                                         unsigned long seed, const common::Log& log) {
     mrpt::random::CRandomGenerator rng(static_cast<uint32_t>(seed));
     std::vector<AccuracyPoint> levels;
     for (double a : {0.05, 0.1, 0.5}) levels.push_back({"angle", a, 0.01});
@@ -41,7 +41,7 @@ std::vector<AccuracyPoint> accuracySweep(const AccuracyLayout& truth, int trials
         return std::hypot(truth.after[i].x() - truth.after[j].x(),
                           truth.after[i].y() - truth.after[j].y());
     };
-    common::Progress progress("omnivision accuracy sweep", levels.size() * size_t(trials), quiet);
+    common::Progress progress("omnivision accuracy sweep", levels.size() * size_t(trials), log);
     size_t done = 0;
     for (auto& level : levels) {
         const double sigma = level.angleSigmaDeg * M_PI / 180;

@@ -78,7 +78,7 @@ void OmniPayload::sense(sim::Step& step) {
 }
 
 std::vector<sim::RobotOptions> generateSwarm(const OmniOptions& o, const sim::WorldOptions& world) {
-    mrpt::random::CRandomGenerator rng(uint32_t(o.swarmSeed));
+    mrpt::random::CRandomGenerator rng(uint32_t(o.swarmSeed.value));
     const double side = std::min({o.swarmArea, world.sizeX, world.sizeY});
     const double x0 = 0.5 * (world.sizeX - side), y0 = 0.5 * (world.sizeY - side);
     std::vector<sim::RobotOptions> robots;
@@ -171,7 +171,7 @@ std::vector<std::string> accuracySweepStep(const method::ExperimentOf<OmniLocali
     const auto layout = in.localizer.accuracyLayout(in.truth);
     AccuracyFile file;
     file.distanceName = layout.proposed ? "odometer" : "LiDAR";
-    file.points = accuracySweep(layout, o.accuracyTrials, in.seed, in.quiet);
+    file.points = accuracySweep(layout, o.accuracyTrials, in.seed, in.log);
     file.write(in.outDir);
     return {AccuracyFile::path(in.outDir)};
 }
@@ -234,7 +234,7 @@ report::Html omnivisionSection(const report::RunView& run) {
     plotLayout(layout, run.dir + "/layout.png");
     const auto& m = run.metrics.value("omnivision", nlohmann::json::object());
     report::Html out =
-        heading(2, "Relative layout (seed 000)") +
+        heading(2, "Relative layout (paper 000)") +
         paragraph(
             "The truth, the paper's solution (eq. (8) for L, then the sine rule) and the "
             "least-squares refinement over every identified bearing and measured "
@@ -284,7 +284,7 @@ report::Html omnivisionSection(const report::RunView& run) {
                              ? "."
                              : ", some robots unresolved.");
         }
-        out += paragraph(headline + " Seed 000 gives no figure to compare with.");
+        out += paragraph(headline + " Paper 000 gives no figure to compare with.");
     }
     if (m.contains("restarts") && m["restarts"].is_array() && !m["restarts"].empty()) {
         std::vector<report::Html> restarts;
@@ -326,7 +326,7 @@ report::Html omnivisionSection(const report::RunView& run) {
     return out + heading(3, "Accuracy against noise (Monte Carlo on this run's true layout)") +
            paragraph(
                "Median relative error of all pairwise distances, mean over the trials. "
-               "Seed 000 gives no figure to compare with.") +
+               "Paper 000 gives no figure to compare with.") +
            report::Figure{"accuracy.png", "accuracy against noise"}.html() + accuracy.html();
 }
 
@@ -348,15 +348,15 @@ common::Headline omnivisionHeadline(const method::HeadlineOf<OmniLocalizer>& in)
         const auto v = common::numberAt(method, std::string(key) + "/median");
         return v ? std::optional<double>(100 * *v) : std::nullopt;
     };
-    const char* none = "seed 000 publishes no figure";
+    const char* none = "paper 000 publishes no figure";
     if (const auto refined = percent("relative_distance_error_refined"))
         h.figures.push_back(
             {"relative distance error, refined (median)", refined, "%", none, "", false});
-    h.figures.push_back({"relative distance error, seed 000's solution (median)",
+    h.figures.push_back({"relative distance error, paper 000's solution (median)",
                          percent("relative_distance_error_paper"), "%", none, "", false});
     h.figures.push_back({"heading error, refined (median)",
                          common::numberAt(method, "heading_error_deg_refined/median"), "deg",
-                         "seed 000 does not estimate headings", "", false});
+                         "paper 000 does not estimate headings", "", false});
     return h;
 }
 
@@ -372,7 +372,7 @@ void registerMethod(method::Registry& registry) {
     m.scenario = loadScenario;
     m.experiment = accuracySweepStep;
     m.work = omnivisionWork;
-    m.report.subject = "relative positions from omni-directional cameras (seed 000)";
+    m.report.subject = "relative positions from omni-directional cameras (paper 000)";
     m.report.html = omnivisionSection;  // its own picture: no world top view
     registry.add(std::move(m));
 }

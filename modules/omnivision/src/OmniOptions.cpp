@@ -73,7 +73,7 @@ void OmniOptions::loadFromConfigFile(const mrpt::config::CConfigFileBase& src,
     swarmArea = s.real("swarm_area", swarmArea, 1, 1e4);
     swarmSpeed = s.real("swarm_speed", swarmSpeed, 0, 10);
     swarmSeparation = s.real("swarm_separation", swarmSeparation, 0, 100);
-    swarmSeed = (unsigned long)s.integer("swarm_seed", long(swarmSeed), 0, 4294967295L);
+    swarmSeed = common::subSeed(s, "swarm_seed", common::runSeed(src), "omnivision swarm");
     accuracyTrials = int(s.integer("accuracy_trials", long(accuracyTrials), 0, 100000));
     s.finish();
 }
@@ -106,7 +106,7 @@ void OmniOptions::saveToConfigFile(mrpt::config::CConfigFileBase& t,
     t.write(section, "swarm_area", swarmArea);
     t.write(section, "swarm_speed", swarmSpeed);
     t.write(section, "swarm_separation", swarmSeparation);
-    t.write(section, "swarm_seed", std::to_string(swarmSeed));
+    if (swarmSeed.given) t.write(section, "swarm_seed", std::to_string(swarmSeed.value));
     t.write(section, "accuracy_trials", accuracyTrials);
 }
 

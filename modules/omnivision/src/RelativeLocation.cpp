@@ -134,7 +134,7 @@ ProposedSolution proposedMethod(const Snapshot& before, const Identification& id
     if (witnesses.empty())
         throw Error(
             "omnivision: the stopped robots share no robot that both see, and that sees "
-            "them, at t_b and t_e: stop another pair (seed 000 section 3)");
+            "them, at t_b and t_e: stop another pair (paper 000 section 3)");
     ProposedSolution out;
     out.moving = witnesses.front();
     for (int c : witnesses)

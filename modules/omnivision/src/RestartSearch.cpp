@@ -56,7 +56,7 @@ RestartSearch localizedRestartSearch(const Snapshot& before, const Snapshot& aft
     if (abAfter < 0 || baAfter < 0)
         throw Error(
             "omnivision: the stopped robots do not see each other at t_e: stop another pair "
-            "(seed 000 section 3)");
+            "(paper 000 section 3)");
     const auto ab =
         imageNear(va, after.views[size_t(a)].bearings[size_t(abAfter)], o.bearingTolerance);
     const auto ba =
@@ -157,7 +157,7 @@ RestartSearch localizedRestartSearch(const Snapshot& before, const Snapshot& aft
     }
     throw Error(mrpt::format(
         "omnivision: none of the %zu moving robots that A and B both see at t_e forms a "
-        "triangle with them at t_b (%zu image triples searched, seed 000 eq. (12)): stop "
+        "triangle with them at t_b (%zu image triples searched, paper 000 eq. (12)): stop "
         "another pair",
         witnesses.size(), out.triples));
 }

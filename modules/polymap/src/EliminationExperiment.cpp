@@ -30,7 +30,7 @@ std::vector<std::pair<std::string, EliminationOptions>> experimentColumns(const 
             EliminationOptions eo;
             eo.strategy = strategy;
             if (x > 0) eo.randomPoints = x;
-            eo.seed = (uint32_t)o.eliminationSeed;
+            eo.seed = (uint32_t)o.eliminationSeed.value;
             eo.tolerance = tolerance;  // the generation's: see doc/polymap.md
             eo.clearance = o.clearance;
             out.push_back({strategyName(strategy) + (x > 0 ? ":" + std::to_string(x) : ""), eo});
@@ -49,13 +49,14 @@ std::pair<EliminationRun, double> timedElimination(const Eliminator& eliminator,
 
 /** Seed 002 Figs. 6-7: steps maps of each `sweep_steps`, their sites the hypotheses, at most
  *  `sweep_starts` starts each, evenly spread. */
-EliminationSweepFile eliminationSweep(const PolymapOptions& o, double tolerance, bool quiet) {
+EliminationSweepFile eliminationSweep(const PolymapOptions& o, double tolerance,
+                                      const common::Log& log) {
     EliminationSweepFile sweep;
     const size_t columns = experimentColumns(o, tolerance).size();
     // the work grows with n: count it in map sizes' localizations, weighted by n^2
     double total = 0, done = 0;
     for (const int steps : o.sweepSteps) total += double(steps) * steps * columns * o.sweepStarts;
-    common::Progress progress("polymap sweep (Figs. 6-7)", 1000, quiet);
+    common::Progress progress("polymap sweep (Figs. 6-7)", 1000, log);
     for (const int steps : o.sweepSteps) {
         StepsMapOptions so = o.steps;
         so.steps = steps;
@@ -234,7 +235,7 @@ report::Html eliminationTables(const EliminationFile& file, const EliminationTim
         }
         return out;
     };
-    return report::heading(3, "Elimination: path length per start (seed 002 Table 1)") +
+    return report::heading(3, "Elimination: path length per start (paper 002 Table 1)") +
            report::paragraph(
                "Every hypothesis in turn the truth; closed loop with exact views; d is the "
                "robot's travel in metres. The paper's map units are not stated: compare the "
@@ -249,8 +250,8 @@ report::Html eliminationTables(const EliminationFile& file, const EliminationTim
                (tours ? std::string()
                       : " (not computed: more than " + std::to_string(kMaxTourHypotheses) +
                             " hypotheses)") +
-               ". Seed 002 reports no bound.") +
-           table(true) + report::heading(3, "Elimination: run time per start (seed 002 Table 2)") +
+               ". Paper 002 reports no bound.") +
+           table(true) + report::heading(3, "Elimination: run time per start (paper 002 Table 2)") +
            report::paragraph(
                "One whole localization, this machine, one core, milliseconds; the "
                "paper's in seconds (Visual C++ 2010).") +
@@ -267,7 +268,7 @@ report::Html sweepSection(const std::string& dir) {
         table.row({std::to_string(r.n), std::to_string(r.k), r.column,
                    mrpt::format("%.2f", r.meanTravel), mrpt::format("%.2f", 1e3 * r.meanSeconds),
                    std::to_string(r.notLocalized)});
-    return report::heading(3, "Elimination against map size (seed 002 Figs. 6-7)") +
+    return report::heading(3, "Elimination against map size (paper 002 Figs. 6-7)") +
            report::paragraph(
                "Steps maps of the run's shape, n vertices, their sites the hypotheses; mean "
                "over up to " +
@@ -388,7 +389,7 @@ std::vector<std::string> eliminationExperiment(const method::ExperimentOf<Polyma
     std::vector<TPoint2D> firstCandidates;
     std::vector<std::vector<TPoint2D>> probesFrom(positions.size());
     common::Progress progress("polymap experiment (Tables 1-2)", columns.size() * positions.size(),
-                              in.quiet);
+                              in.log);
     for (const auto& [name, eo] : columns) {
         const Eliminator eliminator(P, positions, eo);
         EliminationFile::Column col;
@@ -443,7 +444,7 @@ std::vector<std::string> eliminationExperiment(const method::ExperimentOf<Polyma
     std::vector<std::string> written{EliminationFile::path(in.outDir),
                                      EliminationTimes::path(in.outDir)};
     if (!o.sweepSteps.empty()) {
-        eliminationSweep(o, r.tolerance, in.quiet).write(in.outDir);
+        eliminationSweep(o, r.tolerance, in.log).write(in.outDir);
         written.push_back(EliminationSweepFile::path(in.outDir));
     }
     return written;

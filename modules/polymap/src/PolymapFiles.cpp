@@ -16,7 +16,7 @@ std::string HypothesesFile::path(const std::string& dir, const std::string& robo
 
 void HypothesesFile::write(const std::string& dir, const std::string& robot) const {
     std::ostringstream out;
-    out << "# polymap result of robot " << robot << " (seed 002, hypothesis generation)\n"
+    out << "# polymap result of robot " << robot << " (paper 002, hypothesis generation)\n"
         << "# time t: of the scan (s)\n# V x y: a vertex of the sensed visibility polygon, "
            "robot frame (m)\n"
         << "# H x y translation_x translation_y mismatch: a hypothesis (m)\n"
@@ -56,7 +56,7 @@ HypothesesFile HypothesesFile::read(const std::string& dir, const std::string& r
 
 void EliminationFile::write(const std::string& dir) const {
     std::ostringstream out;
-    out << "# polymap elimination experiment (seed 002 Tables 1-2), exact views\n"
+    out << "# polymap elimination experiment (paper 002 Tables 1-2), exact views\n"
         << "# true_start i: the run's true start, index into H (0-based)\n"
         << "# C column name: an algorithm (cells, randomized:X, triangulation, windows)\n"
         << "# R column start travel probes survivors: one localization (m)\n"
@@ -173,7 +173,7 @@ EliminationTimes EliminationTimes::read(const std::string& dir) {
 
 void EliminationSweepFile::write(const std::string& dir) const {
     std::ostringstream out;
-    out << "# polymap elimination sweep (seed 002 Figs. 6-7), exact views\n"
+    out << "# polymap elimination sweep (paper 002 Figs. 6-7), exact views\n"
         << "# n k starts column mean_travel_m mean_seconds not_localized\n";
     for (const auto& r : rows)
         out << r.n << " " << r.k << " " << r.starts << " " << r.column << " "

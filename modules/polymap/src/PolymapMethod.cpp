@@ -143,7 +143,7 @@ report::Html polymapSection(const report::RunView& run) {
     report::Html out = report::heading(2, "Polygon map: hypotheses") +
                        report::paragraph(
                            "The map P; the sensed visibility polygon V at the true start; V "
-                           "placed at each hypothesis; the hypotheses (seed 002, hypothesis "
+                           "placed at each hypothesis; the hypotheses (paper 002, hypothesis "
                            "generation). Colours are in the picture's legend.");
     const auto P = common::Polygon::load(mapFilePath(run.dir));
     for (const auto& [robot, r] : run.metrics["robots"].items()) {
@@ -221,7 +221,7 @@ report::Html polymapSection(const report::RunView& run) {
             out += report::paragraph(
                        "Close-up: the overlay region OI of all hypotheses at the true start, the "
                        "first algorithm's candidates for its first probe, and each algorithm's "
-                       "route from the run's true start (seed 002 figs. 2-5), its probes as "
+                       "route from the run's true start (paper 002 figs. 2-5), its probes as "
                        "dots.") +
                    report::Figure{zoom, "elimination routes from the true start"}.html();
         }
@@ -326,7 +326,7 @@ void registerMethod(method::Registry& registry) {
     m.scenario = loadScenario;
     m.experiment = eliminationExperiment;  // seed 002 Tables 1-2, Figs. 6-7
     m.work = polymapWork;
-    m.report.subject = "minimum-distance localization in a polygon map (seed 002)";
+    m.report.subject = "minimum-distance localization in a polygon map (paper 002)";
     m.report.html = polymapSection;  // its own picture: no world top view
     registry.add(std::move(m));
 }

@@ -89,7 +89,8 @@ void PolymapOptions::loadFromConfigFile(const mrpt::config::CConfigFileBase& src
             if (s.has(key))
                 s.fail(key, "not used by room_layout = row (rooms joined wall to wall)");
     rooms.pillar = s.real("pillar", rooms.pillar, 0, 1e3);
-    mapSeed = (unsigned long)s.integer("map_seed", long(mapSeed), 0, 4294967295L);
+    const unsigned long seed = common::runSeed(src);
+    mapSeed = common::subSeed(s, "map_seed", seed, "polymap rooms map");
     start.reset();
     if (s.has("start")) {
         const auto xy = s.requireReals("start", 2);
@@ -143,8 +144,7 @@ void PolymapOptions::loadFromConfigFile(const mrpt::config::CConfigFileBase& src
     if (randomPoints.empty()) s.fail("random_points", "give at least one X");
     if (randomPoints.size() > kMaxListValues)  // each X is a column of the whole experiment
         s.fail("random_points", "at most " + std::to_string(kMaxListValues) + " values");
-    eliminationSeed =
-        (unsigned long)s.integer("elimination_seed", long(eliminationSeed), 0, 4294967295L);
+    eliminationSeed = common::subSeed(s, "elimination_seed", seed, "polymap elimination");
     clearance = s.real("clearance", clearance, 0, 10);
     sweepSteps.clear();
     for (const double x : s.reals("sweep_steps", {})) {
@@ -170,7 +170,7 @@ void PolymapOptions::loadFromConfigFile(const mrpt::config::CConfigFileBase& src
             s.fail("drive", "a driving robot scans where it eliminates: set scan_rate = 0");
     }
     if (scanMode && !elimination.empty())
-        s.fail("elimination", "seed 002's experiment runs on exact views (localizer = exact)");
+        s.fail("elimination", "paper 002's experiment runs on exact views (localizer = exact)");
     s.finish();
 }
 
@@ -180,7 +180,7 @@ void PolymapOptions::saveToConfigFile(mrpt::config::CConfigFileBase& t,
         t.write(section, "map", mapFile);
     } else {
         t.write(section, "generator", generator);
-        t.write(section, "map_seed", std::to_string(mapSeed));
+        if (mapSeed.given) t.write(section, "map_seed", std::to_string(mapSeed.value));
     }
     t.write(section, "steps", steps.steps);
     t.write(section, "branches_per_step", steps.branchesPerStep);
@@ -218,7 +218,8 @@ void PolymapOptions::saveToConfigFile(mrpt::config::CConfigFileBase& t,
     std::string xs;
     for (const int x : randomPoints) xs += (xs.empty() ? "" : " ") + std::to_string(x);
     t.write(section, "random_points", xs);
-    t.write(section, "elimination_seed", std::to_string(eliminationSeed));
+    if (eliminationSeed.given)
+        t.write(section, "elimination_seed", std::to_string(eliminationSeed.value));
     t.write(section, "clearance", clearance);
     std::string sweep;
     for (const int x : sweepSteps) sweep += (sweep.empty() ? "" : " ") + std::to_string(x);
@@ -298,7 +299,7 @@ EliminationOptions PolymapOptions::driveOptions(double tolerance) const {
     EliminationOptions o;
     o.strategy = drive.value_or(ProbeStrategy::Windows);
     o.randomPoints = randomPoints.front();
-    o.seed = (uint32_t)eliminationSeed;
+    o.seed = (uint32_t)eliminationSeed.value;
     o.tolerance = tolerance;
     o.clearance = clearance;
     o.sensorBeams = scanRays;                      // the scanner the probes are for
@@ -313,7 +314,7 @@ GeneratedMap PolymapOptions::buildMap() const {
         return {std::move(P), {}, "map " + mapFile};
     }
     if (generator == "steps") return stepsMap(steps);
-    mrpt::random::CRandomGenerator rng{static_cast<uint32_t>(mapSeed)};
+    mrpt::random::CRandomGenerator rng{static_cast<uint32_t>(mapSeed.value)};
     return roomsMap(rooms, rng);
 }
 

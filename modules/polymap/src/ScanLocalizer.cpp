@@ -1,15 +1,12 @@
 #include <mrloc/common/Error.h>
+#include <mrloc/common/ParallelFor.h>
 #include <mrloc/common/Rawlog.h>
 #include <mrloc/polymap/ScanLocalizer.h>
 #include <mrpt/core/format.h>
 #include <mrpt/math/wrap2pi.h>
 
 #include <algorithm>
-#include <atomic>
 #include <cmath>
-#include <functional>
-#include <mutex>
-#include <thread>
 #include <unordered_map>
 
 namespace mrloc::polymap {
@@ -64,27 +61,6 @@ std::vector<PoseHypothesis> distinct(std::vector<PoseHypothesis> poses, double d
         if (kept.size() >= limit) break;
     }
     return kept;
-}
-
-/** f(0) .. f(n - 1) on every core (at most 8); f writes only its own index's result. */
-void forEachIndex(size_t n, const std::function<void(size_t)>& f) {
-    std::atomic<size_t> next{0};
-    std::exception_ptr failure;
-    std::mutex failureLock;
-    const auto work = [&] {
-        for (size_t i; (i = next++) < n;) try {
-                f(i);
-            } catch (...) {
-                std::lock_guard<std::mutex> lock(failureLock);
-                if (!failure) failure = std::current_exception();
-            }
-    };
-    const size_t threads = std::clamp<size_t>(std::thread::hardware_concurrency(), 1, 8);
-    std::vector<std::thread> pool;
-    for (size_t t = 1; t < std::min(threads, n); ++t) pool.emplace_back(work);
-    work();
-    for (auto& t : pool) t.join();
-    if (failure) std::rethrow_exception(failure);
 }
 
 size_t strideFor(const ScanBeamSet& beams, size_t wanted) {
@@ -270,7 +246,7 @@ std::vector<PoseHypothesis> globalHypotheses(const WallMap& map, const ScanBeamS
     std::vector<double> ys;
     for (double y = lo.y + 0.5 * ps; y < hi.y; y += ps) ys.push_back(y);
     std::vector<Row> rows(ys.size());
-    forEachIndex(ys.size(), [&](size_t i) { searchRow(ys[i], rows[i]); });
+    common::parallelFor(ys.size(), [&](size_t i) { searchRow(ys[i], rows[i]); });
     std::vector<PoseHypothesis> candidates;
     for (auto& row : rows) {
         st.positions += row.positions;
@@ -285,7 +261,7 @@ std::vector<PoseHypothesis> globalHypotheses(const WallMap& map, const ScanBeamS
         distinct(std::move(candidates), o.mergeDistance, o.mergeAngle * kDeg, 3 * o.maxHypotheses);
     std::vector<PoseHypothesis> refined(candidates.size());
     const size_t refineStride = strideFor(beams, 120);
-    forEachIndex(candidates.size(), [&](size_t i) {
+    common::parallelFor(candidates.size(), [&](size_t i) {
         refined[i] = refinePose(map, beams, candidates[i].pose, o.tolerance, 0.5 * ps, 0.5 * hs,
                                 refineStride);
         refined[i].path.push_back({beams.time, refined[i].pose});

@@ -77,7 +77,7 @@ report::Html scanSection(const report::RunView& run) {
     report::Html out =
         report::heading(2, "Polygon map from real scans: hypotheses and elimination");
     out += report::paragraph(
-        "Seed 002's hypothesis generation and elimination, carried to real laser scans "
+        "Paper 002's hypothesis generation and elimination, carried to real laser scans "
         "(doc/polymap.md, \"Real scans\"): every free position and heading scored by the "
         "fraction of beams that agree with the map within the tolerance (shorter beams are "
         "clutter and allowed; beams through a wall count against), the best distinct poses "

@@ -147,6 +147,10 @@ Html whatRan(const RunView& run, const Section& section, const nlohmann::json& p
     const bool simulated = simulatedRun(provenance, m);
     t.headedRow("log", {simulated ? Html("simulated by mrloc, seed " + textAt(provenance, "seed"))
                                   : Html("recorded elsewhere (not simulated in this run)")});
+    if (provenance.contains("seed_overrides"))
+        t.headedRow("fixed sub-seeds",
+                    {Html("drawn from these INI keys, not from the run's seed: " +
+                          textAt(provenance, "seed_overrides"))});
     const std::string truthFrom = m.value("ground_truth_from", "");
     t.headedRow(
         "ground truth",

@@ -92,15 +92,15 @@ SimulationResult Simulator::run(const std::function<void(const mrpt::obs::CObser
     return result;
 }
 
-SimulatedFiles simulateToFiles(const ScenarioConfig& config, const std::string& dir, bool quiet,
-                               Payload* payload) {
+SimulatedFiles simulateToFiles(const ScenarioConfig& config, const std::string& dir,
+                               const common::Log& log, Payload* payload) {
     common::makeDirectories(dir);
     SimulatedFiles files;
     files.rawlog = dir + "/" + config.scenario.name + ".rawlog";
     Simulator sim(config);
     common::RawlogWriter writer(files.rawlog);
     common::Progress progress(
-        "simulating", size_t(std::lround(config.scenario.duration / config.scenario.dt)), quiet);
+        "simulating", size_t(std::lround(config.scenario.duration / config.scenario.dt)), log);
     const auto result = sim.run(writer, payload, &progress);
     progress.finish();
     files.all.push_back(files.rawlog);

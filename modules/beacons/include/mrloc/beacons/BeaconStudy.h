@@ -105,15 +105,15 @@ struct CoverageResult {
     }
 };
 
-/** `trials` trials at each point, on up to `threads` threads; each point's trials are drawn
- *  from its own generator (seeded from `seed` and the point's index), so the result does not
- *  depend on the threads. With stopAtFailure the first point found failing ends it
+/** `trials` trials at each point, on common::threadCount() threads; each point's trials are
+ *  drawn from its own generator (seeded from `seed` and the point's index), so the result does
+ *  not depend on the threads. With stopAtFailure the first point found failing ends it
  *  (complete = false), for searches that need only the verdict. */
 CoverageResult evaluateCoverage(const StudyRoom& room, const StudyHardware& hw,
                                 const StudyMethod& method,
                                 const std::vector<mrpt::math::TPoint2D>& points, int trials,
                                 uint64_t seed, const CoverageCriteria& criteria,
-                                bool stopAtFailure = false, unsigned threads = 0);
+                                bool stopAtFailure = false);
 
 /** Test points on a square grid of `spacing`, `wallMargin` from the walls, centred. */
 std::vector<mrpt::math::TPoint2D> testGrid(double sizeX, double sizeY, double spacing,

@@ -4,6 +4,7 @@
 // over room sizes, the fewest beacons that cover a room, the sweeps and the agents served.
 #include <mrloc/beacons/BeaconLocalizer.h>
 #include <mrloc/beacons/BeaconStudy.h>
+#include <mrloc/common/Log.h>
 #include <mrloc/sim/Scenario.h>
 
 #include <string>
@@ -67,6 +68,7 @@ struct StudySetup {
  *  beacons, aiming and receiver method (`run`). Deterministic for a seed, whatever the
  *  threads. */
 BeaconStudyFile runStudy(const StudySetup& setup, const BeaconOptions& run,
-                         const sim::ScenarioConfig& scenario, uint64_t seed, bool quiet);
+                         const sim::ScenarioConfig& scenario, uint64_t seed,
+                         const common::Log& log = common::silentLog());
 
 }  // namespace mrloc::beacons

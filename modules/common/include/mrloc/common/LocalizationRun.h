@@ -4,6 +4,7 @@
 // method's own files. effective.ini and provenance.json are the app's to write.
 #include <mrloc/common/GroundTruthFile.h>
 #include <mrloc/common/Localizer.h>
+#include <mrloc/common/Log.h>
 
 #include <functional>
 #include <map>
@@ -16,7 +17,8 @@ struct LocalizationRunOptions {
     std::string methodName;
     std::string rawlogPath;
     std::string outDir;
-    bool quiet = false;
+    /** Where the warnings and the progress go (the app's log: stderr). */
+    const Log* log = &silentLog();
     /** A ground-truth file named in the INI; without one, <rawlog stem>.<robot>.gt.txt. */
     GroundTruthSource groundTruth = {};
     /** Where `groundTruth` came from, in words (metrics.json "ground_truth_from"). */
@@ -54,7 +56,7 @@ struct LocalizationResult {
  *  `fitHint`'s advice). A run with no estimate is written (its headline says what the method
  *  found instead: polymap's hypotheses). Partial use (observations of
  *  the method's kind it could not match) and estimates that stop well before the log ends
- *  are warnings: on stderr and in metrics.json's "warnings". */
+ *  are warnings: told to the options' log and kept in metrics.json's "warnings". */
 LocalizationResult runLocalization(Localizer& localizer, const LocalizationRunOptions& options);
 
 }  // namespace mrloc::common

@@ -1,7 +1,10 @@
 #pragma once
-// Progress of work that can take more than a second, on stderr. On a terminal a bar with
-// the time so far and the time left, redrawn in place; otherwise (CI, a pipe, a log file)
-// one line every 10 s, so that long work is never silent. Nothing when quiet.
+// Progress of work that can take more than a second, told to a Log (the app's: stderr). On a
+// terminal a bar with the time so far and the time left, redrawn in place; otherwise (CI, a
+// pipe, a log file) one line every 10 s, so that long work is never silent. Nothing when the
+// log shows no progress (-q).
+#include <mrloc/common/Log.h>
+
 #include <chrono>
 #include <string>
 
@@ -10,7 +13,7 @@ namespace mrloc::common {
 class Progress {
  public:
     /** total = 0: unknown total, a counter is shown instead of a bar and no time left. */
-    Progress(std::string label, size_t total, bool quiet);
+    Progress(std::string label, size_t total, const Log& log);
     ~Progress();
     void update(size_t done);
     /** Progress as a fraction in [0, 1] where the work is not counted in items (the bytes
@@ -23,6 +26,7 @@ class Progress {
     void show(double fraction, size_t done, size_t total);
 
     std::string label_;
+    const Log& log_;
     const size_t total_;
     bool enabled_;
     bool terminal_;

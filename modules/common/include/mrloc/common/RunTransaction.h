@@ -12,6 +12,8 @@
 // outputs with their SHA-1, and a stale output (a robot fewer) is removed from the staging copy
 // only when its name is a plain file name and its content is still what mrloc wrote. Nothing
 // is ever followed through a symbolic link: links are not carried into the staging copy.
+#include <mrloc/common/Log.h>
+
 #include <map>
 #include <string>
 #include <vector>
@@ -29,8 +31,10 @@ class RunTransaction {
      *  earlier killed run left beside it, and stages a copy of its regular files. Throws
      *  mrloc::Error (naming the folder) when another mrloc holds it, when it is a
      *  non-empty folder that no mrloc run wrote (no provenance.json), or when it is too large
-     *  to stage (over kMaxEntries entries). */
-    RunTransaction(const std::string& folder, const std::string& step);
+     *  to stage (over kMaxEntries entries). Links and special files are left out of the new
+     *  run, with a warning to `log`. */
+    RunTransaction(const std::string& folder, const std::string& step,
+                   const Log& log = silentLog());
     /** Without commit(): the staging folder is removed and the folder left as it was. */
     ~RunTransaction();
     RunTransaction(const RunTransaction&) = delete;
@@ -52,7 +56,7 @@ class RunTransaction {
     static constexpr size_t kMaxEntries = 100000;  ///< files a run folder may hold
 
  private:
-    void stageCopyOfFolder();
+    void stageCopyOfFolder(const Log& log);
     void recordOutputs();
 
     std::string folder_, step_, absFolder_, staging_, lockPath_;

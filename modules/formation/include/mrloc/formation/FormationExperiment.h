@@ -12,7 +12,8 @@ namespace mrloc::formation {
 
 /** The whole experiment from [formation]'s keys (runs, experiment_*, camera_starts); the
  *  same seed gives the same file. */
-FormationExperimentFile runFormationExperiment(const FormationConfig& config, bool quiet = true);
+FormationExperimentFile runFormationExperiment(const FormationConfig& config,
+                                               const common::Log& log = common::silentLog());
 
 /** The work the configuration asks (method/Work.h; FormationWork.cpp): the pixel mode's
  *  frames, the experiment's marches and dead-reckoned drives, and the pixel experiment. */

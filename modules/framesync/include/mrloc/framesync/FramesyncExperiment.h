@@ -23,7 +23,8 @@ ExperimentRun simulateRun(const sim::ScenarioConfig& scenario, const FramesyncCo
 /** The runs [framesync] asks for: experiment_seeds as given, then experiment_sweep_seeds
  *  for each experiment_noise and each experiment_drift. */
 FramesyncExperimentFile runExperiment(const sim::ScenarioConfig& scenario,
-                                      const FramesyncConfig& config, bool quiet = true);
+                                      const FramesyncConfig& config,
+                                      const common::Log& log = common::silentLog());
 
 /** The registered experiment step: writes framesync.experiment.txt. */
 /** The work the configuration asks (method/Work.h): the sonars' simulation and the

@@ -8,6 +8,7 @@
 // holds, or an error listing them all.
 #include <mrloc/common/Error.h>
 #include <mrloc/common/Localizer.h>
+#include <mrloc/common/Log.h>
 #include <mrloc/method/Work.h>
 #include <mrloc/report/Report.h>
 #include <mrloc/sim/Payload.h>
@@ -45,7 +46,8 @@ struct ExperimentInput {
     /** The run's seed ([scenario] seed, or --seed): an experiment's random draws start
      *  from it, so that `--seed` reaches the experiment and effective.ini reproduces it. */
     unsigned long seed = 1;
-    bool quiet = true;  ///< no progress bar (-q, or stderr not a terminal)
+    /** The app's log: the experiment's progress (none with -q) and warnings. */
+    const common::Log& log = common::silentLog();
 };
 
 /** One trial of a method's Monte Carlo experiment (`mrloc trial`, `mrloc batch`): the
@@ -109,7 +111,7 @@ struct ExperimentOf {
     const common::Trajectories& truth;
     const std::string& outDir;
     unsigned long seed;
-    bool quiet;  ///< no progress bar
+    const common::Log& log;  ///< progress and warnings
 };
 
 /** TrialInput with the method's own localizer type. */
@@ -198,7 +200,7 @@ void Registry::add(MethodUnit<LocalizerT> unit) {
         m.experiment = [f = std::move(unit.experiment),
                         name = unit.name](const ExperimentInput& in) {
             return f(ExperimentOf<LocalizerT>{localizerOf<LocalizerT>(in.localizer, name),
-                                              in.scenario, in.truth, in.outDir, in.seed, in.quiet});
+                                              in.scenario, in.truth, in.outDir, in.seed, in.log});
         };
     if (unit.trial)
         m.trial = [f = std::move(unit.trial), name = unit.name](const TrialInput& in) {

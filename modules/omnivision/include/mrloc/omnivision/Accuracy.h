@@ -4,6 +4,7 @@
 // and against the odometer (or LiDAR) noise, for the paper's solution and after the
 // least-squares refinement. Bearings are drawn directly (the simulator's bearings mode)
 // for the sightings of a real run, so visibility is the run's.
+#include <mrloc/common/Log.h>
 #include <mrloc/omnivision/TriangleSearch.h>
 #include <mrpt/poses/CPose2D.h>
 
@@ -30,6 +31,7 @@ struct AccuracyPoint {
 
 /** Runs `trials` trials per noise level; deterministic for a seed. */
 std::vector<AccuracyPoint> accuracySweep(const AccuracyLayout& layout, int trials,
-                                         unsigned long seed, bool quiet = true);
+                                         unsigned long seed,
+                                         const common::Log& log = common::silentLog());
 
 }  // namespace mrloc::omnivision

@@ -3,6 +3,7 @@
 // cameras, the tolerances and, optionally, a generated swarm and an accuracy sweep. The
 // app hands the simulator the camera setup it implies (omnivision::OmniSetup); the localizer
 // reads the same section. Every key and its default: doc/ini.md.
+#include <mrloc/common/Seeds.h>
 #include <mrloc/omnivision/Panorama.h>
 #include <mrpt/config/CLoadableOptions.h>
 
@@ -41,7 +42,9 @@ struct OmniOptions : public mrpt::config::CLoadableOptions {
     // Generated swarm (swarm > 0 replaces [scenario] robots).
     int swarm = 0;
     double swarmArea = 20, swarmSpeed = 0.3, swarmSeparation = 1.0;
-    unsigned long swarmSeed = 1;
+    /** swarm_seed: the swarm's layout; drawn from the run's seed unless given
+     *  (common/Seeds.h) */
+    common::SubSeed swarmSeed;
     // Accuracy sweep in the report (Monte Carlo trials per noise level; 0: none).
     int accuracyTrials = 0;
 

@@ -3,6 +3,7 @@
 // heading, its 360-degree scanner, and the hypothesis tolerances. The simulator gets the
 // map, start and scanner through the app; the localizer reads the same section.
 #include <mrloc/common/IniSection.h>
+#include <mrloc/common/Seeds.h>
 #include <mrloc/polymap/Elimination.h>
 #include <mrloc/polymap/GridTrace.h>
 #include <mrloc/polymap/Hypotheses.h>
@@ -29,7 +30,9 @@ struct PolymapOptions : public mrpt::config::CLoadableOptions {
     std::string generator = "steps";  ///< generator = steps | rooms (when no map file)
     StepsMapOptions steps;
     RoomsMapOptions rooms;
-    unsigned long mapSeed = 1;      ///< map_seed: the rooms generator's random seed
+    /** map_seed: the rooms generator's seed; drawn from the run's seed unless given
+     *  (common/Seeds.h) */
+    common::SubSeed mapSeed;
     std::optional<TPoint2D> start;  ///< start = x y
     int startSite = 1;              ///< start_site = i: the generator's i-th site
     double heading = 0;             ///< heading (deg): known to the robot
@@ -45,7 +48,8 @@ struct PolymapOptions : public mrpt::config::CLoadableOptions {
      *  turn the truth, exact views. */
     std::vector<ProbeStrategy> elimination;
     std::vector<int> randomPoints{100, 500};  ///< random_points: X of each randomized run
-    unsigned long eliminationSeed = 1;        ///< elimination_seed
+    /** elimination_seed: the randomized probes' seed; from the run's seed unless given */
+    common::SubSeed eliminationSeed;
     double clearance = 0.1;                   ///< clearance (m), see EliminationOptions
     /** sweep_steps: steps maps of these step counts for seed 002's Figs. 6-7 (mean path and
      *  time against n), with the run's other steps options; empty: no sweep. */

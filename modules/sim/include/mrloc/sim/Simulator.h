@@ -49,7 +49,7 @@ struct SimulatedFiles {
 
 /** Writes `<dir>/<name>.rawlog`, `<dir>/<name>.<robot>.gt.txt` and the payload's side
  *  files. Nothing appears under a final name unless the whole simulation succeeded. */
-SimulatedFiles simulateToFiles(const ScenarioConfig& config, const std::string& dir, bool quiet,
-                               Payload* payload = nullptr);
+SimulatedFiles simulateToFiles(const ScenarioConfig& config, const std::string& dir,
+                               const common::Log& log, Payload* payload = nullptr);
 
 }  // namespace mrloc::sim
