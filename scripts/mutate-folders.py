@@ -100,8 +100,8 @@ def main():
     work = tempfile.mkdtemp(prefix="mrloc-mutate-")
     read_by_name = {}
 
-    def reads(target):
-        """Does the command read this file? Asked once per name: the same copy with the file
+    def reads(target, cmd):
+        """Does `cmd` read this file? Asked once per name: the same copy with the file
         replaced by garbage must be refused."""
         name = os.path.relpath(target, os.path.join(work, "case"))
         if name not in read_by_name:
@@ -131,7 +131,7 @@ def main():
                      if f.endswith((".json", ".txt"))]
             target = rng.choice(files)
             cmd = [MRLOC, "batch", "--collect", case] if kind == "batch" else [MRLOC, "report", case]
-        read_it = reads(target)  # asked before the mutation (a link's target is not ours)
+        read_it = reads(target, cmd)  # asked before the mutation (a link's target is not ours)
         if rng.random() < 0.05 and not kind.startswith("import:"):
             os.remove(target)
             os.symlink("/etc/passwd", target)

@@ -5,6 +5,7 @@
 #include <mrloc/common/FolderLock.h>
 #include <mrloc/common/Metrics.h>
 #include <mrloc/common/Names.h>
+#include <mrloc/common/Seeds.h>
 
 #include <filesystem>
 
@@ -45,9 +46,9 @@ namespace {
 unsigned long seedNumber(const std::string& text, const std::string& all) {
     const bool digits = !text.empty() && text.size() <= 10 &&
                         text.find_first_not_of("0123456789") == std::string::npos;
-    if (!digits || std::stoull(text) > 4294967295ULL)
-        throw Error("--seeds " + common::printable(all) +
-                    ": expected A..B, seeds in [0, 4294967295] (1..1000)");
+    if (!digits || std::stoull(text) > common::kMaxSeed)
+        throw Error("--seeds " + common::printable(all) + ": expected A..B, seeds in [0, " +
+                    std::to_string(common::kMaxSeed) + "] (1..1000)");
     return (unsigned long)std::stoull(text);
 }
 
@@ -108,7 +109,7 @@ BatchPlan planFromJson(const nlohmann::json& j, const std::string& where) {
         p.ini = j.at("ini").get<std::string>();
         std::vector<unsigned long> seeds;
         for (const auto& v : j.at("seeds")) seeds.push_back(wholeNumber(v));
-        if (seeds.size() != 2 || seeds[1] < seeds[0] || seeds[1] > 4294967295UL)
+        if (seeds.size() != 2 || seeds[1] < seeds[0] || seeds[1] > common::kMaxSeed)
             throw Error("seeds: expected [first, last]");
         p.firstSeed = seeds[0], p.lastSeed = seeds[1];
         p.chunk = wholeNumber(j.at("chunk"));

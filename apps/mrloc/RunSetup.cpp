@@ -7,6 +7,7 @@
 #include <mrloc/common/Metrics.h>
 #include <mrloc/common/Names.h>
 #include <mrloc/common/RunDirectory.h>
+#include <mrloc/common/Seeds.h>
 #include <mrloc/common/Version.h>
 #include <mrpt/config/CConfigFileMemory.h>
 #include <mrpt/system/os.h>
@@ -86,7 +87,8 @@ Setup loadSetupUnguarded(const method::Registry& registry, const std::string& in
     applyOverrides(registry, *s.ini, overrides);
     s.scenario.loadFromConfigFile(*s.ini, "scenario");
     if (seed) {
-        if (*seed < 0 || *seed > 4294967295L) throw Error("--seed must be in [0, 4294967295]");
+        if (*seed < 0 || *seed > long(common::kMaxSeed))
+            throw Error("--seed must be in [0, " + std::to_string(common::kMaxSeed) + "]");
         s.scenario.seed = (unsigned long)*seed;
         // one resolved configuration: everything downstream (the localizer, the scenario,
         // the experiment, effective.ini) reads the seed the run uses; never saved to the file

@@ -9,6 +9,7 @@
 #include <mrloc/common/Metrics.h>
 #include <mrloc/common/ParallelFor.h>
 #include <mrloc/common/RunTransaction.h>
+#include <mrloc/common/Seeds.h>
 #include <mrloc/common/Version.h>
 #include <stdlib.h>
 #include <unistd.h>
@@ -106,8 +107,8 @@ int trial(const method::Registry& registry, int argc, char** argv) {
                                    "record, in one process (a batch's job)",
                                    false, 0, "M", cmd);
     if (const auto code = parseArgs(cmd, argc, argv)) return *code;
-    if (seed.getValue() < 0 || seed.getValue() > 4294967295L)
-        throw Error("--seed must be in [0, 4294967295]");
+    if (seed.getValue() < 0 || seed.getValue() > long(common::kMaxSeed))
+        throw Error("--seed must be in [0, " + std::to_string(common::kMaxSeed) + "]");
     const auto n = (unsigned long)seed.getValue();
 
     if (!batchDir.isSet()) {

@@ -5,7 +5,7 @@ namespace mrloc::common {
 unsigned long runSeed(const mrpt::config::CConfigFileBase& cfg) {
     // read, not finished: [scenario]'s own reader checks its other keys
     IniSection scenario(cfg, "scenario");
-    return (unsigned long)scenario.integer("seed", 1, 0, 4294967295L);
+    return (unsigned long)scenario.integer("seed", 1, 0, long(kMaxSeed));
 }
 
 uint64_t seedOf(uint64_t seed, std::string_view purpose) {
@@ -24,7 +24,12 @@ uint32_t streamSeed(uint64_t seed, uint64_t index) {
 SubSeed subSeed(IniSection& section, const std::string& key, unsigned long runSeed,
                 std::string_view purpose) {
     if (!section.has(key)) return {drawSeed(runSeed, purpose), false};
-    return {(unsigned long)section.integer(key, 0, 0, 4294967295L), true};
+    return subSeed(section, key, runSeed);
+}
+
+SubSeed subSeed(IniSection& section, const std::string& key, unsigned long runSeed) {
+    if (!section.has(key)) return {runSeed, false};
+    return {(unsigned long)section.integer(key, 0, 0, long(kMaxSeed)), true};
 }
 
 }  // namespace mrloc::common

@@ -146,9 +146,7 @@ void FormationConfig::loadFromConfigFile(const mrpt::config::CConfigFileBase& sr
     if (cameraStarts != 0 && cameraStarts != 27)
         s.fail("camera_starts", "0 (none) or 27 (the 3 x 3 x 3 grid of starts)");
     // without the key, the experiment draws from the run's seed (--seed reaches it)
-    experimentSeedGiven = src.keyExists(section, "experiment_seed");
-    experimentSeed =
-        (unsigned long)s.integer("experiment_seed", long(experimentSeed), 0, 4294967295L);
+    experimentSeed = common::subSeed(s, "experiment_seed", common::runSeed(src));
     s.finish();
 }
 
@@ -218,7 +216,8 @@ void FormationConfig::saveToConfigFile(mrpt::config::CConfigFileBase& t,
     t.write(section, "experiment_robots_max", int(experimentRobotsMax));
     t.write(section, "camera_starts", int(cameraStarts));
     t.write(section, "pixel_runs", int(pixelRuns));
-    if (experimentSeedGiven) t.write(section, "experiment_seed", std::to_string(experimentSeed));
+    if (experimentSeed.given)
+        t.write(section, "experiment_seed", std::to_string(experimentSeed.value));
 }
 
 }  // namespace mrloc::formation

@@ -61,7 +61,7 @@ std::vector<FormationExperimentFile::PixelRow> pixelTable(const FormationConfig&
             return [&, camera](size_t k) {
                 auto& j = jobs[k];
                 mrpt::random::CRandomGenerator rng(
-                    uint32_t(c.experimentSeed * 2654435761u + 7919u * (k + 1)));
+                    uint32_t(c.experimentSeed.value * 2654435761u + 7919u * (k + 1)));
                 const double w = c.experimentSpeeds[j.speed];
                 j.march = pixelMarch(c.robots, routes[j.route], {}, pixelMarchOptions(c, w),
                                      *camera, rng);
@@ -187,7 +187,7 @@ FormationExperimentFile runFormationExperiment(const FormationConfig& c, const c
             cells.push_back({FormationExperimentFile::TableRow{name, w, c.runs}, {}, {}, {}});
     const size_t every = size_t(std::lround(kCurveStep / c.deadReckoning.dt));
     for (size_t run = 0; run < c.runs; ++run) {
-        const auto marchesOfRun = tableRun(c, c.experimentSeed + run);
+        const auto marchesOfRun = tableRun(c, c.experimentSeed.value + run);
         for (size_t k = 0; k < cells.size(); ++k) {
             auto& [row, moveError, moveTime, drError] = cells[k];
             const auto& m = marchesOfRun[k].march;
@@ -216,7 +216,7 @@ FormationExperimentFile runFormationExperiment(const FormationConfig& c, const c
             f.curves.push_back(
                 {row.route, "dr", row.wheelSpeed, double(i) * kCurveStep, drError[i]});
     }
-    mrpt::random::CRandomGenerator rng(uint32_t(c.experimentSeed));
+    mrpt::random::CRandomGenerator rng(uint32_t(c.experimentSeed.value));
     MarchOptions o = marchOptions(c);
     std::vector<double> lateral, longitudinal;  // the model's per-step errors, as drawn
     // fig. 15: the first route at the first speed, N = 4 .. max
@@ -274,9 +274,8 @@ FormationExperimentFile runFormationExperiment(const FormationConfig& c, const c
 std::vector<std::string> formationExperiment(const method::ExperimentOf<FormationLocalizer>& in) {
     const auto& loc = in.localizer;
     if (loc.config().runs == 0 && loc.config().pixelRuns == 0) return {};
-    FormationConfig config = loc.config();
-    if (!config.experimentSeedGiven) config.experimentSeed = in.seed;
-    runFormationExperiment(config, in.log).write(in.outDir);
+    // the configuration read [scenario] seed, which --seed sets: in.seed is already in it
+    runFormationExperiment(loc.config(), in.log).write(in.outDir);
     return {FormationExperimentFile::path(in.outDir)};
 }
 

@@ -2,6 +2,7 @@
 #include <mrloc/common/Error.h>
 #include <mrloc/common/IniSection.h>
 #include <mrloc/common/Names.h>
+#include <mrloc/common/Seeds.h>
 #include <mrloc/sim/Scenario.h>
 #include <mrpt/config/CConfigFileMemory.h>
 #include <mrpt/core/bits_math.h>
@@ -23,7 +24,7 @@ void ScenarioOptions::loadFromConfigFile(const mrpt::config::CConfigFileBase& sr
     name = s.text("name", name);
     common::checkName(name, common::configOrigin(src) + ": [" + section + "] name");
     method = s.text("method", method);  // none given: the app finds it from the INI's sections
-    seed = (unsigned long)s.integer("seed", long(seed), 0, 4294967295L);
+    seed = (unsigned long)s.integer("seed", long(seed), 0, long(common::kMaxSeed));
     duration = s.real("duration", duration, 1e-3, 1e6);
     dt = s.real("dt", dt, 1e-4, 1.0);
     if (duration / dt > kMaxSteps)

@@ -2,6 +2,7 @@
 // Section [formation]: the formation method's options (keys and defaults in doc/ini.md).
 // The team, its route and its sensors for the simulator and the localizer, and the Monte
 // Carlo experiment of seed 003 sec. 5 (Table 1, figs. 14-15).
+#include <mrloc/common/Seeds.h>
 #include <mrloc/formation/AlgorithmOne.h>
 #include <mrloc/formation/CameraModel.h>
 #include <mrloc/formation/DeadReckoning.h>
@@ -66,9 +67,9 @@ struct FormationConfig : public mrpt::config::CLoadableOptions {
     size_t cameraStarts = 27;         ///< Algorithm 1 from pixels: a 3 x 3 x 3 grid, or 0
     /** Table 1 from pixels: pixel marches per route and speed (0: none), on every core. */
     size_t pixelRuns = 0;
-    /** experiment_seed; without it (experimentSeedGiven false) the run's seed is used. */
-    unsigned long experimentSeed = 1;
-    bool experimentSeedGiven = false;
+    /** experiment_seed: run r of Table 1 draws from experimentSeed + r; without the key, the
+     *  run's seed (common/Seeds.h). */
+    common::SubSeed experimentSeed{1, false};
 
     /** The route in the world frame (waypoints + origin), starting at the strip's centre. */
     std::vector<TPoint2D> worldRoute() const;
