@@ -18,6 +18,7 @@
 
 #include <cstring>
 #include <filesystem>
+#include <fstream>
 #include <iostream>
 #include <map>
 #include <optional>
@@ -26,6 +27,7 @@
 #include "BatchPlan.h"
 #include "BatchSummary.h"
 #include "IniFile.h"
+#include "KeysDoc.h"
 #include "MrptTruth.h"
 #include "RunSetup.h"
 #include "StderrLog.h"
@@ -373,54 +375,40 @@ int index(int argc, char** argv) {
     return 0;
 }
 
-namespace {
-constexpr const char* kUsage =
-    "usage: mrloc <command> [options]   (mrloc <command> --help for details)\n"
-    "\n"
-    "commands:\n"
-    "  simulate <ini>           simulate the INI's scenario into a rawlog + ground truth\n"
-    "  localize <ini> <rawlog>  run the INI's method on any MRPT rawlog\n"
-    "  report <run-dir>         render report.html and pictures of a localize run\n"
-    "  run <ini>                simulate, localize and report in a row\n"
-    "  info <rawlog>            per robot and sensor label: class, count, rate, time span\n"
-    "  index <folder>           index.html of a folder of runs: headlines beside the papers'\n"
-    "  trial <ini> --seed N     one seed of the INI's experiment: one JSON line of figures\n"
-    "  batch <ini> --seeds A..B trials over seeds (and a --grid of keys) through GNU parallel,\n"
-    "                           or a Slurm script; --collect sums them up (doc/batch.md)\n"
-    "  import <format> <in...>  a log recorded by others (libRSF, sonar text, MRCLAM, CARMEN)\n"
-    "                           into a rawlog + ground truth (mrloc import --help)\n";
-}  // namespace
-
-int main(const method::Registry& registry, int argc, char** argv) {
-    common::installSignalCleanup();
-    if (argc < 2 || !std::strcmp(argv[1], "--help") || !std::strcmp(argv[1], "-h")) {
-        std::cout << kUsage;
-        return argc < 2 ? 2 : 0;
+int keys(const method::Registry& registry, int argc, char** argv) {
+    TCLAP::CmdLine cmd(
+        "mrloc keys: the INI keys of every section declared as a key table (name, default, "
+        "unit, range, meaning), as doc/ini.md shows them",
+        ' ', kVersion);
+    TCLAP::UnlabeledValueArg<std::string> section("section", "one section only (polymap)", false,
+                                                  "", "SECTION", cmd);
+    TCLAP::ValueArg<std::string> update(
+        "", "update", "rewrite the key tables between this Markdown file's markers", false, "",
+        "FILE", cmd);
+    TCLAP::ValueArg<std::string> check(
+        "", "check", "exit 1 naming the file when its key tables differ from the code's", false, "",
+        "FILE", cmd);
+    if (const auto code = parseArgs(cmd, argc, argv)) return *code;
+    for (auto* file : {&update, &check}) {
+        if (!file->isSet()) continue;
+        const std::string path = file->getValue();
+        if (!fs::is_regular_file(path) || fs::file_size(path) > (16u << 20))
+            throw Error(common::pathInWords(path) + ": not a Markdown file of at most 16 MiB");
+        std::ifstream in(path, std::ios::binary);
+        const std::string doc{std::istreambuf_iterator<char>(in), {}};
+        const std::string updated = updateKeyDoc(registry, doc);
+        if (file == &check) {
+            if (updated != doc)
+                throw Error(path + ": its key tables differ from the code's (mrloc keys --update " +
+                            path + ")");
+        } else if (updated != doc) {
+            common::writeFileAtomically(path, updated);
+            std::cout << path << "\n";
+        }
+        return 0;
     }
-    const std::string command = argv[1];
-    try {
-        if (command == "simulate") return simulate(registry, argc - 1, argv + 1);
-        if (command == "localize") return localize(registry, argc - 1, argv + 1);
-        if (command == "report") return report(registry, argc - 1, argv + 1);
-        if (command == "run") return run(registry, argc - 1, argv + 1);
-        if (command == "info") return info(argc - 1, argv + 1);
-        if (command == "index") return index(argc - 1, argv + 1);
-        if (command == "import") return import(argc - 1, argv + 1);
-        if (command == "trial") return trial(registry, argc - 1, argv + 1);
-        if (command == "batch") return batch(registry, argc - 1, argv + 1);
-        std::cerr << "mrloc: unknown command '" << command << "'\n" << kUsage;
-        return 2;
-    } catch (const TCLAP::ArgException& e) {
-        std::cerr << "mrloc " << command << ": " << e.error() << " (" << e.argId() << ")\n"
-                  << "see: mrloc " << command << " --help\n";
-        return 2;
-    } catch (const mrloc::Error& e) {
-        std::cerr << "mrloc " << command << ": error: " << oneLine(e.what()) << "\n";
-        return 1;
-    } catch (const std::exception& e) {
-        std::cerr << "mrloc " << command << ": unexpected error: " << oneLine(e.what()) << "\n";
-        return 1;
-    }
+    std::cout << keysText(registry, section.getValue());
+    return 0;
 }
 
 }  // namespace mrloc::app

@@ -24,6 +24,7 @@ int index(int argc, char** argv);
 int import(int argc, char** argv);
 int trial(const method::Registry& registry, int argc, char** argv);  // Trial.cpp
 int batch(const method::Registry& registry, int argc, char** argv);  // Batch.cpp
+int keys(const method::Registry& registry, int argc, char** argv);
 
 /** Reads and validates everything an INI asks for, as `simulate`, `localize` and `run` do
  *  before they write anything (the scenario built when it has [scenario]), and renders its
@@ -35,9 +36,5 @@ std::string checkIni(const method::Registry& registry, const std::string& iniPat
  *  no trial of its own (its headline holds its experiment's figures). */
 common::Headline simulateAndLocalize(const method::Registry& registry, Setup& s,
                                      const std::string& dir);
-
-/** Dispatches `mrloc <command> ...` (argv[0] is the program); prints errors, returns the
- *  exit code: 0 done, 1 error, 2 usage. */
-int main(const method::Registry& registry, int argc, char** argv);
 
 }  // namespace mrloc::app

@@ -1,7 +1,7 @@
 // mrloc: localization of low-cost mobile robots and robot teams on MRPT. The methods are
 // registered in AllMethods.cpp, one line each.
 #include "AllMethods.h"
-#include "Commands.h"
+#include "CommandTable.h"
 
 int main(int argc, char** argv) {
     mrloc::method::Registry registry;

@@ -15,6 +15,7 @@
 #include <filesystem>
 #include <fstream>
 
+#include "CommandTable.h"
 #include "Commands.h"
 #include "MrlocCli.h"
 

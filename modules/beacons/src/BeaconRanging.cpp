@@ -1,6 +1,6 @@
 #include <mrloc/beacons/BeaconRanging.h>
 #include <mrloc/common/Error.h>
-#include <mrloc/common/IniSection.h>
+#include <mrloc/common/KeyTable.h>
 
 #include <algorithm>
 #include <cmath>
@@ -14,36 +14,48 @@ namespace {
 constexpr double kReflectionLossDb = 3.0;
 }  // namespace
 
+const common::KeyTable<SensorOptions>& SensorOptions::keys() {
+    using Opt = SensorOptions;
+    static const auto table =
+        common::KeyTable<Opt>("sensors")
+            .real("range_sigma", MRLOC_KEY_FIELD(rangeSigma), {0, 10}, "m",
+                  "Gaussian TOF range noise")
+            .real("range_max", MRLOC_KEY_FIELD(rangeMax), {0.01, 1000}, "m", "no range beyond")
+            .real("range_dropout", MRLOC_KEY_FIELD(dropout), {0, 1}, "",
+                  "probability a line-of-sight range is missed")
+            .real("range_outlier_probability", MRLOC_KEY_FIELD(outlierProbability), {0, 1}, "",
+                  "probability a range reads long (late trigger)")
+            .real("range_outlier_min", MRLOC_KEY_FIELD(outlierMin), {0, 100}, "m",
+                  "such a range is long by U(`range_outlier_min`, `range_outlier_max`); the "
+                  "short ones pass any gate")
+            .real("range_outlier_max", MRLOC_KEY_FIELD(outlierMax), {0.1, 100}, "m",
+                  "at least `range_outlier_min`")
+            .real("range_bias_sigma", MRLOC_KEY_FIELD(biasSigma), {0, 10}, "m",
+                  "each beacon's own range offset, drawn once per run (a UWB antenna delay); 0: "
+                  "none drawn, so other logs keep their random stream")
+            .real("range_bias_drift", MRLOC_KEY_FIELD(biasDrift), {0, 10}, "m/sqrt(s)",
+                  "that offset's random walk; 0: none drawn")
+            .choice("nlos", MRLOC_KEY_FIELD(nlosReflect),
+                    std::vector<std::pair<std::string, bool>>{{"reflect", true}, {"drop", false}},
+                    "blocked path: `reflect` (range long by U(`range_outlier_min`, "
+                    "`range_outlier_max`), 3 dB reflection loss) or `drop`");
+    return table;
+}
+
 void SensorOptions::loadFromConfigFile(const mrpt::config::CConfigFileBase& src,
                                        const std::string& section) {
     *this = SensorOptions{};  // every key absent takes the struct's default: written once
     common::IniSection s(src, section);
-    rangeSigma = s.real("range_sigma", rangeSigma, 0, 10);
-    rangeMax = s.real("range_max", rangeMax, 0.01, 1000);
-    dropout = s.real("range_dropout", dropout, 0, 1);
-    outlierProbability = s.real("range_outlier_probability", outlierProbability, 0, 1);
-    outlierMin = s.real("range_outlier_min", outlierMin, 0, 100);
-    outlierMax = s.real("range_outlier_max", outlierMax, 0.1, 100);
+    keys().load(s, *this);
     if (outlierMax < outlierMin)
         s.fail("range_outlier_max",
                "must be at least range_outlier_min (" + std::to_string(outlierMin) + ")");
-    biasSigma = s.real("range_bias_sigma", biasSigma, 0, 10);
-    biasDrift = s.real("range_bias_drift", biasDrift, 0, 10);
-    nlosReflect = s.choice("nlos", "reflect", {"reflect", "drop"}) == "reflect";
     s.finish();
 }
 
 void SensorOptions::saveToConfigFile(mrpt::config::CConfigFileBase& t,
                                      const std::string& section) const {
-    t.write(section, "range_sigma", rangeSigma);
-    t.write(section, "range_max", rangeMax);
-    t.write(section, "range_dropout", dropout);
-    t.write(section, "range_outlier_probability", outlierProbability);
-    t.write(section, "range_outlier_min", outlierMin);
-    t.write(section, "range_outlier_max", outlierMax);
-    t.write(section, "range_bias_sigma", biasSigma);
-    t.write(section, "range_bias_drift", biasDrift);
-    t.write(section, "nlos", nlosReflect ? "reflect" : "drop");
+    keys().save(*this, t, section);
 }
 
 BeaconRanging::BeaconRanging(const sim::World& world, const BeaconMap& beacons,

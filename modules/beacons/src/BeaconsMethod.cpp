@@ -298,6 +298,7 @@ void registerMethod(method::Registry& registry) {
     method::MethodUnit<BeaconLocalizer> m;
     m.name = "beacons";
     m.sections = {"beacons", "sensors", "ultrasonic", "beacons_study"};
+    m.keys = {SensorOptions::keys().docs(), UltrasonicOptions::keys().docs()};
     // MRPT's range-only localization INIs (ro-localization, pf-localization's RO demo) name
     // no mrloc section: their beacon likelihood section says they are this method's
     m.foreignSections = {"MetricMap_landmarksMap_00_likelihoodOpts"};

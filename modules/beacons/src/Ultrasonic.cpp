@@ -1,48 +1,56 @@
 #include <mrloc/beacons/Ultrasonic.h>
 #include <mrloc/common/Error.h>
-#include <mrloc/common/IniSection.h>
+#include <mrloc/common/KeyTable.h>
 #include <mrpt/core/bits_math.h>
 
 #include <cmath>
 
 namespace mrloc::beacons {
 
+const common::KeyTable<UltrasonicOptions>& UltrasonicOptions::keys() {
+    using Opt = UltrasonicOptions;
+    static const auto table =
+        common::KeyTable<Opt>("ultrasonic")
+            .real("speed_of_sound", MRLOC_KEY_FIELD(speedOfSound), {100, 2000}, "m/s",
+                  "the burst's speed")
+            .degrees("beam_angle", MRLOC_KEY_FIELD(beamAngle), {0, 360},
+                     "full beam width at -6 dB (> 0)")
+            .real("source_margin_db", MRLOC_KEY_FIELD(sourceMarginDb), {-100, 200}, "dB",
+                  "level above the tone decoder's threshold at 1 m on the axis")
+            .real("absorption_db_per_m", MRLOC_KEY_FIELD(absorptionDbPerM), {0, 100}, "dB/m",
+                  "air absorption at 40 kHz")
+            .real("fading_sigma_db", MRLOC_KEY_FIELD(fadingSigmaDb), {0, 50}, "dB",
+                  "shot-to-shot level scatter")
+            .real("rise_time", MRLOC_KEY_FIELD(riseTime), {1e-9, 1}, "s",
+                  "envelope time constant at the receiver")
+            .real("firing_time", MRLOC_KEY_FIELD(firingTime), {1e-9, 1}, "s",
+                  "burst length (paper 001 section 5.2)")
+            .real("calibration_distance", MRLOC_KEY_FIELD(calibrationDistance), {0.01, 100}, "m",
+                  "the receiver's delay on the axis at this distance is subtracted")
+            .degrees("pan_min", MRLOC_KEY_FIELD(head.panMin), {-360, 360},
+                     "pan limit; a full turn or more between the two rotates continuously")
+            .degrees("pan_max", MRLOC_KEY_FIELD(head.panMax), {-360, 360},
+                     "the other pan limit, greater than `pan_min`")
+            .degrees("tilt_max", MRLOC_KEY_FIELD(head.tiltMax), {0, 180},
+                     "tilt limit from straight down")
+            .degrees("slew_rate", MRLOC_KEY_FIELD(head.slewRate), {1e-3, 1e5},
+                     "each joint, per second");
+    return table;
+}
+
 void UltrasonicOptions::loadFromConfigFile(const mrpt::config::CConfigFileBase& src,
                                            const std::string& section) {
     *this = UltrasonicOptions{};  // every key absent takes the struct's default: written once
     common::IniSection s(src, section);
-    speedOfSound = s.real("speed_of_sound", speedOfSound, 100, 2000);
-    const double beamDeg = s.real("beam_angle", 50, 0, 360);
-    if (!(beamDeg > 0)) s.fail("beam_angle", "must be greater than 0 degrees");
-    beamAngle = mrpt::DEG2RAD(beamDeg);
-    sourceMarginDb = s.real("source_margin_db", sourceMarginDb, -100, 200);
-    absorptionDbPerM = s.real("absorption_db_per_m", absorptionDbPerM, 0, 100);
-    fadingSigmaDb = s.real("fading_sigma_db", fadingSigmaDb, 0, 50);
-    riseTime = s.real("rise_time", riseTime, 1e-9, 1);
-    firingTime = s.real("firing_time", firingTime, 1e-9, 1);
-    calibrationDistance = s.real("calibration_distance", calibrationDistance, 0.01, 100);
-    head.panMin = mrpt::DEG2RAD(s.real("pan_min", -180, -360, 360));
-    head.panMax = mrpt::DEG2RAD(s.real("pan_max", 180, -360, 360));
+    keys().load(s, *this);
+    if (!(beamAngle > 0)) s.fail("beam_angle", "must be greater than 0 degrees");
     if (head.panMax <= head.panMin) s.fail("pan_max", "must be greater than pan_min");
-    head.tiltMax = mrpt::DEG2RAD(s.real("tilt_max", 90, 0, 180));
-    head.slewRate = mrpt::DEG2RAD(s.real("slew_rate", mrpt::RAD2DEG(head.slewRate), 1e-3, 1e5));
     s.finish();
 }
 
 void UltrasonicOptions::saveToConfigFile(mrpt::config::CConfigFileBase& t,
                                          const std::string& section) const {
-    t.write(section, "speed_of_sound", speedOfSound);
-    t.write(section, "beam_angle", mrpt::RAD2DEG(beamAngle));
-    t.write(section, "source_margin_db", sourceMarginDb);
-    t.write(section, "absorption_db_per_m", absorptionDbPerM);
-    t.write(section, "fading_sigma_db", fadingSigmaDb);
-    t.write(section, "rise_time", riseTime);
-    t.write(section, "firing_time", firingTime);
-    t.write(section, "calibration_distance", calibrationDistance);
-    t.write(section, "pan_min", mrpt::RAD2DEG(head.panMin));
-    t.write(section, "pan_max", mrpt::RAD2DEG(head.panMax));
-    t.write(section, "tilt_max", mrpt::RAD2DEG(head.tiltMax));
-    t.write(section, "slew_rate", mrpt::RAD2DEG(head.slewRate));
+    keys().save(*this, t, section);
 }
 
 UltrasonicLink::UltrasonicLink(UltrasonicOptions options) : o_(options) {

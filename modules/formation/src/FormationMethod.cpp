@@ -362,6 +362,7 @@ void registerMethod(method::Registry& registry) {
     method::MethodUnit<FormationLocalizer> m;
     m.name = "formation";
     m.sections = {"formation"};
+    m.keys = {FormationConfig::keys().docs()};
     m.reads = {"CObservationComment"};
     m.exampleConfig = "config/formation_many_turns.ini";
     m.headline = formationHeadline;

@@ -1,4 +1,4 @@
-#include <mrloc/common/IniSection.h>
+#include <mrloc/common/KeyTable.h>
 #include <mrloc/framesync/FramesyncConfig.h>
 #include <mrpt/core/bits_math.h>
 #include <mrpt/core/format.h>
@@ -34,48 +34,14 @@ std::vector<SonarMount> defaultMounts() {
             {"front", CPose3D(0.2, 0, 0.3, 0, 0, 0)}};
 }
 
-}  // namespace
+constexpr const char* kSonarPrefix = "sonar_";
 
-void FramesyncConfig::loadFromConfigFile(const mrpt::config::CConfigFileBase& src,
-                                         const std::string& section) {
-    *this = FramesyncConfig{};  // every key absent takes the struct's default: written once
-    common::IniSection s(src, section);
-    team.sharing = s.flag("sharing", team.sharing);
-    std::vector<std::string> order;
-    std::istringstream names(s.text("priority", ""));
-    for (std::string n; names >> n;) order.push_back(n);
-    try {
-        team.priority = PriorityOrder(order);
-    } catch (const std::exception&) {
-        s.fail("priority", "each robot once, highest first");
-    }
-    team.onRedefinition = s.choice("on_redefinition", "drop", {"drop", "transform"}) == "drop"
-                              ? TeamOptions::OnRedefinition::Drop
-                              : TeamOptions::OnRedefinition::Transform;
-    auto& d = team.detector;
-    d.baseline = s.real("erp_baseline", d.baseline, 0.005, 10);
-    d.maxPairGap = s.real("pair_gap", d.maxPairGap, d.baseline, 100);
-    d.coneMargin = mrpt::DEG2RAD(s.real("cone_margin", 5, 0, 90));
-    d.groupAngle = mrpt::DEG2RAD(s.real("group_angle", 10, 0.1, 90));
-    d.groupGap = s.real("group_gap", d.groupGap, 0.001, 100);
-    d.minErps = size_t(s.integer("min_erps", long(d.minErps), 2, 100000));
-    d.minLength = s.real("min_wall_length", d.minLength, 0, 1000);
-    d.wallLength = s.real("wall_length", d.wallLength, d.minLength, 1000);
-    if (!(d.wallLength > 0)) s.fail("wall_length", "must be positive");
-    d.maxResidual = s.real("max_residual", d.maxResidual, 0, 10);
-    d.maxRayAngle = mrpt::DEG2RAD(s.real("max_ray_angle", 15, 0, 90));
-    auto& m = team.manager;
-    m.match.maxBearing = mrpt::DEG2RAD(s.real("max_bearing", 20, 0.01, 90));
-    m.match.maxDistance = s.real("max_distance", m.match.maxDistance, 1e-3, 100);
-    m.match.minOverlap = s.real("min_overlap", m.match.minOverlap, 0, 1000);
-    m.maxAge = s.real("max_age", m.maxAge, 0.1, 1e6);
-    m.match.general = s.choice("matching", "local", {"local", "general"}) == "general";
-    m.match.generalSupport =
-        size_t(s.integer("general_support", long(m.match.generalSupport), 2, 1000));
-    // the simulator's sonars
+/** sonar_<name> = x y z yaw_deg: every key of the prefix that is not one of the rig's. */
+void loadMounts(common::IniSection& s, FramesyncConfig& c) {
+    auto& rig = c.rig;
     rig.mounts.clear();
     for (const auto& key : s.keys()) {
-        if (key.rfind("sonar_", 0) != 0) continue;
+        if (key.rfind(kSonarPrefix, 0) != 0) continue;
         static const std::vector<std::string> kRigKeys{"sonar_aperture",  "sonar_min_range",
                                                        "sonar_max_range", "sonar_sigma",
                                                        "sonar_rate",      "sonar_fan_step"};
@@ -86,67 +52,149 @@ void FramesyncConfig::loadFromConfigFile(const mrpt::config::CConfigFileBase& sr
         rig.mounts.push_back(
             {key.substr(6), mrpt::poses::CPose3D(v[0], v[1], v[2], mrpt::DEG2RAD(v[3]), 0, 0)});
     }
-    s.allowPrefix("sonar_");
+    s.allowPrefix(kSonarPrefix);
     if (rig.mounts.empty()) rig.mounts = defaultMounts();
     // sonar ids by name, whatever the INI's order: effective.ini gives the same ids back
     std::sort(rig.mounts.begin(), rig.mounts.end(),
               [](const SonarMount& a, const SonarMount& b) { return a.name < b.name; });
-    if (rig.mounts.size() > size_t(kMaxSonars))
-        s.fail("sonar_", mrpt::format("at most %ld sonars", kMaxSonars));
-    rig.aperture = mrpt::DEG2RAD(s.real("sonar_aperture", 25, 0.5, 120));
-    rig.minRange = s.real("sonar_min_range", rig.minRange, 0, 100);
-    rig.maxRange = s.real("sonar_max_range", rig.maxRange, rig.minRange + 1e-3, 100);
-    rig.sigma = s.real("sonar_sigma", rig.sigma, 0, 1);
-    rig.rate = s.real("sonar_rate", rig.rate, 0.1, 1000);
-    rig.fanStep = mrpt::DEG2RAD(s.real("sonar_fan_step", 0.5, 0.05, 10));
-    // the experiment
-    experimentSeeds = size_t(s.integer("experiment_seeds", long(experimentSeeds), 0, kMaxSeeds));
-    sweepSeeds = size_t(s.integer("experiment_sweep_seeds", long(sweepSeeds), 0, kMaxSeeds));
-    sweepNoise = sweep(s, "experiment_noise", sweepNoise, 0, 1);
-    sweepDrift = sweep(s, "experiment_drift", sweepDrift, 0, 100);
+    if (rig.mounts.size() > size_t(FramesyncConfig::kMaxSonars))
+        s.fail(kSonarPrefix, mrpt::format("at most %ld sonars", FramesyncConfig::kMaxSonars));
+}
+
+void saveMounts(const FramesyncConfig& c, mrpt::config::CConfigFileBase& t,
+                const std::string& section) {
+    for (const auto& mount : c.rig.mounts)
+        t.write(section, kSonarPrefix + mount.name,
+                mrpt::format("%g %g %g %g", mount.pose.x(), mount.pose.y(), mount.pose.z(),
+                             mrpt::RAD2DEG(mount.pose.yaw())));
+}
+
+}  // namespace
+
+const common::KeyTable<FramesyncConfig>& FramesyncConfig::keys() {
+    using Cfg = FramesyncConfig;
+    using OnRedefinition = TeamOptions::OnRedefinition;
+    static const auto table =
+        common::KeyTable<Cfg>("framesync")
+            .flag("sharing", MRLOC_KEY_FIELD(team.sharing),
+                  "`false`: every robot keeps its own odometry frame (walls are still found)")
+            .custom(
+                "priority", "", "",
+                "robot names, highest priority of reference first; unlisted robots rank "
+                "after, by name. The highest never redefines its frame",
+                [](common::IniSection& s, Cfg& c) {
+                    std::vector<std::string> order;
+                    std::istringstream names(s.text("priority", ""));
+                    for (std::string n; names >> n;) order.push_back(n);
+                    try {
+                        c.team.priority = PriorityOrder(order);
+                    } catch (const std::exception&) {
+                        s.fail("priority", "each robot once, highest first");
+                    }
+                },
+                [](const Cfg& c) {
+                    std::string order;
+                    for (const auto& n : c.team.priority.listed())
+                        order += (order.empty() ? "" : " ") + n;
+                    return order;
+                },
+                "(by name)")
+            .choice("on_redefinition", MRLOC_KEY_FIELD(team.onRedefinition),
+                    std::vector<std::pair<std::string, OnRedefinition>>{
+                        {"drop", OnRedefinition::Drop}, {"transform", OnRedefinition::Transform}},
+                    "what the wall detector does with its ERPs when the frame is redefined: "
+                    "`drop` them (paper 004 sec. 5.1) or `transform` them into the new frame")
+            .real("erp_baseline", MRLOC_KEY_FIELD(team.detector.baseline), {0.005, 10}, "m",
+                  "between the two sensor positions of an ERP pair; the normal's noise is "
+                  "about sqrt(2) sonar sd / baseline")
+            .real("pair_gap", MRLOC_KEY_FIELD(team.detector.maxPairGap), {"erp_baseline", 100}, "m",
+                  "two readings further apart (a gap in the echoes) are not paired")
+            .degrees("cone_margin", MRLOC_KEY_FIELD(team.detector.coneMargin), {0, 90},
+                     "the wall's normal must lie within the sonar's half cone plus this")
+            .degrees("group_angle", MRLOC_KEY_FIELD(team.detector.groupAngle), {0.1, 90},
+                     "an ERP joins the current group if its normal is this near the group's")
+            .real("group_gap", MRLOC_KEY_FIELD(team.detector.groupGap), {0.001, 100}, "m",
+                  "and it lies this near the group's last ERP")
+            .integer("min_erps", MRLOC_KEY_FIELD(team.detector.minErps), 2, 100000, "",
+                     "ERPs a wall needs (two per pair)")
+            .real("min_wall_length", MRLOC_KEY_FIELD(team.detector.minLength), {0, 1000}, "m",
+                  "the shortest wall announced")
+            .real("wall_length", MRLOC_KEY_FIELD(team.detector.wallLength),
+                  {"min_wall_length", 1000}, "m",
+                  "a group this long is announced and a new one starts (positive)")
+            .real("max_residual", MRLOC_KEY_FIELD(team.detector.maxResidual), {0, 10}, "m",
+                  "every ERP must lie this near the fitted line (about 4 sonar sd)")
+            .degrees("max_ray_angle", MRLOC_KEY_FIELD(team.detector.maxRayAngle), {0, 90},
+                     "every sonar ray must meet the fitted line this near a right angle")
+            .degrees("max_bearing", MRLOC_KEY_FIELD(team.manager.match.maxBearing), {0.01, 90},
+                     "two walls match if their bearings differ by less (paper 004: 20)")
+            .real("max_distance", MRLOC_KEY_FIELD(team.manager.match.maxDistance), {1e-3, 100}, "m",
+                  "and the robot's distances to them differ by less (paper 004: 50 cm)")
+            .real("min_overlap", MRLOC_KEY_FIELD(team.manager.match.minOverlap), {0, 1000}, "m",
+                  "the two segments must share once the frame is redefined (paper 004: they "
+                  "\"intersect\", 0)")
+            .real("max_age", MRLOC_KEY_FIELD(team.manager.maxAge), {0.1, 1e6}, "s",
+                  "a wall stays in a robot's database")
+            .choice("matching", MRLOC_KEY_FIELD(team.manager.match.general),
+                    std::vector<std::pair<std::string, bool>>{{"local", false}, {"general", true}},
+                    "`local`: the paper's sec. 4.3 tests alone (frames that differ by drift); "
+                    "`general`: when no wall passes them, paper 004 sec. 3's general transform "
+                    "from corners of two walls (frames that differ by any rotation and shift: "
+                    "robots started apart, doc/framesync.md \"The general transform\")")
+            .integer("general_support", MRLOC_KEY_FIELD(team.manager.match.generalSupport), 2, 1000,
+                     "walls", "own walls a general transform must put on the other robot's walls")
+            .family("sonar_<name>", "m, deg", "within 10 m",
+                    "(simulator) a sonar on every robot: `x y z yaw_deg`; without any, `left` "
+                    "`0 0.15 0.3 90`, `right` `0 -0.15 0.3 -90` and `front` `0.2 0 0.3 0`; at "
+                    "most 64",
+                    loadMounts, saveMounts, "`left`, `right`, `front`")
+            .degrees("sonar_aperture", MRLOC_KEY_FIELD(rig.aperture), {0.5, 120},
+                     "(simulator) the cone's full width")
+            .real("sonar_min_range", MRLOC_KEY_FIELD(rig.minRange), {0, 100}, "m",
+                  "(simulator) a reading nearer is 0: no echo")
+            .real("sonar_max_range", MRLOC_KEY_FIELD(rig.maxRange), {"sonar_min_range", 100}, "m",
+                  "(simulator) a reading further is 0: no echo")
+            .real("sonar_sigma", MRLOC_KEY_FIELD(rig.sigma), {0, 1}, "m",
+                  "(simulator) Gaussian range noise")
+            .real("sonar_rate", MRLOC_KEY_FIELD(rig.rate), {0.1, 1000}, "Hz",
+                  "(simulator) every sonar; a whole number of `[scenario] dt` steps")
+            .degrees("sonar_fan_step", MRLOC_KEY_FIELD(rig.fanStep), {0.05, 10},
+                     "(simulator) between the rays cast over the cone")
+            .integer("experiment_seeds", MRLOC_KEY_FIELD(experimentSeeds), 0, kMaxSeeds, "",
+                     "the INI's scenario simulated again with seeds `seed`, `seed + 1`, ... (0: "
+                     "no experiment)")
+            .integer("experiment_sweep_seeds", MRLOC_KEY_FIELD(sweepSeeds), 0, kMaxSeeds, "",
+                     "seeds per value of each sweep (0: no sweep)")
+            .custom(
+                "experiment_noise", "m", "0 .. 1, at most 20 values",
+                "sonar noise sd of the noise sweep; each run sets `erp_baseline` to at least 20 "
+                "sd and `max_residual` to at least 4 sd",
+                [](common::IniSection& s, Cfg& c) {
+                    c.sweepNoise = sweep(s, "experiment_noise", c.sweepNoise, 0, 1);
+                },
+                [](const Cfg& c) { return join(c.sweepNoise); })
+            .custom(
+                "experiment_drift", "", "0 .. 100, at most 20 values",
+                "factors on every robot's four systematic odometry keys, of the drift sweep",
+                [](common::IniSection& s, Cfg& c) {
+                    c.sweepDrift = sweep(s, "experiment_drift", c.sweepDrift, 0, 100);
+                },
+                [](const Cfg& c) { return join(c.sweepDrift); });
+    return table;
+}
+
+void FramesyncConfig::loadFromConfigFile(const mrpt::config::CConfigFileBase& src,
+                                         const std::string& section) {
+    *this = FramesyncConfig{};  // every key absent takes the struct's default: written once
+    common::IniSection s(src, section);
+    keys().load(s, *this);
+    if (!(team.detector.wallLength > 0)) s.fail("wall_length", "must be positive");
     s.finish();
 }
 
 void FramesyncConfig::saveToConfigFile(mrpt::config::CConfigFileBase& t,
                                        const std::string& section) const {
-    t.write(section, "sharing", team.sharing);
-    std::string order;
-    for (const auto& n : team.priority.listed()) order += (order.empty() ? "" : " ") + n;
-    t.write(section, "priority", order);
-    t.write(section, "on_redefinition",
-            team.onRedefinition == TeamOptions::OnRedefinition::Drop ? "drop" : "transform");
-    const auto& d = team.detector;
-    t.write(section, "erp_baseline", d.baseline);
-    t.write(section, "pair_gap", d.maxPairGap);
-    t.write(section, "cone_margin", mrpt::RAD2DEG(d.coneMargin));
-    t.write(section, "group_angle", mrpt::RAD2DEG(d.groupAngle));
-    t.write(section, "group_gap", d.groupGap);
-    t.write(section, "min_erps", int(d.minErps));
-    t.write(section, "min_wall_length", d.minLength);
-    t.write(section, "wall_length", d.wallLength);
-    t.write(section, "max_residual", d.maxResidual);
-    t.write(section, "max_ray_angle", mrpt::RAD2DEG(d.maxRayAngle));
-    const auto& m = team.manager;
-    t.write(section, "max_bearing", mrpt::RAD2DEG(m.match.maxBearing));
-    t.write(section, "max_distance", m.match.maxDistance);
-    t.write(section, "min_overlap", m.match.minOverlap);
-    t.write(section, "max_age", m.maxAge);
-    t.write(section, "matching", m.match.general ? "general" : "local");
-    t.write(section, "general_support", int(m.match.generalSupport));
-    for (const auto& mount : rig.mounts)
-        t.write(section, "sonar_" + mount.name,
-                mrpt::format("%g %g %g %g", mount.pose.x(), mount.pose.y(), mount.pose.z(),
-                             mrpt::RAD2DEG(mount.pose.yaw())));
-    t.write(section, "sonar_aperture", mrpt::RAD2DEG(rig.aperture));
-    t.write(section, "sonar_min_range", rig.minRange);
-    t.write(section, "sonar_max_range", rig.maxRange);
-    t.write(section, "sonar_sigma", rig.sigma);
-    t.write(section, "sonar_rate", rig.rate);
-    t.write(section, "sonar_fan_step", mrpt::RAD2DEG(rig.fanStep));
-    t.write(section, "experiment_seeds", int(experimentSeeds));
-    t.write(section, "experiment_sweep_seeds", int(sweepSeeds));
-    t.write(section, "experiment_noise", join(sweepNoise));
-    t.write(section, "experiment_drift", join(sweepDrift));
+    keys().save(*this, t, section);
 }
 
 }  // namespace mrloc::framesync

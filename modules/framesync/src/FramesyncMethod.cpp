@@ -314,6 +314,7 @@ void registerMethod(method::Registry& registry) {
     method::MethodUnit<FramesyncLocalizer> m;
     m.name = "framesync";
     m.sections = {"framesync"};
+    m.keys = {FramesyncConfig::keys().docs()};
     m.reads = {"CObservationRange"};
     m.exampleConfig = "config/framesync_corridor.ini";
     m.headline = framesyncHeadline;

@@ -1,6 +1,7 @@
 #include <mrloc/common/Error.h>
 #include <mrloc/common/Names.h>
 #include <mrloc/method/Registry.h>
+#include <mrloc/report/ReportOptions.h>
 
 #include <algorithm>
 
@@ -10,6 +11,8 @@ const std::vector<std::string>& frameworkSections() {
     static const std::vector<std::string> s = {"scenario", "world", "robot.<name>", "report"};
     return s;
 }
+
+std::vector<common::SectionKeys> frameworkKeys() { return {report::ReportOptions::keys().docs()}; }
 
 void Registry::add(Method m) {
     if (m.name.empty() || !m.localizer || !m.scenario || !m.headline)

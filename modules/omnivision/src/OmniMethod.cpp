@@ -366,6 +366,7 @@ void registerMethod(method::Registry& registry) {
     method::MethodUnit<OmniLocalizer> m;
     m.name = "omnivision";
     m.sections = {"omnivision"};
+    m.keys = {OmniOptions::keys().docs()};
     m.reads = {"CObservationImage", "CObservationBearingRange"};
     m.exampleConfig = "config/omnivision_5robots.ini";
     m.headline = omnivisionHeadline;

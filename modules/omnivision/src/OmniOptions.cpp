@@ -1,4 +1,4 @@
-#include <mrloc/common/IniSection.h>
+#include <mrloc/common/KeyTable.h>
 #include <mrloc/omnivision/OmniOptions.h>
 #include <mrpt/core/format.h>
 
@@ -34,80 +34,112 @@ Pairs parsePairs(common::IniSection& s, const std::string& key, const Pairs& def
 
 }  // namespace
 
+const common::KeyTable<OmniOptions>& OmniOptions::keys() {
+    using Opt = OmniOptions;
+    static const auto table =
+        common::KeyTable<Opt>("omnivision")
+            .choice("method", MRLOC_KEY_FIELD(method), {"proposed", "conventional"},
+                    "`proposed` (paper 000 section 3: two robots stop, odometry gives L) or "
+                    "`conventional` (section 2: one measured distance)")
+            .custom(
+                "pairs", "", "",
+                "proposed: the pairs to stop, in order, `A B, C D`; the next "
+                "pair is the paper's restart",
+                [](common::IniSection& s, Opt& o) { o.pairs = parsePairs(s, "pairs", o.pairs); },
+                [](const Opt& o) { return pairsText(o.pairs); })
+            .real("t_b", MRLOC_KEY_FIELD(tb), {0, 1e6}, "s",
+                  "from the start (the rawlog's first observation): the first snapshot; the "
+                  "pair stands still until `t_e`")
+            .real("t_e", MRLOC_KEY_FIELD(te), {0, 1e6}, "s", "the second snapshot, after `t_b`")
+            .real("round_period", MRLOC_KEY_FIELD(roundPeriod), {0, 1e6}, "s",
+                  "round r stops pair r at `t_b + r * round_period` (must exceed `t_e - t_b` "
+                  "with several pairs)")
+            .choice("search_at_tb", MRLOC_KEY_FIELD(localizedSearch),
+                    std::vector<std::pair<std::string, bool>>{{"full", false}, {"localized", true}},
+                    "the search at t_b: `full` (every image identified, as at t_e: the "
+                    "refinement then has every robot's odometer) or `localized` (paper 000 eq. "
+                    "(11)-(12): only a triangle of the stopped pair and one witness of t_e)")
+            .custom(
+                "measured_pair", "", "",
+                "conventional: `A` measures its distance to `B` (label `A.lidar.B`)",
+                [](common::IniSection& s, Opt& o) {
+                    const auto measured = parsePairs(s, "measured_pair", {o.measuredPair});
+                    if (measured.size() != 1) s.fail("measured_pair", "exactly one pair");
+                    o.measuredPair = measured[0];
+                },
+                [](const Opt& o) { return o.measuredPair.first + " " + o.measuredPair.second; })
+            .real("snapshot", MRLOC_KEY_FIELD(snapshot), {0, 1e6}, "s",
+                  "conventional: when the cameras fire and the distance is measured")
+            .real("lidar_sigma", MRLOC_KEY_FIELD(lidarSigma), {0, 10}, "m", "the LiDAR's noise")
+            .choice(
+                "camera", MRLOC_KEY_FIELD(render),
+                std::vector<std::pair<std::string, bool>>{{"render", true}, {"bearings", false}},
+                "`render` (CFBORender panoramas, detected with OpenCV) or `bearings` "
+                "(direct bearings with noise)")
+            .integer("views", MRLOC_KEY_FIELD(panorama.views), 3, 12, "",
+                     "pinhole views in the 360-degree strip")
+            .integer("view_width", MRLOC_KEY_FIELD(panorama.viewWidth), 32, 8192, "px",
+                     "per view, a multiple of 4")
+            .integer("view_height", MRLOC_KEY_FIELD(panorama.height), 8, 4096, "px", "per view")
+            .real("bearing_sigma", MRLOC_KEY_FIELD(bearingSigma), {0, 10}, "deg",
+                  "bearings mode noise (and the refinement's weight there; in render mode the "
+                  "refinement weighs each bearing by the detector's 1/sqrt(24) px times cos^2 "
+                  "of its angle off its view's axis, `doc/omnivision.md`)")
+            .real("max_range", MRLOC_KEY_FIELD(maxRange), {0, 1e6}, "m",
+                  "a camera sees this far (0: unlimited)")
+            .real("marker_radius", MRLOC_KEY_FIELD(markerRadius), {1e-3, 10}, "m",
+                  "the red band around every camera, which also hides robots behind it")
+            .real("marker_height", MRLOC_KEY_FIELD(markerHeight), {1e-3, 10}, "m",
+                  "the band's height")
+            .real("camera_height", MRLOC_KEY_FIELD(cameraHeight), {0, 100}, "m", "above the floor")
+            .real("sum_tolerance", MRLOC_KEY_FIELD(sumTolerance), {0, 30}, "deg",
+                  "|sum - 180| accepted; 0: 6 x the bearing accuracy")
+            .real("bearing_tolerance", MRLOC_KEY_FIELD(bearingTolerance), {0, 30}, "deg",
+                  "a predicted bearing matches; 0: 4 x the bearing accuracy (bearings: "
+                  "`bearing_sigma`; render: 0.3 px at the view centre)")
+            .real("odometer_sigma", MRLOC_KEY_FIELD(odometerSigma), {1e-6, 1}, "",
+                  "relative odometer accuracy, the refinement's weight (set it to your "
+                  "robots': the shipped INIs use 0.002, the simulated odometers' 1 mm over "
+                  "0.6-0.8 m)")
+            .flag("refine", MRLOC_KEY_FIELD(refine),
+                  "least-squares refinement with covariance; the estimates are the refined "
+                  "layout")
+            .integer("swarm", MRLOC_KEY_FIELD(swarm), 0, 1000, "robots",
+                     "N > 0: generate N robots `R01..` (then `[scenario] robots` must be "
+                     "empty); at least 3")
+            .real("swarm_area", MRLOC_KEY_FIELD(swarmArea), {1, 1e4}, "m",
+                  "the swarm's square, centred in the room")
+            .real("swarm_speed", MRLOC_KEY_FIELD(swarmSpeed), {0, 10}, "m/s",
+                  "straight ahead at a random heading")
+            .real("swarm_separation", MRLOC_KEY_FIELD(swarmSeparation), {0, 100}, "m",
+                  "between starts")
+            .subSeed("swarm_seed", MRLOC_KEY_FIELD(swarmSeed), "omnivision swarm",
+                     "the layout's seed (absent: drawn from `[scenario] seed`, purpose "
+                     "`omnivision swarm`; given: fixes the layout, and the report names it)")
+            .integer("accuracy_trials", MRLOC_KEY_FIELD(accuracyTrials), 0, 100000, "",
+                     "Monte Carlo trials per noise level for the report's accuracy plot (0: "
+                     "none)");
+    return table;
+}
+
 void OmniOptions::loadFromConfigFile(const mrpt::config::CConfigFileBase& src,
                                      const std::string& section) {
     *this = OmniOptions{};  // every key absent takes the struct's default: written once
     common::IniSection s(src, section);
-    method = s.choice("method", "proposed", {"proposed", "conventional"});
-    pairs = parsePairs(s, "pairs", pairs);
+    keys().load(s, *this);
     if (pairs.empty()) s.fail("pairs", "at least one pair of robots to stop");
-    tb = s.real("t_b", tb, 0, 1e6);
-    te = s.real("t_e", te, 0, 1e6);
     if (te <= tb) s.fail("t_e", mrpt::format("must be after t_b (%g)", tb));
-    roundPeriod = s.real("round_period", roundPeriod, 0, 1e6);
-    localizedSearch = s.choice("search_at_tb", "full", {"full", "localized"}) == "localized";
     if (pairs.size() > 1 && roundPeriod <= te - tb)
         s.fail("round_period", "must exceed t_e - t_b when several pairs are listed");
-    const auto measured = parsePairs(s, "measured_pair", {measuredPair});
-    if (measured.size() != 1) s.fail("measured_pair", "exactly one pair");
-    measuredPair = measured[0];
-    snapshot = s.real("snapshot", snapshot, 0, 1e6);
-    lidarSigma = s.real("lidar_sigma", lidarSigma, 0, 10);
-    render = s.choice("camera", "render", {"render", "bearings"}) == "render";
-    panorama.views = int(s.integer("views", long(panorama.views), 3, 12));
-    panorama.viewWidth = int(s.integer("view_width", long(panorama.viewWidth), 32, 8192));
     if (panorama.viewWidth % 4 != 0)  // the renderer reads rows of whole 4-byte words: an
         s.fail("view_width", "a multiple of 4 px");  // odd width overran the picture
-    panorama.height = int(s.integer("view_height", long(panorama.height), 8, 4096));
-    bearingSigma = s.real("bearing_sigma", bearingSigma, 0, 10);
-    maxRange = s.real("max_range", maxRange, 0, 1e6);
-    markerRadius = s.real("marker_radius", markerRadius, 1e-3, 10);
-    markerHeight = s.real("marker_height", markerHeight, 1e-3, 10);
-    cameraHeight = s.real("camera_height", cameraHeight, 0, 100);
-    sumTolerance = s.real("sum_tolerance", sumTolerance, 0, 30);
-    bearingTolerance = s.real("bearing_tolerance", bearingTolerance, 0, 30);
-    odometerSigma = s.real("odometer_sigma", odometerSigma, 1e-6, 1);
-    refine = s.flag("refine", refine);
-    swarm = int(s.integer("swarm", long(swarm), 0, 1000));
     if (swarm > 0 && swarm < 3) s.fail("swarm", "a swarm has at least 3 robots (0: none)");
-    swarmArea = s.real("swarm_area", swarmArea, 1, 1e4);
-    swarmSpeed = s.real("swarm_speed", swarmSpeed, 0, 10);
-    swarmSeparation = s.real("swarm_separation", swarmSeparation, 0, 100);
-    swarmSeed = common::subSeed(s, "swarm_seed", common::runSeed(src), "omnivision swarm");
-    accuracyTrials = int(s.integer("accuracy_trials", long(accuracyTrials), 0, 100000));
     s.finish();
 }
 
 void OmniOptions::saveToConfigFile(mrpt::config::CConfigFileBase& t,
                                    const std::string& section) const {
-    t.write(section, "method", method);
-    t.write(section, "pairs", pairsText(pairs));
-    t.write(section, "t_b", tb);
-    t.write(section, "t_e", te);
-    t.write(section, "round_period", roundPeriod);
-    t.write(section, "search_at_tb", std::string(localizedSearch ? "localized" : "full"));
-    t.write(section, "measured_pair", measuredPair.first + " " + measuredPair.second);
-    t.write(section, "snapshot", snapshot);
-    t.write(section, "lidar_sigma", lidarSigma);
-    t.write(section, "camera", std::string(render ? "render" : "bearings"));
-    t.write(section, "views", panorama.views);
-    t.write(section, "view_width", panorama.viewWidth);
-    t.write(section, "view_height", panorama.height);
-    t.write(section, "bearing_sigma", bearingSigma);
-    t.write(section, "max_range", maxRange);
-    t.write(section, "marker_radius", markerRadius);
-    t.write(section, "marker_height", markerHeight);
-    t.write(section, "camera_height", cameraHeight);
-    t.write(section, "sum_tolerance", sumTolerance);
-    t.write(section, "bearing_tolerance", bearingTolerance);
-    t.write(section, "odometer_sigma", odometerSigma);
-    t.write(section, "refine", refine);
-    t.write(section, "swarm", swarm);
-    t.write(section, "swarm_area", swarmArea);
-    t.write(section, "swarm_speed", swarmSpeed);
-    t.write(section, "swarm_separation", swarmSeparation);
-    if (swarmSeed.given) t.write(section, "swarm_seed", std::to_string(swarmSeed.value));
-    t.write(section, "accuracy_trials", accuracyTrials);
+    keys().save(*this, t, section);
 }
 
 double OmniOptions::bearingAccuracy() const {

@@ -315,6 +315,7 @@ void registerMethod(method::Registry& registry) {
     method::MethodUnit<PolymapLocalizer> m;
     m.name = "polymap";
     m.sections = {"polymap"};
+    m.keys = {PolymapOptions::keys().docs()};
     // MRPT's pf-localization INIs (a grid map to localize laser scans in) name no mrloc
     // section: their occupancy grid's creation options say they are this method's
     m.foreignSections = {"MetricMap_occupancyGrid_00_creationOpts"};

@@ -1,6 +1,6 @@
 #include <mrloc/common/AtomicFile.h>
 #include <mrloc/common/Error.h>
-#include <mrloc/common/IniSection.h>
+#include <mrloc/common/KeyTable.h>
 #include <mrloc/polymap/PolymapOptions.h>
 #include <mrpt/core/format.h>
 
@@ -11,37 +11,364 @@
 
 namespace mrloc::polymap {
 
-void PolymapOptions::loadScanKeys(common::IniSection& s, const std::string& iniPath) {
-    scan.positionStep = s.real("search_step", scan.positionStep, 0.02, 5);
-    scan.headingStep = s.real("heading_step", scan.headingStep, 0.25, 30);
-    scan.maxPositions =
-        size_t(s.integer("search_positions", long(scan.maxPositions), 100, 1000000));
-    beamTolerance = s.real("beam_tolerance", beamTolerance, 0, 5);
-    scan.keepMargin = s.real("keep_margin", scan.keepMargin, 0, 1);
-    scan.minAgreement = s.real("min_agreement", scan.minAgreement, 0.05, 1);
-    scan.maxThrough = s.real("max_through", scan.maxThrough, 0, 1);
-    scan.maxClutter = s.real("max_clutter", scan.maxClutter, 0, 1);
-    scan.maxHypotheses = size_t(s.integer("max_hypotheses", long(scan.maxHypotheses), 1, 2000));
-    trace.resolution = s.real("grid_resolution", trace.resolution, 0.01, 1);
-    trace.occupied = s.real("trace_occupied", trace.occupied, 0.01, 0.5);
-    trace.free = s.real("trace_free", trace.free, 0.5, 0.99);
-    trace.speckCells = int(s.integer("speck_cells", trace.speckCells, 1, 10000));
-    trace.simplify = s.real("trace_simplify", trace.simplify, 0, 1);
-    trace.clearance = s.real("free_clearance", trace.clearance, 0, 2);
-    referenceFile = s.text("reference", "");
-    if (!referenceFile.empty()) {
-        referenceFile = common::pathFromIni(iniPath, referenceFile);
-        if (!std::filesystem::is_regular_file(referenceFile))
-            s.fail("reference", "no such file '" + common::pathInWords(referenceFile) + "'");
+namespace {
+
+std::string joinInts(const std::vector<int>& xs) {
+    std::string out;
+    for (const int x : xs) out += (out.empty() ? "" : " ") + std::to_string(x);
+    return out;
+}
+
+/** Whole numbers from 1 to `hi`, at most `most` of them. */
+std::vector<int> wholeNumbers(common::IniSection& s, const std::string& key,
+                              const std::vector<int>& def, double hi, size_t most,
+                              const std::string& what) {
+    std::vector<double> asReals(def.begin(), def.end());
+    std::vector<int> out;
+    for (const double x : s.reals(key, asReals)) {
+        if (x < 1 || x > hi || x != std::floor(x)) s.fail(key, what);
+        out.push_back((int)x);
     }
-    referenceName = s.text("reference_name", referenceFile.empty() ? "" : "the reference");
-    scan.region.reset();
-    if (s.has("region")) {
-        const auto r = s.requireReals("region", 4);
-        if (!(r[0] < r[1] && r[2] < r[3]))
-            s.fail("region", "expected xmin xmax ymin ymax with xmin < xmax and ymin < ymax");
-        scan.region = std::make_pair(TPoint2D{r[0], r[2]}, TPoint2D{r[1], r[3]});
-    }
+    if (out.size() > most)  // each is a column of the whole experiment
+        s.fail(key, "at most " + std::to_string(most) + " values");
+    return out;
+}
+
+std::vector<std::pair<std::string, RoomsLayout>> layoutWords() {
+    std::vector<std::pair<std::string, RoomsLayout>> words;
+    for (const auto l : kRoomsLayouts) words.push_back({roomsLayoutName(l), l});
+    return words;
+}
+
+bool scanModeOf(const PolymapOptions& o) { return o.scanMode; }
+
+}  // namespace
+
+const common::KeyTable<PolymapOptions>& PolymapOptions::keys() {
+    using Opt = PolymapOptions;
+    const auto generated = [](const Opt& o) { return o.mapFile.empty(); };
+    const auto corridor = [](const Opt& o) { return o.rooms.layout != RoomsLayout::Row; };
+    static const auto table =
+        common::KeyTable<Opt>("polymap")
+            .custom(
+                "map", "", "",
+                "a `.poly` file (one `x y` vertex per line, `#` comments; rings separated by "
+                "blank lines: the outer boundary, then holes), or MRPT's `.gridmap(.gz)` / "
+                "`.simplemap(.gz)` (traced into rings, doc/polymap.md); a relative path is "
+                "taken from the INI's own folder (effective.ini keeps the resolved path); a "
+                "missing file or a folder is refused naming the key; excludes `generator`",
+                [](common::IniSection& s, Opt& o) {
+                    o.mapFile = s.text("map", o.mapFile);
+                    if (o.mapFile.empty()) return;
+                    // a relative path is the INI's: the file works from any folder, and
+                    // effective.ini keeps the resolved path
+                    namespace fs = std::filesystem;
+                    o.mapFile = common::pathFromIni(common::configOrigin(s.config()), o.mapFile);
+                    if (fs::is_directory(o.mapFile))
+                        s.fail("map", "'" + common::pathInWords(o.mapFile) +
+                                          "' is a folder, not a .poly file");
+                    if (!fs::exists(o.mapFile))
+                        s.fail("map", "no such file '" + common::pathInWords(o.mapFile) +
+                                          "' (a relative path is taken from the INI's folder)");
+                },
+                [](const Opt& o) -> std::optional<std::string> {
+                    if (o.mapFile.empty()) return std::nullopt;
+                    return o.mapFile;
+                })
+            .choice("generator", MRLOC_KEY_FIELD(generator), {"steps", "rooms"},
+                    "`steps` (paper 002's staircase) or `rooms` (a random room repeated along a "
+                    "corridor)")
+            .savedOnlyIf(generated)
+            .subSeed("map_seed", MRLOC_KEY_FIELD(mapSeed), "polymap rooms map",
+                     "the rooms generator's seed: absent, drawn from `[scenario] seed` (purpose "
+                     "`polymap rooms map`); given, it fixes the map whatever the seed, and the "
+                     "report names it")
+            .savedOnlyIf(generated)
+            .integer("steps", MRLOC_KEY_FIELD(steps.steps), 1, 1000, "",
+                     "steps: n = steps * (4 + 10 * branches_per_step) + 4")
+            .integer("branches_per_step", MRLOC_KEY_FIELD(steps.branchesPerStep), 1, 100, "",
+                     "branches on each step's ceiling; k = steps * branches_per_step")
+            .real("step_width", MRLOC_KEY_FIELD(steps.stepWidth), {1e-3, 1e4}, "m", "a step's run")
+            .real("step_rise", MRLOC_KEY_FIELD(steps.stepRise), {1e-3, 1e4}, "m",
+                  "a step's rise, below `corridor_height`")
+            .real("corridor_height", MRLOC_KEY_FIELD(steps.corridorHeight), {1e-3, 1e4}, "m",
+                  "the staircase corridor's height")
+            .real("branch_width", MRLOC_KEY_FIELD(steps.branchWidth), {1e-3, 1e4}, "m",
+                  "a branch is a corridor with three bends")
+            .real("branch_leg", MRLOC_KEY_FIELD(steps.branchLeg), {1e-3, 1e4}, "m",
+                  "each of its legs")
+            .choice("room_layout", MRLOC_KEY_FIELD(rooms.layout), layoutWords(),
+                    "`side`: the rooms above one corridor, each through a neck; `mirrored`: "
+                    "also their mirror images below the corridor, facing them (not congruent: "
+                    "the sites are the upper rooms); `row`: rooms joined wall to wall by "
+                    "Z-shaped passages (width min(`neck_width`, (`room_height_min` - 0.5) / 3), "
+                    "length `neck_length` each leg) that no sight line passes, the two end "
+                    "rooms with dead-end passages, so every room looks the same from inside")
+            .integer("rooms", MRLOC_KEY_FIELD(rooms.rooms), 1, 1000, "",
+                     "copies of the room: n = 4 + rooms * (6 + 2 * room_steps)")
+            .integer("room_steps", MRLOC_KEY_FIELD(rooms.roomSteps), 1, 1000, "",
+                     "random heights of its ceiling")
+            .real("room_width", MRLOC_KEY_FIELD(rooms.roomWidth), {1e-3, 1e4}, "m",
+                  "a room's width")
+            .real("room_height_min", MRLOC_KEY_FIELD(rooms.roomHeightMin), {1e-3, 1e4}, "m",
+                  "its ceiling's lowest")
+            .real("room_height_max", MRLOC_KEY_FIELD(rooms.roomHeightMax), {1e-3, 1e4}, "m",
+                  "and highest")
+            .real("neck_width", MRLOC_KEY_FIELD(rooms.neckWidth), {1e-3, 1e4}, "m",
+                  "the neck from the corridor into a room")
+            .real("neck_length", MRLOC_KEY_FIELD(rooms.neckLength), {1e-3, 1e4}, "m", "its length")
+            .real("room_gap", MRLOC_KEY_FIELD(rooms.roomGap), {1e-3, 1e4}, "m",
+                  "between rooms along the corridor; refused with `room_layout = row` (no "
+                  "corridor)")
+            .savedOnlyIf(corridor)
+            .real("right_margin", MRLOC_KEY_FIELD(rooms.rightMargin), {0, 1e4}, "m",
+                  "lengthens the corridor's right end; refused with `room_layout = row`")
+            .savedOnlyIf(corridor)
+            .real("pillar", MRLOC_KEY_FIELD(rooms.pillar), {0, 1e3}, "m",
+                  "> 0: a square pillar of that side in every room, the same spot in each copy "
+                  "(a hole: half `room_height_min` above the floor, a quarter of `room_width` "
+                  "from the wall farther from the site); at most `room_height_min` - 0.25 and "
+                  "`room_width` / 4")
+            .custom(
+                "start", "m", "", "the true start `x y`; required with `map` (exact)",
+                [](common::IniSection& s, Opt& o) {
+                    o.start.reset();
+                    if (!s.has("start")) return (void)s.text("start", "");
+                    const auto xy = s.requireReals("start", 2);
+                    o.start = TPoint2D{xy[0], xy[1]};
+                },
+                [](const Opt& o) -> std::optional<std::string> {
+                    if (!o.start) return std::nullopt;
+                    return mrpt::format("%.17g %.17g", o.start->x, o.start->y);
+                })
+            .integer("start_site", MRLOC_KEY_FIELD(startSite), 1, 1000000, "",
+                     "without `start`: the generator's i-th self-similar site (steps: left to "
+                     "right, step by step)")
+            .savedOnlyIf([](const Opt& o) { return !o.start; })
+            .real("heading", MRLOC_KEY_FIELD(heading), {-360, 360}, "deg",
+                  "the robot knows it (translation-only matching). With `localizer = scan` "
+                  "absent means unknown (searched)")
+            .savedOnlyIf([](const Opt& o) { return o.headingKnown || !o.scanMode; })
+            .integer("scan_rays", MRLOC_KEY_FIELD(scanRays), 16, 100000, "",
+                     "beams of the 360-degree scanner")
+            .real("scan_range_sigma", MRLOC_KEY_FIELD(scanRangeSigma), {0, 10}, "m", "range noise")
+            .real("scan_max_range", MRLOC_KEY_FIELD(scanMaxRange), {1e-3, 1e6}, "m",
+                  "every beam must return (V must be closed)")
+            .real("scan_rate", MRLOC_KEY_FIELD(scanRate), {0, 1000}, "Hz",
+                  "0: one scan at the start")
+            .real("tolerance", MRLOC_KEY_FIELD(tolerance), {0, 1e3}, "m",
+                  "largest boundary distance between the sensed V and V(h); 0: 6 sigma + beam "
+                  "step x farthest range + 1 cm")
+            .real("angle_tolerance", MRLOC_KEY_FIELD(angleTolerance), {1e-6, 45}, "deg",
+                  "for matching the edge directions at a corner")
+            .real("break_angle", MRLOC_KEY_FIELD(breakAngle), {1, 45}, "deg",
+                  "beams meeting a wall at a shallower angle count as a depth jump (a window)")
+            .custom(
+                "elimination", "", "none, all, or cells randomized triangulation windows",
+                "after localization, paper 002's experiment (Tables 1-2): every hypothesis in "
+                "turn the truth, each listed algorithm eliminates in closed loop with exact "
+                "views (doc/polymap.md)",
+                [](common::IniSection& s, Opt& o) {
+                    o.elimination.clear();
+                    std::istringstream names(s.text("elimination", "none"));
+                    std::vector<std::string> list{std::istream_iterator<std::string>(names), {}};
+                    if (list == std::vector<std::string>{"all"})
+                        list = {"cells", "randomized", "triangulation", "windows"};
+                    if (list != std::vector<std::string>{"none"})
+                        for (const auto& name : list) try {
+                                o.elimination.push_back(strategyFromName(name));
+                            } catch (const Error& e) {
+                                s.fail("elimination", std::string(e.what()) + " (or none, all)");
+                            }
+                },
+                [](const Opt& o) {
+                    std::string names;
+                    for (const auto e : o.elimination)
+                        names += (names.empty() ? "" : " ") + strategyName(e);
+                    return names.empty() ? std::string("none") : names;
+                })
+            .custom(
+                "random_points", "", "1 .. 1e6, at most 8 values",
+                "X of the randomized algorithm: one column per value (whole numbers)",
+                [](common::IniSection& s, Opt& o) {
+                    o.randomPoints =
+                        wholeNumbers(s, "random_points", o.randomPoints, 1e6, kMaxListValues,
+                                     "each X must be a whole number from 1 to 1000000");
+                    if (o.randomPoints.empty()) s.fail("random_points", "give at least one X");
+                },
+                [](const Opt& o) { return joinInts(o.randomPoints); })
+            .subSeed("elimination_seed", MRLOC_KEY_FIELD(eliminationSeed), "polymap elimination",
+                     "seed of the randomized algorithm's points (the experiment's and the "
+                     "drive's): absent, drawn from `[scenario] seed` (purpose `polymap "
+                     "elimination`); given, an override the report names")
+            .real("clearance", MRLOC_KEY_FIELD(clearance), {0, 10}, "m",
+                  "probes keep this far from the overlay region's boundary and see no wall "
+                  "edge-on")
+            .custom(
+                "sweep_steps", "", "1 .. 1000, at most 20 values",
+                "step counts of steps maps (the run's other steps keys) for paper 002's Figs. "
+                "6-7: mean path and time of each `elimination` algorithm against n; needs "
+                "`generator = steps`",
+                [](common::IniSection& s, Opt& o) {
+                    o.sweepSteps =
+                        wholeNumbers(s, "sweep_steps", o.sweepSteps, 1000, kMaxSweepSteps,
+                                     "each step count must be a whole number from 1 to 1000");
+                    if (!o.sweepSteps.empty() && (!o.mapFile.empty() || o.generator != "steps"))
+                        s.fail("sweep_steps",
+                               "the sweep is over steps maps: needs generator = steps");
+                    if (!o.sweepSteps.empty() && o.elimination.empty())
+                        s.fail("sweep_steps", "give the algorithms to sweep in elimination = ...");
+                },
+                [](const Opt& o) -> std::optional<std::string> {
+                    if (o.sweepSteps.empty()) return std::nullopt;
+                    return joinInts(o.sweepSteps);
+                })
+            .integer("sweep_starts", MRLOC_KEY_FIELD(sweepStarts), 1, 100000, "",
+                     "at most this many starts per swept map, evenly spread")
+            .custom(
+                "drive", "", "none, cells, randomized, triangulation, windows",
+                "the simulated robot eliminates with this algorithm (`randomized` with the "
+                "first `random_points`): it drives to each probe, turns to `heading`, scans, "
+                "until one hypothesis is left; `mrloc localize` replays it from the rawlog. "
+                "Needs `scan_rate = 0` and a `[scenario] duration` long enough to drive (0.3 "
+                "m/s)",
+                [](common::IniSection& s, Opt& o) {
+                    o.drive.reset();
+                    const std::string d = s.text("drive", "none");
+                    if (d == "none") return;
+                    try {
+                        o.drive = strategyFromName(d);
+                    } catch (const Error& e) {
+                        s.fail("drive", std::string(e.what()) + " (or none)");
+                    }
+                    if (o.scanRate > 0)
+                        s.fail("drive",
+                               "a driving robot scans where it eliminates: set scan_rate = 0");
+                },
+                [](const Opt& o) { return o.drive ? strategyName(*o.drive) : std::string("none"); })
+            .custom(
+                "localizer", "", "auto, exact, scan",
+                "`exact` (paper 002's visibility polygons: a polygon, holes allowed, 360-degree "
+                "scans, heading known) or `scan` (real scans of any field of view, heading "
+                "unknown unless `heading` is given, passive elimination as the robot drives); "
+                "`auto`: `scan` for a grid map or a `.poly` with holes, else `exact`. An INI of "
+                "MRPT's pf-localization (with `[MetricMap_occupancyGrid_00_creationOpts]`, no "
+                "`[polymap]`) runs `scan` with its `[LocalizationExperiment] map_file` and "
+                "`init_PDF_*` box",
+                [](common::IniSection& s, Opt& o) {
+                    const bool mrptMap = isMrptMapFile(o.mapFile);
+                    const std::string mode =
+                        s.choice("localizer", "auto", {"auto", "exact", "scan"});
+                    // a .poly with holes (rings after blank lines) needs the scan localizer too
+                    const bool holes =
+                        !mrptMap && !o.mapFile.empty() && mode == "auto" &&
+                        common::Polygon::readRings(o.mapFile, kMaxWallVertices, kMaxRings).size() >
+                            1;
+                    o.scanMode = mode == "scan" || (mode == "auto" && (mrptMap || holes));
+                    if (!o.scanMode && mrptMap)
+                        s.fail("localizer",
+                               "exact needs a .poly map; an MRPT grid map is localized with scan");
+                },
+                [](const Opt& o) { return std::string(o.scanMode ? "scan" : "exact"); }, "auto")
+            .real("search_step", MRLOC_KEY_FIELD(scan.positionStep), {0.02, 5}, "m",
+                  "(scan) the first scan's grid of positions")
+            .savedOnlyIf(scanModeOf)
+            .real("heading_step", MRLOC_KEY_FIELD(scan.headingStep), {0.25, 30}, "deg",
+                  "(scan) the first scan's headings")
+            .savedOnlyIf(scanModeOf)
+            .integer("search_positions", MRLOC_KEY_FIELD(scan.maxPositions), 100, 1000000, "",
+                     "(scan) the grid's step grows until the free space (or `region`) holds at "
+                     "most this many positions: the first scan's cost stays bounded")
+            .savedOnlyIf(scanModeOf)
+            .real("beam_tolerance", MRLOC_KEY_FIELD(beamTolerance), {0, 5}, "m",
+                  "(scan) a beam agrees within this; 0: 3 x the scan's stdError + 2 map cells + "
+                  "5 cm")
+            .savedOnlyIf(scanModeOf)
+            .real("keep_margin", MRLOC_KEY_FIELD(scan.keepMargin), {0, 1}, "",
+                  "(scan) agreement below the best by more: not a hypothesis; during "
+                  "elimination, dropped after two scans running")
+            .savedOnlyIf(scanModeOf)
+            .real("min_agreement", MRLOC_KEY_FIELD(scan.minAgreement), {0.05, 1}, "",
+                  "(scan) no hypothesis agrees with fewer of the beams")
+            .savedOnlyIf(scanModeOf)
+            .real("max_through", MRLOC_KEY_FIELD(scan.maxThrough), {0, 1}, "",
+                  "(scan) a pose with more of its beams passing through walls is refused")
+            .savedOnlyIf(scanModeOf)
+            .real("max_clutter", MRLOC_KEY_FIELD(scan.maxClutter), {0, 1}, "",
+                  "(scan) a pose with more of its beams stopped short in front of a mapped wall "
+                  "is refused (the truth of MRPT's two logs: 0.03 and 0.11; their scans in a "
+                  "wrong map: 0.48-0.55)")
+            .savedOnlyIf(scanModeOf)
+            .integer("max_hypotheses", MRLOC_KEY_FIELD(scan.maxHypotheses), 1, 2000, "",
+                     "(scan) at most this many hypotheses (bounds each scan's cost)")
+            .savedOnlyIf(scanModeOf)
+            .real("grid_resolution", MRLOC_KEY_FIELD(trace.resolution), {0.01, 1}, "m",
+                  "the grid MRPT builds from a `.simplemap` (a `.gridmap` has its own); MRPT's "
+                  "`[MetricMap_occupancyGrid_00_insertOpts]`, when the INI holds it, says how "
+                  "scans go in")
+            .savedOnlyIf(scanModeOf)
+            .real("trace_occupied", MRLOC_KEY_FIELD(trace.occupied), {0.01, 0.5}, "",
+                  "a grid cell is a wall below this free probability")
+            .savedOnlyIf(scanModeOf)
+            .real("trace_free", MRLOC_KEY_FIELD(trace.free), {0.5, 0.99}, "",
+                  "and free above this one")
+            .savedOnlyIf(scanModeOf)
+            .integer("speck_cells", MRLOC_KEY_FIELD(trace.speckCells), 1, 10000, "cells",
+                     "wall blobs of fewer cells are dropped when tracing")
+            .savedOnlyIf(scanModeOf)
+            .real("trace_simplify", MRLOC_KEY_FIELD(trace.simplify), {0, 1}, "m",
+                  "the traced rings' simplification tolerance; 0: half a cell")
+            .savedOnlyIf(scanModeOf)
+            .real("free_clearance", MRLOC_KEY_FIELD(trace.clearance), {0, 2}, "m",
+                  "(scan) the scanner stands at least this far from a wall")
+            .savedOnlyIf(scanModeOf)
+            .custom(
+                "reference", "", "",
+                "(scan) another localizer's path to set the estimates beside (TUM, or `step x "
+                "y phi` rows: step i is the i-th action with the sensory frame after it)",
+                [](common::IniSection& s, Opt& o) {
+                    o.referenceFile = s.text("reference", "");
+                    if (o.referenceFile.empty()) return;
+                    o.referenceFile =
+                        common::pathFromIni(common::configOrigin(s.config()), o.referenceFile);
+                    if (!std::filesystem::is_regular_file(o.referenceFile))
+                        s.fail("reference",
+                               "no such file '" + common::pathInWords(o.referenceFile) + "'");
+                },
+                [](const Opt& o) -> std::optional<std::string> {
+                    if (!o.scanMode || o.referenceFile.empty()) return std::nullopt;
+                    return o.referenceFile;
+                })
+            .custom(
+                "reference_name", "", "", "(scan) whose the reference is, for the report",
+                [](common::IniSection& s, Opt& o) {
+                    o.referenceName =
+                        s.text("reference_name", o.referenceFile.empty() ? "" : "the reference");
+                },
+                [](const Opt& o) -> std::optional<std::string> {
+                    if (!o.scanMode || o.referenceFile.empty()) return std::nullopt;
+                    return o.referenceName;
+                },
+                "`the reference`")
+            .custom(
+                "region", "m", "",
+                "`xmin xmax ymin ymax` (scan): the robot's position is searched there only",
+                [](common::IniSection& s, Opt& o) {
+                    o.scan.region.reset();
+                    if (!s.has("region")) return (void)s.text("region", "");
+                    const auto r = s.requireReals("region", 4);
+                    if (!(r[0] < r[1] && r[2] < r[3]))
+                        s.fail("region",
+                               "expected xmin xmax ymin ymax with xmin < xmax and ymin < ymax");
+                    o.scan.region = std::make_pair(TPoint2D{r[0], r[2]}, TPoint2D{r[1], r[3]});
+                },
+                [](const Opt& o) -> std::optional<std::string> {
+                    if (!o.scanMode || !o.scan.region) return std::nullopt;
+                    const auto& r = *o.scan.region;
+                    return mrpt::format("%.17g %.17g %.17g %.17g", r.first.x, r.second.x, r.first.y,
+                                        r.second.y);
+                });
+    return table;
 }
 
 void PolymapOptions::loadFromConfigFile(const mrpt::config::CConfigFileBase& src,
@@ -49,208 +376,31 @@ void PolymapOptions::loadFromConfigFile(const mrpt::config::CConfigFileBase& src
     *this = PolymapOptions{};  // every key absent takes the struct's default: written once
     common::IniSection s(src, section);
     origin_ = common::configOrigin(src) + ": [" + section + "]";
-    mapFile = s.text("map", mapFile);
-    if (!mapFile.empty()) {
-        // a relative path is the INI's: the file works from any folder, and effective.ini
-        // keeps the resolved path
-        namespace fs = std::filesystem;
-        mapFile = common::pathFromIni(common::configOrigin(src), mapFile);
-        if (fs::is_directory(mapFile))
-            s.fail("map", "'" + common::pathInWords(mapFile) + "' is a folder, not a .poly file");
-        if (!fs::exists(mapFile))
-            s.fail("map", "no such file '" + common::pathInWords(mapFile) +
-                              "' (a relative path is taken from the INI's folder)");
-    }
-    generator = s.choice("generator", "steps", {"steps", "rooms"});
+    keys().load(s, *this);
     if (!mapFile.empty() && s.has("generator"))
         s.fail("generator", "give either map = <file.poly> or a generator, not both");
-    steps.steps = (int)s.integer("steps", long(steps.steps), 1, 1000);
-    steps.branchesPerStep =
-        (int)s.integer("branches_per_step", long(steps.branchesPerStep), 1, 100);
-    steps.stepWidth = s.real("step_width", steps.stepWidth, 1e-3, 1e4);
-    steps.stepRise = s.real("step_rise", steps.stepRise, 1e-3, 1e4);
-    steps.corridorHeight = s.real("corridor_height", steps.corridorHeight, 1e-3, 1e4);
-    steps.branchWidth = s.real("branch_width", steps.branchWidth, 1e-3, 1e4);
-    steps.branchLeg = s.real("branch_leg", steps.branchLeg, 1e-3, 1e4);
-    std::vector<std::string> layouts;
-    for (const auto l : kRoomsLayouts) layouts.push_back(roomsLayoutName(l));
-    rooms.layout = roomsLayoutFromName(s.choice("room_layout", "side", layouts));
-    rooms.rooms = (int)s.integer("rooms", long(rooms.rooms), 1, 1000);
-    rooms.roomSteps = (int)s.integer("room_steps", long(rooms.roomSteps), 1, 1000);
-    rooms.roomWidth = s.real("room_width", rooms.roomWidth, 1e-3, 1e4);
-    rooms.roomHeightMin = s.real("room_height_min", rooms.roomHeightMin, 1e-3, 1e4);
-    rooms.roomHeightMax = s.real("room_height_max", rooms.roomHeightMax, 1e-3, 1e4);
-    rooms.neckWidth = s.real("neck_width", rooms.neckWidth, 1e-3, 1e4);
-    rooms.neckLength = s.real("neck_length", rooms.neckLength, 1e-3, 1e4);
-    rooms.roomGap = s.real("room_gap", rooms.roomGap, 1e-3, 1e4);
-    rooms.rightMargin = s.real("right_margin", rooms.rightMargin, 0, 1e4);
     if (rooms.layout == RoomsLayout::Row)
         for (const char* key : {"room_gap", "right_margin"})  // a row has no corridor
             if (s.has(key))
                 s.fail(key, "not used by room_layout = row (rooms joined wall to wall)");
-    rooms.pillar = s.real("pillar", rooms.pillar, 0, 1e3);
-    const unsigned long seed = common::runSeed(src);
-    mapSeed = common::subSeed(s, "map_seed", seed, "polymap rooms map");
-    start.reset();
-    if (s.has("start")) {
-        const auto xy = s.requireReals("start", 2);
-        start = TPoint2D{xy[0], xy[1]};
-        if (s.has("start_site")) s.fail("start_site", "give either start = x y or start_site");
-    }
-    startSite = (int)s.integer("start_site", long(startSite), 1, 1000000);
-    const bool mrptMap = isMrptMapFile(mapFile);
-    const std::string mode = s.choice("localizer", "auto", {"auto", "exact", "scan"});
-    // a .poly with holes (rings after blank lines) needs the scan localizer too
-    const bool holes = !mrptMap && !mapFile.empty() && mode == "auto" &&
-                       common::Polygon::readRings(mapFile, kMaxWallVertices, kMaxRings).size() > 1;
-    scanMode = mode == "scan" || (mode == "auto" && (mrptMap || holes));
-    if (!scanMode && mrptMap)
-        s.fail("localizer", "exact needs a .poly map; an MRPT grid map is localized with scan");
+    if (start && s.has("start_site")) s.fail("start_site", "give either start = x y or start_site");
     if (!start && !mapFile.empty() && !scanMode)
         s.fail("start", "required with a map file (start = x y)");
     headingKnown = s.has("heading");
-    heading = s.real("heading", heading, -360, 360);
-    loadScanKeys(s, common::configOrigin(src));
+    if (scanMode && !elimination.empty())
+        s.fail("elimination", "paper 002's experiment runs on exact views (localizer = exact)");
     // MRPT's own section for how a simplemap's scans go into the grid, when the INI holds it
     // (pf-localization's INIs; and effective.ini of a run from one)
     if (src.sectionExists(kGridInsertSection)) {
         trace.insertOptions = &src;
         trace.insertSection = kGridInsertSection;
     }
-    scanRays = (int)s.integer("scan_rays", long(scanRays), 16, 100000);
-    scanRangeSigma = s.real("scan_range_sigma", scanRangeSigma, 0, 10);
-    scanMaxRange = s.real("scan_max_range", scanMaxRange, 1e-3, 1e6);
-    scanRate = s.real("scan_rate", scanRate, 0, 1000);
-    tolerance = s.real("tolerance", tolerance, 0, 1e3);
-    angleTolerance = s.real("angle_tolerance", angleTolerance, 1e-6, 45);
-    breakAngle = s.real("break_angle", breakAngle, 1, 45);
-    elimination.clear();
-    std::istringstream names(s.text("elimination", "none"));
-    std::vector<std::string> list{std::istream_iterator<std::string>(names), {}};
-    if (list == std::vector<std::string>{"all"})
-        list = {"cells", "randomized", "triangulation", "windows"};
-    if (list != std::vector<std::string>{"none"})
-        for (const auto& name : list) try {
-                elimination.push_back(strategyFromName(name));
-            } catch (const Error& e) {
-                s.fail("elimination", std::string(e.what()) + " (or none, all)");
-            }
-    randomPoints.clear();
-    for (const double x : s.reals("random_points", {100, 500})) {
-        if (x < 1 || x > 1e6 || x != std::floor(x))
-            s.fail("random_points", "each X must be a whole number from 1 to 1000000");
-        randomPoints.push_back((int)x);
-    }
-    if (randomPoints.empty()) s.fail("random_points", "give at least one X");
-    if (randomPoints.size() > kMaxListValues)  // each X is a column of the whole experiment
-        s.fail("random_points", "at most " + std::to_string(kMaxListValues) + " values");
-    eliminationSeed = common::subSeed(s, "elimination_seed", seed, "polymap elimination");
-    clearance = s.real("clearance", clearance, 0, 10);
-    sweepSteps.clear();
-    for (const double x : s.reals("sweep_steps", {})) {
-        if (x < 1 || x > 1000 || x != std::floor(x))
-            s.fail("sweep_steps", "each step count must be a whole number from 1 to 1000");
-        sweepSteps.push_back((int)x);
-    }
-    if (sweepSteps.size() > kMaxSweepSteps)  // each is a map, every start, every algorithm
-        s.fail("sweep_steps", "at most " + std::to_string(kMaxSweepSteps) + " values");
-    if (!sweepSteps.empty() && (!mapFile.empty() || generator != "steps"))
-        s.fail("sweep_steps", "the sweep is over steps maps: needs generator = steps");
-    if (!sweepSteps.empty() && elimination.empty())
-        s.fail("sweep_steps", "give the algorithms to sweep in elimination = ...");
-    sweepStarts = (int)s.integer("sweep_starts", long(sweepStarts), 1, 100000);
-    drive.reset();
-    if (const std::string d = s.text("drive", "none"); d != "none") {
-        try {
-            drive = strategyFromName(d);
-        } catch (const Error& e) {
-            s.fail("drive", std::string(e.what()) + " (or none)");
-        }
-        if (scanRate > 0)
-            s.fail("drive", "a driving robot scans where it eliminates: set scan_rate = 0");
-    }
-    if (scanMode && !elimination.empty())
-        s.fail("elimination", "paper 002's experiment runs on exact views (localizer = exact)");
     s.finish();
 }
 
 void PolymapOptions::saveToConfigFile(mrpt::config::CConfigFileBase& t,
                                       const std::string& section) const {
-    if (!mapFile.empty()) {
-        t.write(section, "map", mapFile);
-    } else {
-        t.write(section, "generator", generator);
-        if (mapSeed.given) t.write(section, "map_seed", std::to_string(mapSeed.value));
-    }
-    t.write(section, "steps", steps.steps);
-    t.write(section, "branches_per_step", steps.branchesPerStep);
-    t.write(section, "step_width", steps.stepWidth);
-    t.write(section, "step_rise", steps.stepRise);
-    t.write(section, "corridor_height", steps.corridorHeight);
-    t.write(section, "branch_width", steps.branchWidth);
-    t.write(section, "branch_leg", steps.branchLeg);
-    t.write(section, "room_layout", roomsLayoutName(rooms.layout));
-    t.write(section, "rooms", rooms.rooms);
-    t.write(section, "room_steps", rooms.roomSteps);
-    t.write(section, "room_width", rooms.roomWidth);
-    t.write(section, "room_height_min", rooms.roomHeightMin);
-    t.write(section, "room_height_max", rooms.roomHeightMax);
-    t.write(section, "neck_width", rooms.neckWidth);
-    t.write(section, "neck_length", rooms.neckLength);
-    if (rooms.layout != RoomsLayout::Row) t.write(section, "room_gap", rooms.roomGap);
-    if (rooms.layout != RoomsLayout::Row) t.write(section, "right_margin", rooms.rightMargin);
-    t.write(section, "pillar", rooms.pillar);
-    if (start)
-        t.write(section, "start", mrpt::format("%.17g %.17g", start->x, start->y));
-    else
-        t.write(section, "start_site", startSite);
-    if (headingKnown || !scanMode) t.write(section, "heading", heading);  // absent: unknown
-    t.write(section, "scan_rays", scanRays);
-    t.write(section, "scan_range_sigma", scanRangeSigma);
-    t.write(section, "scan_max_range", scanMaxRange);
-    t.write(section, "scan_rate", scanRate);
-    t.write(section, "tolerance", tolerance);
-    t.write(section, "angle_tolerance", angleTolerance);
-    t.write(section, "break_angle", breakAngle);
-    std::string names;
-    for (const auto e : elimination) names += (names.empty() ? "" : " ") + strategyName(e);
-    t.write(section, "elimination", names.empty() ? std::string("none") : names);
-    std::string xs;
-    for (const int x : randomPoints) xs += (xs.empty() ? "" : " ") + std::to_string(x);
-    t.write(section, "random_points", xs);
-    if (eliminationSeed.given)
-        t.write(section, "elimination_seed", std::to_string(eliminationSeed.value));
-    t.write(section, "clearance", clearance);
-    std::string sweep;
-    for (const int x : sweepSteps) sweep += (sweep.empty() ? "" : " ") + std::to_string(x);
-    if (!sweep.empty()) t.write(section, "sweep_steps", sweep);
-    t.write(section, "sweep_starts", sweepStarts);
-    t.write(section, "drive", drive ? strategyName(*drive) : std::string("none"));
-    t.write(section, "localizer", std::string(scanMode ? "scan" : "exact"));
-    if (!scanMode) return;
-    t.write(section, "search_step", scan.positionStep);
-    t.write(section, "heading_step", scan.headingStep);
-    t.write(section, "search_positions", int(scan.maxPositions));
-    t.write(section, "beam_tolerance", beamTolerance);
-    t.write(section, "keep_margin", scan.keepMargin);
-    t.write(section, "min_agreement", scan.minAgreement);
-    t.write(section, "max_through", scan.maxThrough);
-    t.write(section, "max_clutter", scan.maxClutter);
-    t.write(section, "max_hypotheses", int(scan.maxHypotheses));
-    t.write(section, "grid_resolution", trace.resolution);
-    t.write(section, "trace_occupied", trace.occupied);
-    t.write(section, "trace_free", trace.free);
-    t.write(section, "speck_cells", trace.speckCells);
-    t.write(section, "trace_simplify", trace.simplify);
-    t.write(section, "free_clearance", trace.clearance);
-    if (!referenceFile.empty()) {
-        t.write(section, "reference", referenceFile);
-        t.write(section, "reference_name", referenceName);
-    }
-    if (scan.region)
-        t.write(section, "region",
-                mrpt::format("%.17g %.17g %.17g %.17g", scan.region->first.x, scan.region->second.x,
-                             scan.region->first.y, scan.region->second.y));
+    keys().save(*this, t, section);
 }
 
 void PolymapOptions::loadFromMrptLocalizationIni(const mrpt::config::CConfigFileBase& ini) {

@@ -8,6 +8,7 @@
 #include <mrloc/beacons/RangingEpoch.h>
 #include <mrloc/beacons/ShotLog.h>
 #include <mrloc/beacons/Ultrasonic.h>
+#include <mrloc/common/KeyTable.h>
 #include <mrloc/sim/World.h>
 #include <mrpt/config/CLoadableOptions.h>
 #include <mrpt/obs/CObservationBeaconRanges.h>
@@ -29,6 +30,9 @@ struct SensorOptions : public mrpt::config::CLoadableOptions {
     double biasSigma = 0;     ///< each beacon's own range offset, drawn once (m)
     double biasDrift = 0;     ///< its random walk (m/sqrt(s)): a UWB antenna delay
     bool nlosReflect = true;  ///< blocked path: a long reflected range (else none)
+
+    /** Every key of [sensors], declared once (loading, effective.ini, doc/ini.md). */
+    static const common::KeyTable<SensorOptions>& keys();
 
     void loadFromConfigFile(const mrpt::config::CConfigFileBase& source,
                             const std::string& section) override;

@@ -19,6 +19,7 @@
 // if that is within firing_time, else the shot is missed. The receiver is calibrated on
 // the beam's axis at calibration_distance: that delay is subtracted from every reading.
 #include <mrloc/beacons/PanTilt.h>
+#include <mrloc/common/KeyTable.h>
 #include <mrpt/config/CLoadableOptions.h>
 
 #include <Eigen/Core>
@@ -44,6 +45,9 @@ struct UltrasonicOptions : public mrpt::config::CLoadableOptions {
     double firingTime = 450e-6;          ///< burst length, seed 001 section 5.2 (s)
     double calibrationDistance = 1.0;    ///< on-axis distance of the receiver's calibration (m)
     beacons::PanTiltLimits head;         ///< pan_min, pan_max, tilt_max, slew_rate
+
+    /** Every key of [ultrasonic], declared once (loading, effective.ini, doc/ini.md). */
+    static const common::KeyTable<UltrasonicOptions>& keys();
 
     void loadFromConfigFile(const mrpt::config::CConfigFileBase& source,
                             const std::string& section) override;

@@ -25,6 +25,8 @@ class IniSection {
     IniSection(const mrpt::config::CConfigFileBase& cfg, std::string section);
 
     const std::string& section() const { return section_; }
+    /** The whole file (a key that depends on another section's: the run's seed). */
+    const mrpt::config::CConfigFileBase& config() const { return cfg_; }
     bool has(const std::string& key) const;
 
     double real(const std::string& key, double def, double lo = -kInf, double hi = kInf);

@@ -2,6 +2,7 @@
 // Section [formation]: the formation method's options (keys and defaults in doc/ini.md).
 // The team, its route and its sensors for the simulator and the localizer, and the Monte
 // Carlo experiment of seed 003 sec. 5 (Table 1, figs. 14-15).
+#include <mrloc/common/KeyTable.h>
 #include <mrloc/common/Seeds.h>
 #include <mrloc/formation/AlgorithmOne.h>
 #include <mrloc/formation/CameraModel.h>
@@ -78,6 +79,9 @@ struct FormationConfig : public mrpt::config::CLoadableOptions {
     double speed() const { return wheelRadius * wheelSpeed; }  ///< m/s
     /** The front and rear cameras' intrinsics (camera_width, camera_rows, camera_focal). */
     mrpt::img::TCamera cameraIntrinsics() const;
+
+    /** Every key of [formation], declared once (loading, effective.ini, doc/ini.md). */
+    static const common::KeyTable<FormationConfig>& keys();
 
     void loadFromConfigFile(const mrpt::config::CConfigFileBase& source,
                             const std::string& section) override;

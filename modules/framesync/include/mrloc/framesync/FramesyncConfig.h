@@ -2,6 +2,7 @@
 // Section [framesync]: the method's options (keys and defaults in doc/ini.md): the on-board
 // system (wall detector, matching, database, priority of reference), the sonars the
 // simulator gives every robot, and the experiment (seed 004 sec. 5 over many seeds).
+#include <mrloc/common/KeyTable.h>
 #include <mrloc/framesync/Sonar.h>
 #include <mrloc/framesync/Team.h>
 #include <mrpt/config/CLoadableOptions.h>
@@ -23,6 +24,9 @@ struct FramesyncConfig : public mrpt::config::CLoadableOptions {
     size_t sweepSeeds = 20;
     std::vector<double> sweepNoise{0.0025, 0.005, 0.01, 0.02, 0.04};
     std::vector<double> sweepDrift{0.5, 1, 2, 4};
+
+    /** Every key of [framesync], declared once (loading, effective.ini, doc/ini.md). */
+    static const common::KeyTable<FramesyncConfig>& keys();
 
     void loadFromConfigFile(const mrpt::config::CConfigFileBase& source,
                             const std::string& section) override;

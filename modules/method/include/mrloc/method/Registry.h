@@ -7,6 +7,7 @@
 // MRPT's TMetricMapTypesRegistry), and an INI that names no method gets the one whose sections it
 // holds, or an error listing them all.
 #include <mrloc/common/Error.h>
+#include <mrloc/common/KeyTable.h>
 #include <mrloc/common/Localizer.h>
 #include <mrloc/common/Log.h>
 #include <mrloc/method/Work.h>
@@ -101,6 +102,9 @@ struct Method {
      *  (Work.h). Optional: a method that names none adds nothing to the simulation's. */
     std::function<std::vector<WorkItem>(const common::Localizer&, const sim::ScenarioConfig*)> work;
     report::Section report;
+    /** The key tables of the sections it owns that are declared as a common::KeyTable, as
+     *  doc/ini.md shows them (`mrloc keys`; a test holds doc/ini.md to them). */
+    std::vector<common::SectionKeys> keys;
 };
 
 /** ExperimentInput with the method's own localizer type. */
@@ -146,6 +150,7 @@ struct MethodUnit {
     std::function<common::Headline(const TrialOf<LocalizerT>&)> trial;  ///< as Method::trial
     std::function<std::vector<WorkItem>(const LocalizerT&, const sim::ScenarioConfig*)> work;
     report::Section report;
+    std::vector<common::SectionKeys> keys;  ///< as Method::keys
 };
 
 class Registry {
@@ -212,10 +217,13 @@ void Registry::add(MethodUnit<LocalizerT> unit) {
             return f(localizerOf<LocalizerT>(l, name), s);
         };
     m.report = std::move(unit.report);
+    m.keys = std::move(unit.keys);
     add(std::move(m));
 }
 
 /** Sections the framework owns, whatever the method. */
 const std::vector<std::string>& frameworkSections();
+/** The key tables of the framework's sections declared as a common::KeyTable. */
+std::vector<common::SectionKeys> frameworkKeys();
 
 }  // namespace mrloc::method

@@ -2,7 +2,8 @@
 // Section [omnivision] (seed 000): the method, the stopped pairs or the measured pair, the
 // cameras, the tolerances and, optionally, a generated swarm and an accuracy sweep. The
 // app hands the simulator the camera setup it implies (omnivision::OmniSetup); the localizer
-// reads the same section. Every key and its default: doc/ini.md.
+// reads the same section. Every key: keys() (doc/ini.md is generated from it).
+#include <mrloc/common/KeyTable.h>
 #include <mrloc/common/Seeds.h>
 #include <mrloc/omnivision/Panorama.h>
 #include <mrpt/config/CLoadableOptions.h>
@@ -47,6 +48,9 @@ struct OmniOptions : public mrpt::config::CLoadableOptions {
     common::SubSeed swarmSeed;
     // Accuracy sweep in the report (Monte Carlo trials per noise level; 0: none).
     int accuracyTrials = 0;
+
+    /** Every key of the section, declared once (loading, effective.ini, doc/ini.md). */
+    static const common::KeyTable<OmniOptions>& keys();
 
     void loadFromConfigFile(const mrpt::config::CConfigFileBase& source,
                             const std::string& section) override;

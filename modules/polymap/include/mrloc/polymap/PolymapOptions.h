@@ -3,6 +3,7 @@
 // heading, its 360-degree scanner, and the hypothesis tolerances. The simulator gets the
 // map, start and scanner through the app; the localizer reads the same section.
 #include <mrloc/common/IniSection.h>
+#include <mrloc/common/KeyTable.h>
 #include <mrloc/common/Seeds.h>
 #include <mrloc/polymap/Elimination.h>
 #include <mrloc/polymap/GridTrace.h>
@@ -81,6 +82,9 @@ struct PolymapOptions : public mrpt::config::CLoadableOptions {
     /** The options of the driving robot's elimination, for a scan generated with tolerance. */
     EliminationOptions driveOptions(double tolerance) const;
 
+    /** Every key of [polymap], declared once (loading, effective.ini, doc/ini.md). */
+    static const common::KeyTable<PolymapOptions>& keys();
+
     void loadFromConfigFile(const mrpt::config::CConfigFileBase& source,
                             const std::string& section) override;
     void saveToConfigFile(mrpt::config::CConfigFileBase& target,
@@ -95,7 +99,6 @@ struct PolymapOptions : public mrpt::config::CLoadableOptions {
     double toleranceFor(double rMax) const;
 
  private:
-    void loadScanKeys(common::IniSection& s, const std::string& iniPath);
     std::string origin_;  ///< file, for errors raised after loading
 };
 

@@ -1,9 +1,8 @@
 #pragma once
-// Section [report] (the framework's): what the run is compared with, shown on the page.
-//   paper_caption = seed 001 Table 3 (fixed angle)    which of the paper's figures
-//   paper_note    = free text (the paper's claims on errors, say)
-//   title         = the page's title (default: the scenario's name and the method's subject)
+// Section [report] (the framework's): what the run is compared with, shown on the page
+// (keys(): paper_caption, paper_note, title).
 // A method's own paper figures (seed 001's reception rates, say) are keys of its section.
+#include <mrloc/common/KeyTable.h>
 #include <mrpt/config/CLoadableOptions.h>
 
 #include <string>
@@ -14,6 +13,9 @@ struct ReportOptions : public mrpt::config::CLoadableOptions {
     std::string paperCaption;
     std::string paperNote;
     std::string title;
+
+    /** Every key of [report], declared once (loading, effective.ini, doc/ini.md). */
+    static const common::KeyTable<ReportOptions>& keys();
 
     void loadFromConfigFile(const mrpt::config::CConfigFileBase& source,
                             const std::string& section) override;
