@@ -270,58 +270,44 @@ const common::KeyTable<PolymapOptions>& PolymapOptions::keys() {
                                "exact needs a .poly map; an MRPT grid map is localized with scan");
                 },
                 [](const Opt& o) { return std::string(o.scanMode ? "scan" : "exact"); }, "auto")
+            .savedFromHereOnlyIf(scanModeOf)  // the scan localizer's keys
             .real("search_step", MRLOC_KEY_FIELD(scan.positionStep), {0.02, 5}, "m",
                   "(scan) the first scan's grid of positions")
-            .savedOnlyIf(scanModeOf)
             .real("heading_step", MRLOC_KEY_FIELD(scan.headingStep), {0.25, 30}, "deg",
                   "(scan) the first scan's headings")
-            .savedOnlyIf(scanModeOf)
             .integer("search_positions", MRLOC_KEY_FIELD(scan.maxPositions), 100, 1000000, "",
                      "(scan) the grid's step grows until the free space (or `region`) holds at "
                      "most this many positions: the first scan's cost stays bounded")
-            .savedOnlyIf(scanModeOf)
             .real("beam_tolerance", MRLOC_KEY_FIELD(beamTolerance), {0, 5}, "m",
                   "(scan) a beam agrees within this; 0: 3 x the scan's stdError + 2 map cells + "
                   "5 cm")
-            .savedOnlyIf(scanModeOf)
             .real("keep_margin", MRLOC_KEY_FIELD(scan.keepMargin), {0, 1}, "",
                   "(scan) agreement below the best by more: not a hypothesis; during "
                   "elimination, dropped after two scans running")
-            .savedOnlyIf(scanModeOf)
             .real("min_agreement", MRLOC_KEY_FIELD(scan.minAgreement), {0.05, 1}, "",
                   "(scan) no hypothesis agrees with fewer of the beams")
-            .savedOnlyIf(scanModeOf)
             .real("max_through", MRLOC_KEY_FIELD(scan.maxThrough), {0, 1}, "",
                   "(scan) a pose with more of its beams passing through walls is refused")
-            .savedOnlyIf(scanModeOf)
             .real("max_clutter", MRLOC_KEY_FIELD(scan.maxClutter), {0, 1}, "",
                   "(scan) a pose with more of its beams stopped short in front of a mapped wall "
                   "is refused (the truth of MRPT's two logs: 0.03 and 0.11; their scans in a "
                   "wrong map: 0.48-0.55)")
-            .savedOnlyIf(scanModeOf)
             .integer("max_hypotheses", MRLOC_KEY_FIELD(scan.maxHypotheses), 1, 2000, "",
                      "(scan) at most this many hypotheses (bounds each scan's cost)")
-            .savedOnlyIf(scanModeOf)
             .real("grid_resolution", MRLOC_KEY_FIELD(trace.resolution), {0.01, 1}, "m",
                   "the grid MRPT builds from a `.simplemap` (a `.gridmap` has its own); MRPT's "
                   "`[MetricMap_occupancyGrid_00_insertOpts]`, when the INI holds it, says how "
                   "scans go in")
-            .savedOnlyIf(scanModeOf)
             .real("trace_occupied", MRLOC_KEY_FIELD(trace.occupied), {0.01, 0.5}, "",
                   "a grid cell is a wall below this free probability")
-            .savedOnlyIf(scanModeOf)
             .real("trace_free", MRLOC_KEY_FIELD(trace.free), {0.5, 0.99}, "",
                   "and free above this one")
-            .savedOnlyIf(scanModeOf)
             .integer("speck_cells", MRLOC_KEY_FIELD(trace.speckCells), 1, 10000, "cells",
                      "wall blobs of fewer cells are dropped when tracing")
-            .savedOnlyIf(scanModeOf)
             .real("trace_simplify", MRLOC_KEY_FIELD(trace.simplify), {0, 1}, "m",
                   "the traced rings' simplification tolerance; 0: half a cell")
-            .savedOnlyIf(scanModeOf)
             .real("free_clearance", MRLOC_KEY_FIELD(trace.clearance), {0, 2}, "m",
                   "(scan) the scanner stands at least this far from a wall")
-            .savedOnlyIf(scanModeOf)
             .custom(
                 "reference", "", "",
                 "(scan) another localizer's path to set the estimates beside (TUM, or `step x "
@@ -336,7 +322,7 @@ const common::KeyTable<PolymapOptions>& PolymapOptions::keys() {
                                "no such file '" + common::pathInWords(o.referenceFile) + "'");
                 },
                 [](const Opt& o) -> std::optional<std::string> {
-                    if (!o.scanMode || o.referenceFile.empty()) return std::nullopt;
+                    if (o.referenceFile.empty()) return std::nullopt;
                     return o.referenceFile;
                 })
             .custom(
@@ -346,7 +332,7 @@ const common::KeyTable<PolymapOptions>& PolymapOptions::keys() {
                         s.text("reference_name", o.referenceFile.empty() ? "" : "the reference");
                 },
                 [](const Opt& o) -> std::optional<std::string> {
-                    if (!o.scanMode || o.referenceFile.empty()) return std::nullopt;
+                    if (o.referenceFile.empty()) return std::nullopt;
                     return o.referenceName;
                 },
                 "`the reference`")
@@ -363,7 +349,7 @@ const common::KeyTable<PolymapOptions>& PolymapOptions::keys() {
                     o.scan.region = std::make_pair(TPoint2D{r[0], r[2]}, TPoint2D{r[1], r[3]});
                 },
                 [](const Opt& o) -> std::optional<std::string> {
-                    if (!o.scanMode || !o.scan.region) return std::nullopt;
+                    if (!o.scan.region) return std::nullopt;
                     const auto& r = *o.scan.region;
                     return mrpt::format("%.17g %.17g %.17g %.17g", r.first.x, r.second.x, r.first.y,
                                         r.second.y);

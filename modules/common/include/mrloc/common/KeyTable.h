@@ -215,12 +215,13 @@ class KeyTable {
     /** The key declared last is written into effective.ini only when `keep` holds (a key
      *  another one makes moot: `start_site` beside a `start`). */
     KeyTable& savedOnlyIf(std::function<bool(const Options&)> keep) {
-        auto save = std::move(keys_.back().save);
-        keys_.back().save = [save = std::move(save), keep = std::move(keep)](
-                                const Options& o, mrpt::config::CConfigFileBase& t,
-                                const std::string& sec) {
-            if (keep(o)) save(o, t, sec);
-        };
+        keys_.back().save = onlyIf(std::move(keys_.back().save), std::move(keep));
+        return *this;
+    }
+    /** Every key declared from here on is written only when `keep` holds (a group that one
+     *  choice makes moot: polymap's scan keys beside `localizer = exact`). */
+    KeyTable& savedFromHereOnlyIf(std::function<bool(const Options&)> keep) {
+        groupKeep_ = std::move(keep);
         return *this;
     }
 
@@ -257,7 +258,19 @@ class KeyTable {
         std::function<double(const Options&)> inIniUnit;  ///< a real's value, for bounds
     };
 
+    using Saver =
+        std::function<void(const Options&, mrpt::config::CConfigFileBase&, const std::string&)>;
+
+    static Saver onlyIf(Saver save, std::function<bool(const Options&)> keep) {
+        if (!save) return save;
+        return [save = std::move(save), keep = std::move(keep)](
+                   const Options& o, mrpt::config::CConfigFileBase& t, const std::string& sec) {
+            if (keep(o)) save(o, t, sec);
+        };
+    }
+
     KeyTable& add(Key k) {
+        if (groupKeep_) k.save = onlyIf(std::move(k.save), groupKeep_);
         keys_.push_back(std::move(k));
         return *this;
     }
@@ -294,6 +307,7 @@ class KeyTable {
 
     std::string section_;
     std::vector<Key> keys_;
+    std::function<bool(const Options&)> groupKeep_;  ///< savedFromHereOnlyIf's, if any
 };
 
 }  // namespace mrloc::common
