@@ -69,6 +69,14 @@ long+='|MrlocBatch\.(FramesyncSeedsAndSweeps|NoFolderNameOrPathIsCode|ResumeRuns
 # polymap's randomized draws from two seeds (the elimination is sanitized in Elimination.*)
 long+='|BadRawlog\.CorruptSizeMeetsTheMemoryCap|HostileNames\.InARawlogsLabels'
 long+='|Work\.TheCostKeysTheEstimateMissed|MrlocPolymap\.TheRunsSeedReachesTheRandomizedDraws'
+# process behaviour again (a thread count that changes no result, byte-identical repeats, folder
+# names and links, batch arguments) and MRPT's loader over every dataset (fuzz_rawlog fuzzes
+# mrloc's reader); the polymap rawlog sweep (the beacons sweep stays sanitized)
+long+='|MrlocCli\.ThreadsSetsTheExperimentsThreadsWithoutChangingTheirResults'
+long+='|MrlocFramesync\.SameIniAndSeedGiveByteIdenticalRawlogsAndResults'
+long+='|RunFolder\.OutFoldersThatCouldRunOrEscapeAreTakenLiterallyOrRefused'
+long+='|MrlocBatch\.(BadArgumentsAreRefusedBeforeAnythingIsWritten|LinksInABatchFolderAreRefusedAndItsLockIsHeld)'
+long+='|MrptData\.InfoAgreesWithMrptsLoaderOnEveryDataset|Mutations\.PolymapRawlogIsRefusedOrCountedNeverSilentlyTaken'
 if [ "${MRLOC_SANITIZE_ALL:-0}" = 1 ]; then
   ctest --output-on-failure -j "$(nproc)" "$@"
 else

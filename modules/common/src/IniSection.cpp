@@ -27,11 +27,7 @@ std::map<int, std::string> IniSection::numberedKeys(const std::string& prefix) {
     return out;
 }
 
-namespace {
-std::string lower(std::string s) { return mrpt::system::lowerCase(s); }
-}  // namespace
-
-void IniSection::allowKey(const std::string& key) { used_.insert(lower(key)); }
+void IniSection::allowKey(const std::string& key) { used_.insert(mrpt::system::lowerCase(key)); }
 
 std::string configOrigin(const mrpt::config::CConfigFileBase& cfg) {
     if (auto* f = dynamic_cast<const mrpt::config::CConfigFile*>(&cfg))
@@ -49,7 +45,7 @@ void IniSection::fail(const std::string& key, const std::string& problem) const 
 bool IniSection::has(const std::string& key) const { return cfg_.keyExists(section_, key); }
 
 std::optional<std::string> IniSection::raw(const std::string& key) {
-    used_.insert(lower(key));
+    used_.insert(mrpt::system::lowerCase(key));
     if (!has(key)) return std::nullopt;
     // Inline comments after the value are MRPT convention ("x = 1 // metres").
     std::string v = cfg_.read_string(section_, key, "", false);
@@ -102,7 +98,7 @@ long IniSection::integer(const std::string& key, long def, long lo, long hi) {
 bool IniSection::flag(const std::string& key, bool def) {
     const auto v = raw(key);
     if (!v) return def;
-    const std::string s = lower(*v);
+    const std::string s = mrpt::system::lowerCase(*v);
     if (s == "true" || s == "1" || s == "yes" || s == "on") return true;
     if (s == "false" || s == "0" || s == "no" || s == "off") return false;
     fail(key, "expected true or false, got '" + *v + "'");
@@ -154,10 +150,11 @@ std::vector<std::string> IniSection::keys() const {
 
 void IniSection::finish() const {
     for (const auto& key : keys()) {
-        const std::string k = lower(key);
+        const std::string k = mrpt::system::lowerCase(key);
         if (used_.count(k)) continue;
-        const bool allowed = std::any_of(prefixes_.begin(), prefixes_.end(),
-                                         [&](const auto& p) { return k.rfind(lower(p), 0) == 0; });
+        const bool allowed = std::any_of(prefixes_.begin(), prefixes_.end(), [&](const auto& p) {
+            return k.rfind(mrpt::system::lowerCase(p), 0) == 0;
+        });
         if (!allowed) {
             // every key the section's reader asked for, present or not
             const auto near = nearMiss(k, std::vector<std::string>(used_.begin(), used_.end()));

@@ -49,7 +49,7 @@ mrpt::obs::CObservation2DRangeScan::Ptr scanOf(const TextLog& log, size_t first,
     return scan;
 }
 
-void convert(const ImportRequest& req, ImportOutput& out) {
+void convertCarmen(const ImportRequest& req, ImportOutput& out) {
     const std::string robot = req.options.text("robot");
     common::checkRobotName(robot, "--opt robot");
     const double flaserMax = req.options.number("flaser_max_range");
@@ -161,7 +161,7 @@ void registerCarmen(FormatRegistry& r) {
            {{"robot", "robot", "the robot's name, the labels' first part"},
             {"flaser_max_range", "81.9", "m; FLASER lines carry no maximum range (SICK LMS: 81.9)"},
             {"sonar_max_range", "5.0", "m; SONAR readings at or beyond it are no echo"}},
-           convert});
+           convertCarmen});
 }
 
 }  // namespace mrloc::logimport

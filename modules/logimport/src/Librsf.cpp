@@ -52,7 +52,7 @@ std::string beaconIni(const std::string& source, const std::string& stem,
     return s;
 }
 
-void convert(const ImportRequest& req, ImportOutput& out) {
+void convertLibrsf(const ImportRequest& req, ImportOutput& out) {
     const std::string robot = req.options.text("robot");
     common::checkRobotName(robot, "--opt robot");
     const bool withOdometry = req.options.flag("odometry");
@@ -219,7 +219,7 @@ void registerLibrsf(FormatRegistry& r) {
             {"wheel_base_scale", "1", "the wheel base is this times the file's (Labyrinth: 2)"},
             {"swap_wheels", "no",
              "yes: the right-wheel column is the left wheel's (Labyrinth: yes)"}},
-           convert});
+           convertLibrsf});
 }
 
 }  // namespace mrloc::logimport

@@ -123,7 +123,7 @@ std::string beaconIni(const std::map<long, Landmark>& landmarks) {
     return s;
 }
 
-void convert(const ImportRequest& req, ImportOutput& out) {
+void convertMrclam(const ImportRequest& req, ImportOutput& out) {
     const fs::path dir = req.inputs[0];
     if (!fs::is_directory(dir))
         throw Error(common::pathInWords(dir.string()) +
@@ -260,7 +260,7 @@ void registerMrclam(FormatRegistry& r) {
            {{"robots", "1,2,3,4,5", "which robots to import"},
             {"duration", "0", "s from the log's start to import; 0: all of it"},
             {"odometry", "yes", "no: leave the odometry out (the camera alone)"}},
-           convert});
+           convertMrclam});
 }
 
 }  // namespace mrloc::logimport

@@ -153,7 +153,7 @@ class TopicLabels {
     bool mapped_ = false;
 };
 
-void convert(const ImportRequest& req, ImportOutput& out) {
+void convertRosbag(const ImportRequest& req, ImportOutput& out) {
     const auto& o = req.options;
     const std::string robot = o.text("robot");
     common::checkRobotName(robot, "--opt robot");
@@ -285,7 +285,7 @@ void registerRosbag(FormatRegistry& r) {
               {"base_frame", "base_link", "the robot's frame"},
               {"odom_frame", "odom", "the odometry frame of /tf"},
               {"reorder_window", "1.0", "s: messages may arrive this far out of stamp order"}},
-             convert};
+             convertRosbag};
     f.isolated = true;
     r.add(std::move(f));
 }

@@ -63,7 +63,7 @@ Unit timeUnit(const std::string& option, const std::vector<PoseLine>& poses, dou
     return fits[0];
 }
 
-void convert(const ImportRequest& req, ImportOutput& out) {
+void convertSonarText(const ImportRequest& req, ImportOutput& out) {
     const auto& o = req.options;
     const std::string robot = o.text("robot");
     common::checkRobotName(robot, "--opt robot");
@@ -189,7 +189,7 @@ void registerSonarText(FormatRegistry& r) {
             {"ring_radius", "0", "m from the robot's centre to each sonar, along its bearing"},
             {"height", "0", "the sonars' height, m"},
             {"poses_are", "both", "both, odometry or truth: what the pose file is written as"}},
-           convert});
+           convertSonarText});
 }
 
 }  // namespace mrloc::logimport
