@@ -2,16 +2,23 @@
 
 #include <mrloc/common/Error.h>
 
+#include <algorithm>
 #include <set>
 
 namespace mrloc::app {
 
 std::vector<common::SectionKeys> allKeyTables(const method::Registry& registry) {
     auto tables = method::frameworkKeys();
-    for (const auto& name : registry.names()) {
-        const auto& keys = registry.get(name).keys;
-        tables.insert(tables.end(), keys.begin(), keys.end());
-    }
+    for (const auto& name : registry.names())
+        for (const auto& t : registry.get(name).keys) {
+            // a method's keys of a framework section ([robot.<name>]) join its table
+            const auto same = std::find_if(tables.begin(), tables.end(),
+                                           [&](const auto& u) { return u.section == t.section; });
+            if (same == tables.end())
+                tables.push_back(t);
+            else
+                same->keys.insert(same->keys.end(), t.keys.begin(), t.keys.end());
+        }
     return tables;
 }
 

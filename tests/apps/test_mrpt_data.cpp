@@ -242,7 +242,7 @@ TEST(MrptData, UwbDemoAgainstItsGroundTruthFile) {
     // MRPT's key that was honoured is named in effective.ini, which runs again to the same
     // estimates
     const std::string eff = slurp(out + "/effective.ini");
-    EXPECT_NE(eff.find("range_sigma = 0.170000 // from MRPT's "
+    EXPECT_NE(eff.find("range_sigma = 0.17 // from MRPT's "
                        "[MetricMap_landmarksMap_00_likelihoodOpts] beaconRangesStd"),
               std::string::npos)
         << eff;

@@ -171,7 +171,7 @@ TEST(BeaconStudy, ThePapersRoomStudyMeetsTheGoalAndIsDeterministic) {
     ini->write("beacons_study", "agents_time", "2");
     BeaconLocalizer l;
     l.configure(*ini);
-    const auto scenario = sim::ScenarioConfig::load(*ini, BeaconRobotOptions::keys());
+    const auto scenario = sim::ScenarioConfig::load(*ini, BeaconRobotOptions::keyNames());
     const StudySetup setup{l.study(), l.studyUltrasonic(), l.studySensors()};
     const auto f = runStudy(setup, l.options(), scenario, 1);
     // the method choices: the run's own method at the 5 points, active heads, 100 trials each

@@ -95,12 +95,37 @@ TEST(KeyTable, BoundsTypesAndUnknownKeysAreOneLineNamingTheKey) {
     EXPECT_EQ(load("[toy]\nlength = 3\nreach = 4\n", w), "");
 }
 
-TEST(KeyTable, SavesInDeclaredOrderWithMrptsFormatsAndLoadsBackTheSame) {
+// MRPT's write of a double keeps 6 decimals (1e-7 became "0.000000"): effective.ini must give
+// back the very value the member held, in the INI's shortest words where they do.
+TEST(KeyTable, EffectiveIniGivesBackEveryDigit) {
+    for (const char* given :
+         {"0.2000000000001", "1.23456789", "2.5000000001", "9.87654321098765"}) {
+        Toy t;
+        ASSERT_EQ(load(std::string("[toy]\nlength = 0.2\nreach = ") + given + "\n", t), "");
+        Toy back;
+        ASSERT_EQ(load(saved(t), back), "") << saved(t);
+        EXPECT_EQ(back.reach, t.reach) << given << " -> " << saved(t);
+    }
+    // an angle read in degrees comes back to the radian it was, and reads as typed
+    for (const char* given : {"0.1", "33.3", "89.99999999999", "1e-5"}) {
+        Toy t;
+        ASSERT_EQ(load(std::string("[toy]\nangle = ") + given + "\n", t), "");
+        Toy back;
+        ASSERT_EQ(load(saved(t), back), "") << saved(t);
+        EXPECT_EQ(back.angle, t.angle) << given << " -> " << saved(t);
+    }
+    Toy t;
+    ASSERT_EQ(load("[toy]\nlength = 0.2\nangle = 33.3\nreach = 1.23456789\n", t), "");
+    EXPECT_NE(saved(t).find("angle = 33.3\n"), std::string::npos) << saved(t);
+    EXPECT_NE(saved(t).find("reach = 1.23456789\n"), std::string::npos) << saved(t);
+}
+
+TEST(KeyTable, SavesInDeclaredOrderAndLoadsBackTheSame) {
     Toy t;
     ASSERT_EQ(load("[toy]\nangle = 45\nnote = hi\nseed = 9\n", t), "");
     const std::string text = saved(t);
     EXPECT_EQ(text,
-              "[toy]\nlength = 2.500000\nangle = 45.000000\nreach = 4.000000\ncount = 7\n"
+              "[toy]\nlength = 2.5\nangle = 45\nreach = 4\ncount = 7\n"
               "on = true\nshape = round\nnote = hi\nseed = 9\n");
     Toy back;
     ASSERT_EQ(load(text, back), "");

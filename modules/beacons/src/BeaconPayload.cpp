@@ -1,5 +1,5 @@
 #include <mrloc/beacons/BeaconPayload.h>
-#include <mrloc/common/IniSection.h>
+#include <mrloc/common/KeyTable.h>
 #include <mrpt/core/format.h>
 #include <mrpt/math/wrap2pi.h>
 
@@ -15,24 +15,41 @@ mrpt::math::TPoint3D receiverAt(const mrpt::poses::CPose2D& pose,
 }
 }  // namespace
 
-const std::vector<std::string>& BeaconRobotOptions::keys() {
-    static const std::vector<std::string> k = {"receiver", "beacon_rate", "ranging_epochs"};
-    return k;
+const common::KeyTable<BeaconRobotOptions>& BeaconRobotOptions::keys() {
+    using R = BeaconRobotOptions;
+    static const auto table =
+        common::KeyTable<R>("robot.<name>")
+            .custom(
+                "receiver", "m", "", "(beacons) the beacon receiver on the robot, `x y z`",
+                [](common::IniSection& s, R& r) {
+                    const auto rc =
+                        s.reals("receiver", {r.receiver.x, r.receiver.y, r.receiver.z}, 3);
+                    r.receiver = {rc[0], rc[1], rc[2]};
+                },
+                [](const R& r) {
+                    return mrpt::format("%g %g %g", r.receiver.x, r.receiver.y, r.receiver.z);
+                })
+            .real("beacon_rate", MRLOC_KEY_FIELD(beaconRate), {0.01, 1000}, "Hz",
+                  "(beacons) most ranging epochs per second the robot asks the RF beacon for")
+            .integer("ranging_epochs", MRLOC_KEY_FIELD(rangingEpochs), 0, 1000000000L, "",
+                     "(beacons) stops asking after this many epochs (0: never); paper 001's 10 "
+                     "trials per point");
+    return table;
+}
+
+std::vector<std::string> BeaconRobotOptions::keyNames() {
+    std::vector<std::string> names;
+    for (const auto& k : keys().docs().keys) names.push_back(k.name);
+    return names;
 }
 
 void BeaconRobotOptions::load(const mrpt::config::CConfigFileBase& ini, const std::string& robot) {
     common::IniSection s(ini, "robot." + robot);  // the simulator checks the other keys
-    const auto rc = s.reals("receiver", {0, 0, 0.3}, 3);
-    receiver = {rc[0], rc[1], rc[2]};
-    beaconRate = s.real("beacon_rate", beaconRate, 0.01, 1000);
-    rangingEpochs = s.integer("ranging_epochs", long(rangingEpochs), 0, 1L << 40);
+    keys().load(s, *this);
 }
 
 void BeaconRobotOptions::save(mrpt::config::CConfigFileBase& t, const std::string& robot) const {
-    const std::string section = "robot." + robot;
-    t.write(section, "receiver", mrpt::format("%g %g %g", receiver.x, receiver.y, receiver.z));
-    t.write(section, "beacon_rate", beaconRate);
-    t.write(section, "ranging_epochs", std::to_string(rangingEpochs));
+    keys().save(*this, t, "robot." + robot);
 }
 
 BeaconPayload::BeaconPayload(const mrpt::config::CConfigFileBase& ini, const BeaconMap& beacons,

@@ -14,7 +14,7 @@ namespace mrloc::beacons {
 
 method::Scenario loadScenario(const mrpt::config::CConfigFileBase& ini) {
     method::Scenario s;
-    s.config = sim::ScenarioConfig::load(ini, BeaconRobotOptions::keys());
+    s.config = sim::ScenarioConfig::load(ini, BeaconRobotOptions::keyNames());
     std::vector<BeaconRobotOptions> robots(s.config.robots.size());
     for (size_t i = 0; i < robots.size(); ++i) robots[i].load(ini, s.config.robots[i].name);
     SensorOptions sensors;
@@ -298,7 +298,9 @@ void registerMethod(method::Registry& registry) {
     method::MethodUnit<BeaconLocalizer> m;
     m.name = "beacons";
     m.sections = {"beacons", "sensors", "ultrasonic", "beacons_study"};
-    m.keys = {SensorOptions::keys().docs(), UltrasonicOptions::keys().docs()};
+    m.keys = {BeaconRobotOptions::keys().docs(), BeaconOptions::keys().docs(),
+              SensorOptions::keys().docs(), UltrasonicOptions::keys().docs(),
+              StudyOptions::keys().docs()};
     // MRPT's range-only localization INIs (ro-localization, pf-localization's RO demo) name
     // no mrloc section: their beacon likelihood section says they are this method's
     m.foreignSections = {"MetricMap_landmarksMap_00_likelihoodOpts"};

@@ -2,30 +2,6 @@
 
 namespace mrloc::beacons {
 
-void RfBeaconOptions::load(common::IniSection& s, const BeaconMap& map) {
-    activeAiming = s.choice("aiming", "active", {"active", "fixed"}) == "active";
-    scheduling = s.choice("scheduling", "priority", {"priority", "round_robin"}) == "priority"
-                     ? Scheduling::Priority
-                     : Scheduling::RoundRobin;
-    minSpeed = s.real("min_speed", minSpeed, 1e-6, 100);
-    handoverMargin = s.real("handover_margin", handoverMargin, 0, 1000);
-    registrationTime = s.real("registration_time", registrationTime, 0, 1000);
-    shotInterval = s.real("shot_interval", shotInterval, 1e-4, 10);
-    shotsPerBeacon = int(s.integer("shots_per_beacon", shotsPerBeacon, 1, 10));
-    sections = readSections(s, map);
-}
-
-void RfBeaconOptions::save(mrpt::config::CConfigFileBase& t, const std::string& section) const {
-    t.write(section, "aiming", activeAiming ? "active" : "fixed");
-    t.write(section, "scheduling", scheduling == Scheduling::Priority ? "priority" : "round_robin");
-    t.write(section, "min_speed", minSpeed);
-    t.write(section, "handover_margin", handoverMargin);
-    t.write(section, "registration_time", registrationTime);
-    t.write(section, "shot_interval", shotInterval);
-    t.write(section, "shots_per_beacon", shotsPerBeacon);
-    saveSections(sections, t, section);
-}
-
 double RfBeaconOptions::shotAge(int id) const {
     for (const auto& s : sections.sections())
         for (size_t k = 0; k < s.beacons.size(); ++k)

@@ -31,6 +31,39 @@ std::string keyNumberText(double x) {
     return plain;
 }
 
+std::string keyValueText(double member, double (*toMember)(double), double (*toIni)(double)) {
+    const double ini = toIni ? toIni(member) : member;
+    const auto readsBack = [&](const std::string& text) {
+        const double x = std::strtod(text.c_str(), nullptr);
+        return (toMember ? toMember(x) : x) == member;
+    };
+    std::string text = keyNumberText(ini);
+    for (int digits = 13; digits <= 17 && !readsBack(text) && std::isfinite(ini); ++digits)
+        text = mrpt::format("%.*g", digits, ini);
+    return text;
+}
+
+std::string keyListText(const std::vector<double>& values) {
+    std::string out;
+    for (const double x : values) out += (out.empty() ? "" : " ") + keyValueText(x);
+    return out;
+}
+
+std::vector<double> readKeyList(IniSection& s, const std::string& name, std::vector<double> def,
+                                const KeyList& list, bool whole, const std::string& unit) {
+    const auto v = s.reals(name, std::move(def));
+    if (v.size() > list.most) s.fail(name, "at most " + std::to_string(list.most) + " values");
+    if (v.size() < list.least)
+        s.fail(name, list.least == 1 ? std::string("give at least one value")
+                                     : "give at least " + std::to_string(list.least) + " values");
+    for (const double x : v)
+        if (!(x >= list.lo && x <= list.hi) || (whole && x != std::floor(x)))
+            s.fail(name, std::string("each value must be ") + (whole ? "a whole number " : "") +
+                             "from " + keyNumberText(list.lo) + " to " + keyNumberText(list.hi) +
+                             (unit.empty() ? "" : " " + unit));
+    return v;
+}
+
 std::string keyRangeText(double lo, double hi, const std::string& loKey, const std::string& hiKey) {
     const bool hasLo = !loKey.empty() || std::isfinite(lo);
     const bool hasHi = !hiKey.empty() || std::isfinite(hi);

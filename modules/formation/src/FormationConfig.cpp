@@ -213,20 +213,8 @@ const common::KeyTable<FormationConfig>& FormationConfig::keys() {
             .integer("runs", MRLOC_KEY_FIELD(runs), 0, kMaxRuns, "",
                      "Monte Carlo runs per route and speed of the experiment (Table 1, figs. "
                      "11, 14, 15); 0: none")
-            .custom(
-                "experiment_speeds", "rad/s", "0.01 .. 1000, at most 8 values",
-                "the experiment's wheel speeds",
-                [](common::IniSection& s, Cfg& c) {
-                    c.experimentSpeeds = s.reals("experiment_speeds", c.experimentSpeeds);
-                    if (c.experimentSpeeds.empty())
-                        s.fail("experiment_speeds", "give at least one wheel speed");
-                    if (c.experimentSpeeds.size() > 8)  // each is `runs` runs of every route
-                        s.fail("experiment_speeds", "at most 8 wheel speeds");
-                    for (const double w : c.experimentSpeeds)
-                        if (!(w >= 1e-2 && w <= 1000))
-                            s.fail("experiment_speeds", "each from 0.01 to 1000 rad/s");
-                },
-                [](const Cfg& c) { return join(c.experimentSpeeds); }, "5.8 2.9")
+            .numbers("experiment_speeds", MRLOC_KEY_FIELD(experimentSpeeds), {1e-2, 1000, 8, 1},
+                     "rad/s", "the experiment's wheel speeds (each is `runs` runs of every route)")
             .custom(
                 "experiment_routes", "", "many_turns, patrol", "the experiment's routes",
                 [](common::IniSection& s, Cfg& c) {

@@ -10,22 +10,6 @@ namespace mrloc::framesync {
 
 namespace {
 
-std::string join(const std::vector<double>& xs) {
-    std::string out;
-    for (const double x : xs) out += (out.empty() ? "" : " ") + mrpt::format("%.17g", x);
-    return out;
-}
-
-std::vector<double> sweep(common::IniSection& s, const std::string& key, std::vector<double> def,
-                          double lo, double hi) {
-    const auto v = s.reals(key, std::move(def));
-    if (v.size() > size_t(FramesyncConfig::kMaxSweep))
-        s.fail(key, mrpt::format("at most %ld values", FramesyncConfig::kMaxSweep));
-    for (const double x : v)
-        if (!(x >= lo && x <= hi)) s.fail(key, mrpt::format("every value in [%g, %g]", lo, hi));
-    return v;
-}
-
 /** The default rig: side-looking sonars left and right (seed 004 fig. 3) and one ahead. */
 std::vector<SonarMount> defaultMounts() {
     using mrpt::poses::CPose3D;
@@ -143,7 +127,7 @@ const common::KeyTable<FramesyncConfig>& FramesyncConfig::keys() {
                     "robots started apart, doc/framesync.md \"The general transform\")")
             .integer("general_support", MRLOC_KEY_FIELD(team.manager.match.generalSupport), 2, 1000,
                      "walls", "own walls a general transform must put on the other robot's walls")
-            .family("sonar_<name>", "m, deg", "within 10 m",
+            .family("sonar_<name>", "m, deg", "within 10 m, at most 64 sonars",
                     "(simulator) a sonar on every robot: `x y z yaw_deg`; without any, `left` "
                     "`0 0.15 0.3 90`, `right` `0 -0.15 0.3 -90` and `front` `0.2 0 0.3 0`; at "
                     "most 64",
@@ -165,21 +149,14 @@ const common::KeyTable<FramesyncConfig>& FramesyncConfig::keys() {
                      "no experiment)")
             .integer("experiment_sweep_seeds", MRLOC_KEY_FIELD(sweepSeeds), 0, kMaxSeeds, "",
                      "seeds per value of each sweep (0: no sweep)")
-            .custom(
-                "experiment_noise", "m", "0 .. 1, at most 20 values",
-                "sonar noise sd of the noise sweep; each run sets `erp_baseline` to at least 20 "
-                "sd and `max_residual` to at least 4 sd",
-                [](common::IniSection& s, Cfg& c) {
-                    c.sweepNoise = sweep(s, "experiment_noise", c.sweepNoise, 0, 1);
-                },
-                [](const Cfg& c) { return join(c.sweepNoise); })
-            .custom(
-                "experiment_drift", "", "0 .. 100, at most 20 values",
-                "factors on every robot's four systematic odometry keys, of the drift sweep",
-                [](common::IniSection& s, Cfg& c) {
-                    c.sweepDrift = sweep(s, "experiment_drift", c.sweepDrift, 0, 100);
-                },
-                [](const Cfg& c) { return join(c.sweepDrift); });
+            .numbers("experiment_noise", MRLOC_KEY_FIELD(sweepNoise), {0, 1, size_t(kMaxSweep)},
+                     "m",
+                     "sonar noise sd of the noise sweep; each run sets `erp_baseline` to at least "
+                     "20 sd and `max_residual` to at least 4 sd")
+            .numbers("experiment_drift", MRLOC_KEY_FIELD(sweepDrift), {0, 100, size_t(kMaxSweep)},
+                     "",
+                     "factors on every robot's four systematic odometry keys, of the drift "
+                     "sweep");
     return table;
 }
 

@@ -2,6 +2,7 @@
 #include <mrloc/common/Names.h>
 #include <mrloc/method/Registry.h>
 #include <mrloc/report/ReportOptions.h>
+#include <mrloc/sim/Scenario.h>
 
 #include <algorithm>
 
@@ -12,7 +13,10 @@ const std::vector<std::string>& frameworkSections() {
     return s;
 }
 
-std::vector<common::SectionKeys> frameworkKeys() { return {report::ReportOptions::keys().docs()}; }
+std::vector<common::SectionKeys> frameworkKeys() {
+    return {sim::ScenarioOptions::keysDocs(), sim::WorldOptions::keys().docs(),
+            sim::RobotOptions::keys().docs(), report::ReportOptions::keys().docs()};
+}
 
 void Registry::add(Method m) {
     if (m.name.empty() || !m.localizer || !m.scenario || !m.headline)

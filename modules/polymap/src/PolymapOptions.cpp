@@ -13,27 +13,6 @@ namespace mrloc::polymap {
 
 namespace {
 
-std::string joinInts(const std::vector<int>& xs) {
-    std::string out;
-    for (const int x : xs) out += (out.empty() ? "" : " ") + std::to_string(x);
-    return out;
-}
-
-/** Whole numbers from 1 to `hi`, at most `most` of them. */
-std::vector<int> wholeNumbers(common::IniSection& s, const std::string& key,
-                              const std::vector<int>& def, double hi, size_t most,
-                              const std::string& what) {
-    std::vector<double> asReals(def.begin(), def.end());
-    std::vector<int> out;
-    for (const double x : s.reals(key, asReals)) {
-        if (x < 1 || x > hi || x != std::floor(x)) s.fail(key, what);
-        out.push_back((int)x);
-    }
-    if (out.size() > most)  // each is a column of the whole experiment
-        s.fail(key, "at most " + std::to_string(most) + " values");
-    return out;
-}
-
 std::vector<std::pair<std::string, RoomsLayout>> layoutWords() {
     std::vector<std::pair<std::string, RoomsLayout>> words;
     for (const auto l : kRoomsLayouts) words.push_back({roomsLayoutName(l), l});
@@ -187,16 +166,8 @@ const common::KeyTable<PolymapOptions>& PolymapOptions::keys() {
                         names += (names.empty() ? "" : " ") + strategyName(e);
                     return names.empty() ? std::string("none") : names;
                 })
-            .custom(
-                "random_points", "", "1 .. 1e6, at most 8 values",
-                "X of the randomized algorithm: one column per value (whole numbers)",
-                [](common::IniSection& s, Opt& o) {
-                    o.randomPoints =
-                        wholeNumbers(s, "random_points", o.randomPoints, 1e6, kMaxListValues,
-                                     "each X must be a whole number from 1 to 1000000");
-                    if (o.randomPoints.empty()) s.fail("random_points", "give at least one X");
-                },
-                [](const Opt& o) { return joinInts(o.randomPoints); })
+            .numbers("random_points", MRLOC_KEY_FIELD(randomPoints), {1, 1e6, kMaxListValues, 1},
+                     "", "X of the randomized algorithm: one column per value")
             .subSeed("elimination_seed", MRLOC_KEY_FIELD(eliminationSeed), "polymap elimination",
                      "seed of the randomized algorithm's points (the experiment's and the "
                      "drive's): absent, drawn from `[scenario] seed` (purpose `polymap "
@@ -204,25 +175,11 @@ const common::KeyTable<PolymapOptions>& PolymapOptions::keys() {
             .real("clearance", MRLOC_KEY_FIELD(clearance), {0, 10}, "m",
                   "probes keep this far from the overlay region's boundary and see no wall "
                   "edge-on")
-            .custom(
-                "sweep_steps", "", "1 .. 1000, at most 20 values",
-                "step counts of steps maps (the run's other steps keys) for paper 002's Figs. "
-                "6-7: mean path and time of each `elimination` algorithm against n; needs "
-                "`generator = steps`",
-                [](common::IniSection& s, Opt& o) {
-                    o.sweepSteps =
-                        wholeNumbers(s, "sweep_steps", o.sweepSteps, 1000, kMaxSweepSteps,
-                                     "each step count must be a whole number from 1 to 1000");
-                    if (!o.sweepSteps.empty() && (!o.mapFile.empty() || o.generator != "steps"))
-                        s.fail("sweep_steps",
-                               "the sweep is over steps maps: needs generator = steps");
-                    if (!o.sweepSteps.empty() && o.elimination.empty())
-                        s.fail("sweep_steps", "give the algorithms to sweep in elimination = ...");
-                },
-                [](const Opt& o) -> std::optional<std::string> {
-                    if (o.sweepSteps.empty()) return std::nullopt;
-                    return joinInts(o.sweepSteps);
-                })
+            .numbers("sweep_steps", MRLOC_KEY_FIELD(sweepSteps), {1, 1000, kMaxSweepSteps}, "",
+                     "step counts of steps maps (the run's other steps keys) for paper 002's "
+                     "Figs. 6-7: mean path and time of each `elimination` algorithm against n; "
+                     "needs `generator = steps`")
+            .savedOnlyIf([](const Opt& o) { return !o.sweepSteps.empty(); })
             .integer("sweep_starts", MRLOC_KEY_FIELD(sweepStarts), 1, 100000, "",
                      "at most this many starts per swept map, evenly spread")
             .custom(
@@ -373,6 +330,10 @@ void PolymapOptions::loadFromConfigFile(const mrpt::config::CConfigFileBase& src
     if (!start && !mapFile.empty() && !scanMode)
         s.fail("start", "required with a map file (start = x y)");
     headingKnown = s.has("heading");
+    if (!sweepSteps.empty() && (!mapFile.empty() || generator != "steps"))
+        s.fail("sweep_steps", "the sweep is over steps maps: needs generator = steps");
+    if (!sweepSteps.empty() && elimination.empty())
+        s.fail("sweep_steps", "give the algorithms to sweep in elimination = ...");
     if (scanMode && !elimination.empty())
         s.fail("elimination", "paper 002's experiment runs on exact views (localizer = exact)");
     // MRPT's own section for how a simplemap's scans go into the grid, when the INI holds it

@@ -1,4 +1,4 @@
-#include <mrloc/common/IniSection.h>
+#include <mrloc/common/KeyTable.h>
 #include <mrloc/sim/Robot.h>
 #include <mrpt/core/bits_math.h>
 #include <mrpt/core/format.h>
@@ -11,14 +11,10 @@
 
 namespace mrloc::sim {
 
-void RobotOptions::loadFromConfigFile(const mrpt::config::CConfigFileBase& src,
-                                      const std::string& section) {
-    common::IniSection s(src, section);
-    if (startInSection) {
-        const auto st = s.requireReals("start", 3);
-        start = mrpt::poses::CPose2D(st[0], st[1], mrpt::DEG2RAD(st[2]));
-    }
-    waypoints.clear();
+namespace {
+
+void loadWaypoints(common::IniSection& s, RobotOptions& r) {
+    r.waypoints.clear();
     std::stringstream list(s.text("waypoints", ""));
     for (std::string item; std::getline(list, item, ',');) {
         std::istringstream in(item);
@@ -26,47 +22,79 @@ void RobotOptions::loadFromConfigFile(const mrpt::config::CConfigFileBase& src,
         std::string extra;
         if (!(in >> x >> y) || (in >> extra) || !std::isfinite(x) || !std::isfinite(y))
             s.fail("waypoints", "expected 'x y, x y, ...', got '" + item + "'");
-        waypoints.push_back({x, y});
+        r.waypoints.push_back({x, y});
     }
-    loop = s.flag("loop", loop);
-    speed = s.real("speed", speed, 1e-3, 10);
-    maxTurnRate = s.real("max_turn_rate", maxTurnRate, 1e-3, 100);
-    odometryRate = s.real("odometry_rate", odometryRate, 0.1, 1000);
-    odometrySigmaXY = s.real("odometry_sigma_xy", odometrySigmaXY, 0, 1);
-    odometrySigmaPhi = s.real("odometry_sigma_phi", odometrySigmaPhi, 0, 1);
-    odometrySigmaPhiPerMetre = s.real("odometry_sigma_phi_per_m", odometrySigmaPhiPerMetre, 0, 1);
-    odometryScaleError = s.real("odometry_scale_error", odometryScaleError, -0.5, 0.5);
-    odometryScaleErrorSigma = s.real("odometry_scale_error_sigma", odometryScaleErrorSigma, 0, 0.5);
-    odometryHeadingDrift = mrpt::DEG2RAD(s.real("odometry_heading_drift", 0, -90, 90));
-    odometryHeadingDriftSigma = mrpt::DEG2RAD(s.real("odometry_heading_drift_sigma", 0, 0, 90));
-    actuationSigmaV = s.real("actuation_sigma_v", actuationSigmaV, 0, 1);
-    actuationSigmaW = s.real("actuation_sigma_w", actuationSigmaW, 0, 10);
+}
+
+std::string waypointsText(const RobotOptions& r) {
+    std::string wp;
+    for (const auto& p : r.waypoints)
+        wp += (wp.empty() ? "" : ", ") + mrpt::format("%g %g", p.x, p.y);
+    return wp;
+}
+
+}  // namespace
+
+const common::KeyTable<RobotOptions>& RobotOptions::keys() {
+    using R = RobotOptions;
+    static const auto table =
+        common::KeyTable<R>("robot.<name>")
+            .custom(
+                "start", "m m deg", "", "`x y heading_deg`",
+                [](common::IniSection& s, R& r) {
+                    if (!r.startInSection) return;  // the scenario sets it: the key is an error
+                    const auto st = s.requireReals("start", 3);
+                    r.start = mrpt::poses::CPose2D(st[0], st[1], mrpt::DEG2RAD(st[2]));
+                },
+                [](const R& r) -> std::optional<std::string> {
+                    if (!r.startInSection) return std::nullopt;
+                    return mrpt::format("%g %g %g", r.start.x(), r.start.y(),
+                                        mrpt::RAD2DEG(r.start.phi()));
+                },
+                "(required)")
+            .custom("waypoints", "m", "", "`x y, x y, ...`; none: the robot stands at `start`",
+                    loadWaypoints, [](const R& r) { return waypointsText(r); })
+            .flag("loop", MRLOC_KEY_FIELD(loop), "start over at the first waypoint")
+            .real("speed", MRLOC_KEY_FIELD(speed), {1e-3, 10}, "m/s", "driving speed")
+            .real("max_turn_rate", MRLOC_KEY_FIELD(maxTurnRate), {1e-3, 100}, "rad/s",
+                  "the fastest turn towards a waypoint")
+            .real("odometry_rate", MRLOC_KEY_FIELD(odometryRate), {0.1, 1000}, "Hz",
+                  "odometry readings")
+            .real("odometry_sigma_xy", MRLOC_KEY_FIELD(odometrySigmaXY), {0, 1}, "m/m",
+                  "odometry noise per metre travelled")
+            .real("odometry_sigma_phi", MRLOC_KEY_FIELD(odometrySigmaPhi), {0, 1}, "rad/rad",
+                  "heading noise per radian turned")
+            .real("odometry_sigma_phi_per_m", MRLOC_KEY_FIELD(odometrySigmaPhiPerMetre), {0, 1},
+                  "rad/m", "heading noise per metre travelled")
+            .real("odometry_scale_error", MRLOC_KEY_FIELD(odometryScaleError), {-0.5, 0.5}, "",
+                  "systematic: every distance odometry reads is (1 + this) times the true one "
+                  "(a wheel radius error)")
+            .real("odometry_scale_error_sigma", MRLOC_KEY_FIELD(odometryScaleErrorSigma), {0, 0.5},
+                  "",
+                  "drawn once per run: the scale error is N(`odometry_scale_error`, this); 0: "
+                  "none drawn")
+            .degrees("odometry_heading_drift", MRLOC_KEY_FIELD(odometryHeadingDrift), {-90, 90},
+                     "systematic heading drift per metre driven (unequal wheels); deg/m")
+            .degrees("odometry_heading_drift_sigma", MRLOC_KEY_FIELD(odometryHeadingDriftSigma),
+                     {0, 90}, "drawn once per run, per metre, as above; deg/m")
+            .real("actuation_sigma_v", MRLOC_KEY_FIELD(actuationSigmaV), {0, 1}, "",
+                  "relative noise on the commanded speed each step (0: none drawn)")
+            .real("actuation_sigma_w", MRLOC_KEY_FIELD(actuationSigmaW), {0, 10}, "rad/s",
+                  "noise on the commanded turn rate each step (0: none drawn)");
+    return table;
+}
+
+void RobotOptions::loadFromConfigFile(const mrpt::config::CConfigFileBase& src,
+                                      const std::string& section) {
+    common::IniSection s(src, section);
+    keys().load(s, *this);
     for (const auto& k : methodKeys) s.allowKey(k);
     s.finish();
 }
 
 void RobotOptions::saveToConfigFile(mrpt::config::CConfigFileBase& t,
                                     const std::string& section) const {
-    if (startInSection)
-        t.write(section, "start",
-                mrpt::format("%g %g %g", start.x(), start.y(), mrpt::RAD2DEG(start.phi())));
-    std::string wp;
-    for (const auto& p : waypoints)
-        wp += (wp.empty() ? "" : ", ") + mrpt::format("%g %g", p.x, p.y);
-    t.write(section, "waypoints", wp);
-    t.write(section, "loop", loop);
-    t.write(section, "speed", speed);
-    t.write(section, "max_turn_rate", maxTurnRate);
-    t.write(section, "odometry_rate", odometryRate);
-    t.write(section, "odometry_sigma_xy", odometrySigmaXY);
-    t.write(section, "odometry_sigma_phi", odometrySigmaPhi);
-    t.write(section, "odometry_sigma_phi_per_m", odometrySigmaPhiPerMetre);
-    t.write(section, "odometry_scale_error", odometryScaleError);
-    t.write(section, "odometry_scale_error_sigma", odometryScaleErrorSigma);
-    t.write(section, "odometry_heading_drift", mrpt::RAD2DEG(odometryHeadingDrift));
-    t.write(section, "odometry_heading_drift_sigma", mrpt::RAD2DEG(odometryHeadingDriftSigma));
-    t.write(section, "actuation_sigma_v", actuationSigmaV);
-    t.write(section, "actuation_sigma_w", actuationSigmaW);
+    keys().save(*this, t, section);
 }
 
 Robot::Robot(RobotOptions options) : options_(std::move(options)), pose_(options_.start) {}

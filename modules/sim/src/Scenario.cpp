@@ -1,6 +1,6 @@
 #include <mrloc/common/AtomicFile.h>
 #include <mrloc/common/Error.h>
-#include <mrloc/common/IniSection.h>
+#include <mrloc/common/KeyTable.h>
 #include <mrloc/common/Names.h>
 #include <mrloc/common/Seeds.h>
 #include <mrloc/sim/Scenario.h>
@@ -17,65 +17,163 @@
 
 namespace mrloc::sim {
 
+namespace {
+
+using SO = ScenarioOptions;
+
+std::string where(const common::IniSection& s) {
+    return common::configOrigin(s.config()) + ": [" + s.section() + "]";
+}
+
+void loadGroundTruthPath(common::IniSection& s, SO& o) {
+    o.groundTruth.path = s.text("ground_truth", o.groundTruth.path);
+    if (o.groundTruth.path.empty()) return;
+    o.groundTruth.path = common::pathFromIni(common::configOrigin(s.config()), o.groundTruth.path);
+}
+
+void loadRobots(common::IniSection& s, SO& o) {
+    o.robots.clear();
+    std::istringstream in(s.text("robots", ""));
+    std::set<std::string> seen;
+    for (std::string r; in >> r;) {
+        common::checkRobotName(r, where(s) + " robots");
+        if (!seen.insert(r).second) s.fail("robots", "robot '" + r + "' is listed twice");
+        o.robots.push_back(r);
+    }
+    if (o.robots.size() > SO::kMaxRobots)
+        s.fail("robots", "more than " + std::to_string(SO::kMaxRobots) + " robots");
+}
+
+}  // namespace
+
+const common::KeyTable<ScenarioOptions>& ScenarioOptions::localizeKeys() {
+    static const auto table =
+        common::KeyTable<SO>("scenario")
+            .custom(
+                "name", "", "", "names the output folder `out/<name>/` and files `<name>.rawlog`",
+                [](common::IniSection& s, SO& o) {
+                    o.name = s.text("name", o.name);
+                    common::checkName(o.name, where(s) + " name");
+                },
+                [](const SO& o) { return o.name; })
+            .text("method", MRLOC_KEY_FIELD(method),
+                  "localization method; without it, the one method whose sections the INI holds "
+                  "(MRPT's range-only INIs: beacons), else an error listing the methods")
+            .custom(
+                "seed", "", common::keyRangeText(0, double(common::kMaxSeed)),
+                "random seed: every draw of the run derives from it; `--seed` overrides",
+                [](common::IniSection& s, SO& o) {
+                    o.seed =
+                        (unsigned long)s.integer("seed", long(o.seed), 0, long(common::kMaxSeed));
+                },
+                [](const SO& o) { return std::to_string(o.seed); })
+            // the ground truth's keys are written only with a ground-truth file
+            .savedFromHereOnlyIf([](const SO& o) { return !o.groundTruth.path.empty(); })
+            .custom("ground_truth", "", "",
+                    "for `mrloc localize`: a ground-truth file (a relative path is taken from "
+                    "the INI's folder); without it, where MRPT's apps look for it on a log "
+                    "recorded elsewhere (MRPT's `[ro-localization] groundTruthFile`, only when "
+                    "the log is that INI's own `rawlog_file`; else `<rawlog stem>_GT.txt` beside "
+                    "the rawlog; either offset by the INI's `[OdometryEstimation] "
+                    "odometry_X/Y/PHI`, its format told by its columns), then `<rawlog "
+                    "stem>.<robot>.gt.txt` beside the rawlog (mrloc's simulator). metrics.json "
+                    "`ground_truth_from` and the report say which was used. A `[scenario]` "
+                    "holding only `name`, `method`, `seed` and `ground_truth*` keys describes no "
+                    "simulation: it can be put on top of an MRPT INI, and such a run's "
+                    "effective.ini keeps only those keys, so it runs again as is",
+                    loadGroundTruthPath, [](const SO& o) { return o.groundTruth.path; })
+            .choice("ground_truth_format", MRLOC_KEY_FIELD(groundTruth.format),
+                    common::GroundTruthSource::formats(),
+                    "`tum` (`t x y z qx qy qz qw`), `index_x_y_phi` (`i x y phi`: MRPT's "
+                    "`*_GT.txt`), `x_y_z_yaw_pitch_roll` (one row per step: MRPT's "
+                    "`*_ground_truth_robot_path.txt`); `%` and `#` lines are comments. The step "
+                    "formats' time base: step i is the robot's i-th odometry reading (one per "
+                    "action in an actions + sensory-frames rawlog)")
+            .custom(
+                "ground_truth_robot", "", "",
+                "the robot it belongs to (a rawlog from MRPT's tools has one, `robot`)",
+                [](common::IniSection& s, SO& o) {
+                    o.groundTruth.robot = s.text("ground_truth_robot", o.groundTruth.robot);
+                    common::checkRobotName(o.groundTruth.robot, where(s) + " ground_truth_robot");
+                },
+                [](const SO& o) { return o.groundTruth.robot; })
+            .custom(
+                "ground_truth_offset", "m m deg", "",
+                "`x y phi_deg`: the file's frame in the estimates' frame, pose = offset (+) row "
+                "(MRPT's UWB demo: its `[OdometryEstimation] odometry_X/Y/PHI`, `2 4 0`)",
+                [](common::IniSection& s, SO& o) {
+                    const auto off = s.reals("ground_truth_offset", {0, 0, 0}, 3);
+                    o.groundTruth.offset =
+                        mrpt::poses::CPose3D(off[0], off[1], 0, mrpt::DEG2RAD(off[2]), 0, 0);
+                },
+                [](const SO& o) {
+                    const auto& off = o.groundTruth.offset;
+                    return mrpt::format("%g %g %g", off.x(), off.y(), mrpt::RAD2DEG(off.yaw()));
+                });
+    return table;
+}
+
+const common::KeyTable<ScenarioOptions>& ScenarioOptions::simulationKeys() {
+    static const auto table =
+        common::KeyTable<SO>("scenario")
+            .real("duration", MRLOC_KEY_FIELD(duration), {1e-3, 1e6}, "s", "simulated time")
+            .real("dt", MRLOC_KEY_FIELD(dt), {1e-4, 1.0}, "s",
+                  "simulation step; `duration / dt` at most 1e7 steps")
+            .custom(
+                "start_time", "s", "1 .. 4e9", "time stamp of t = 0, seconds since 1970",
+                [](common::IniSection& s, SO& o) {
+                    o.startTime = s.real("start_time", o.startTime, 1.0, 4e9);
+                },
+                [](const SO& o) { return mrpt::format("%.3f", o.startTime); },
+                common::keyNumberText(SO{}.startTime))
+            .real("ground_truth_rate", MRLOC_KEY_FIELD(groundTruthRate), {0.1, 1000}, "Hz",
+                  "ground-truth rows per second")
+            .real("odometry_error_scale", MRLOC_KEY_FIELD(odometryErrorScale), {0, 100}, "",
+                  "multiplies every robot's systematic odometry errors (`odometry_scale_error`, "
+                  "`odometry_heading_drift` and their sigmas): one key for a sweep of odometry "
+                  "quality (`mrloc batch --grid scenario.odometry_error_scale=1,2,3`; "
+                  "framesync's `experiment_drift` is this sweep)")
+            // written only when set: the effective.ini of every run before the key is unchanged
+            .savedOnlyIf([](const SO& o) { return o.odometryErrorScale != 1; })
+            .custom(
+                "robots", "", "at most 1000",
+                "robot names separated by spaces; each has `[robot.<name>]`", loadRobots,
+                [](const SO& o) {
+                    std::string list;
+                    for (const auto& r : o.robots) list += (list.empty() ? "" : " ") + r;
+                    return list;
+                },
+                "(required to simulate)");
+    return table;
+}
+
+common::SectionKeys ScenarioOptions::keysDocs() {
+    auto docs = localizeKeys().docs();
+    const auto simulation = simulationKeys().docs();
+    docs.keys.insert(docs.keys.end(), simulation.keys.begin(), simulation.keys.end());
+    return docs;
+}
+
 void ScenarioOptions::loadFromConfigFile(const mrpt::config::CConfigFileBase& src,
                                          const std::string& section) {
     *this = ScenarioOptions{};  // every key absent takes the struct's default: written once
     common::IniSection s(src, section);
-    name = s.text("name", name);
-    common::checkName(name, common::configOrigin(src) + ": [" + section + "] name");
-    method = s.text("method", method);  // none given: the app finds it from the INI's sections
-    seed = (unsigned long)s.integer("seed", long(seed), 0, long(common::kMaxSeed));
-    duration = s.real("duration", duration, 1e-3, 1e6);
-    dt = s.real("dt", dt, 1e-4, 1.0);
+    localizeKeys().load(s, *this);
+    simulationKeys().load(s, *this);
+    // after its format and robot, which a wrong file must not hide
+    if (!groundTruth.path.empty() && !std::filesystem::is_regular_file(groundTruth.path))
+        s.fail("ground_truth", "no such file '" + common::pathInWords(groundTruth.path) +
+                                   "' (a relative path is taken from the INI's folder)");
     if (duration / dt > kMaxSteps)
         s.fail("dt", mrpt::format("duration / dt = %.3g simulation steps, more than the %.3g "
                                   "allowed: a longer dt or a shorter duration",
                                   duration / dt, kMaxSteps));
-    startTime = s.real("start_time", startTime, 1.0, 4e9);
-    groundTruthRate = s.real("ground_truth_rate", groundTruthRate, 0.1, 1000);
-    odometryErrorScale = s.real("odometry_error_scale", odometryErrorScale, 0, 100);
-    robots.clear();
-    std::istringstream in(s.text("robots", ""));
-    std::set<std::string> seen;
-    for (std::string r; in >> r;) {
-        common::checkRobotName(r, common::configOrigin(src) + ": [" + section + "] robots");
-        if (!seen.insert(r).second) s.fail("robots", "robot '" + r + "' is listed twice");
-        robots.push_back(r);
-    }
-    if (robots.size() > kMaxRobots)
-        s.fail("robots", "more than " + std::to_string(kMaxRobots) + " robots");
-    groundTruth = {};
-    groundTruth.path = s.text("ground_truth", groundTruth.path);
-    groundTruth.format =
-        s.choice("ground_truth_format", "tum", common::GroundTruthSource::formats());
-    groundTruth.robot = s.text("ground_truth_robot", groundTruth.robot);
-    common::checkRobotName(groundTruth.robot,
-                           common::configOrigin(src) + ": [" + section + "] ground_truth_robot");
-    const auto off = s.reals("ground_truth_offset", {0, 0, 0}, 3);
-    groundTruth.offset = mrpt::poses::CPose3D(off[0], off[1], 0, mrpt::DEG2RAD(off[2]), 0, 0);
-    if (!groundTruth.path.empty()) {
-        namespace fs = std::filesystem;
-        groundTruth.path = common::pathFromIni(common::configOrigin(src), groundTruth.path);
-        if (!fs::is_regular_file(groundTruth.path))
-            s.fail("ground_truth", "no such file '" + common::pathInWords(groundTruth.path) +
-                                       "' (a relative path is taken from the INI's folder)");
-    }
     s.finish();
 }
 
 void ScenarioOptions::saveLocalizeKeys(mrpt::config::CConfigFileBase& t,
                                        const std::string& section) const {
-    t.write(section, "name", name);
-    t.write(section, "method", method);
-    t.write(section, "seed", std::to_string(seed));
-    if (!groundTruth.path.empty()) {
-        t.write(section, "ground_truth", groundTruth.path);
-        t.write(section, "ground_truth_format", groundTruth.format);
-        t.write(section, "ground_truth_robot", groundTruth.robot);
-        t.write(section, "ground_truth_offset",
-                mrpt::format("%g %g %g", groundTruth.offset.x(), groundTruth.offset.y(),
-                             mrpt::RAD2DEG(groundTruth.offset.yaw())));
-    }
+    localizeKeys().save(*this, t, section);
 }
 
 bool ScenarioOptions::describesSimulation(const mrpt::config::CConfigFileBase& ini,
@@ -98,16 +196,8 @@ bool ScenarioOptions::describesSimulation(const mrpt::config::CConfigFileBase& i
 
 void ScenarioOptions::saveToConfigFile(mrpt::config::CConfigFileBase& t,
                                        const std::string& section) const {
-    saveLocalizeKeys(t, section);
-    t.write(section, "duration", duration);
-    t.write(section, "dt", dt);
-    t.write(section, "start_time", mrpt::format("%.3f", startTime));
-    t.write(section, "ground_truth_rate", groundTruthRate);
-    // written only when set: the effective.ini of every run before the key is unchanged
-    if (odometryErrorScale != 1) t.write(section, "odometry_error_scale", odometryErrorScale);
-    std::string list;
-    for (const auto& r : robots) list += (list.empty() ? "" : " ") + r;
-    t.write(section, "robots", list);
+    localizeKeys().save(*this, t, section);
+    simulationKeys().save(*this, t, section);
 }
 
 namespace {

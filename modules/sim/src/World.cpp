@@ -1,4 +1,4 @@
-#include <mrloc/common/IniSection.h>
+#include <mrloc/common/KeyTable.h>
 #include <mrloc/sim/World.h>
 #include <mrpt/core/format.h>
 
@@ -9,47 +9,96 @@ namespace mrloc::sim {
 
 using mrpt::math::TPoint3D;
 
-void WorldOptions::loadFromConfigFile(const mrpt::config::CConfigFileBase& src,
-                                      const std::string& section) {
-    *this = WorldOptions{};  // every key absent takes the struct's default: written once
-    common::IniSection s(src, section);
-    const auto size = s.reals("size", {sizeX, sizeY, height}, 3);
-    for (int i = 0; i < 3; ++i)
-        if (!(size[i] > 0)) s.fail("size", "every extent must be positive");
-    if (size[0] > kMaxSide || size[1] > kMaxSide || size[2] > kMaxHeight)
-        s.fail("size", mrpt::format("at most %g x %g x %g m", kMaxSide, kMaxSide, kMaxHeight));
-    sizeX = size[0], sizeY = size[1], height = size[2];
-    resolution = s.real("resolution", resolution, 0.005, 1.0);
-    // OctoMap addresses a voxel with 16-bit keys centred on the origin.
-    const double octomapReach = 32000 * resolution;
-    if (std::max({sizeX, sizeY, height}) + resolution > octomapReach)
-        s.fail("size", mrpt::format("beyond OctoMap's reach of %g m at resolution %g m: "
-                                    "use a coarser resolution",
-                                    octomapReach, resolution));
+namespace {
+
+void loadObstacles(common::IniSection& s, WorldOptions& w) {
     s.allowPrefix("obstacle_");
-    obstacles.clear();
+    w.obstacles.clear();
     for (const auto& key : s.keys()) {
         if (key.rfind("obstacle_", 0) != 0) continue;
         const auto v = s.reals(key, {}, 6);
         if (v[0] >= v[3] || v[1] >= v[4] || v[2] >= v[5])
             s.fail(key, "expected xmin ymin zmin xmax ymax zmax with min < max");
         Box b{key.substr(9), {v[0], v[1], v[2]}, {v[3], v[4], v[5]}};
-        if (!contains(b.min, resolution) || !contains(b.max, resolution))
+        if (!w.contains(b.min, w.resolution) || !w.contains(b.max, w.resolution))
             s.fail(key, "the obstacle must lie inside the world (size)");
-        obstacles.push_back(b);
+        w.obstacles.push_back(b);
     }
+}
+
+void saveObstacles(const WorldOptions& w, mrpt::config::CConfigFileBase& t,
+                   const std::string& section) {
+    for (const auto& b : w.obstacles)
+        t.write(section, "obstacle_" + b.name,
+                mrpt::format("%g %g %g %g %g %g", b.min.x, b.min.y, b.min.z, b.max.x, b.max.y,
+                             b.max.z));
+}
+
+void loadPillars(common::IniSection& s, WorldOptions& w) {
     s.allowPrefix("pillar_");
-    pillars.clear();
+    w.pillars.clear();
     for (const auto& key : s.keys()) {
         if (key.rfind("pillar_", 0) != 0) continue;
         const auto v = s.reals(key, {}, 4);
         if (!(v[2] > 0) || !(v[3] > 0)) s.fail(key, "expected x y radius height, both positive");
         Pillar p{key.substr(7), v[0], v[1], v[2], v[3]};
-        if (!contains({p.x - p.radius, p.y - p.radius, 0}, resolution) ||
-            !contains({p.x + p.radius, p.y + p.radius, p.height}, resolution))
+        if (!w.contains({p.x - p.radius, p.y - p.radius, 0}, w.resolution) ||
+            !w.contains({p.x + p.radius, p.y + p.radius, p.height}, w.resolution))
             s.fail(key, "the pillar must lie inside the world (size)");
-        pillars.push_back(p);
+        w.pillars.push_back(p);
     }
+}
+
+void savePillars(const WorldOptions& w, mrpt::config::CConfigFileBase& t,
+                 const std::string& section) {
+    for (const auto& p : w.pillars)
+        t.write(section, "pillar_" + p.name,
+                mrpt::format("%g %g %g %g", p.x, p.y, p.radius, p.height));
+}
+
+}  // namespace
+
+const common::KeyTable<WorldOptions>& WorldOptions::keys() {
+    using W = WorldOptions;
+    static const auto table =
+        common::KeyTable<W>("world")
+            .custom(
+                "size", "m", mrpt::format("at most %g x %g x %g", kMaxSide, kMaxSide, kMaxHeight),
+                "room `x y height`; the room is [0, x] x [0, y] x [0, height]",
+                [](common::IniSection& s, W& w) {
+                    const auto size = s.reals("size", {w.sizeX, w.sizeY, w.height}, 3);
+                    for (int i = 0; i < 3; ++i)
+                        if (!(size[i] > 0)) s.fail("size", "every extent must be positive");
+                    if (size[0] > kMaxSide || size[1] > kMaxSide || size[2] > kMaxHeight)
+                        s.fail("size", mrpt::format("at most %g x %g x %g m", kMaxSide, kMaxSide,
+                                                    kMaxHeight));
+                    w.sizeX = size[0], w.sizeY = size[1], w.height = size[2];
+                },
+                [](const W& w) { return mrpt::format("%g %g %g", w.sizeX, w.sizeY, w.height); })
+            .real("resolution", MRLOC_KEY_FIELD(resolution), {0.005, 1.0}, "m",
+                  "OctoMap voxel size; walls and obstacles may fill at most 1e7 voxels, and the "
+                  "room must lie within 32000 voxels of the origin")
+            .family("obstacle_<name>", "m", "inside the room",
+                    "box `xmin ymin zmin xmax ymax zmax`, blocks lines of sight", loadObstacles,
+                    saveObstacles)
+            .family("pillar_<name>", "m", "inside the room",
+                    "vertical cylinder on the floor `x y radius height`: a column, a person, a "
+                    "bin (framesync's sonars echo off it diffusely)",
+                    loadPillars, savePillars);
+    return table;
+}
+
+void WorldOptions::loadFromConfigFile(const mrpt::config::CConfigFileBase& src,
+                                      const std::string& section) {
+    *this = WorldOptions{};  // every key absent takes the struct's default: written once
+    common::IniSection s(src, section);
+    keys().load(s, *this);
+    // OctoMap addresses a voxel with 16-bit keys centred on the origin.
+    const double octomapReach = 32000 * resolution;
+    if (std::max({sizeX, sizeY, height}) + resolution > octomapReach)
+        s.fail("size", mrpt::format("beyond OctoMap's reach of %g m at resolution %g m: "
+                                    "use a coarser resolution",
+                                    octomapReach, resolution));
     if (filledVoxels() > kMaxVoxels)
         s.fail("resolution", mrpt::format("walls and obstacles would fill %.3g voxels, more than "
                                           "the %.3g allowed: use a coarser resolution",
@@ -59,15 +108,7 @@ void WorldOptions::loadFromConfigFile(const mrpt::config::CConfigFileBase& src,
 
 void WorldOptions::saveToConfigFile(mrpt::config::CConfigFileBase& t,
                                     const std::string& section) const {
-    t.write(section, "size", mrpt::format("%g %g %g", sizeX, sizeY, height));
-    t.write(section, "resolution", resolution);
-    for (const auto& b : obstacles)
-        t.write(section, "obstacle_" + b.name,
-                mrpt::format("%g %g %g %g %g %g", b.min.x, b.min.y, b.min.z, b.max.x, b.max.y,
-                             b.max.z));
-    for (const auto& p : pillars)
-        t.write(section, "pillar_" + p.name,
-                mrpt::format("%g %g %g %g", p.x, p.y, p.radius, p.height));
+    keys().save(*this, t, section);
 }
 
 double WorldOptions::filledVoxels() const {

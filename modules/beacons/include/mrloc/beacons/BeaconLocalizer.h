@@ -8,6 +8,7 @@
 #include <mrloc/beacons/BeaconTracker.h>
 #include <mrloc/beacons/RangeWindow.h>
 #include <mrloc/beacons/RfBeacon.h>
+#include <mrloc/common/KeyTable.h>
 #include <mrloc/common/Localizer.h>
 #include <mrloc/common/OdometryPath.h>
 #include <mrpt/config/CLoadableOptions.h>
@@ -40,6 +41,8 @@ struct BeaconOptions : public mrpt::config::CLoadableOptions {
     /** Where the start pose came from when [beacons] start is absent: MRPT's key, or empty. */
     std::string startFrom;
 
+    /** Every key: name, member, bounds, unit, doc (doc/ini.md's table is made from it). */
+    static const common::KeyTable<BeaconOptions>& keys();
     void loadFromConfigFile(const mrpt::config::CConfigFileBase& source,
                             const std::string& section) override;
     void saveToConfigFile(mrpt::config::CConfigFileBase& target,

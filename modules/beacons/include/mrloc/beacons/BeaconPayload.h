@@ -21,7 +21,11 @@ struct BeaconRobotOptions {
     double beaconRate = 5;   ///< beacon_rate: most ranging epochs it asks for (Hz)
     long rangingEpochs = 0;  ///< ranging_epochs: stops asking after this many (0: never)
 
-    static const std::vector<std::string>& keys();
+    /** The beacon method's keys of [robot.<name>] (doc/ini.md shows them with the
+     *  simulator's). */
+    static const common::KeyTable<BeaconRobotOptions>& keys();
+    /** Their names, which the simulator accepts in [robot.<name>]. */
+    static std::vector<std::string> keyNames();
     void load(const mrpt::config::CConfigFileBase& ini, const std::string& robot);
     void save(mrpt::config::CConfigFileBase& target, const std::string& robot) const;
 };

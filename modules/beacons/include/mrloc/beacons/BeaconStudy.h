@@ -20,6 +20,7 @@
 #include <mrloc/beacons/PaperValues.h>
 #include <mrloc/beacons/Ultrasonic.h>
 #include <mrloc/common/IniSection.h>
+#include <mrloc/common/KeyTable.h>
 #include <mrpt/math/TPoint2D.h>
 
 #include <cstdint>
@@ -193,6 +194,8 @@ struct StudyOptions {
     double agentsTime = 10;  ///< s of channel time per layout
     int agentsLayouts = 5;
 
+    /** Every key: name, member, bounds, unit, doc (doc/ini.md's table is made from it). */
+    static const common::KeyTable<StudyOptions>& keys();
     void load(const mrpt::config::CConfigFileBase& ini, const std::string& section);
     void save(mrpt::config::CConfigFileBase& target, const std::string& section) const;
     /** Trials the whole study runs at most (the work estimate), for a run of `runPoints`

@@ -36,9 +36,6 @@ struct RfBeaconOptions {
     /** How long before the end of its epoch beacon `id` fired, on average over its rounds
      *  (its section's firing order times shot_interval); 0 for a beacon in no section. */
     double shotAge(int id) const;
-
-    void load(common::IniSection& s, const BeaconMap& map);
-    void save(mrpt::config::CConfigFileBase& target, const std::string& section) const;
 };
 
 struct RfBeaconStats {

@@ -50,6 +50,12 @@ struct SectionKeys {
 
 /** "1.7e+09" as an INI would say it; integers without a point. */
 std::string keyNumberText(double x);
+/** A real's value as effective.ini writes it: keyNumberText when that reads back (through
+ *  `toMember`) as the very value the member holds, else every digit it takes (MRPT's own
+ *  write of a double keeps 6 decimals: 1e-7 became 0, and a run from effective.ini was not
+ *  the run). */
+std::string keyValueText(double member, double (*toMember)(double) = nullptr,
+                         double (*toIni)(double) = nullptr);
 /** "0 .. 10", "at least 0", "at most 5", or "" when unbounded. */
 std::string keyRangeText(double lo, double hi, const std::string& loKey = "",
                          const std::string& hiKey = "");
@@ -70,6 +76,22 @@ struct KeyRange {
     KeyBound hi = IniSection::kInf;
 };
 
+/** The values a list key takes: each from lo to hi (and whole, when `whole` or the member's
+ *  element type is integral), at least `least` and at most `most` of them (each value is
+ *  work: a column, a sweep, a room of trials). */
+struct KeyList {
+    double lo, hi;
+    size_t most;
+    size_t least = 0;
+    bool whole = false;
+};
+/** A list as effective.ini and the docs write it: "3 4 5", each value as keyNumberText. */
+std::string keyListText(const std::vector<double>& values);
+/** Reads a list key, refusing too many or too few values and any out of range (or not whole,
+ *  when `whole`): one check for every list key. */
+std::vector<double> readKeyList(IniSection& s, const std::string& name, std::vector<double> def,
+                                const KeyList& list, bool whole, const std::string& unit);
+
 template <class Options>
 class KeyTable {
  public:
@@ -81,13 +103,17 @@ class KeyTable {
     template <class Field>
     KeyTable& real(const std::string& name, Field field, KeyRange range, std::string unit,
                    std::string doc) {
-        return number(name, field, range, std::move(unit), std::move(doc), 1.0, 1.0);
+        const auto same = [](double x) { return x; };
+        return number(name, field, range, std::move(unit), std::move(doc), same, same);
     }
     /** An angle: degrees in the INI, radians in the member. */
     template <class Field>
     KeyTable& degrees(const std::string& name, Field field, KeyRange range, std::string doc) {
-        // as mrpt::DEG2RAD and RAD2DEG compute it, so values round as they always did
-        return number(name, field, range, "deg", std::move(doc), M_PI / 180, 180 / M_PI);
+        // mrpt::DEG2RAD and RAD2DEG themselves ((x * pi) / 180, not x * (pi / 180)): values
+        // round as they did before the table
+        return number(
+            name, field, range, "deg", std::move(doc), [](double x) { return mrpt::DEG2RAD(x); },
+            [](double x) { return mrpt::RAD2DEG(x); });
     }
     /** A whole number into any integral member. */
     template <class Field>
@@ -159,6 +185,32 @@ class KeyTable {
         std::vector<std::pair<std::string, std::string>> pairs;
         for (const auto& w : words) pairs.push_back({w, w});
         return choice(name, field, pairs, std::move(doc));
+    }
+    /** A list of numbers into a std::vector of reals or of integers. An empty list is
+     *  written empty. */
+    template <class Field>
+    KeyTable& numbers(const std::string& name, Field field, KeyList list, std::string unit,
+                      std::string doc) {
+        using Element =
+            typename std::decay_t<decltype(field(std::declval<Options&>()))>::value_type;
+        const bool whole = list.whole || std::is_integral_v<Element>;
+        std::string range =
+            keyRangeText(list.lo, list.hi) + ", at most " + std::to_string(list.most) + " values";
+        if (list.least > 0) range += " (at least " + std::to_string(list.least) + ")";
+        if (whole) range += ", whole numbers";
+        Key k(KeyDoc{name, "", unit, range, std::move(doc)});
+        auto asReals = [=](const Options& o) {
+            return std::vector<double>(field(o).begin(), field(o).end());
+        };
+        k.load = [=](IniSection& s, Options& o) {
+            const auto v = readKeyList(s, name, asReals(o), list, whole, unit);
+            field(o).assign(v.begin(), v.end());  // whole numbers: checked before the cast
+        };
+        k.save = [=](const Options& o, mrpt::config::CConfigFileBase& t, const std::string& sec) {
+            t.write(sec, name, keyListText(asReals(o)));
+        };
+        k.defaultText = [=](const Options& o) { return keyListText(asReals(o)); };
+        return add(std::move(k));
     }
     /** A key read and written by the method's own code (a list of pairs, a pose). `save`
      *  returns nothing when the key is left out of effective.ini (an override not given);
@@ -287,21 +339,21 @@ class KeyTable {
 
     template <class Field>
     KeyTable& number(const std::string& name, Field field, KeyRange range, std::string unit,
-                     std::string doc, double toMember, double toIni) {
+                     std::string doc, double (*toMember)(double), double (*toIni)(double)) {
         Key k(KeyDoc{name, "", std::move(unit),
                      keyRangeText(range.lo.value, range.hi.value, range.lo.key, range.hi.key),
                      std::move(doc)});
-        k.inIniUnit = [=](const Options& o) { return double(field(o)) * toIni; };
+        k.inIniUnit = [=](const Options& o) { return toIni(double(field(o))); };
         k.load = [=, lo = boundOf(range.lo), hi = boundOf(range.hi)](IniSection& s, Options& o) {
             if (s.has(name))
-                field(o) = s.real(name, 0.0, lo(o), hi(o)) * toMember;
+                field(o) = toMember(s.real(name, 0.0, lo(o), hi(o)));
             else
                 (void)s.real(name, 0.0);  // asked for: finish() accepts it
         };
         k.save = [=](const Options& o, mrpt::config::CConfigFileBase& t, const std::string& sec) {
-            t.write(sec, name, double(field(o)) * toIni);
+            t.write(sec, name, keyValueText(double(field(o)), toMember, toIni));
         };
-        k.defaultText = [=](const Options& o) { return keyNumberText(double(field(o)) * toIni); };
+        k.defaultText = [=](const Options& o) { return keyNumberText(toIni(double(field(o)))); };
         return add(std::move(k));
     }
 

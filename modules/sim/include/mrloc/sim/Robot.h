@@ -1,6 +1,7 @@
 #pragma once
 // A simulated robot: a unicycle that a method steers each step (waypoints, stop, go, turn,
 // drive), with optional actuation noise, and its options (section [robot.<name>]).
+#include <mrloc/common/KeyTable.h>
 #include <mrpt/config/CLoadableOptions.h>
 #include <mrpt/math/TPoint2D.h>
 #include <mrpt/math/TPoint3D.h>
@@ -46,6 +47,9 @@ struct RobotOptions : public mrpt::config::CLoadableOptions {
      *  mounting, say): accepted here, not read. */
     std::vector<std::string> methodKeys;
 
+    /** The simulator's keys of [robot.<name>], declared once (loading, effective.ini,
+     *  doc/ini.md); a method's own keys are in its table of the same section. */
+    static const common::KeyTable<RobotOptions>& keys();
     void loadFromConfigFile(const mrpt::config::CConfigFileBase& source,
                             const std::string& section) override;
     void saveToConfigFile(mrpt::config::CConfigFileBase& target,

@@ -35,6 +35,12 @@ struct ScenarioOptions : public mrpt::config::CLoadableOptions {
      *  ground truth for `mrloc localize` (a relative path is the INI's). */
     common::GroundTruthSource groundTruth;
 
+    /** The keys `mrloc localize` reads (name, method, seed, the ground truth), then the
+     *  simulation's; declared once (loading, effective.ini, doc/ini.md). */
+    static const common::KeyTable<ScenarioOptions>& localizeKeys();
+    static const common::KeyTable<ScenarioOptions>& simulationKeys();
+    /** Both, as doc/ini.md shows [scenario]. */
+    static common::SectionKeys keysDocs();
     void loadFromConfigFile(const mrpt::config::CConfigFileBase& source,
                             const std::string& section) override;
     void saveToConfigFile(mrpt::config::CConfigFileBase& target,

@@ -3,6 +3,7 @@
 // side walls, box obstacles and pillars (vertical cylinders) are occupied voxels of an
 // octomap::OcTree. Line of sight
 // between a beacon and a receiver is a ray cast in that tree.
+#include <mrloc/common/KeyTable.h>
 #include <mrpt/config/CLoadableOptions.h>
 #include <mrpt/math/TPoint3D.h>
 #include <octomap/OcTree.h>
@@ -38,6 +39,9 @@ struct WorldOptions : public mrpt::config::CLoadableOptions {
     double resolution = 0.05;                   ///< OcTree voxel size (m)
     std::vector<Box> obstacles;                 ///< obstacle_<name> = xmin ymin zmin xmax ymax zmax
     std::vector<Pillar> pillars;                ///< pillar_<name> = x y radius height
+
+    /** Every key of [world], declared once (loading, effective.ini, doc/ini.md). */
+    static const common::KeyTable<WorldOptions>& keys();
 
     void loadFromConfigFile(const mrpt::config::CConfigFileBase& source,
                             const std::string& section) override;
