@@ -14,7 +14,6 @@
 #include <mrloc/beacons/RangingEpoch.h>
 #include <mrloc/beacons/Sections.h>
 #include <mrloc/beacons/ShotScheduler.h>
-#include <mrloc/common/IniSection.h>
 
 #include <map>
 #include <set>
