@@ -11,7 +11,6 @@
 #include <mrloc/common/Outcome.h>
 #include <mrloc/common/RunTransaction.h>
 #include <mrloc/common/ShellWord.h>
-#include <mrloc/common/Version.h>
 #include <signal.h>
 #include <sys/wait.h>
 #include <unistd.h>
@@ -26,6 +25,7 @@
 
 #include "BatchPlan.h"
 #include "BatchSummary.h"
+#include "CommandLine.h"
 #include "Commands.h"
 #include "IniFile.h"
 
@@ -287,13 +287,12 @@ int collectAndPrint(const std::string& dir) {
 }  // namespace
 
 int batch(const method::Registry& registry, int argc, char** argv) {
-    TCLAP::CmdLine cmd(
+    CommandLine cmd(
         "mrloc batch: the INI's trials (mrloc trial) over a range of seeds and a grid of keys, "
         "run through GNU parallel (--jobs on this machine, --hosts over ssh), or written as a "
         "Slurm job array (--emit slurm) or a list of commands (--emit commands). Everything "
         "goes to one folder; --collect sums it up per grid point, `mrloc report <folder>` "
-        "renders it (doc/batch.md).",
-        ' ', kVersion);
+        "renders it (doc/batch.md).");
     TCLAP::UnlabeledValueArg<std::string> ini("ini", "scenario INI file", false, "", "INI", cmd);
     TCLAP::ValueArg<std::string> seeds("", "seeds", "seeds A..B (inclusive)", false, "", "A..B",
                                        cmd);

@@ -2,6 +2,7 @@
 
 #include <mrloc/common/Error.h>
 #include <mrloc/common/RunTransaction.h>
+#include <mrpt/3rdparty/tclap/CmdLine.h>
 
 #include <cstring>
 #include <iostream>

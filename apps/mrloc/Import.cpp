@@ -1,12 +1,12 @@
 // `mrloc import <format> <inputs...> --out <file.rawlog>`: a log recorded by others into an
 // MRPT rawlog, its ground truth as TUM beside it, and what it wrote (logimport::runImport).
 #include <mrloc/common/Error.h>
-#include <mrloc/common/Version.h>
 #include <mrloc/logimport/Format.h>
 
 #include <cstring>
 #include <iostream>
 
+#include "CommandLine.h"
 #include "Commands.h"
 
 namespace mrloc::app {
@@ -41,7 +41,7 @@ int import(int argc, char** argv) {
         std::cerr << kImportUsage << logimport::formatsHelp(formats());
         return 2;
     }
-    TCLAP::CmdLine cmd("mrloc import", ' ', kVersion);
+    CommandLine cmd("mrloc import");
     TCLAP::UnlabeledValueArg<std::string> format("format", "import format", true, "", "FORMAT",
                                                  cmd);
     TCLAP::UnlabeledMultiArg<std::string> inputs("inputs", "input files", true, "INPUT", cmd);

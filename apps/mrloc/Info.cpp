@@ -4,7 +4,6 @@
 // a comment's stamp is when the file was annotated). `--json` prints the same for programs.
 #include <mrloc/common/Rawlog.h>
 #include <mrloc/common/Trajectory.h>
-#include <mrloc/common/Version.h>
 #include <mrpt/3rdparty/tclap/CmdLine.h>
 #include <mrpt/core/format.h>
 #include <mrpt/obs/CObservationComment.h>
@@ -15,6 +14,7 @@
 #include <map>
 #include <nlohmann/json.hpp>
 
+#include "CommandLine.h"
 #include "Commands.h"
 #include "IniFile.h"
 
@@ -40,11 +40,10 @@ std::string utc(double t) {
 }  // namespace
 
 int info(int argc, char** argv) {
-    TCLAP::CmdLine cmd(
+    CommandLine cmd(
         "mrloc info: per robot, sensor label and observation class of a rawlog, the count, "
         "rate and time span; the actions by class; the absolute start and end times and the "
-        "file's size",
-        ' ', kVersion);
+        "file's size");
     TCLAP::UnlabeledValueArg<std::string> path("rawlog", "rawlog file", true, "", "RAWLOG", cmd);
     TCLAP::SwitchArg json("j", "json", "print JSON instead of a table", cmd);
     if (const auto code = parseArgs(cmd, argc, argv)) return *code;

@@ -254,4 +254,8 @@ void writeProvenance(const Setup& s, const std::string& dir, const std::string& 
     common::saveJson(path, p);
 }
 
+std::string checkIni(const method::Registry& registry, const std::string& iniPath) {
+    return effectiveIni(loadSetup(registry, iniPath, std::nullopt, false));
+}
+
 }  // namespace mrloc::app

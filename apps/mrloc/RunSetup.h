@@ -58,6 +58,11 @@ std::vector<method::WorkItem> workOf(const Setup& s, bool simulating, bool local
  *  `run` write the same file for the same INI and seed. */
 std::string effectiveIni(const Setup& s);
 
+/** Reads and validates everything an INI asks for, as `simulate`, `localize` and `run` do
+ *  before they write anything (the scenario built when it has [scenario]), and renders its
+ *  effective.ini; throws mrloc::Error naming file, section, key or line. Writes nothing. */
+std::string checkIni(const method::Registry& registry, const std::string& iniPath);
+
 /** config.ini (a copy of the INI), effective.ini and provenance.json, with this step's
  *  command line added to the steps already recorded there. */
 void writeProvenance(const Setup& s, const std::string& dir, const std::string& step,

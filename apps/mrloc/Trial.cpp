@@ -10,7 +10,6 @@
 #include <mrloc/common/ParallelFor.h>
 #include <mrloc/common/RunTransaction.h>
 #include <mrloc/common/Seeds.h>
-#include <mrloc/common/Version.h>
 #include <stdlib.h>
 #include <unistd.h>
 
@@ -18,8 +17,10 @@
 #include <iostream>
 
 #include "BatchPlan.h"
+#include "CommandLine.h"
 #include "Commands.h"
 #include "RunSetup.h"
+#include "RunSteps.h"
 
 namespace mrloc::app {
 
@@ -78,66 +79,24 @@ nlohmann::json runTrial(const method::Registry& registry, const std::string& ini
     return trialLine(s.method->name, seed, keys, h);
 }
 
-}  // namespace
-
-int trial(const method::Registry& registry, int argc, char** argv) {
-    TCLAP::CmdLine cmd(
-        "mrloc trial: one seed of the INI's experiment (the method's own trial, else the "
-        "scenario simulated, localized and its experiment run), printed as one JSON line: the "
-        "seed, the --set keys "
-        "and the headline figures. No report, no pictures; the same INI, keys and seed give "
-        "the same line. `mrloc batch` runs many (doc/batch.md).",
-        ' ', kVersion);
-    TCLAP::UnlabeledValueArg<std::string> ini("ini", "scenario INI file", false, "", "INI", cmd);
-    TCLAP::ValueArg<long> seed("s", "seed", "the trial's seed (overrides [scenario] seed)", true, 0,
-                               "N", cmd);
-    TCLAP::MultiArg<std::string> set("", "set",
-                                     "section.key=value: a key of the INI, read through its "
-                                     "checks as if the INI held it (repeatable)",
-                                     false, "KEY=VALUE", cmd);
-    TCLAP::ValueArg<std::string> batchDir(
-        "", "batch",
-        "a batch folder (mrloc batch): the INI and keys are its, and the line is also written "
-        "to <folder>/trials/p<point>/s<seed>.json",
-        false, "", "DIR", cmd);
-    TCLAP::ValueArg<long> point("", "point", "the batch's grid point (with --batch)", false, 0, "P",
-                                cmd);
-    TCLAP::ValueArg<long> lastSeed("", "last-seed",
-                                   "with --batch: the seeds --seed .. this, each its own trial and "
-                                   "record, in one process (a batch's job)",
-                                   false, 0, "M", cmd);
-    if (const auto code = parseArgs(cmd, argc, argv)) return *code;
-    if (seed.getValue() < 0 || seed.getValue() > long(common::kMaxSeed))
-        throw Error("--seed must be in [0, " + std::to_string(common::kMaxSeed) + "]");
-    const auto n = (unsigned long)seed.getValue();
-
-    if (!batchDir.isSet()) {
-        if (!ini.isSet()) throw Error("missing <INI> (mrloc trial <ini> --seed N)");
-        if (point.isSet() || lastSeed.isSet())
-            throw Error("--point and --last-seed belong to a batch's jobs (with --batch)");
-        std::vector<KeyOverride> keys;
-        for (const auto& k : set.getValue()) keys.push_back(parseOverride(k, "--set"));
-        std::cout << runTrial(registry, ini.getValue(), n, keys, "").dump() << std::endl;
-        return 0;
-    }
-    if (ini.isSet() || set.isSet())
-        throw Error("--batch: the INI and keys are the batch's (batch.ini, batch.json)");
-    const std::string dir = batchDir.getValue();
+/** A batch's job: the seeds `first` .. `last` of grid point `p`, each its own trial and
+ *  record (a record already there without an error is printed, never run again). Returns
+ *  the exit code: 1 when a trial failed (its record says why), else 0. */
+int runBatchJob(const method::Registry& registry, const std::string& dir, long p,
+                unsigned long first, long last) {
     const BatchPlan plan = batch_dir::readPlan(dir);
-    if (point.getValue() < 0 || size_t(point.getValue()) >= plan.pointCount())
-        throw Error("--point " + std::to_string(point.getValue()) + ": the batch has " +
+    if (p < 0 || size_t(p) >= plan.pointCount())
+        throw Error("--point " + std::to_string(p) + ": the batch has " +
                     std::to_string(plan.pointCount()) + " points (0 .. " +
                     std::to_string(plan.pointCount() - 1) + ")");
-    const long last = lastSeed.isSet() ? lastSeed.getValue() : long(n);
-    if (n < plan.firstSeed || last < long(n) || (unsigned long)last > plan.lastSeed)
-        throw Error("--seed " + std::to_string(n) + " .. " + std::to_string(last) +
+    if (first < plan.firstSeed || last < long(first) || (unsigned long)last > plan.lastSeed)
+        throw Error("--seed " + std::to_string(first) + " .. " + std::to_string(last) +
                     ": outside the batch's seeds " + std::to_string(plan.firstSeed) + ".." +
                     std::to_string(plan.lastSeed));
-    const size_t p = size_t(point.getValue());
-    const auto keys = plan.trialKeys(p);
+    const auto keys = plan.trialKeys(size_t(p));
     size_t failed = 0;
-    for (unsigned long seedNow = n; seedNow <= (unsigned long)last; ++seedNow) {
-        const std::string record = batch_dir::record(dir, p, seedNow);
+    for (unsigned long seedNow = first; seedNow <= (unsigned long)last; ++seedNow) {
+        const std::string record = batch_dir::record(dir, size_t(p), seedNow);
         // the record's folders are the batch's own, not links out of it (a trial of Slurm
         // or a command list runs without `mrloc batch`'s check of the whole folder)
         common::checkNoLinkInPath(dir, fs::path(record).lexically_relative(dir).string());
@@ -166,6 +125,52 @@ int trial(const method::Registry& registry, int argc, char** argv) {
         std::cout << line.dump() << std::endl;
     }
     return failed ? 1 : 0;
+}
+
+}  // namespace
+
+int trial(const method::Registry& registry, int argc, char** argv) {
+    CommandLine cmd(
+        "mrloc trial: one seed of the INI's experiment (the method's own trial, else the "
+        "scenario simulated, localized and its experiment run), printed as one JSON line: the "
+        "seed, the --set keys and the headline figures. No report, no pictures; the same INI, "
+        "keys and seed give the same line. `mrloc batch` runs many (doc/batch.md).");
+    TCLAP::UnlabeledValueArg<std::string> ini("ini", "scenario INI file", false, "", "INI", cmd);
+    TCLAP::ValueArg<long> seed("s", "seed", "the trial's seed (overrides [scenario] seed)", true, 0,
+                               "N", cmd);
+    TCLAP::MultiArg<std::string> set("", "set",
+                                     "section.key=value: a key of the INI, read through its "
+                                     "checks as if the INI held it (repeatable)",
+                                     false, "KEY=VALUE", cmd);
+    TCLAP::ValueArg<std::string> batchDir(
+        "", "batch",
+        "a batch folder (mrloc batch): the INI and keys are its, and the line is also written "
+        "to <folder>/trials/p<point>/s<seed>.json",
+        false, "", "DIR", cmd);
+    TCLAP::ValueArg<long> point("", "point", "the batch's grid point (with --batch)", false, 0, "P",
+                                cmd);
+    TCLAP::ValueArg<long> lastSeed("", "last-seed",
+                                   "with --batch: the seeds --seed .. this, each its own trial and "
+                                   "record, in one process (a batch's job)",
+                                   false, 0, "M", cmd);
+    TCLAP::ValueArg<long> threads("", "threads", ThreadsArg::kHelp, false, 0, "N", cmd);
+    if (const auto code = parseArgs(cmd, argc, argv)) return *code;
+    ThreadsArg::apply(threads);
+    if (seed.getValue() < 0 || seed.getValue() > long(common::kMaxSeed))
+        throw Error("--seed must be in [0, " + std::to_string(common::kMaxSeed) + "]");
+    const auto n = (unsigned long)seed.getValue();
+    if (batchDir.isSet()) {
+        if (ini.isSet() || set.isSet())
+            throw Error("--batch: the INI and keys are the batch's (batch.ini, batch.json)");
+        return runBatchJob(registry, batchDir.getValue(), point.getValue(), n,
+                           lastSeed.isSet() ? lastSeed.getValue() : long(n));
+    }
+    if (!ini.isSet()) throw Error("missing <INI> (mrloc trial <ini> --seed N)");
+    if (point.isSet() || lastSeed.isSet())
+        throw Error("--point and --last-seed belong to a batch's jobs (with --batch)");
+    std::vector<KeyOverride> keys;
+    for (const auto& k : set.getValue()) keys.push_back(parseOverride(k, "--set"));
+    std::cout << runTrial(registry, ini.getValue(), n, keys, "").dump() << std::endl;
     return 0;
 }
 

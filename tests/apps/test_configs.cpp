@@ -8,7 +8,7 @@
 #include <fstream>
 
 #include "AllMethods.h"
-#include "Commands.h"
+#include "RunSetup.h"
 #include "TestPaths.h"
 
 TEST(ShippedConfigs, EveryConfigPassesTheAppsChecks) {

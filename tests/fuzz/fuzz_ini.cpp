@@ -7,8 +7,8 @@
 #include <mrloc/common/Error.h>
 
 #include "AllMethods.h"
-#include "Commands.h"
 #include "FuzzInput.h"
+#include "RunSetup.h"
 
 namespace {
 const mrloc::method::Registry& registry() {
