@@ -284,6 +284,114 @@ int collectAndPrint(const std::string& dir) {
     return common::kFailedExit;
 }
 
+/** The batch's plan from its arguments: seeds, chunk, --set keys and --grid axes, bounded. */
+BatchPlan planOf(const std::string& ini, const std::string& seeds, unsigned chunk,
+                 const std::vector<std::string>& sets, const std::vector<std::string>& grid) {
+    BatchPlan plan;
+    plan.ini = ini;
+    std::tie(plan.firstSeed, plan.lastSeed) = parseSeeds(seeds);
+    if (chunk < 1 || chunk > 100000)
+        throw Error("--chunk " + std::to_string(chunk) + ": 1 .. 100000 seeds per job");
+    plan.chunk = chunk;
+    for (const auto& k : sets) plan.sets.push_back(parseOverride(k, "--set"));
+    for (const auto& g : grid) {
+        plan.grid.push_back(parseGridAxis(g));
+        for (const auto& other : plan.grid)
+            if (&other != &plan.grid.back() && other.name() == plan.grid.back().name())
+                throw Error("--grid " + other.name() + ": given twice");
+        if (plan.pointCount() > BatchPlan::kMaxPoints)
+            throw Error("--grid: more than 10,000 points");
+    }
+    if (double(plan.seedCount()) * double(plan.pointCount()) > double(BatchPlan::kMaxTrials))
+        throw Error("--seeds and --grid: more than 1,000,000 trials in one batch");
+    return plan;
+}
+
+/** A batch folder already there, for --resume or --emit: the same plan and INI text, or
+ *  the job log's numbers would name other trials. */
+void checkSameBatch(const std::string& dir, const nlohmann::json& planJson,
+                    const std::string& iniText) {
+    batch_dir::checkFolder(dir);
+    auto held = common::readJsonFile(batch_dir::plan(dir));
+    auto given = planJson;
+    held.erase("ini"), given.erase("ini");
+    if (held != given || readIniText(batch_dir::ini(dir)) != iniText)
+        throw Error(common::pathInWords(dir) +
+                    ": its batch has other seeds, keys or INI text than these (batch.json, "
+                    "batch.ini); give the same to --resume, or another --out");
+}
+
+/** A new batch folder (batch.ini, jobs.txt, batch.json), written whole beside it and then
+ *  renamed into its place: a full disk leaves no half batch that neither a new batch nor
+ *  --resume would take. */
+void makeBatchFolder(const std::string& dir, const std::string& dirAbs, const BatchPlan& plan,
+                     const nlohmann::json& planJson, const std::string& iniText) {
+    if (fs::exists(fs::symlink_status(dir)) &&
+        (!fs::is_directory(fs::symlink_status(dir)) || !fs::is_empty(dir)))
+        throw Error(common::pathInWords(dir) +
+                    ": exists and is not a batch folder; give another --out");
+    const fs::path abs = fs::path(dirAbs);
+    const std::string staging = (abs.parent_path() / ("." + abs.filename().string() + ".staging." +
+                                                      std::to_string(getpid())))
+                                    .string();
+    std::error_code ec;
+    const int slot = common::holdTemporaryOnSignal(staging);  // Ctrl-C leaves none
+    try {
+        fs::remove_all(staging, ec);
+        common::makeDirectories(staging);
+        common::writeFileAtomically(batch_dir::ini(staging), iniText);
+        common::writeFileAtomically(batch_dir::jobs(staging), jobsText(plan));
+        common::saveJson(batch_dir::plan(staging), planJson);
+        if (::rename(staging.c_str(), dirAbs.c_str()) != 0)  // replaces an empty folder
+            throw Error(common::pathInWords(dir) +
+                        ": cannot make the batch folder: " + std::strerror(errno));
+    } catch (...) {
+        fs::remove_all(staging, ec);
+        common::releaseTemporaryOnSignal(slot);
+        throw;
+    }
+    common::releaseTemporaryOnSignal(slot);
+}
+
+/** --emit: batch.slurm (a job array, its output folder made) or commands.txt; prints it. */
+int emitJobs(const std::string& what, const BatchPlan& plan, const std::string& mrloc,
+             const std::string& dir, const std::string& dirAbs, const std::string& name,
+             unsigned throttle) {
+    const bool slurm = what == "slurm";
+    const std::string path = (fs::path(dir) / (slurm ? "batch.slurm" : "commands.txt")).string();
+    common::writeFileAtomically(path, slurm ? slurmScript(plan, mrloc, dirAbs, name, throttle)
+                                            : commandsText(plan, mrloc, dirAbs));
+    if (slurm) {
+        fs::permissions(path, fs::perms::owner_exec, fs::perm_options::add);
+        // Slurm opens each task's --output there and makes no folder
+        common::makeDirectories((fs::path(dir) / "slurm").string());
+    }
+    std::cout << path << "\n";
+    return 0;
+}
+
+/** The batch's jobs through GNU parallel, `jobs` at once, then its summary; the exit code. */
+int runThroughParallel(const BatchPlan& plan, const std::string& mrloc, const std::string& dir,
+                       const std::string& dirAbs, unsigned jobs, bool resume,
+                       const std::string& hosts) {
+    checkGnuParallel();
+    const std::vector<std::string> argvParallel = parallelCommand(jobs, resume, hosts);
+    std::cerr << "mrloc batch: " << plan.trialCount() << " trials (" << plan.seedCount()
+              << " seeds x " << plan.pointCount() << " points) in " << plan.jobCount() << " jobs, "
+              << jobs << " at once, through GNU parallel; job log " << batch_dir::joblog(dir)
+              << "\n";
+    // parallel runs in the batch folder, and the folder and mrloc's path reach the trials
+    // through the environment: no argument parallel parses holds a user's string
+    // The command is POSIX sh: PARALLEL_SHELL says so to parallel, here and on hosts, whatever
+    // the login shell (with SHELL unset, as under cron or CI, a host's job ran nothing, exit 0)
+    const int code = runProgram(
+        argvParallel, nullptr,
+        {dirAbs, {{kEnvMrloc, mrloc}, {kEnvFolder, dirAbs}, {"PARALLEL_SHELL", "/bin/sh"}}});
+    if (code >= 128 + 1 && code <= 128 + 64) return code;  // interrupted: --resume continues
+    if (childSignal) return 128 + int(childSignal);
+    return collectAndPrint(dir);
+}
+
 }  // namespace
 
 int batch(const method::Registry& registry, int argc, char** argv) {
@@ -341,23 +449,8 @@ int batch(const method::Registry& registry, int argc, char** argv) {
         throw Error("--emit " + common::printable(emit.getValue()) + ": slurm or commands");
     if (hosts.isSet()) checkHosts(hosts.getValue());
 
-    BatchPlan plan;
-    plan.ini = ini.getValue();
-    std::tie(plan.firstSeed, plan.lastSeed) = parseSeeds(seeds.getValue());
-    if (chunk.getValue() < 1 || chunk.getValue() > 100000)
-        throw Error("--chunk " + std::to_string(chunk.getValue()) + ": 1 .. 100000 seeds per job");
-    plan.chunk = chunk.getValue();
-    for (const auto& k : set.getValue()) plan.sets.push_back(parseOverride(k, "--set"));
-    for (const auto& g : grid.getValue()) {
-        plan.grid.push_back(parseGridAxis(g));
-        for (const auto& other : plan.grid)
-            if (&other != &plan.grid.back() && other.name() == plan.grid.back().name())
-                throw Error("--grid " + other.name() + ": given twice");
-        if (plan.pointCount() > BatchPlan::kMaxPoints)
-            throw Error("--grid: more than 10,000 points");
-    }
-    if (double(plan.seedCount()) * double(plan.pointCount()) > double(BatchPlan::kMaxTrials))
-        throw Error("--seeds and --grid: more than 1,000,000 trials in one batch");
+    const BatchPlan plan =
+        planOf(ini.getValue(), seeds.getValue(), chunk.getValue(), set.getValue(), grid.getValue());
 
     // every point's keys through the configuration's checks before anything is written
     Setup first = loadSetup(registry, plan.ini, long(plan.firstSeed), true, "", plan.trialKeys(0));
@@ -376,84 +469,25 @@ int batch(const method::Registry& registry, int argc, char** argv) {
     // link: parallel's job log, the records and the summary are written where they seem
     common::FolderLock lock(dir);
     if (batch_dir::isBatch(dir)) {
-        batch_dir::checkFolder(dir);
-        if (!resume.isSet() && !emit.isSet())
+        if (!resume.isSet() && !emit.isSet()) {
+            batch_dir::checkFolder(dir);
             throw Error(common::pathInWords(dir) +
                         ": holds a batch already (--resume continues it; another --out starts "
                         "a new one)");
-        // the same trials, or the job log's numbers would name other ones
-        auto held = common::readJsonFile(batch_dir::plan(dir));
-        auto given = planJson;
-        held.erase("ini"), given.erase("ini");
-        if (held != given || readIniText(batch_dir::ini(dir)) != first.iniText)
-            throw Error(common::pathInWords(dir) +
-                        ": its batch has other seeds, keys or INI text than these (batch.json, "
-                        "batch.ini); give the same to --resume, or another --out");
+        }
+        checkSameBatch(dir, planJson, first.iniText);
     } else {
         if (resume.isSet())
             throw Error(common::pathInWords(dir) + ": no batch to resume (no batch.json)");
-        if (fs::exists(fs::symlink_status(dir)) &&
-            (!fs::is_directory(fs::symlink_status(dir)) || !fs::is_empty(dir)))
-            throw Error(common::pathInWords(dir) +
-                        ": exists and is not a batch folder; give another --out");
-        // written whole beside the folder, then renamed into its place: a full disk leaves
-        // no half batch that neither a new batch nor --resume would take
-        const fs::path abs = fs::path(dirAbs);
-        const std::string staging = (abs.parent_path() / ("." + abs.filename().string() +
-                                                          ".staging." + std::to_string(getpid())))
-                                        .string();
-        std::error_code ec;
-        const int slot = common::holdTemporaryOnSignal(staging);  // Ctrl-C leaves none
-        try {
-            fs::remove_all(staging, ec);
-            common::makeDirectories(staging);
-            common::writeFileAtomically(batch_dir::ini(staging), first.iniText);
-            common::writeFileAtomically(batch_dir::jobs(staging), jobsText(plan));
-            common::saveJson(batch_dir::plan(staging), planJson);
-            if (::rename(staging.c_str(), dirAbs.c_str()) != 0)  // replaces an empty folder
-                throw Error(common::pathInWords(dir) + ": cannot make the batch folder: " +
-                            std::strerror(errno));
-        } catch (...) {
-            fs::remove_all(staging, ec);
-            common::releaseTemporaryOnSignal(slot);
-            throw;
-        }
-        common::releaseTemporaryOnSignal(slot);
+        makeBatchFolder(dir, dirAbs, plan, planJson, first.iniText);
     }
-
-    if (emit.isSet()) {
-        const bool slurm = emit.getValue() == "slurm";
-        const std::string path =
-            (fs::path(dir) / (slurm ? "batch.slurm" : "commands.txt")).string();
-        common::writeFileAtomically(
-            path, slurm ? slurmScript(plan, mrloc, dirAbs, first.scenario.name, jobs.getValue())
-                        : commandsText(plan, mrloc, dirAbs));
-        if (slurm) {
-            fs::permissions(path, fs::perms::owner_exec, fs::perm_options::add);
-            // Slurm opens each task's --output there and makes no folder
-            common::makeDirectories((fs::path(dir) / "slurm").string());
-        }
-        std::cout << path << "\n";
-        return 0;
-    }
-
-    checkGnuParallel();
+    if (emit.isSet())
+        return emitJobs(emit.getValue(), plan, mrloc, dir, dirAbs, first.scenario.name,
+                        jobs.getValue());
     const unsigned cores = std::max(1u, std::thread::hardware_concurrency());
-    const unsigned j = jobs.isSet() && jobs.getValue() > 0 ? jobs.getValue() : cores;
-    const std::vector<std::string> argvParallel = parallelCommand(j, resume.isSet(), hosts.getValue());
-    std::cerr << "mrloc batch: " << plan.trialCount() << " trials (" << plan.seedCount()
-              << " seeds x " << plan.pointCount() << " points) in " << plan.jobCount() << " jobs, "
-              << j << " at once, through GNU parallel; job log " << batch_dir::joblog(dir) << "\n";
-    // parallel runs in the batch folder, and the folder and mrloc's path reach the trials
-    // through the environment: no argument parallel parses holds a user's string
-    // The command is POSIX sh: PARALLEL_SHELL says so to parallel, here and on hosts, whatever
-    // the login shell (with SHELL unset, as under cron or CI, a host's job ran nothing, exit 0)
-    const int code = runProgram(
-        argvParallel, nullptr,
-        {dirAbs, {{kEnvMrloc, mrloc}, {kEnvFolder, dirAbs}, {"PARALLEL_SHELL", "/bin/sh"}}});
-    if (code >= 128 + 1 && code <= 128 + 64) return code;  // interrupted: --resume continues
-    if (childSignal) return 128 + int(childSignal);
-    return collectAndPrint(dir);
+    return runThroughParallel(plan, mrloc, dir, dirAbs,
+                              jobs.isSet() && jobs.getValue() > 0 ? jobs.getValue() : cores,
+                              resume.isSet(), hosts.getValue());
 }
 
 }  // namespace mrloc::app

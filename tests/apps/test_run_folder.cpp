@@ -435,6 +435,14 @@ TEST(Seed, ReachesFormationsExperimentAndEffectiveIniReproducesIt) {
         "formation.experiment.txt");
 }
 
+TEST(Seed, ReachesTheBeaconStudyAndEffectiveIniReproducesIt) {
+    // every evaluation of the study draws from seedOf(the run's seed, what it evaluates); its
+    // method-choice table at 10 trials a point instead of 100
+    expectSeedReachesTheExperiment(writeIniFrom(config("beacons_paper_room"), "seed_beacons",
+                                                "choice_trials    = 100", "choice_trials = 10"),
+                                   "beacons.study.json");
+}
+
 TEST(Seed, ReachesOmnivisionsAccuracySweepAndEffectiveIniReproducesIt) {
     expectSeedReachesTheExperiment(writeIniFrom(config("omnivision_5robots"), "seed_omni",
                                                 "accuracy_trials = 100", "accuracy_trials = 5"),

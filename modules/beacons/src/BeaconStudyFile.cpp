@@ -198,73 +198,86 @@ StudyGridRow gridRow(const std::string& part, double value, const std::string& v
     return g;
 }
 
-}  // namespace
+std::string spreadName(double x, double y, int n, bool active) {
+    return mrpt::format("spread %.6g x %.6g, %d beacons, %s", x, y, n, active ? "active" : "down");
+}
 
-BeaconStudyFile runStudy(const StudySetup& setup, const BeaconOptions& run,
-                         const sim::ScenarioConfig& scenario, uint64_t seed,
-                         const common::Log& log) {
-    const StudyOptions& o = setup.options;
-    StudyHardware hw;
-    hw.ultrasonic = setup.ultrasonic;
-    hw.sensors = setup.sensors;
-    hw.receiverHeight = o.receiverHeight;
-    hw.shotInterval = run.system.shotInterval;
-    hw.beaconsPerFix = o.beaconsPerFix;
-    hw.tracker = run.tracker;
-    const StudyMethod configured{run.threeD, run.tracker.fix.residual, run.delayCompensation,
-                                 run.system.shotsPerBeacon, run.tracker.jitterWeights};
-    const double roomX = scenario.world.sizeX, roomY = scenario.world.sizeY;
-    BeaconStudyFile out;
-    out.method = configured.describe();
-    out.roomX = roomX;
-    out.roomY = roomY;
-    out.trials = o.trials;
-    out.choiceTrials = o.choiceTrials;
-    out.criteria = o.criteria;
-    out.beaconsPerFix = mrpt::format("the %d the link predicts loudest", o.beaconsPerFix);
-    // each evaluation's seed comes from what it evaluates: adding a part leaves the others'
-    // draws alone, and one configuration gives one verdict wherever it appears
-    const auto seedFor = [&](const std::string& what, const StudyHardware& h,
-                             const StudyMethod& m) {
-        return seedOf(seed,
+/** One study: its hardware and method from the run's options, the run's room in its three
+ *  aimings, and the five parts, each adding its rows to the file. */
+class Study {
+ public:
+    Study(const StudySetup& setup, const BeaconOptions& run, const sim::ScenarioConfig& scenario,
+          uint64_t seed, const common::Log& log)
+        : o_(setup.options),
+          run_(run),
+          scenario_(scenario),
+          seed_(seed),
+          configured_{run.threeD, run.tracker.fix.residual, run.delayCompensation,
+                      run.system.shotsPerBeacon, run.tracker.jitterWeights},
+          roomX_(scenario.world.sizeX),
+          roomY_(scenario.world.sizeY),
+          progress_("beacon study", stepCount(setup.options), log) {
+        hw_.ultrasonic = setup.ultrasonic;
+        hw_.sensors = setup.sensors;
+        hw_.receiverHeight = o_.receiverHeight;
+        hw_.shotInterval = run.system.shotInterval;
+        hw_.beaconsPerFix = o_.beaconsPerFix;
+        hw_.tracker = run.tracker;
+        runActive_.sizeX = roomX_;
+        runActive_.sizeY = roomY_;
+        runActive_.beacons = run.map;
+        runActive_.active = true;
+        runDown_ = runActive_;
+        runDown_.active = false;
+        runDown_.fixedAim = straightDown(run.map);
+        runSection_ = runDown_;
+        for (const auto& section : run.system.sections.sections())
+            for (const int id : section.beacons)
+                runSection_.fixedAim[id] = {section.aim.x, section.aim.y, section.aim.z};
+        out_.method = configured_.describe();
+        out_.roomX = roomX_;
+        out_.roomY = roomY_;
+        out_.trials = o_.trials;
+        out_.choiceTrials = o_.choiceTrials;
+        out_.criteria = o_.criteria;
+        out_.beaconsPerFix = mrpt::format("the %d the link predicts loudest", o_.beaconsPerFix);
+    }
+
+    BeaconStudyFile run() {
+        if (o_.choiceTrials > 0 && !run_.map.empty()) methodChoices();
+        coverage();
+        beaconCounts();
+        sweeps();
+        agents();
+        return std::move(out_);
+    }
+
+ private:
+    static size_t stepCount(const StudyOptions& o) {
+        return (o.choiceTrials > 0 ? 2 : 0) + 2 * o.coverageSizes.size() + 2 * o.countSizes.size() +
+               o.beamAngles.size() + o.beaconCounts.size() + o.speeds.size() + o.agents.size();
+    }
+    void step() { progress_.update(++done_); }
+
+    /** Each evaluation's seed comes from what it evaluates: adding a part leaves the others'
+     *  draws alone, and one configuration gives one verdict wherever it appears. */
+    uint64_t seedFor(const std::string& what, const StudyHardware& h, const StudyMethod& m) const {
+        return seedOf(seed_,
                       what + "|" + m.describe() +
                           mrpt::format("|beam %.6g|speed %.6g", h.ultrasonic.beamAngle, h.speed));
-    };
-    const auto spreadName = [](double x, double y, int n, bool active) {
-        return mrpt::format("spread %.6g x %.6g, %d beacons, %s", x, y, n,
-                            active ? "active" : "down");
-    };
+    }
 
-    const auto spread = [&](double x, double y, int n, bool active) {
-        return spreadRoom(x, y, o.ceiling, n, active);
-    };
-    StudyRoom runActive;
-    runActive.sizeX = roomX;
-    runActive.sizeY = roomY;
-    runActive.beacons = run.map;
-    runActive.active = true;
-    StudyRoom runDown = runActive;
-    runDown.active = false;
-    runDown.fixedAim = straightDown(run.map);
-    StudyRoom runSection = runDown;
-    for (const auto& section : run.system.sections.sections())
-        for (const int id : section.beacons)
-            runSection.fixedAim[id] = {section.aim.x, section.aim.y, section.aim.z};
+    StudyRoom spread(double x, double y, int n, bool active) const {
+        return spreadRoom(x, y, o_.ceiling, n, active);
+    }
 
-    const size_t steps = (o.choiceTrials > 0 ? 2 : 0) + 2 * o.coverageSizes.size() +
-                         2 * o.countSizes.size() + o.beamAngles.size() + o.beaconCounts.size() +
-                         o.speeds.size() + o.agents.size();
-    common::Progress progress("beacon study", steps, log);
-    size_t done = 0;
-    const auto step = [&] { progress.update(++done); };
-
-    // 1. the method-choice table at the run's own test points (its robots' starts)
-    if (o.choiceTrials > 0 && !run.map.empty()) {
+    /** 1. the method-choice table at the run's own test points (its robots' starts) */
+    void methodChoices() {
         std::vector<mrpt::math::TPoint2D> points;
-        for (const auto& r : scenario.robots) points.push_back({r.start.x(), r.start.y()});
-        StudyHardware all = hw;  // the section fires all its beacons, as in the run
-        all.beaconsPerFix = int(run.map.size());
-        const auto shots = std::max(2, configured.shotsPerBeacon);
+        for (const auto& r : scenario_.robots) points.push_back({r.start.x(), r.start.y()});
+        StudyHardware all = hw_;  // the section fires all its beacons, as in the run
+        all.beaconsPerFix = int(run_.map.size());
+        const auto shots = std::max(2, configured_.shotsPerBeacon);
         std::vector<std::pair<std::string, StudyMethod>> variants{
             {"paper 001's fix (eq. 4-10)", StudyMethod::paper()},
             {"alone: the height known (2-D)", {false, Residual::SquaredRange, false, 1, false}},
@@ -279,115 +292,144 @@ BeaconStudyFile runStudy(const StudySetup& setup, const BeaconOptions& run,
             variants.push_back({mrpt::format("+ %d shots per beacon", n),
                                 {false, Residual::Range, true, n, true}});
         if (std::none_of(variants.begin(), variants.end(),
-                         [&](const auto& v) { return v.second == configured; }))
-            variants.push_back({"this run's method", configured});
+                         [&](const auto& v) { return v.second == configured_; }))
+            variants.push_back({"this run's method", configured_});
         // every choice on the same draws (common random numbers): the differences between
         // rows are the choices', not the draws'
         const auto add = [&](const StudyRoom& room, const std::string& aiming,
                              const std::string& name, const StudyMethod& m) {
-            const auto r = evaluateCoverage(room, all, m, points, o.choiceTrials,
-                                            seedOf(seed, "choices|" + aiming), o.criteria);
-            out.choices.push_back(
-                {aiming, name, m == StudyMethod::paper(), m == configured, r.points});
+            const auto r = evaluateCoverage(room, all, m, points, o_.choiceTrials,
+                                            seedOf(seed_, "choices|" + aiming), o_.criteria);
+            out_.choices.push_back(
+                {aiming, name, m == StudyMethod::paper(), m == configured_, r.points});
         };
-        for (const auto& [name, m] : variants) add(runActive, kActive, name, m);
+        for (const auto& [name, m] : variants) add(runActive_, kActive, name, m);
         step();
-        for (const auto* room : {&runSection, &runDown})
-            for (const auto& m : {StudyMethod::paper(), configured})
-                add(*room, room == &runSection ? kSectionAim : kDown,
+        for (const auto* room : {&runSection_, &runDown_})
+            for (const auto& m : {StudyMethod::paper(), configured_})
+                add(*room, room == &runSection_ ? kSectionAim : kDown,
                     m == StudyMethod::paper() ? "paper 001's fix (eq. 4-10)" : "this run's method",
                     m);
         step();
     }
 
-    // 2. one set of coverage_beacons over square rooms of growing size
-    for (const double size : o.coverageSizes)
-        for (const bool active : {false, true}) {
-            const auto room = spread(size, size, o.coverageBeacons, active);
-            const auto r = evaluateCoverage(
-                room, hw, configured, testGrid(size, size, o.grid, o.wallMargin), o.trials,
-                seedFor(spreadName(size, size, o.coverageBeacons, active), hw, configured),
-                o.criteria);
-            out.grids.push_back(
-                gridRow("coverage", size, active ? kActive : kDown, room, r, o.criteria));
+    /** 2. one set of coverage_beacons over square rooms of growing size */
+    void coverage() {
+        for (const double size : o_.coverageSizes)
+            for (const bool active : {false, true}) {
+                const auto room = spread(size, size, o_.coverageBeacons, active);
+                const auto r = evaluateCoverage(
+                    room, hw_, configured_, testGrid(size, size, o_.grid, o_.wallMargin), o_.trials,
+                    seedFor(spreadName(size, size, o_.coverageBeacons, active), hw_, configured_),
+                    o_.criteria);
+                out_.grids.push_back(
+                    gridRow("coverage", size, active ? kActive : kDown, room, r, o_.criteria));
+                step();
+            }
+    }
+
+    /** 3. the fewest beacons that cover each room */
+    void beaconCounts() {
+        for (const double size : o_.countSizes)
+            for (const bool active : {false, true}) {
+                StudyCountRow c;
+                c.size = size;
+                c.aiming = active ? kActive : kDown;
+                const auto points = testGrid(size, size, o_.grid, o_.wallMargin);
+                for (int n = 3; n <= o_.countMax; ++n) {
+                    const auto r = evaluateCoverage(
+                        spread(size, size, n, active), hw_, configured_, points, o_.trials,
+                        seedFor(spreadName(size, size, n, active), hw_, configured_), o_.criteria,
+                        true);
+                    if (r.covers(o_.criteria)) {
+                        c.fewest = n;
+                        c.minReception = r.minReception();
+                        c.meanError = r.meanError();
+                        c.maxError = r.maxError();
+                        break;
+                    }
+                }
+                out_.counts.push_back(c);
+                step();
+            }
+    }
+
+    /** 4. sweeps in the run's room: beam angle, beacon count, speed */
+    void sweeps() {
+        const auto runPoints = testGrid(roomX_, roomY_, o_.grid, o_.wallMargin);
+        const auto sweep = [&](const std::string& part, double value, const std::string& variant,
+                               const StudyRoom& room, const std::string& roomName,
+                               const StudyHardware& h, const StudyMethod& m) {
+            const auto r = evaluateCoverage(room, h, m, runPoints, o_.trials,
+                                            seedFor(roomName, h, m), o_.criteria);
+            out_.grids.push_back(gridRow(part, value, variant, room, r, o_.criteria));
+        };
+        for (const double angle : o_.beamAngles) {
+            StudyHardware h = hw_;
+            h.ultrasonic.beamAngle = mrpt::DEG2RAD(angle);  // another transducer, its datasheet
+            sweep("beam", angle, kDown, runDown_, "run down", h, configured_);
+            sweep("beam", angle, kActive, runActive_, "run active", h, configured_);
             step();
         }
+        for (const double n : o_.beaconCounts) {
+            for (const bool active : {false, true})
+                sweep("beacons", n, active ? kActive : kDown,
+                      spread(roomX_, roomY_, int(n), active),
+                      spreadName(roomX_, roomY_, int(n), active), hw_, configured_);
+            step();
+        }
+        StudyMethod oneShot = configured_;
+        oneShot.shotsPerBeacon = 1;
+        for (const double v : o_.speeds) {
+            StudyHardware h = hw_;
+            h.speed = v;
+            sweep("speed", v, kDown, runDown_, "run down", h, configured_);
+            sweep("speed", v, kActive, runActive_, "run active", h, configured_);
+            if (configured_.shotsPerBeacon > 1)
+                sweep("speed", v, std::string(kActive) + ", 1 shot per beacon", runActive_,
+                      "run active", h, oneShot);
+            step();
+        }
+    }
 
-    // 3. the fewest beacons that cover each room
-    for (const double size : o.countSizes)
-        for (const bool active : {false, true}) {
-            StudyCountRow c;
-            c.size = size;
-            c.aiming = active ? kActive : kDown;
-            const auto points = testGrid(size, size, o.grid, o.wallMargin);
-            for (int n = 3; n <= o.countMax; ++n) {
-                const auto r = evaluateCoverage(
-                    spread(size, size, n, active), hw, configured, points, o.trials,
-                    seedFor(spreadName(size, size, n, active), hw, configured), o.criteria, true);
-                if (r.covers(o.criteria)) {
-                    c.fewest = n;
-                    c.minReception = r.minReception();
-                    c.meanError = r.meanError();
-                    c.maxError = r.maxError();
-                    break;
+    /** 5. agents served on one channel or at once */
+    void agents() {
+        for (const double a : o_.agents) {
+            for (const bool active : {false, true}) {
+                const auto room = spread(o_.agentsSize, o_.agentsSize, o_.agentsBeacons, active);
+                for (const auto channel :
+                     {Channel::Shared, Channel::Simultaneous, Channel::Unchecked}) {
+                    if (!active && channel == Channel::Unchecked) continue;
+                    auto r = serveAgents(
+                        room, hw_, configured_, int(a), channel, o_.agentsTime, o_.agentsLayouts,
+                        seedOf(seed_, mrpt::format("agents %g", a)), o_.criteria.errorBound);
+                    r.aiming = active ? kActive : kDown;
+                    out_.agents.push_back(r);
                 }
             }
-            out.counts.push_back(c);
             step();
         }
-
-    // 4. sweeps in the run's room
-    const auto runPoints = testGrid(roomX, roomY, o.grid, o.wallMargin);
-    const auto sweep = [&](const std::string& part, double value, const std::string& variant,
-                           const StudyRoom& room, const std::string& roomName,
-                           const StudyHardware& h, const StudyMethod& m) {
-        const auto r =
-            evaluateCoverage(room, h, m, runPoints, o.trials, seedFor(roomName, h, m), o.criteria);
-        out.grids.push_back(gridRow(part, value, variant, room, r, o.criteria));
-    };
-    for (const double angle : o.beamAngles) {
-        StudyHardware h = hw;
-        h.ultrasonic.beamAngle = mrpt::DEG2RAD(angle);  // another transducer, its own datasheet
-        sweep("beam", angle, kDown, runDown, "run down", h, configured);
-        sweep("beam", angle, kActive, runActive, "run active", h, configured);
-        step();
-    }
-    for (const double n : o.beaconCounts) {
-        for (const bool active : {false, true})
-            sweep("beacons", n, active ? kActive : kDown, spread(roomX, roomY, int(n), active),
-                  spreadName(roomX, roomY, int(n), active), hw, configured);
-        step();
-    }
-    StudyMethod oneShot = configured;
-    oneShot.shotsPerBeacon = 1;
-    for (const double v : o.speeds) {
-        StudyHardware h = hw;
-        h.speed = v;
-        sweep("speed", v, kDown, runDown, "run down", h, configured);
-        sweep("speed", v, kActive, runActive, "run active", h, configured);
-        if (configured.shotsPerBeacon > 1)
-            sweep("speed", v, std::string(kActive) + ", 1 shot per beacon", runActive, "run active",
-                  h, oneShot);
-        step();
     }
 
-    // 5. agents served on one channel or at once
-    for (const double a : o.agents) {
-        for (const bool active : {false, true}) {
-            const auto room = spread(o.agentsSize, o.agentsSize, o.agentsBeacons, active);
-            for (const auto channel :
-                 {Channel::Shared, Channel::Simultaneous, Channel::Unchecked}) {
-                if (!active && channel == Channel::Unchecked) continue;
-                auto r = serveAgents(room, hw, configured, int(a), channel, o.agentsTime,
-                                     o.agentsLayouts, seedOf(seed, mrpt::format("agents %g", a)),
-                                     o.criteria.errorBound);
-                r.aiming = active ? kActive : kDown;
-                out.agents.push_back(r);
-            }
-        }
-        step();
-    }
-    return out;
+    const StudyOptions& o_;
+    const BeaconOptions& run_;
+    const sim::ScenarioConfig& scenario_;
+    uint64_t seed_;
+    StudyHardware hw_;
+    StudyMethod configured_;
+    double roomX_, roomY_;
+    StudyRoom runActive_, runDown_, runSection_;  ///< the run's room in its three aimings
+    common::Progress progress_;
+    size_t done_ = 0;
+    BeaconStudyFile out_;
+};
+
+}  // namespace
+
+BeaconStudyFile runStudy(const StudySetup& setup, const BeaconOptions& run,
+                         const sim::ScenarioConfig& scenario, uint64_t seed,
+                         const common::Log& log) {
+    return Study(setup, run, scenario, seed, log).run();
 }
 
 }  // namespace mrloc::beacons

@@ -211,6 +211,127 @@ bool finite(const RangeMeasurement& m) {
     return m.beacon.allFinite() && std::isfinite(m.range) && m.range >= 0;
 }
 
+/** The linear start (centred coordinates) and whether the beacons leave a mirror image. */
+struct Start {
+    Vector3d x = Vector3d::Zero();
+    Vector3d normal = Vector3d::Zero();  // of the mirror plane (3-D) or line (2-D)
+    bool mirrored = false;
+    FixStatus refused = FixStatus::Ok;  ///< not Ok: the beacons' layout gives no fix
+};
+
+/** The linear start from the beacons' scatter S: 2-D with the height known, else 3-D;
+ *  refuses coincident beacons, and collinear ones in 3-D. */
+Start linearStartOf(const Centred& c, bool planar2d) {
+    Start s;
+    const size_t count = c.m.size();
+    if (planar2d) {
+        Eigen::Matrix2d S = Eigen::Matrix2d::Zero();
+        for (size_t i = 0; i < count; ++i) {
+            const Eigen::Vector2d b = c.b(i).head<2>();
+            S += b * b.transpose();
+        }
+        Eigen::SelfAdjointEigenSolver<Eigen::Matrix2d> es;
+        es.computeDirect(S);
+        if (es.eigenvalues()(1) < kCoincident) {
+            s.refused = FixStatus::CoincidentBeacons;
+            return s;
+        }
+        s.mirrored = es.eigenvalues()(0) < kPlanarRatio * es.eigenvalues()(1);
+        s.x.head<2>() = linearStart<2>(c, es, s.mirrored ? 1 : 2);
+        if (s.mirrored) s.normal.head<2>() = es.eigenvectors().col(0);
+        return s;
+    }
+    Matrix3d S = Matrix3d::Zero();
+    for (size_t i = 0; i < count; ++i) {
+        const Vector3d b = c.b(i);
+        S += b * b.transpose();
+    }
+    Eigen::SelfAdjointEigenSolver<Matrix3d> es;
+    es.computeDirect(S);
+    const Vector3d& ev = es.eigenvalues();
+    if (ev(2) < kCoincident) {
+        s.refused = FixStatus::CoincidentBeacons;
+        return s;
+    }
+    if (ev(1) < kCollinearRatio * ev(2)) {
+        s.refused = FixStatus::CollinearBeacons;  // any rotation about the line fits
+        return s;
+    }
+    s.mirrored = ev(0) < kPlanarRatio * ev(2);
+    s.x = linearStart<3>(c, es, s.mirrored ? 2 : 3);
+    if (s.mirrored) s.normal = es.eigenvectors().col(0);
+    return s;
+}
+
+/** All beacons in one plane (3-D) or on one line (2-D): x and its mirror image fit the
+ *  ranges equally well. Places the start on the side the rule asks for; false when the rule
+ *  needs a hint and none is given. */
+bool chooseMirrorSide(const Centred& c, int dims, const MultilaterationOptions& o, Start& s) {
+    const double w = std::sqrt(outOfSubspace2(c, s.x, dims));
+    const Vector3d a = s.x + w * s.normal, b = s.x - w * s.normal;
+    const Vector3d hint = o.hint ? Vector3d(*o.hint - c.centroid) : Vector3d::Zero();
+    const bool useHint =
+        o.mirror == MirrorRule::NearestToHint || c.planar2d || std::abs(s.normal.z()) < 0.1;
+    if (useHint && !o.hint) return false;
+    if (useHint)
+        s.x = (a - hint).squaredNorm() <= (b - hint).squaredNorm() ? a : b;
+    else
+        s.x = (o.mirror == MirrorRule::Below) == (a.z() < b.z()) ? a : b;
+    return true;
+}
+
+/** The geometry at the solution x: H has the unit line-of-sight vectors as rows; J is the
+ *  squared-range residual's Jacobian, with its covariance. */
+struct Geometry {
+    Matrix3d HtH = Matrix3d::Zero(), HtWH = Matrix3d::Zero();  // geometry; weighted
+    Matrix3d JtJ = Matrix3d::Zero(), JtWJ = Matrix3d::Zero();  // squared-range covariance
+    double sumRes2 = 0;
+};
+
+Geometry geometryAt(const std::vector<RangeMeasurement>& m, const Centred& c, const Vector3d& x,
+                    int dims, const MultilaterationOptions& o, bool weighted) {
+    Geometry g;
+    const double s2 = o.rangeSigma * o.rangeSigma;
+    for (size_t i = 0; i < m.size(); ++i) {
+        const Vector3d d = x - c.b(i);
+        const double n = d.norm();
+        g.sumRes2 += (n - m[i].range) * (n - m[i].range);
+        Vector3d u = n > 1e-12 ? Vector3d(d / n) : Vector3d::Zero();
+        Vector3d grad = 2.0 * d;
+        if (dims == 2) u.z() = grad.z() = 0;
+        g.HtH += u * u.transpose();
+        g.JtJ += grad * grad.transpose();
+        // f_i = |x - x_i|^2 - r_i^2 moves by 2 r_i dr_i for a range error dr_i.
+        g.JtWJ += grad * grad.transpose() * (4.0 * m[i].range * m[i].range * s2);
+    }
+    if (weighted) weightedGeometry(m, c, x, dims, o, g.HtWH, g.JtJ, g.JtWJ);
+    return g;
+}
+
+/** The fix's GDOP and covariance from the geometry; false when they cannot be had (the
+ *  geometry is singular: ill-conditioned). */
+bool covarianceOf(const Geometry& g, int dims, const MultilaterationOptions& o, bool weighted,
+                  Fix& fix) {
+    Matrix3d G;
+    if (!(minEigen(g.HtH, dims) > 1e-12) || !invertBlock(g.HtH, dims, G)) {
+        fix.gdop = std::numeric_limits<double>::infinity();
+        return false;
+    }
+    fix.gdop = std::sqrt(G.trace());
+    const double s2 = o.rangeSigma * o.rangeSigma;
+    if (o.residual == Residual::Range) {
+        Matrix3d Gw = G;  // (sum u u^T / sigma_i^2)^-1 = s2 (H^T W H)^-1
+        if (weighted && !invertBlock(g.HtWH, dims, Gw)) return false;
+        fix.covariance = s2 * Gw;
+        return true;
+    }
+    // First-order propagation through the pseudo-inverse of eq. (10): J^+ cov(f) J^+^T.
+    Matrix3d Ai;
+    if (!invertBlock(g.JtJ, dims, Ai)) return false;
+    fix.covariance = Ai * g.JtWJ * Ai;
+    return true;
+}
+
 }  // namespace
 
 Fix multilaterate(const std::vector<RangeMeasurement>& m, const MultilaterationOptions& o) {
@@ -229,66 +350,18 @@ Fix multilaterate(const std::vector<RangeMeasurement>& m, const MultilaterationO
     for (const auto& mi : m) centroid += mi.beacon;
     centroid /= double(m.size());
     const Centred c{m, centroid, planar2d, planar2d ? *o.knownHeight - centroid.z() : 0.0};
-    const double zKnown = c.zKnown;
 
-    Vector3d x = Vector3d::Zero();
-    Vector3d normal = Vector3d::Zero();  // of the mirror plane (3-D) or line (2-D)
-    bool mirrored = false;
-    if (planar2d) {
-        Eigen::Matrix2d S = Eigen::Matrix2d::Zero();
-        for (size_t i = 0; i < m.size(); ++i) {
-            const Eigen::Vector2d b = c.b(i).head<2>();
-            S += b * b.transpose();
-        }
-        Eigen::SelfAdjointEigenSolver<Eigen::Matrix2d> es;
-        es.computeDirect(S);
-        if (es.eigenvalues()(1) < kCoincident) {
-            fix.status = FixStatus::CoincidentBeacons;
-            return fix;
-        }
-        mirrored = es.eigenvalues()(0) < kPlanarRatio * es.eigenvalues()(1);
-        x.head<2>() = linearStart<2>(c, es, mirrored ? 1 : 2);
-        if (mirrored) normal.head<2>() = es.eigenvectors().col(0);
-    } else {
-        Matrix3d S = Matrix3d::Zero();
-        for (size_t i = 0; i < m.size(); ++i) {
-            const Vector3d b = c.b(i);
-            S += b * b.transpose();
-        }
-        Eigen::SelfAdjointEigenSolver<Matrix3d> es;
-        es.computeDirect(S);
-        const Vector3d& ev = es.eigenvalues();
-        if (ev(2) < kCoincident) {
-            fix.status = FixStatus::CoincidentBeacons;
-            return fix;
-        }
-        if (ev(1) < kCollinearRatio * ev(2)) {
-            fix.status = FixStatus::CollinearBeacons;  // any rotation about the line fits
-            return fix;
-        }
-        mirrored = ev(0) < kPlanarRatio * ev(2);
-        x = linearStart<3>(c, es, mirrored ? 2 : 3);
-        if (mirrored) normal = es.eigenvectors().col(0);
+    Start start = linearStartOf(c, planar2d);
+    if (start.refused != FixStatus::Ok) {
+        fix.status = start.refused;
+        return fix;
     }
-
-    if (mirrored) {
-        // All beacons in one plane (3-D) or on one line (2-D): x and its mirror image fit the
-        // ranges equally well. Place the start on the side the rule asks for.
-        const double w = std::sqrt(outOfSubspace2(c, x, dims));
-        const Vector3d a = x + w * normal, b = x - w * normal;
-        const Vector3d hint = o.hint ? Vector3d(*o.hint - c.centroid) : Vector3d::Zero();
-        const bool useHint =
-            o.mirror == MirrorRule::NearestToHint || planar2d || std::abs(normal.z()) < 0.1;
-        if (useHint && !o.hint) {
-            fix.status = planar2d ? FixStatus::CollinearBeacons : FixStatus::AmbiguousMirror;
-            return fix;
-        }
-        if (useHint)
-            x = (a - hint).squaredNorm() <= (b - hint).squaredNorm() ? a : b;
-        else
-            x = (o.mirror == MirrorRule::Below) == (a.z() < b.z()) ? a : b;
+    if (start.mirrored && !chooseMirrorSide(c, dims, o, start)) {
+        fix.status = planar2d ? FixStatus::CollinearBeacons : FixStatus::AmbiguousMirror;
+        return fix;
     }
-    if (planar2d) x.z() = zKnown;
+    Vector3d x = start.x;
+    if (planar2d) x.z() = c.zKnown;
 
     double lastStep = 0;
     const bool weighted =
@@ -301,57 +374,15 @@ Fix multilaterate(const std::vector<RangeMeasurement>& m, const MultilaterationO
         return fix;
     }
 
-    // Geometry at the solution: H has the unit line-of-sight vectors as rows.
-    Matrix3d HtH = Matrix3d::Zero(), HtWH = Matrix3d::Zero();  // geometry; weighted
-    Matrix3d JtJ = Matrix3d::Zero(), JtWJ = Matrix3d::Zero();  // squared-range covariance
-    double sumRes2 = 0;
-    const double s2 = o.rangeSigma * o.rangeSigma;
-    for (size_t i = 0; i < m.size(); ++i) {
-        const Vector3d d = x - c.b(i);
-        const double n = d.norm();
-        sumRes2 += (n - m[i].range) * (n - m[i].range);
-        Vector3d u = n > 1e-12 ? Vector3d(d / n) : Vector3d::Zero();
-        Vector3d g = 2.0 * d;
-        if (dims == 2) u.z() = g.z() = 0;
-        HtH += u * u.transpose();
-        JtJ += g * g.transpose();
-        // f_i = |x - x_i|^2 - r_i^2 moves by 2 r_i dr_i for a range error dr_i.
-        JtWJ += g * g.transpose() * (4.0 * m[i].range * m[i].range * s2);
-    }
-    if (weighted) weightedGeometry(m, c, x, dims, o, HtWH, JtJ, JtWJ);
+    const Geometry g = geometryAt(m, c, x, dims, o, weighted);
     fix.position = x + c.centroid;
-    fix.rmsResidual = std::sqrt(sumRes2 / double(m.size()));
-    if (mirrored) {
-        const Vector3d mirror = x - 2.0 * x.dot(normal) * normal;
+    fix.rmsResidual = std::sqrt(g.sumRes2 / double(m.size()));
+    if (start.mirrored) {
+        const Vector3d mirror = x - 2.0 * x.dot(start.normal) * start.normal;
         fix.mirrorAmbiguous = (mirror - x).norm() > 1e-9;
         fix.mirrorPosition = mirror + c.centroid;
     }
-
-    Matrix3d G;
-    if (!(minEigen(HtH, dims) > 1e-12) || !invertBlock(HtH, dims, G)) {
-        fix.status = FixStatus::IllConditioned;
-        fix.gdop = std::numeric_limits<double>::infinity();
-        return fix;
-    }
-    fix.gdop = std::sqrt(G.trace());
-    if (o.residual == Residual::Range) {
-        Matrix3d Gw = G;  // (sum u u^T / sigma_i^2)^-1 = s2 (H^T W H)^-1
-        if (weighted && !invertBlock(HtWH, dims, Gw)) {
-            fix.status = FixStatus::IllConditioned;
-            return fix;
-        }
-        fix.covariance = s2 * Gw;
-    } else {
-        // First-order propagation through the pseudo-inverse of eq. (10): J^+ cov(f) J^+^T.
-        Matrix3d Ai;
-        if (!invertBlock(JtJ, dims, Ai)) {
-            fix.status = FixStatus::IllConditioned;
-            return fix;
-        }
-        fix.covariance = Ai * JtWJ * Ai;
-    }
-
-    if (fix.gdop > o.maxGdop)
+    if (!covarianceOf(g, dims, o, weighted, fix) || fix.gdop > o.maxGdop)
         fix.status = FixStatus::IllConditioned;
     else if (lastStep > 1e-6 * (1.0 + x.norm()))
         fix.status = FixStatus::NotConverged;

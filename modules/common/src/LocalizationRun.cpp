@@ -90,24 +90,32 @@ std::vector<std::string> earlyEnds(const Trajectories& estimates, const Trajecto
     return warnings;
 }
 
-LocalizationResult runLocalization(Localizer& localizer, const LocalizationRunOptions& o) {
-    RawlogReader reader(o.rawlogPath);
-    const auto start = std::chrono::steady_clock::now();
-    Progress progress("localizing", 0, *o.log);
-    size_t n = 0;
-    // odometry alone per robot, as MRPT's pf-localization writes it: the robot's odometry
-    // stream (<robot>.odom, or MRPT's actions), the first such label seen
+namespace {
+
+/** What one pass over the rawlog learnt besides what the localizer took from it. */
+struct LogPass {
+    size_t observations = 0;  ///< given to the localizer
+    /** Odometry alone per robot, as MRPT's pf-localization writes it: the robot's odometry
+     *  stream (<robot>.odom, or MRPT's actions), the first such label seen. */
     Trajectories odometry;
+    std::map<std::string, size_t> unstamped, copies, classes;
+    double start = INFINITY, end = -INFINITY;  ///< the log's first and last stamps (s)
+};
+
+/** Gives every checked observation of the rawlog to the localizer, in order, with progress;
+ *  an observation the check or the method refuses is an Error naming it. */
+LogPass passRawlog(RawlogReader& reader, Localizer& localizer, const LocalizationRunOptions& o) {
+    Progress progress("localizing", 0, *o.log);
+    LogPass pass;
     std::map<std::string, std::string> odometryLabel;
     ObservationCheck check;
-    std::map<std::string, size_t> unstampedCount, copiesCount, classCounts;
-    double logStart = INFINITY, logEnd = -INFINITY;
+    size_t& n = pass.observations;
     for (mrpt::obs::CObservation::Ptr obs; reader.next(obs);) {
         // stamped 0 with no sensory frame to take a time from (the last action of MRPT's
         // logs): left out and counted, as no method can place it in time
         if (obs->timestamp == INVALID_TIMESTAMP &&
             !IS_CLASS(*obs, mrpt::obs::CObservationComment)) {
-            ++unstampedCount[obs->sensorLabel];
+            ++pass.unstamped[obs->sensorLabel];
             continue;
         }
         try {
@@ -119,21 +127,21 @@ LocalizationResult runLocalization(Localizer& localizer, const LocalizationRunOp
                                      obs->GetRuntimeClass()->className, e.what()));
         }
         if (check.isCopyOfTheOneBefore(obs)) {  // a log that repeats itself: counted, left out
-            ++copiesCount[obs->sensorLabel];
+            ++pass.copies[obs->sensorLabel];
             continue;
         }
-        ++classCounts[shortClassName(*obs)];
+        ++pass.classes[shortClassName(*obs)];
         // only a comment may be unstamped here (the others were left out above)
         const bool stamped = obs->timestamp != INVALID_TIMESTAMP;
         const double stamp = stamped ? stampSeconds(obs->timestamp) : 0.0;
-        if (stamped) logStart = std::min(logStart, stamp), logEnd = std::max(logEnd, stamp);
+        if (stamped) pass.start = std::min(pass.start, stamp), pass.end = std::max(pass.end, stamp);
         if (const auto odo = std::dynamic_pointer_cast<mrpt::obs::CObservationOdometry>(obs)) {
             const std::string robot = robotOfLabel(odo->sensorLabel);
             const std::string sensor = sensorOfLabel(odo->sensorLabel);
             if (sensor == "odom" || sensor == "odometry") {
                 const auto [it, fresh] = odometryLabel.emplace(robot, odo->sensorLabel);
                 if (it->second == odo->sensorLabel && stamped)
-                    odometry[robot].push_back({stamp, mrpt::poses::CPose3D(odo->odometry)});
+                    pass.odometry[robot].push_back({stamp, mrpt::poses::CPose3D(odo->odometry)});
             }
         }
         try {
@@ -148,7 +156,13 @@ LocalizationResult runLocalization(Localizer& localizer, const LocalizationRunOp
         progress.updateFraction(reader.fractionRead(), ++n);
     }
     progress.finish();
-    // one warning per label whose zero stamps took their sensory frame's time
+    return pass;
+}
+
+/** The observations the pass changed or left out, one warning per label, and their counts
+ *  per label in metrics.json (restamped_observations, unstamped_left_out, copies_left_out). */
+void reportLeftOut(const RawlogReader& reader, const LogPass& pass, const LocalizationRunOptions& o,
+                   nlohmann::json& metrics) {
     nlohmann::json restamped = nlohmann::json::object();
     for (const auto& [key, count] : reader.restamped()) {
         const auto& [label, cls] = key;
@@ -157,63 +171,54 @@ LocalizationResult runLocalization(Localizer& localizer, const LocalizationRunOp
                        " stamped 0 took their sensory frame's time");
         restamped[label.empty() ? "(no label)" : label] = count;
     }
-    nlohmann::json unstamped = nlohmann::json::object();
-    for (const auto& [label, count] : unstampedCount) {
-        o.log->warning("rawlog " + o.rawlogPath + ": " + std::to_string(count) + " '" +
-                       printable(label) +
-                       "' observation(s) stamped 0 with no sensory frame time to take: left out");
-        unstamped[label] = count;
-    }
-    nlohmann::json copies = nlohmann::json::object();
-    for (const auto& [label, count] : copiesCount) {
-        o.log->warning("rawlog " + o.rawlogPath + ": " + std::to_string(count) + " '" +
-                       printable(label) +
-                       "' observation(s) were exact copies of the one before (same time stamp): "
-                       "left out");
-        copies[label] = count;
-    }
-    const double wall =
-        std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-    // seen none, or matched none, of what the method localizes from: not a run of the method
+    const auto leftOut = [&](const std::map<std::string, size_t>& counts, const char* why,
+                             const char* key) {
+        for (const auto& [label, count] : counts)
+            o.log->warning("rawlog " + o.rawlogPath + ": " + std::to_string(count) + " '" +
+                           printable(label) + "' observation(s) " + why + ": left out");
+        if (!counts.empty()) metrics[key] = counts;
+    };
+    if (!restamped.empty()) metrics["restamped_observations"] = restamped;
+    leftOut(pass.unstamped, "stamped 0 with no sensory frame time to take", "unstamped_left_out");
+    leftOut(pass.copies, "were exact copies of the one before (same time stamp)",
+            "copies_left_out");
+}
+
+/** Refuses a run in which the method used none of what it localizes from (naming what the
+ *  log holds, and a method that fits it); else the warnings of what it did not use and of
+ *  estimates that stop early. */
+std::vector<std::string> useWarnings(const Localizer& localizer, const LogPass& pass,
+                                     const Trajectories& estimates,
+                                     const LocalizationRunOptions& o) {
     const ObservationUse use = localizer.observationUse();
     if (use.used == 0) {
         std::string why;
         for (const auto& [reason, count] : use.unmatched)
             if (count > 0) why += "; " + std::to_string(count) + " " + reason;
-        const std::string hint = o.fitHint ? o.fitHint(classCounts) : "";
+        const std::string hint = o.fitHint ? o.fitHint(pass.classes) : "";
         throw Error("rawlog " + o.rawlogPath + ": the method '" + o.methodName + "' used none of " +
                     std::to_string(use.seen) + " " + use.kind + why + "; the log holds " +
-                    contentInWords(classCounts) + (hint.empty() ? "" : " (" + hint + ")"));
+                    contentInWords(pass.classes) + (hint.empty() ? "" : " (" + hint + ")"));
     }
     std::vector<std::string> warnings;
     for (const auto& [reason, count] : use.unmatched)
         if (count > 0)
             warnings.push_back(std::to_string(count) + " " + reason + " (of " +
                                std::to_string(use.seen) + " " + use.kind + " in the log)");
-    const auto estimates = localizer.estimates();
-    for (auto& w : earlyEnds(estimates, odometry, logStart, logEnd))
+    for (auto& w : earlyEnds(estimates, pass.odometry, pass.start, pass.end))
         warnings.push_back(std::move(w));
-    for (const auto& w : warnings) o.log->warning(o.methodName + ": " + w);
-    makeDirectories(o.outDir);
-    LocalizationResult result;
-    auto& metrics = result.metrics;
-    metrics["method"] = o.methodName;
-    metrics["rawlog"] = o.rawlogShownAs.empty() ? o.rawlogPath : o.rawlogShownAs;
-    metrics["observations"] = n;
-    metrics["robots"] = nlohmann::json::object();  // none: a method that found nothing
-    metrics["rawlog_content"] = classCounts;
-    metrics["use"] = toJson(use);
-    metrics["warnings"] = warnings;
-    metrics["rawlog_format"] = reader.format() == RawlogFormat::ActionsSensoryFrames
-                                   ? "actions+sensory-frames"
-                                   : "observations-only";
-    if (!restamped.empty()) metrics["restamped_observations"] = restamped;
-    if (!unstamped.empty()) metrics["unstamped_left_out"] = unstamped;
-    if (!copies.empty()) metrics["copies_left_out"] = copies;
+    return warnings;
+}
+
+/** The ground truth in the world frame: the options' file (its steps timed by the robot's
+ *  odometry when its format counts steps), else <rawlog>.<robot>.gt.txt beside the rawlog
+ *  for each robot estimated. Says in metrics.json where it came from. */
+Trajectories worldTruthOf(const LocalizationRunOptions& o, const LogPass& pass,
+                          const Trajectories& estimates, nlohmann::json& metrics) {
     Trajectories worldTruth;
     if (!o.groundTruth.path.empty()) {
         std::vector<double> steps;
-        if (const auto odo = odometry.find(o.groundTruth.robot); odo != odometry.end())
+        if (const auto odo = pass.odometry.find(o.groundTruth.robot); odo != pass.odometry.end())
             for (const auto& p : odo->second) steps.push_back(p.t);
         if (steps.empty() && o.groundTruth.format != "tum")
             throw Error("ground truth " + o.groundTruth.path + ": the format " +
@@ -223,25 +228,33 @@ LocalizationResult runLocalization(Localizer& localizer, const LocalizationRunOp
         metrics["ground_truth_file"] = o.groundTruth.path;
         metrics["ground_truth_from"] =
             o.groundTruthFrom.empty() ? "the INI's [scenario] ground_truth" : o.groundTruthFrom;
-    } else {
-        for (const auto& [robot, traj] : estimates)
-            if (const std::string gtPath = groundTruthPath(o.rawlogPath, robot);
-                std::filesystem::exists(gtPath))
-                worldTruth[robot] = loadTum(gtPath);
-        if (!worldTruth.empty())
-            metrics["ground_truth_from"] =
-                "<rawlog>.<robot>.gt.txt beside the rawlog (mrloc's simulator)";
+        return worldTruth;
     }
-    result.truth = localizer.truthInEstimateFrame(worldTruth);
+    for (const auto& [robot, traj] : estimates)
+        if (const std::string gtPath = groundTruthPath(o.rawlogPath, robot);
+            std::filesystem::exists(gtPath))
+            worldTruth[robot] = loadTum(gtPath);
+    if (!worldTruth.empty())
+        metrics["ground_truth_from"] =
+            "<rawlog>.<robot>.gt.txt beside the rawlog (mrloc's simulator)";
+    return worldTruth;
+}
+
+/** Each robot's files (estimates, truth, odometry, covariances) and figures in
+ *  metrics.json's "robots"; returns the errors of every robot that is not a baseline. */
+std::vector<double> scoreRobots(const Localizer& localizer, const Trajectories& estimates,
+                                const LogPass& pass, const Trajectories& worldTruth,
+                                const Trajectories& truth, const std::string& outDir,
+                                nlohmann::json& metrics) {
     std::vector<double> allErrors;
     const auto baselines = localizer.baselineRobots();
     for (const auto& [robot, traj] : estimates) {
-        saveTum(run_dir::estimates(o.outDir, robot), traj);
+        saveTum(run_dir::estimates(outDir, robot), traj);
         nlohmann::json r;
         r["estimates"] = traj.size();
-        if (const auto it = result.truth.find(robot); it != result.truth.end()) {
+        if (const auto it = truth.find(robot); it != truth.end()) {
             const auto& gt = it->second;
-            saveTum(run_dir::groundTruth(o.outDir, robot), gt);
+            saveTum(run_dir::groundTruth(outDir, robot), gt);
             std::vector<double> e;
             for (const auto& te : positionErrors(traj, gt)) e.push_back(te.error);
             // a baseline's errors are its own figure, not the method's
@@ -249,8 +262,9 @@ LocalizationResult runLocalization(Localizer& localizer, const LocalizationRunOp
             r.update(statsToJson(computeStats(e)));
             if (const auto g = localizer.groundTruthMetrics(robot, gt); g.is_object()) r.update(g);
         }
-        if (const auto odo = odometry.find(robot); odo != odometry.end() && !odo->second.empty()) {
-            saveTum(run_dir::odometry(o.outDir, robot), odo->second);
+        if (const auto odo = pass.odometry.find(robot);
+            odo != pass.odometry.end() && !odo->second.empty()) {
+            saveTum(run_dir::odometry(outDir, robot), odo->second);
             r["odometry"] = odometryErrors(odo->second, worldTruth, robot);
         }
         if (baselines.count(robot)) r["baseline"] = true;
@@ -258,9 +272,41 @@ LocalizationResult runLocalization(Localizer& localizer, const LocalizationRunOp
     }
     for (const auto& [robot, track] : localizer.covariances())
         if (estimates.count(robot) && !track.empty()) {
-            saveCovariances(run_dir::covariance(o.outDir, robot), track);
+            saveCovariances(run_dir::covariance(outDir, robot), track);
             metrics["robots"][robot]["covariances"] = track.size();
         }
+    return allErrors;
+}
+
+}  // namespace
+
+LocalizationResult runLocalization(Localizer& localizer, const LocalizationRunOptions& o) {
+    RawlogReader reader(o.rawlogPath);
+    const auto start = std::chrono::steady_clock::now();
+    const LogPass pass = passRawlog(reader, localizer, o);
+    LocalizationResult result;
+    auto& metrics = result.metrics;
+    metrics["method"] = o.methodName;
+    metrics["rawlog"] = o.rawlogShownAs.empty() ? o.rawlogPath : o.rawlogShownAs;
+    metrics["observations"] = pass.observations;
+    metrics["robots"] = nlohmann::json::object();  // none: a method that found nothing
+    metrics["rawlog_content"] = pass.classes;
+    reportLeftOut(reader, pass, o, metrics);
+    const double wall =
+        std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    const auto estimates = localizer.estimates();
+    const auto warnings = useWarnings(localizer, pass, estimates, o);
+    for (const auto& w : warnings) o.log->warning(o.methodName + ": " + w);
+    makeDirectories(o.outDir);
+    metrics["use"] = toJson(localizer.observationUse());
+    metrics["warnings"] = warnings;
+    metrics["rawlog_format"] = reader.format() == RawlogFormat::ActionsSensoryFrames
+                                   ? "actions+sensory-frames"
+                                   : "observations-only";
+    const Trajectories worldTruth = worldTruthOf(o, pass, estimates, metrics);
+    result.truth = localizer.truthInEstimateFrame(worldTruth);
+    const auto allErrors =
+        scoreRobots(localizer, estimates, pass, worldTruth, result.truth, o.outDir, metrics);
     metrics["ground_truth"] = !allErrors.empty();
     metrics.update(statsToJson(computeStats(allErrors)));
     metrics["wall_s"] = wall;

@@ -106,135 +106,180 @@ void plotSweep(const EliminationSweepFile& sweep, const std::string& dir) {
     }
 }
 
-/** The experiment's tables, ours beside the paper's where the run is the paper's case. */
-report::Html eliminationTables(const EliminationFile& file, const EliminationTimes& times) {
-    using report::Html;
-    const size_t starts = file.columns.front().travel.size();
-    std::vector<int> paperColumn;  // ours -> the paper's, -1 if it has none
-    for (const auto& c : file.columns) {
-        int match = -1;
-        for (int k = 0; k < paper::kColumns; ++k)
-            if (c.name == paper::kColumnNames[k]) match = k;
-        paperColumn.push_back(starts == (size_t)paper::kStarts ? match : -1);
+double meanOf(const std::vector<double>& v) {
+    double s = 0;
+    for (double x : v) s += x;
+    return v.empty() ? 0.0 : s / double(v.size());
+}
+
+report::Html number(const char* format, double x) { return report::Html(mrpt::format(format, x)); }
+
+/** The paper's mean over its starts of one of its columns, path (travel) or time. */
+double paperMean(int column, bool travel) {
+    double sum = 0;
+    for (int i = 0; i < paper::kStarts; ++i)
+        sum += (travel ? paper::kTravel : paper::kSeconds)[i][column];
+    return sum / paper::kStarts;
+}
+
+/** Paper 002's Tables 1 (path, `travel`) and 2 (time) with the run's figures: a row per
+ *  start, the means and their ratios to column 1, the bounds, and the paper's columns beside
+ *  ours where the run is the paper's case. */
+class EliminationTables {
+ public:
+    EliminationTables(const EliminationFile& file, const EliminationTimes& times)
+        : file_(file), times_(times), starts_(file.columns.front().travel.size()) {
+        for (const auto& c : file.columns) {
+            int match = -1;
+            for (int k = 0; k < paper::kColumns; ++k)
+                if (c.name == paper::kColumnNames[k]) match = k;
+            paperColumn_.push_back(starts_ == (size_t)paper::kStarts ? match : -1);
+        }
+        // the verification tours, when every start has one
+        tours_ =
+            file.tour.size() == starts_ && std::all_of(file.tour.begin(), file.tour.end(),
+                                                       [](double d) { return std::isfinite(d); });
     }
-    const auto mean = [](const std::vector<double>& v) {
-        double s = 0;
-        for (double x : v) s += x;
-        return v.empty() ? 0.0 : s / double(v.size());
-    };
-    const auto number = [](const char* format, double x) { return Html(mrpt::format(format, x)); };
-    // The verification tours, when every start has one.
-    const bool tours =
-        file.tour.size() == starts &&
-        std::all_of(file.tour.begin(), file.tour.end(), [](double d) { return std::isfinite(d); });
-    const auto table = [&](bool travel) {
-        const bool tourColumn = travel && tours;
-        std::vector<Html> head{"start"};
-        if (tourColumn) head.push_back("tour d (m)");
-        for (size_t c = 0; c < file.columns.size(); ++c) {
-            head.push_back(file.columns[c].name + (travel ? " d (m)" : " t (ms)"));
-            if (paperColumn[c] >= 0) head.push_back(travel ? "paper d" : "paper t (s)");
+
+    bool hasTours() const { return tours_; }
+
+    report::Html table(bool travel) const {
+        report::Table t(head(travel));
+        for (size_t i = 0; i < starts_; ++i) t.row(startRow(i, travel));
+        meanRows(t, travel);
+        if (travel) boundRows(t);
+        report::Html out = t.html();
+        if (travel && paperColumn_[0] >= 0) out += rankingNote();
+        return out;
+    }
+
+ private:
+    bool tourColumn(bool travel) const { return travel && tours_; }
+
+    double ourMean(size_t c, bool travel) const {
+        return travel ? meanOf(file_.columns[c].travel) : meanOf(times_.seconds.at(c));
+    }
+
+    std::vector<report::Html> head(bool travel) const {
+        std::vector<report::Html> head{"start"};
+        if (tourColumn(travel)) head.push_back("tour d (m)");
+        for (size_t c = 0; c < file_.columns.size(); ++c) {
+            head.push_back(file_.columns[c].name + (travel ? " d (m)" : " t (ms)"));
+            if (paperColumn_[c] >= 0) head.push_back(travel ? "paper d" : "paper t (s)");
         }
-        report::Table t(head);
-        for (size_t i = 0; i < starts; ++i) {
-            std::vector<Html> cells{std::to_string(i + 1) + (i == file.trueStart ? " (run)" : "")};
-            if (tourColumn) cells.push_back(number("%.2f", file.tour[i]));
-            for (size_t c = 0; c < file.columns.size(); ++c) {
-                const auto& col = file.columns[c];
-                const std::string ok = col.survivors[i] == 1 ? "" : " (not localized)";
-                cells.push_back(travel ? mrpt::format("%.2f", col.travel[i]) + ok
-                                       : mrpt::format("%.2f", 1e3 * times.seconds.at(c).at(i)));
-                if (paperColumn[c] >= 0)
-                    cells.push_back(number(
-                        "%.1f", (travel ? paper::kTravel : paper::kSeconds)[i][paperColumn[c]]));
-            }
-            t.row(std::move(cells));
+        return head;
+    }
+
+    std::vector<report::Html> startRow(size_t i, bool travel) const {
+        std::vector<report::Html> cells{std::to_string(i + 1) +
+                                        (i == file_.trueStart ? " (run)" : "")};
+        if (tourColumn(travel)) cells.push_back(number("%.2f", file_.tour[i]));
+        for (size_t c = 0; c < file_.columns.size(); ++c) {
+            const auto& col = file_.columns[c];
+            const std::string ok = col.survivors[i] == 1 ? "" : " (not localized)";
+            cells.push_back(travel ? mrpt::format("%.2f", col.travel[i]) + ok
+                                   : mrpt::format("%.2f", 1e3 * times_.seconds.at(c).at(i)));
+            if (paperColumn_[c] >= 0)
+                cells.push_back(number(
+                    "%.1f", (travel ? paper::kTravel : paper::kSeconds)[i][paperColumn_[c]]));
         }
-        // Averages, and each average over the first column's (the paper's d_i/d_1, t_i/t_1).
-        std::vector<Html> avg{"mean"}, ratio{"ratio to column 1"};
-        if (tourColumn) {
-            avg.push_back(number("%.2f", mean(file.tour)));
+        return cells;
+    }
+
+    /** Averages, and each average over the first column's (the paper's d_i/d_1, t_i/t_1). */
+    void meanRows(report::Table& t, bool travel) const {
+        std::vector<report::Html> avg{"mean"}, ratio{"ratio to column 1"};
+        if (tourColumn(travel)) {
+            avg.push_back(number("%.2f", meanOf(file_.tour)));
             ratio.push_back("");
         }
-        const auto paperMean = [travel](int column) {
-            double sum = 0;
-            for (int i = 0; i < paper::kStarts; ++i)
-                sum += (travel ? paper::kTravel : paper::kSeconds)[i][column];
-            return sum / paper::kStarts;
-        };
-        const double first = travel ? mean(file.columns[0].travel) : mean(times.seconds.at(0));
-        const double paperFirst = paperColumn[0] >= 0 ? paperMean(paperColumn[0]) : 0;
-        for (size_t c = 0; c < file.columns.size(); ++c) {
-            const double m = travel ? mean(file.columns[c].travel) : mean(times.seconds.at(c));
+        const double first = ourMean(0, travel);
+        const double paperFirst = paperColumn_[0] >= 0 ? paperMean(paperColumn_[0], travel) : 0;
+        for (size_t c = 0; c < file_.columns.size(); ++c) {
+            const double m = ourMean(c, travel);
             avg.push_back(number("%.2f", travel ? m : 1e3 * m));
             ratio.push_back(number("%.3f", first > 0 ? m / first : 0.0));
-            if (paperColumn[c] >= 0) {
-                const double pm = paperMean(paperColumn[c]);
+            if (paperColumn_[c] >= 0) {
+                const double pm = paperMean(paperColumn_[c], travel);
                 avg.push_back(number("%.2f", pm));
-                ratio.push_back(paperFirst > 0 ? number("%.3f", pm / paperFirst) : Html());
+                ratio.push_back(paperFirst > 0 ? number("%.3f", pm / paperFirst) : report::Html());
             }
         }
         t.row(avg).row(ratio);
-        // Each algorithm's mean path over the bounds: the first-separation distance, and,
-        // start by start, the verification tour.
+    }
+
+    /** Each algorithm's mean path over the bounds: the first-separation distance, and, start
+     *  by start, the verification tour. */
+    void boundRows(report::Table& t) const {
         const auto boundRow = [&](const std::string& label, auto value) {
-            std::vector<Html> cells{label};
-            if (tourColumn) cells.push_back("");
-            for (size_t c = 0; c < file.columns.size(); ++c) {
-                cells.push_back(number("%.2f", value(file.columns[c])));
-                if (paperColumn[c] >= 0) cells.push_back("");
+            std::vector<report::Html> cells{label};
+            if (tours_) cells.push_back("");
+            for (size_t c = 0; c < file_.columns.size(); ++c) {
+                cells.push_back(number("%.2f", value(file_.columns[c])));
+                if (paperColumn_[c] >= 0) cells.push_back("");
             }
             t.row(std::move(cells));
         };
-        if (travel && std::isfinite(file.bound) && file.bound > 0)
+        if (std::isfinite(file_.bound) && file_.bound > 0)
             boundRow("mean d / first-separation bound",
-                     [&](const auto& col) { return mean(col.travel) / file.bound; });
-        if (tourColumn) {
-            boundRow("mean d / mean tour",
-                     [&](const auto& col) { return mean(col.travel) / mean(file.tour); });
-            boundRow("worst d / tour", [&](const auto& col) {
-                double worst = 0;
-                for (size_t i = 0; i < starts; ++i)
-                    worst = std::max(worst, col.travel[i] / file.tour[i]);
-                return worst;
-            });
+                     [&](const auto& col) { return meanOf(col.travel) / file_.bound; });
+        if (!tours_) return;
+        boundRow("mean d / mean tour",
+                 [&](const auto& col) { return meanOf(col.travel) / meanOf(file_.tour); });
+        boundRow("worst d / tour", [&](const auto& col) {
+            double worst = 0;
+            for (size_t i = 0; i < starts_; ++i)
+                worst = std::max(worst, col.travel[i] / file_.tour[i]);
+            return worst;
+        });
+    }
+
+    /** Where the ranking of the algorithms by path is not the paper's, a paragraph saying so
+     *  under the table rather than leave the reader to find it in the ratios. */
+    report::Html rankingNote() const {
+        const double first = ourMean(0, true);
+        const double paperFirst = paperMean(paperColumn_[0], true);
+        int ourLow = -1, ourHigh = -1, paperLow = -1, paperHigh = -1;
+        std::vector<double> ours(file_.columns.size()), theirs(file_.columns.size());
+        for (size_t c = 0; c < file_.columns.size(); ++c) {
+            if (paperColumn_[c] < 0) continue;
+            ours[c] = meanOf(file_.columns[c].travel) / first;
+            theirs[c] = paperMean(paperColumn_[c], true) / paperFirst;
+            const auto pick = [&](int& best, const std::vector<double>& v, bool low) {
+                if (best < 0 || (low ? v[c] < v[best] : v[c] > v[best])) best = int(c);
+            };
+            pick(ourLow, ours, true), pick(ourHigh, ours, false);
+            pick(paperLow, theirs, true), pick(paperHigh, theirs, false);
         }
-        Html out = t.html();
-        // Where the ranking of the algorithms is not the paper's, say so under the table
-        // rather than leave the reader to find it in the ratios.
-        if (travel && paperColumn[0] >= 0) {
-            int ourLow = -1, ourHigh = -1, paperLow = -1, paperHigh = -1;
-            std::vector<double> ours(file.columns.size()), theirs(file.columns.size());
-            for (size_t c = 0; c < file.columns.size(); ++c) {
-                if (paperColumn[c] < 0) continue;
-                ours[c] = mean(file.columns[c].travel) / first;
-                theirs[c] = paperMean(paperColumn[c]) / paperFirst;
-                const auto pick = [&](int& best, const std::vector<double>& v, bool low) {
-                    if (best < 0 || (low ? v[c] < v[best] : v[c] > v[best])) best = int(c);
-                };
-                pick(ourLow, ours, true), pick(ourHigh, ours, false);
-                pick(paperLow, theirs, true), pick(paperHigh, theirs, false);
-            }
-            const auto name = [&](int c) { return file.columns[size_t(c)].name; };
-            std::string differs;
-            if (ourLow != paperLow)
-                differs += mrpt::format(
-                    "the shortest mean path here is the %s algorithm's (%.3f of column 1), the "
-                    "paper's the %s algorithm's (%.3f)",
-                    name(ourLow).c_str(), ours[ourLow], name(paperLow).c_str(), theirs[paperLow]);
-            if (ourHigh != paperHigh)
-                differs += std::string(differs.empty() ? "" : "; ") +
-                           mrpt::format(
-                               "the longest here is the %s algorithm's (%.3f), the "
-                               "paper's the %s algorithm's (%.3f)",
-                               name(ourHigh).c_str(), ours[ourHigh], name(paperHigh).c_str(),
-                               theirs[paperHigh]);
-            if (!differs.empty())
-                out += report::paragraph(report::bold("Not the paper's order:") + " " + differs +
-                                         " (doc/polymap.md discusses why).");
-        }
-        return out;
-    };
+        const auto name = [&](int c) { return file_.columns[size_t(c)].name; };
+        std::string differs;
+        if (ourLow != paperLow)
+            differs += mrpt::format(
+                "the shortest mean path here is the %s algorithm's (%.3f of column 1), the "
+                "paper's the %s algorithm's (%.3f)",
+                name(ourLow).c_str(), ours[ourLow], name(paperLow).c_str(), theirs[paperLow]);
+        if (ourHigh != paperHigh)
+            differs += std::string(differs.empty() ? "" : "; ") +
+                       mrpt::format(
+                           "the longest here is the %s algorithm's (%.3f), the "
+                           "paper's the %s algorithm's (%.3f)",
+                           name(ourHigh).c_str(), ours[ourHigh], name(paperHigh).c_str(),
+                           theirs[paperHigh]);
+        if (differs.empty()) return {};
+        return report::paragraph(report::bold("Not the paper's order:") + " " + differs +
+                                 " (doc/polymap.md discusses why).");
+    }
+
+    const EliminationFile& file_;
+    const EliminationTimes& times_;
+    size_t starts_;
+    std::vector<int> paperColumn_;  ///< ours -> the paper's, -1 if it has none
+    bool tours_ = false;
+};
+
+/** The experiment's tables, ours beside the paper's where the run is the paper's case. */
+report::Html eliminationTables(const EliminationFile& file, const EliminationTimes& times) {
+    const EliminationTables tables(file, times);
     return report::heading(3, "Elimination: path length per start (paper 002 Table 1)") +
            report::paragraph(
                "Every hypothesis in turn the truth; closed loop with exact views; d is the "
@@ -247,15 +292,16 @@ report::Html eliminationTables(const EliminationFile& file, const EliminationTim
                "(Dudek, Romanik and Whitesides 1998): the least travel that rules out every "
                "other hypothesis with the truth known, found exactly by search over every "
                "algorithm's candidates and probes" +
-               (tours ? std::string()
-                      : " (not computed: more than " + std::to_string(kMaxTourHypotheses) +
-                            " hypotheses)") +
+               (tables.hasTours() ? std::string()
+                                  : " (not computed: more than " +
+                                        std::to_string(kMaxTourHypotheses) + " hypotheses)") +
                ". Paper 002 reports no bound.") +
-           table(true) + report::heading(3, "Elimination: run time per start (paper 002 Table 2)") +
+           tables.table(true) +
+           report::heading(3, "Elimination: run time per start (paper 002 Table 2)") +
            report::paragraph(
                "One whole localization, this machine, one core, milliseconds; the "
                "paper's in seconds (Visual C++ 2010).") +
-           table(false);
+           tables.table(false);
 }
 
 /** Figs. 6-7 and their table, if the run swept. */
