@@ -158,3 +158,24 @@ TEST(Simulator, AnObservationSinkSeesWhatTheRawlogGets) {
     EXPECT_EQ(n, sunk.size());
     EXPECT_GT(n, 10u);
 }
+
+// effective.ini writes a robot's start, waypoints and the world's obstacles with every digit
+// their reals hold (they were "%g": 6 digits, so a run from effective.ini started 1e-6 m off)
+TEST(Robot, EffectiveIniGivesBackTheStartAndWaypointsToTheDigit) {
+    mrpt::config::CConfigFileMemory ini(
+        "[robot.r1]\nstart = 1.23456789012345 -2.000000000001 33.3\n"
+        "waypoints = 0.1000000001 2.718281828459045, 3 4\n");
+    mrloc::sim::RobotOptions r;
+    r.loadFromConfigFile(ini, "robot.r1");
+    mrpt::config::CConfigFileMemory saved;
+    r.saveToConfigFile(saved, "robot.r1");
+    EXPECT_EQ(saved.read_string("robot.r1", "start", ""), "1.23456789012345 -2.000000000001 33.3");
+    mrloc::sim::RobotOptions back;
+    back.loadFromConfigFile(saved, "robot.r1");
+    EXPECT_EQ(back.start.x(), r.start.x());
+    EXPECT_EQ(back.start.y(), r.start.y());
+    EXPECT_EQ(back.start.phi(), r.start.phi());  // "33.3" gives the pose "33.3" gave
+    ASSERT_EQ(back.waypoints.size(), 2u);
+    EXPECT_EQ(back.waypoints[0].x, 0.1000000001);
+    EXPECT_EQ(back.waypoints[0].y, 2.718281828459045);
+}

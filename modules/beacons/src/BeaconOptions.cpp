@@ -123,7 +123,8 @@ const common::KeyTable<BeaconOptions>& BeaconOptions::keys() {
                         const auto& p = o.tracker.startPose;
                         if (!p) return;
                         t.write(sec, "start",
-                                mrpt::format("%g %g %g", p->x(), p->y(), mrpt::RAD2DEG(p->phi())),
+                                common::keyValuesText({p->x(), p->y()}) + " " +
+                                    common::keyDegreesText(p->phi()),
                                 -1, -1,
                                 o.startFrom.empty() ? std::string() : "from MRPT's " + o.startFrom);
                     })
@@ -229,7 +230,7 @@ const common::KeyTable<BeaconOptions>& BeaconOptions::keys() {
                         for (const auto& [id, rates] : o.paperReception) {
                             std::string v;
                             for (double r : rates)
-                                v += (v.empty() ? "" : " ") + mrpt::format("%g", r);
+                                v += (v.empty() ? "" : " ") + common::keyValueText(r);
                             t.write(sec, "paper_reception_" + std::to_string(id), v);
                         }
                     });

@@ -1,4 +1,5 @@
 #include <mrloc/common/KeyTable.h>
+#include <mrpt/core/bits_math.h>
 #include <mrpt/core/format.h>
 
 #include <cmath>
@@ -41,6 +42,19 @@ std::string keyValueText(double member, double (*toMember)(double), double (*toI
     for (int digits = 13; digits <= 17 && !readsBack(text) && std::isfinite(ini); ++digits)
         text = mrpt::format("%.*g", digits, ini);
     return text;
+}
+
+std::string keyValuesText(std::initializer_list<double> values) {
+    std::string text;
+    for (const double v : values) text += (text.empty() ? "" : " ") + keyValueText(v);
+    return text;
+}
+
+std::string keyDegreesText(double radians) {
+    // 12 digits, not every digit: a pose's angle does not read back bit for bit whatever the
+    // text (CPose2D wraps it to (-pi, pi], CPose3D keeps a rotation matrix), and "30" gives
+    // the pose "30" gave, where "29.99999999999999" would not
+    return keyNumberText(mrpt::RAD2DEG(radians));
 }
 
 std::string keyListText(const std::vector<double>& values) {

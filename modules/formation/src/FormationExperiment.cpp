@@ -1,5 +1,6 @@
 #include <mrloc/common/ParallelFor.h>
 #include <mrloc/common/Progress.h>
+#include <mrloc/common/Seeds.h>
 #include <mrloc/formation/AlgorithmOne.h>
 #include <mrloc/formation/FormationExperiment.h>
 #include <mrloc/formation/FormationLocalizer.h>
@@ -14,6 +15,11 @@
 namespace mrloc::formation {
 
 namespace {
+
+// The purposes whose draws common::seedOf separates under the experiment's seed (Table 1's
+// runs are seeds experiment_seed + r instead, so that a batch over seeds gives them)
+constexpr const char* kPixelTableDraws = "formation pixel table";
+constexpr const char* kFig15Draws = "formation fig. 15 and fig. 11";
 
 /** A dead-reckoning curve point every this many seconds (fig. 14). */
 constexpr double kCurveStep = 5;
@@ -38,8 +44,8 @@ struct PixelJob {
 
 /** Table 1 from pixels: pixel_runs pixel marches per route and speed, on every core. Each
  *  worker thread renders with its own camera (an EGL context is current on one thread) and
- *  each march draws from its own generator, seeded from the experiment's seed and the
- *  march's place in the table: the same file whatever the thread count. */
+ *  each march draws from its own generator, the stream of its place in the table under the
+ *  experiment's seed (common/Seeds.h): the same file whatever the thread count. */
 std::vector<FormationExperimentFile::PixelRow> pixelTable(const FormationConfig& c,
                                                           const common::Log& log,
                                                           std::vector<double>& lateral,
@@ -60,8 +66,8 @@ std::vector<FormationExperimentFile::PixelRow> pixelTable(const FormationConfig&
                 renderIntrinsics(pixelMarchOptions(c, c.wheelSpeed)));
             return [&, camera](size_t k) {
                 auto& j = jobs[k];
-                mrpt::random::CRandomGenerator rng(
-                    uint32_t(c.experimentSeed.value * 2654435761u + 7919u * (k + 1)));
+                mrpt::random::CRandomGenerator rng(common::streamSeed(
+                    common::seedOf(c.experimentSeed.value, kPixelTableDraws), k));
                 const double w = c.experimentSpeeds[j.speed];
                 j.march = pixelMarch(c.robots, routes[j.route], {}, pixelMarchOptions(c, w),
                                      *camera, rng);
@@ -216,7 +222,7 @@ FormationExperimentFile runFormationExperiment(const FormationConfig& c, const c
             f.curves.push_back(
                 {row.route, "dr", row.wheelSpeed, double(i) * kCurveStep, drError[i]});
     }
-    mrpt::random::CRandomGenerator rng(uint32_t(c.experimentSeed.value));
+    mrpt::random::CRandomGenerator rng(common::drawSeed(c.experimentSeed.value, kFig15Draws));
     MarchOptions o = marchOptions(c);
     std::vector<double> lateral, longitudinal;  // the model's per-step errors, as drawn
     // fig. 15: the first route at the first speed, N = 4 .. max

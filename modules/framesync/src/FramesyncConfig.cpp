@@ -49,8 +49,8 @@ void saveMounts(const FramesyncConfig& c, mrpt::config::CConfigFileBase& t,
                 const std::string& section) {
     for (const auto& mount : c.rig.mounts)
         t.write(section, kSonarPrefix + mount.name,
-                mrpt::format("%g %g %g %g", mount.pose.x(), mount.pose.y(), mount.pose.z(),
-                             mrpt::RAD2DEG(mount.pose.yaw())));
+                common::keyValuesText({mount.pose.x(), mount.pose.y(), mount.pose.z()}) + " " +
+                    common::keyDegreesText(mount.pose.yaw()));
 }
 
 }  // namespace

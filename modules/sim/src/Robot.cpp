@@ -29,7 +29,7 @@ void loadWaypoints(common::IniSection& s, RobotOptions& r) {
 std::string waypointsText(const RobotOptions& r) {
     std::string wp;
     for (const auto& p : r.waypoints)
-        wp += (wp.empty() ? "" : ", ") + mrpt::format("%g %g", p.x, p.y);
+        wp += (wp.empty() ? "" : ", ") + common::keyValuesText({p.x, p.y});
     return wp;
 }
 
@@ -48,8 +48,8 @@ const common::KeyTable<RobotOptions>& RobotOptions::keys() {
                 },
                 [](const R& r) -> std::optional<std::string> {
                     if (!r.startInSection) return std::nullopt;
-                    return mrpt::format("%g %g %g", r.start.x(), r.start.y(),
-                                        mrpt::RAD2DEG(r.start.phi()));
+                    return common::keyValuesText({r.start.x(), r.start.y()}) + " " +
+                           common::keyDegreesText(r.start.phi());
                 },
                 "(required)")
             .custom("waypoints", "m", "", "`x y, x y, ...`; none: the robot stands at `start`",

@@ -108,7 +108,8 @@ const common::KeyTable<ScenarioOptions>& ScenarioOptions::localizeKeys() {
                 },
                 [](const SO& o) {
                     const auto& off = o.groundTruth.offset;
-                    return mrpt::format("%g %g %g", off.x(), off.y(), mrpt::RAD2DEG(off.yaw()));
+                    return common::keyValuesText({off.x(), off.y()}) + " " +
+                           common::keyDegreesText(off.yaw());
                 });
     return table;
 }

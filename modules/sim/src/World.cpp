@@ -30,8 +30,7 @@ void saveObstacles(const WorldOptions& w, mrpt::config::CConfigFileBase& t,
                    const std::string& section) {
     for (const auto& b : w.obstacles)
         t.write(section, "obstacle_" + b.name,
-                mrpt::format("%g %g %g %g %g %g", b.min.x, b.min.y, b.min.z, b.max.x, b.max.y,
-                             b.max.z));
+                common::keyValuesText({b.min.x, b.min.y, b.min.z, b.max.x, b.max.y, b.max.z}));
 }
 
 void loadPillars(common::IniSection& s, WorldOptions& w) {
@@ -52,8 +51,7 @@ void loadPillars(common::IniSection& s, WorldOptions& w) {
 void savePillars(const WorldOptions& w, mrpt::config::CConfigFileBase& t,
                  const std::string& section) {
     for (const auto& p : w.pillars)
-        t.write(section, "pillar_" + p.name,
-                mrpt::format("%g %g %g %g", p.x, p.y, p.radius, p.height));
+        t.write(section, "pillar_" + p.name, common::keyValuesText({p.x, p.y, p.radius, p.height}));
 }
 
 }  // namespace

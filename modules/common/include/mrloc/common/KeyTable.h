@@ -19,6 +19,7 @@
 #include <mrpt/core/bits_math.h>
 
 #include <functional>
+#include <initializer_list>
 #include <limits>
 #include <optional>
 #include <stdexcept>
@@ -56,6 +57,13 @@ std::string keyNumberText(double x);
  *  the run). */
 std::string keyValueText(double member, double (*toMember)(double) = nullptr,
                          double (*toIni)(double) = nullptr);
+/** Several reals as one key's value ("x y z", a box, a list): each as keyValueText writes
+ *  it, so that the key reads back to the very values (%g kept 6 digits). */
+std::string keyValuesText(std::initializer_list<double> values);
+/** A pose's angle kept in radians, written in degrees to 12 significant digits (a pose's
+ *  angle reads back through its class's own arithmetic, never bit for bit). */
+std::string keyDegreesText(double radians);
+
 /** "0 .. 10", "at least 0", "at most 5", or "" when unbounded. */
 std::string keyRangeText(double lo, double hi, const std::string& loKey = "",
                          const std::string& hiKey = "");

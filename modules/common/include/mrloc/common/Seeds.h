@@ -6,8 +6,9 @@
 // seeds, formation's Table 1) is the run of seed + r, so `mrloc batch --seeds` gives the same
 // trials; polymap's randomized probes and rooms and omnivision's swarm take a generator seeded
 // by drawSeed(seed, purpose), a purpose being a fixed name, and the beacon study one per
-// evaluation (streamSeed(seedOf(seed, its description), point)). Formation's pixel table and
-// fig. 15 still seed from experiment_seed by formulas of their own (issue 52 has them next).
+// evaluation (streamSeed(seedOf(seed, its description), point)), formation's pixel table one
+// per march (streamSeed(seedOf(experiment seed, "formation pixel table"), march)) and its
+// fig. 15 and fig. 11 one (drawSeed(experiment seed, "formation fig. 15 and fig. 11")).
 // A key that fixes a sub-seed (`elimination_seed`, `map_seed`, `swarm_seed`,
 // `experiment_seed`) is an override: absent, the draw follows the run's seed; given, it is
 // written to effective.ini and the report names it.
