@@ -39,6 +39,10 @@ const std::vector<Command>& commands() {
          "a log recorded by others (libRSF, sonar text, MRCLAM, CARMEN)\n"
          "into a rawlog + ground truth (mrloc import --help)",
          withoutRegistry<import>},
+        {"eval", "<estimate> <truth>",
+         "an estimate scored against the truth on the truth's stamps:\n"
+         "APE with its coverage, RPE (doc/evaluation.md)",
+         withoutRegistry<eval>},
         {"keys", "[section]", "the INI keys: default, unit, range, meaning (doc/ini.md)", keys},
     };
     return table;

@@ -16,6 +16,7 @@ int index(int argc, char** argv);                                       // Comma
 int keys(const method::Registry& registry, int argc, char** argv);      // Commands.cpp
 int info(int argc, char** argv);                                        // Info.cpp
 int import(int argc, char** argv);                                      // Import.cpp
+int eval(int argc, char** argv);                                        // Eval.cpp
 int trial(const method::Registry& registry, int argc, char** argv);     // Trial.cpp
 int batch(const method::Registry& registry, int argc, char** argv);     // Batch.cpp
 

@@ -1,5 +1,6 @@
 #include <mrloc/common/AtomicFile.h>
 #include <mrloc/common/Error.h>
+#include <mrloc/common/Evaluation.h>
 #include <mrloc/common/LocalizationRun.h>
 #include <mrloc/common/Metrics.h>
 #include <mrloc/common/Names.h>
@@ -40,6 +41,8 @@ nlohmann::json odometryErrors(const Trajectory& odometry, const Trajectories& wo
     for (const auto& te : positionErrors(aligned, gt->second)) e.push_back(te.error);
     j.update(statsToJson(computeStats(e)));
     if (!e.empty()) j["final_m"] = e.back();
+    // the same on the truth's timeline, as the estimate's (doc/evaluation.md)
+    j["truth_timeline"] = toJson(evaluate(aligned, gt->second));
     return j;
 }
 
@@ -246,6 +249,7 @@ std::vector<double> scoreRobots(const Localizer& localizer, const Trajectories& 
                                 const LogPass& pass, const Trajectories& worldTruth,
                                 const Trajectories& truth, const std::string& outDir,
                                 nlohmann::json& metrics) {
+    std::vector<Evaluation> truthTimeline;  // the method's robots, not its baselines
     std::vector<double> allErrors;
     const auto baselines = localizer.baselineRobots();
     for (const auto& [robot, traj] : estimates) {
@@ -260,6 +264,10 @@ std::vector<double> scoreRobots(const Localizer& localizer, const Trajectories& 
             // a baseline's errors are its own figure, not the method's
             if (!baselines.count(robot)) allErrors.insert(allErrors.end(), e.begin(), e.end());
             r.update(statsToJson(computeStats(e)));
+            // on the truth's timeline: every truth stamp, covered or not (doc/evaluation.md)
+            auto onTruth = evaluate(traj, gt);
+            r["truth_timeline"] = toJson(onTruth);
+            if (!baselines.count(robot)) truthTimeline.push_back(std::move(onTruth));
             if (const auto g = localizer.groundTruthMetrics(robot, gt); g.is_object()) r.update(g);
         }
         if (const auto odo = pass.odometry.find(robot);
@@ -275,6 +283,7 @@ std::vector<double> scoreRobots(const Localizer& localizer, const Trajectories& 
             saveCovariances(run_dir::covariance(outDir, robot), track);
             metrics["robots"][robot]["covariances"] = track.size();
         }
+    if (!truthTimeline.empty()) metrics["truth_timeline"] = pooledJson(truthTimeline);
     return allErrors;
 }
 
