@@ -7,6 +7,7 @@
 #include <mrloc/common/GroundTruthFile.h>
 #include <mrloc/common/Metrics.h>
 #include <mrloc/common/Names.h>
+#include <mrpt/core/bits_math.h>
 #include <mrpt/core/format.h>
 
 #include <iostream>
@@ -52,7 +53,7 @@ std::string statsLine(const char* name, const common::ErrorStats& s, double scal
 
 std::string table(const common::Evaluation& e) {
     const auto& c = e.coverage;
-    constexpr double kDeg = 180.0 / M_PI;
+    const double kDeg = mrpt::RAD2DEG(1.0);
     std::string out = mrpt::format(
         "alignment %s; coverage %.1f %% (%zu of %zu truth stamps, %.3f .. %.3f s), longest gap "
         "%.3f s (gap limit %.3f s)\n",

@@ -123,7 +123,7 @@ const common::KeyTable<BeaconOptions>& BeaconOptions::keys() {
                         const auto& p = o.tracker.startPose;
                         if (!p) return;
                         t.write(sec, "start",
-                                common::keyValuesText({p->x(), p->y()}) + " " +
+                                common::keyListText({p->x(), p->y()}) + " " +
                                     common::keyDegreesText(p->phi()),
                                 -1, -1,
                                 o.startFrom.empty() ? std::string() : "from MRPT's " + o.startFrom);

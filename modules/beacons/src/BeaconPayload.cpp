@@ -27,7 +27,7 @@ const common::KeyTable<BeaconRobotOptions>& BeaconRobotOptions::keys() {
                     r.receiver = {rc[0], rc[1], rc[2]};
                 },
                 [](const R& r) {
-                    return common::keyValuesText({r.receiver.x, r.receiver.y, r.receiver.z});
+                    return common::keyListText({r.receiver.x, r.receiver.y, r.receiver.z});
                 })
             .real("beacon_rate", MRLOC_KEY_FIELD(beaconRate), {0.01, 1000}, "Hz",
                   "(beacons) most ranging epochs per second the robot asks the RF beacon for")

@@ -92,11 +92,11 @@ void saveSections(const SectionMap& sections, mrpt::config::CConfigFileBase& t,
     for (const auto& s : sections.sections()) {
         if (s.name == "all" && sections.size() == 1) return;  // the implicit one
         const std::string key = "section_" + s.name;
-        t.write(section, key, common::keyValuesText({s.min.x, s.min.y, s.max.x, s.max.y}));
+        t.write(section, key, common::keyListText({s.min.x, s.min.y, s.max.x, s.max.y}));
         std::string ids;
         for (int id : s.beacons) ids += (ids.empty() ? "" : " ") + std::to_string(id);
         t.write(section, key + "_beacons", ids);
-        t.write(section, key + "_aim", common::keyValuesText({s.aim.x, s.aim.y, s.aim.z}));
+        t.write(section, key + "_aim", common::keyListText({s.aim.x, s.aim.y, s.aim.z}));
     }
 }
 

@@ -51,14 +51,6 @@ double defaultMaxGap(const Trajectory& estimate) {
     return std::max(1.0, 5.0 * percentile(std::move(steps), 50));
 }
 
-/** SE(2) interpolation: the position linearly, the heading along the shorter arc. */
-CPose2D between(const StampedPose& a, const StampedPose& b, double t) {
-    const double s = (t - a.t) / (b.t - a.t);
-    const CPose2D p = planar(a.pose), q = planar(b.pose);
-    return {p.x() + s * (q.x() - p.x()), p.y() + s * (q.y() - p.y()),
-            p.phi() + s * mrpt::math::wrapToPi(q.phi() - p.phi())};
-}
-
 /** Each truth stamp with the estimate there, or none (not covered); one pass over both. */
 std::vector<Pair> associate(const Trajectory& estimate, const Trajectory& truth, double maxGap) {
     std::vector<Pair> pairs;
@@ -74,7 +66,7 @@ std::vector<Pair> associate(const Trajectory& estimate, const Trajectory& truth,
             at = planar(estimate[j + 1].pose);
         else if (estimate[j].t < t && j + 1 < estimate.size() &&
                  estimate[j + 1].t - estimate[j].t <= maxGap)
-            at = between(estimate[j], estimate[j + 1], t);
+            at = planar(interpolateBetween(estimate[j], estimate[j + 1], t));
         if (at) pairs.push_back({i, t, planar(truth[i].pose), *at});
     }
     return pairs;
@@ -150,17 +142,6 @@ RelativeError relativeErrors(const std::vector<Pair>& pairs, double delta, bool 
     return r;
 }
 
-nlohmann::json statsJson(const ErrorStats& s, const std::string& unit, double scale = 1.0) {
-    nlohmann::json j{{"n", s.n}};
-    for (const auto& [name, v] : {std::pair<const char*, double>{"rmse", s.rmse},
-                                  {"mean", s.mean},
-                                  {"median", s.median},
-                                  {"p95", s.p95},
-                                  {"max", s.max}})
-        j[std::string(name) + "_" + unit] = s.n ? nlohmann::json(v * scale) : nlohmann::json();
-    return j;
-}
-
 }  // namespace
 
 Evaluation evaluate(const Trajectory& estimate, const Trajectory& truth,
@@ -196,12 +177,12 @@ nlohmann::json toJson(const Evaluation& e) {
                      {"covered", c.covered}, {"start_s", c.start},
                      {"end_s", c.end},       {"longest_gap_s", c.longestGap},
                      {"max_gap_s", c.maxGap}};
-    j["ape"] = statsJson(e.translation, "m");
-    j["ape_heading"] = statsJson(e.heading, "deg", mrpt::RAD2DEG(1.0));
+    j["ape"] = statsToJson(e.translation, "m");
+    j["ape_heading"] = statsToJson(e.heading, "deg", mrpt::RAD2DEG(1.0));
     for (const auto* r : {&e.rpeDistance, &e.rpeTime}) {
         nlohmann::json rj{{"delta", r->delta}, {"unit", r == &e.rpeDistance ? "m" : "s"}};
-        rj["translation"] = statsJson(r->translation, "m");
-        rj["heading"] = statsJson(r->heading, "deg", mrpt::RAD2DEG(1.0));
+        rj["translation"] = statsToJson(r->translation, "m");
+        rj["heading"] = statsToJson(r->heading, "deg", mrpt::RAD2DEG(1.0));
         j["rpe"].push_back(rj);
     }
     return j;
@@ -220,8 +201,8 @@ nlohmann::json pooledJson(const std::vector<Evaluation>& robots) {
             {"truth_stamps", stamps},
             {"covered", covered},
             {"share", stamps ? double(covered) / double(stamps) : 0.0},
-            {"ape", statsJson(computeStats(translation), "m")},
-            {"ape_heading", statsJson(computeStats(heading), "deg", mrpt::RAD2DEG(1.0))}};
+            {"ape", statsToJson(computeStats(translation), "m")},
+            {"ape_heading", statsToJson(computeStats(heading), "deg", mrpt::RAD2DEG(1.0))}};
 }
 
 }  // namespace mrloc::common

@@ -44,12 +44,6 @@ std::string keyValueText(double member, double (*toMember)(double), double (*toI
     return text;
 }
 
-std::string keyValuesText(std::initializer_list<double> values) {
-    std::string text;
-    for (const double v : values) text += (text.empty() ? "" : " ") + keyValueText(v);
-    return text;
-}
-
 std::string keyDegreesText(double radians) {
     // 12 digits, not every digit: a pose's angle does not read back bit for bit whatever the
     // text (CPose2D wraps it to (-pi, pi], CPose3D keeps a rotation matrix), and "30" gives

@@ -190,10 +190,9 @@ void reportLeftOut(const RawlogReader& reader, const LogPass& pass, const Locali
 /** Refuses a run in which the method used none of what it localizes from (naming what the
  *  log holds, and a method that fits it); else the warnings of what it did not use and of
  *  estimates that stop early. */
-std::vector<std::string> useWarnings(const Localizer& localizer, const LogPass& pass,
+std::vector<std::string> useWarnings(const ObservationUse& use, const LogPass& pass,
                                      const Trajectories& estimates,
                                      const LocalizationRunOptions& o) {
-    const ObservationUse use = localizer.observationUse();
     if (use.used == 0) {
         std::string why;
         for (const auto& [reason, count] : use.unmatched)
@@ -304,10 +303,11 @@ LocalizationResult runLocalization(Localizer& localizer, const LocalizationRunOp
     const double wall =
         std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     const auto estimates = localizer.estimates();
-    const auto warnings = useWarnings(localizer, pass, estimates, o);
+    const ObservationUse use = localizer.observationUse();
+    const auto warnings = useWarnings(use, pass, estimates, o);
     for (const auto& w : warnings) o.log->warning(o.methodName + ": " + w);
     makeDirectories(o.outDir);
-    metrics["use"] = toJson(localizer.observationUse());
+    metrics["use"] = toJson(use);
     metrics["warnings"] = warnings;
     metrics["rawlog_format"] = reader.format() == RawlogFormat::ActionsSensoryFrames
                                    ? "actions+sensory-frames"

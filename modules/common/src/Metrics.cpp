@@ -43,12 +43,18 @@ std::vector<TimedError> positionErrors(const Trajectory& estimate, const Traject
     return out;
 }
 
-nlohmann::json statsToJson(const ErrorStats& s) {
-    if (s.n == 0)  // no error to summarise: null, never a zero that reads as perfect
-        return {{"n", 0},           {"rmse_m", nullptr}, {"mean_m", nullptr}, {"median_m", nullptr},
-                {"p95_m", nullptr}, {"max_m", nullptr}};
-    return {{"n", s.n},       {"rmse_m", s.rmse}, {"mean_m", s.mean}, {"median_m", s.median},
-            {"p95_m", s.p95}, {"max_m", s.max}};
+nlohmann::json statsToJson(const ErrorStats& s) { return statsToJson(s, "m"); }
+
+nlohmann::json statsToJson(const ErrorStats& s, const std::string& unit, double scale) {
+    // no error to summarise: null, never a zero that reads as perfect
+    nlohmann::json j{{"n", s.n}};
+    for (const auto& [name, v] : {std::pair<const char*, double>{"rmse", s.rmse},
+                                  {"mean", s.mean},
+                                  {"median", s.median},
+                                  {"p95", s.p95},
+                                  {"max", s.max}})
+        j[std::string(name) + "_" + unit] = s.n ? nlohmann::json(v * scale) : nlohmann::json();
+    return j;
 }
 
 void saveJson(const std::string& path, const nlohmann::json& j) {

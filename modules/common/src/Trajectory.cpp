@@ -95,10 +95,13 @@ std::optional<mrpt::poses::CPose3D> interpolate(const Trajectory& traj, double t
     auto hi = std::lower_bound(traj.begin(), traj.end(), t,
                                [](const StampedPose& p, double time) { return p.t < time; });
     if (hi->t == t || hi == traj.begin()) return hi->pose;
-    const auto lo = hi - 1;
-    const double a = (t - lo->t) / (hi->t - lo->t);
-    const auto& p0 = lo->pose;
-    const auto& p1 = hi->pose;
+    return interpolateBetween(*(hi - 1), *hi, t);
+}
+
+mrpt::poses::CPose3D interpolateBetween(const StampedPose& lo, const StampedPose& hi, double t) {
+    const double a = (t - lo.t) / (hi.t - lo.t);
+    const auto& p0 = lo.pose;
+    const auto& p1 = hi.pose;
     const double yaw = p0.yaw() + a * mrpt::math::wrapToPi(p1.yaw() - p0.yaw());
     return mrpt::poses::CPose3D(p0.x() + a * (p1.x() - p0.x()), p0.y() + a * (p1.y() - p0.y()),
                                 p0.z() + a * (p1.z() - p0.z()), yaw, p0.pitch(), p0.roll());

@@ -49,7 +49,7 @@ void saveMounts(const FramesyncConfig& c, mrpt::config::CConfigFileBase& t,
                 const std::string& section) {
     for (const auto& mount : c.rig.mounts)
         t.write(section, kSonarPrefix + mount.name,
-                common::keyValuesText({mount.pose.x(), mount.pose.y(), mount.pose.z()}) + " " +
+                common::keyListText({mount.pose.x(), mount.pose.y(), mount.pose.z()}) + " " +
                     common::keyDegreesText(mount.pose.yaw()));
 }
 

@@ -118,7 +118,7 @@ const common::KeyTable<PolymapOptions>& PolymapOptions::keys() {
                 },
                 [](const Opt& o) -> std::optional<std::string> {
                     if (!o.start) return std::nullopt;
-                    return common::keyValuesText({o.start->x, o.start->y});
+                    return common::keyListText({o.start->x, o.start->y});
                 })
             .integer("start_site", MRLOC_KEY_FIELD(startSite), 1, 1000000, "",
                      "without `start`: the generator's i-th self-similar site (steps: left to "
@@ -308,7 +308,7 @@ const common::KeyTable<PolymapOptions>& PolymapOptions::keys() {
                 [](const Opt& o) -> std::optional<std::string> {
                     if (!o.scan.region) return std::nullopt;
                     const auto& r = *o.scan.region;
-                    return common::keyValuesText({r.first.x, r.second.x, r.first.y, r.second.y});
+                    return common::keyListText({r.first.x, r.second.x, r.first.y, r.second.y});
                 });
     return table;
 }

@@ -29,7 +29,7 @@ void loadWaypoints(common::IniSection& s, RobotOptions& r) {
 std::string waypointsText(const RobotOptions& r) {
     std::string wp;
     for (const auto& p : r.waypoints)
-        wp += (wp.empty() ? "" : ", ") + common::keyValuesText({p.x, p.y});
+        wp += (wp.empty() ? "" : ", ") + common::keyListText({p.x, p.y});
     return wp;
 }
 
@@ -48,7 +48,7 @@ const common::KeyTable<RobotOptions>& RobotOptions::keys() {
                 },
                 [](const R& r) -> std::optional<std::string> {
                     if (!r.startInSection) return std::nullopt;
-                    return common::keyValuesText({r.start.x(), r.start.y()}) + " " +
+                    return common::keyListText({r.start.x(), r.start.y()}) + " " +
                            common::keyDegreesText(r.start.phi());
                 },
                 "(required)")

@@ -108,7 +108,7 @@ const common::KeyTable<ScenarioOptions>& ScenarioOptions::localizeKeys() {
                 },
                 [](const SO& o) {
                     const auto& off = o.groundTruth.offset;
-                    return common::keyValuesText({off.x(), off.y()}) + " " +
+                    return common::keyListText({off.x(), off.y()}) + " " +
                            common::keyDegreesText(off.yaw());
                 });
     return table;

@@ -30,7 +30,7 @@ void saveObstacles(const WorldOptions& w, mrpt::config::CConfigFileBase& t,
                    const std::string& section) {
     for (const auto& b : w.obstacles)
         t.write(section, "obstacle_" + b.name,
-                common::keyValuesText({b.min.x, b.min.y, b.min.z, b.max.x, b.max.y, b.max.z}));
+                common::keyListText({b.min.x, b.min.y, b.min.z, b.max.x, b.max.y, b.max.z}));
 }
 
 void loadPillars(common::IniSection& s, WorldOptions& w) {
@@ -51,7 +51,7 @@ void loadPillars(common::IniSection& s, WorldOptions& w) {
 void savePillars(const WorldOptions& w, mrpt::config::CConfigFileBase& t,
                  const std::string& section) {
     for (const auto& p : w.pillars)
-        t.write(section, "pillar_" + p.name, common::keyValuesText({p.x, p.y, p.radius, p.height}));
+        t.write(section, "pillar_" + p.name, common::keyListText({p.x, p.y, p.radius, p.height}));
 }
 
 }  // namespace

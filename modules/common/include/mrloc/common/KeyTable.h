@@ -19,7 +19,6 @@
 #include <mrpt/core/bits_math.h>
 
 #include <functional>
-#include <initializer_list>
 #include <limits>
 #include <optional>
 #include <stdexcept>
@@ -57,9 +56,6 @@ std::string keyNumberText(double x);
  *  the run). */
 std::string keyValueText(double member, double (*toMember)(double) = nullptr,
                          double (*toIni)(double) = nullptr);
-/** Several reals as one key's value ("x y z", a box, a list): each as keyValueText writes
- *  it, so that the key reads back to the very values (%g kept 6 digits). */
-std::string keyValuesText(std::initializer_list<double> values);
 /** A pose's angle kept in radians, written in degrees to 12 significant digits (a pose's
  *  angle reads back through its class's own arithmetic, never bit for bit). */
 std::string keyDegreesText(double radians);
@@ -93,7 +89,8 @@ struct KeyList {
     size_t least = 0;
     bool whole = false;
 };
-/** A list as effective.ini and the docs write it: "3 4 5", each value as keyNumberText. */
+/** A list as effective.ini and the docs write it: "3 4 5", each value as keyValueText writes
+ *  it (every digit it holds): list keys, and poses, boxes and waypoints. */
 std::string keyListText(const std::vector<double>& values);
 /** Reads a list key, refusing too many or too few values and any out of range (or not whole,
  *  when `whole`): one check for every list key. */

@@ -29,6 +29,9 @@ std::vector<TimedError> positionErrors(const Trajectory& estimate, const Traject
 /** The common keys of metrics.json: n, rmse_m, mean_m, median_m, p95_m, max_m (null when
  *  n = 0). */
 nlohmann::json statsToJson(const ErrorStats& s);
+/** The same keys for another unit: n, rmse_<unit>, ... each value times `scale` (a heading's
+ *  radians as "deg", scale 180 / pi). */
+nlohmann::json statsToJson(const ErrorStats& s, const std::string& unit, double scale = 1.0);
 
 /** A run folder's metrics.json (readJsonFile), its keys that every reader uses (method,
  *  rawlog, robots, warnings, headline...) checked for their types: a file from elsewhere with

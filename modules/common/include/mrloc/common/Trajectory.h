@@ -65,6 +65,9 @@ Trajectory loadTum(const std::string& path);
 /** Pose at time t by linear interpolation of the position (and yaw); nullopt outside the
  *  covered span. Used to compare estimates with ground truth at the estimates' times. */
 std::optional<mrpt::poses::CPose3D> interpolate(const Trajectory& traj, double t);
+/** The pose at t between two stamped poses (a.t < t < b.t): the position linearly, the yaw
+ *  along the shorter arc, pitch and roll a's. interpolate's rule, and common::evaluate's. */
+mrpt::poses::CPose3D interpolateBetween(const StampedPose& a, const StampedPose& b, double t);
 
 /** Where a baseline starts: the truth's pose at t. A truth of positions only (every
  *  orientation the identity while the path moves: libRSF's point2, TUM files written without
