@@ -7,29 +7,94 @@
 #include <mrloc/common/GroundTruthFile.h>
 #include <mrloc/common/Metrics.h>
 #include <mrloc/common/Names.h>
+#include <mrloc/common/Rawlog.h>
+#include <mrloc/common/RunDirectory.h>
+#include <mrloc/common/RunTransaction.h>
+#include <mrloc/report/EvaluationPlots.h>
 #include <mrpt/core/bits_math.h>
 #include <mrpt/core/format.h>
+#include <mrpt/obs/CObservationOdometry.h>
 
 #include <iostream>
 
 #include "CommandLine.h"
 #include "Commands.h"
+#include "RunSteps.h"
+#include "StderrLog.h"
 
 namespace mrloc::app {
 
 namespace {
 
-/** A TUM file; another truth format is named, as it has no times of its own. */
-common::Trajectory trajectoryFile(const std::string& path, const std::string& what) {
+/** The times of the first odometry stream of a rawlog (MRPT's actions give one reading per
+ *  step): the time base of a file that counts steps. */
+std::vector<double> odometryStepTimes(const std::string& rawlog) {
+    common::RawlogReader reader(rawlog);
+    std::vector<double> times;
+    std::string label;
+    for (mrpt::obs::CObservation::Ptr obs; reader.next(obs);)
+        if (const auto odo = std::dynamic_pointer_cast<mrpt::obs::CObservationOdometry>(obs)) {
+            if (label.empty()) label = odo->sensorLabel;
+            if (odo->sensorLabel == label && odo->timestamp != INVALID_TIMESTAMP)
+                times.push_back(common::stampSeconds(odo->timestamp));
+        }
+    if (times.empty())
+        throw Error("rawlog " + common::pathInWords(rawlog) +
+                    ": no odometry to time a file of steps by");
+    return times;
+}
+
+/** A TUM file, or a file of steps (MRPT's ground truth formats, doc/import.md) timed by the
+ *  odometry of `rawlog`. */
+common::Trajectory trajectoryFile(const std::string& path, const std::string& what,
+                                  const std::string& rawlog) {
     const auto format = common::groundTruthFormatOf(path);
-    if (format && *format != "tum")
-        throw Error(common::pathInWords(path) + ": " + what + " in the " + *format +
-                    " format counts odometry steps, not times (`mrloc localize` with "
-                    "[scenario] ground_truth times it by the rawlog); eval takes TUM files "
-                    "(t x y z qx qy qz qw)");
-    auto t = common::loadTum(path);
+    common::Trajectory t;
+    if (format && *format != "tum") {
+        if (rawlog.empty())
+            throw Error(common::pathInWords(path) + ": " + what + " in the " + *format +
+                        " format counts odometry steps, not times: give the rawlog they are "
+                        "steps of (--rawlog), or a TUM file (t x y z qx qy qz qw)");
+        common::GroundTruthSource source;
+        source.path = path;
+        source.format = *format;
+        t = common::loadGroundTruth(source, odometryStepTimes(rawlog));
+    } else {
+        t = common::loadTum(path);
+    }
     if (t.empty()) throw Error(common::pathInWords(path) + ": " + what + " holds no pose");
+    // two poses at one time (to the microsecond TUM keeps) cannot both be the pose there:
+    // interpolation would take either (MRPT's kf-slam demo stamps 249 steps within 8 ms)
+    for (size_t k = 1; k < t.size(); ++k)
+        if (!(t[k].t - t[k - 1].t > 1e-6))
+            throw Error(common::pathInWords(path) + ": " + what + "'s poses " + std::to_string(k) +
+                        " and " + std::to_string(k + 1) + " are not 1 us apart in time (" +
+                        (rawlog.empty() || !format || *format == "tum"
+                             ? std::string("the file's stamps")
+                             : "the stamps of " + common::pathInWords(rawlog) + "'s odometry") +
+                        "): their order in time cannot be told");
     return t;
+}
+
+/** eval.json, provenance.json (the command line) and the pictures of doc/evaluation.md, in
+ *  `dir` (the run folder's staging copy: all of them, or the folder as it was). */
+void writeEvalFolder(const std::string& dir, const common::Evaluation& e,
+                     const common::Trajectory& truth, const std::string& estimatePath,
+                     const std::string& truthPath, const std::string& command) {
+    nlohmann::json j = common::toJson(e);
+    j["estimate_file"] = estimatePath;
+    j["truth_file"] = truthPath;
+    common::saveJson(dir + "/eval.json", j);
+    common::saveJson(common::run_dir::provenance(dir), {{"steps", {{"eval", command}}}});
+    if (e.errors.empty()) return;  // nothing covered: eval.json says so, no picture to draw
+    report::EvaluatedTrack track;
+    track.name = "estimate";
+    track.estimate = e;
+    track.truth = truth;
+    report::plotTruthTimelineError({track}, dir + "/error_time.png");
+    report::plotTruthTimelineCdf({track}, dir + "/error_cdf.png");
+    report::plotPoseOverTime(track, dir + "/pose_time.png");
+    report::plotErrorTopView(track, dir + "/error_topview.png");
 }
 
 /** "1m" or "0.5s": an RPE delta. */
@@ -79,8 +144,9 @@ int eval(int argc, char** argv) {
         "mrloc eval: an estimated trajectory scored against the truth on the truth's time "
         "stamps (doc/evaluation.md): absolute pose error with its coverage (truth stamps before "
         "the first estimate, after the last or inside a gap are not covered, and counted), "
-        "relative pose error over a distance and a time. Both files TUM (t x y z qx qy qz qw), "
-        "as mrloc writes estimates.<robot>.txt and groundtruth.<robot>.txt.");
+        "relative pose error over a distance and a time. Files in TUM (t x y z qx qy qz qw), "
+        "as mrloc writes estimates.<robot>.txt and groundtruth.<robot>.txt, or in MRPT's "
+        "ground truth formats of steps timed by --rawlog's odometry.");
     TCLAP::UnlabeledValueArg<std::string> estimate("estimate", "estimated trajectory (TUM)", true,
                                                    "", "ESTIMATE", cmd);
     TCLAP::UnlabeledValueArg<std::string> truth("truth", "ground truth (TUM)", true, "", "TRUTH",
@@ -96,6 +162,14 @@ int eval(int argc, char** argv) {
         "(default: 5 x the median estimate interval, at least 1 s)",
         false, 0, "S", cmd);
     TCLAP::SwitchArg json("j", "json", "print eval.json's JSON instead of a table", cmd);
+    TCLAP::ValueArg<std::string> rawlog(
+        "", "rawlog",
+        "the rawlog whose odometry steps time a file of steps (MRPT's i x y phi or x y z yaw "
+        "pitch roll ground truth)",
+        false, "", "RAWLOG", cmd);
+    TCLAP::ValueArg<std::string> out(
+        "o", "out", "a folder to write eval.json and the pictures to (doc/evaluation.md)", false,
+        "", "DIR", cmd);
     if (const auto code = parseArgs(cmd, argc, argv)) return *code;
 
     common::EvaluationOptions o;
@@ -108,8 +182,18 @@ int eval(int argc, char** argv) {
             throw Error("--max-gap must be a time above 0 s");
         o.maxGap = maxGap.getValue();
     }
-    const auto e = common::evaluate(trajectoryFile(estimate.getValue(), "the estimate"),
-                                    trajectoryFile(truth.getValue(), "the truth"), o);
+    const auto truthPath = truth.getValue();
+    const auto truthTrajectory = trajectoryFile(truthPath, "the truth", rawlog.getValue());
+    const auto e = common::evaluate(
+        trajectoryFile(estimate.getValue(), "the estimate", rawlog.getValue()), truthTrajectory, o);
+    if (out.isSet()) {
+        common::checkRunFolderPath(out.getValue(), "--out");
+        const StderrLog log(false);
+        inTransaction(out.getValue(), "eval", log, [&](const std::string& dir) {
+            writeEvalFolder(dir, e, truthTrajectory, estimate.getValue(), truthPath,
+                            commandLine(argc, argv));
+        });
+    }
     if (json.getValue())
         std::cout << common::toJson(e).dump(2) << "\n";
     else

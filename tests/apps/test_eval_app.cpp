@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 #include <mrloc/common/JsonFile.h>
 #include <mrloc/common/Trajectory.h>
+#include <mrloc/report/Plots.h>
 
 #include <fstream>
 
@@ -61,4 +62,49 @@ TEST(MrlocEval, BadFilesAndOptionsAreOneLineNamingThem) {
         EXPECT_NE(r.output.find(says), std::string::npos) << args << ": " << r.output;
         EXPECT_EQ(std::count(r.output.begin(), r.output.end(), '\n'), 1) << r.output;
     }
+}
+
+// --out: eval.json holds the table's figures, the four pictures are whole, and a second eval
+// into the same folder replaces the first (the folder is the command's own, provenance says so)
+TEST(MrlocEval, OutWritesEvalJsonAndThePictures) {
+    const std::string truth = driveFile("eval_truth3.txt", 0, 10, 0);
+    const std::string late = driveFile("eval_late3.txt", 3, 10, 0.25);
+    const std::string dir = tmp("eval_out");
+    std::filesystem::remove_all(dir);
+    for (int run = 0; run < 2; ++run) {
+        const auto r = mrlocCmd("eval " + late + " " + truth + " --out " + dir);
+        ASSERT_EQ(r.code, 0) << r.output;
+    }
+    const auto j = common::readJsonFile(dir + "/eval.json");
+    EXPECT_EQ(j["coverage"]["covered"], 71);
+    EXPECT_EQ(j["coverage"]["truth_stamps"], 101);
+    EXPECT_NEAR(j["ape"]["rmse_m"].get<double>(), 0.25, 1e-6);
+    EXPECT_EQ(j["truth_file"], truth);
+    for (const char* png :
+         {"error_time.png", "error_cdf.png", "pose_time.png", "error_topview.png"})
+        EXPECT_TRUE(report::isCompletePng(dir + "/" + png)) << png;
+    const auto p = common::readJsonFile(dir + "/provenance.json");
+    EXPECT_NE(p["steps"]["eval"].get<std::string>().find("eval_late3.txt"), std::string::npos);
+}
+
+// MRPT's ground truth of steps (x y z yaw pitch roll per step), timed by its rawlog's odometry:
+// the file scored against itself covers every step with no error
+TEST(MrlocEval, AFileOfStepsIsTimedByTheRawlogsOdometry) {
+    const std::string data = "/usr/share/mrpt/datasets/";
+    const std::string rawlog = data + "uwb_ro-localization_demo.rawlog";
+    const std::string steps = data + "uwb_ro-localization_demo_GT.txt";  // i x y phi
+    if (!std::filesystem::exists(rawlog) || !std::filesystem::exists(steps))
+        GTEST_SKIP() << "MRPT's datasets (mrpt-common) are not installed";
+    const auto r = mrlocCmd("eval " + steps + " " + steps + " --rawlog " + rawlog + " --json");
+    ASSERT_EQ(r.code, 0) << r.output;
+    const auto j = nlohmann::json::parse(r.output);
+    EXPECT_EQ(j["coverage"]["truth_stamps"], 342);  // the log's 342 odometry steps
+    EXPECT_EQ(j["coverage"]["covered"], 342);
+    EXPECT_NEAR(j["ape"]["max_m"].get<double>(), 0.0, 1e-9);
+    // the kf-slam demo's odometry stamps its 249 steps within 8 ms, some within a microsecond:
+    // refused, not scored against the wrong neighbour
+    const auto k = mrlocCmd("eval " + data + "kf-slam_demo_ground_truth_robot_path.txt " + steps +
+                            " --rawlog " + data + "kf-slam_demo.rawlog");
+    EXPECT_EQ(k.code, 1) << k.output;
+    EXPECT_NE(k.output.find("their order in time cannot be told"), std::string::npos) << k.output;
 }

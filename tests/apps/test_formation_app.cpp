@@ -71,6 +71,13 @@ TEST(MrlocFormation, ObstacleRunKeepsEveryRobotOutOfTheSafetyZonesAndArrives) {
     // The believed vertices against the truth: the error model's per-step errors, carried.
     ASSERT_EQ(run.moves.size(), 18u);
     for (const auto& mv : run.moves) EXPECT_LT(mv.error(), 0.3) << mv.robot;
+    // Along the march, on the truth's timeline: each robot held where the team placed it and
+    // moved by its own odometry during its moves, so every truth stamp is covered. Measured
+    // APE RMSE 0.148 m over 23,448 stamps (bound 20 % above); a line drawn from one arrival
+    // to the next, as the vertices alone give, was 1.33 m over 48.8 % of the stamps.
+    const auto& along = m["truth_timeline"];
+    EXPECT_DOUBLE_EQ(along["share"].get<double>(), 1.0) << along.dump(2);
+    EXPECT_LT(along["ape"]["rmse_m"].get<double>(), 0.18) << along.dump(2);
     mrpt::img::CImage png;
     ASSERT_TRUE(png.loadFromFile(out + "/formation.run.png"));
     EXPECT_EQ(png.getWidth(), 1000u);

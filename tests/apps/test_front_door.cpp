@@ -165,7 +165,7 @@ TEST(FrontDoor, TheReportOpensWithWhatRanTheHeadlineAndProvenance) {
     EXPECT_LT(headline, provenance);
     EXPECT_LT(provenance, errors);
     EXPECT_TRUE(contains(page, "simulated by mrloc, seed 1"));
-    EXPECT_TRUE(contains(page, "odometry alone RMSE (baseline)"));
+    EXPECT_TRUE(contains(page, "odometry alone APE RMSE (baseline)"));
     const auto p = common::readJsonFile(out + "/provenance.json");
     for (const char* key : {"date_utc", "commit", "mrpt_version", "cpu", "cores"})
         EXPECT_TRUE(p.contains(key)) << key;
@@ -187,12 +187,13 @@ TEST(FrontDoor, TheIndexShowsEveryRunsHeadlineAndLinksItsReport) {
     const std::string page = slurp(tour + "/index.html");
     EXPECT_TRUE(contains(page, "<a href='beacons/report.html'>beacons</a>")) << page;
     EXPECT_TRUE(contains(page, "<a href='polymap/report.html'>polymap</a>")) << page;
-    // the beacons run's RMSE as metrics.json has it, to 3 digits
+    // the beacons run's APE RMSE on the truth's timeline as metrics.json has it, to 3 digits
     const auto m = common::readJsonFile(tour + "/beacons/metrics.json");
     char rmse[32];
-    std::snprintf(rmse, sizeof rmse, "%.3g\u00a0m", m["rmse_m"].get<double>());  // no-break space
+    std::snprintf(rmse, sizeof rmse, "%.3g\u00a0m",  // no-break space
+                  m["truth_timeline"]["ape"]["rmse_m"].get<double>());
     EXPECT_TRUE(contains(page, rmse)) << rmse;
-    EXPECT_TRUE(contains(page, "odometry alone RMSE (baseline)"));
+    EXPECT_TRUE(contains(page, "odometry alone APE RMSE (baseline)"));
     // polymap_steps drives nothing: its goal is not reached, and the index says so
     EXPECT_TRUE(contains(page, "not reached: not localized")) << page;
     // a run folder from a stranger: its words are text, never markup; a folder that is a

@@ -104,8 +104,11 @@ TEST(MrlocRun, QuickstartEndToEndWithinBound) {
     nees /= double(est.size());
     EXPECT_GT(nees, 0.3);
     EXPECT_LT(nees, 2.0);
-    for (const auto& [f, width] : std::map<std::string, size_t>{
-             {"topview.png", 900}, {"error_time.png", 900}, {"error_cdf.png", 900}}) {
+    for (const auto& [f, width] : std::map<std::string, size_t>{{"topview.png", 900},
+                                                                {"error_time.png", 1000},
+                                                                {"error_cdf.png", 1000},
+                                                                {"pose_time.r1.png", 1000},
+                                                                {"error_topview.r1.png", 900}}) {
         mrpt::img::CImage img;
         EXPECT_TRUE(img.loadFromFile(out + "/" + f)) << f;
         if (f == "topview.png") {
@@ -119,7 +122,8 @@ TEST(MrlocRun, QuickstartEndToEndWithinBound) {
     }
     const std::string page = slurp(out + "/report.html");
     for (const char* s : {"RMSE (m)", "mrloc</th><td>version ", "quickstart.ini",
-                          "<img src='topview.png'", "run command"})
+                          "<img src='topview.png'", "run command", "Error on the truth's timeline",
+                          "<img src='pose_time.r1.png'", "<img src='error_topview.r1.png'"})
         EXPECT_NE(page.find(s), std::string::npos) << s;
     const std::string eff = slurp(out + "/effective.ini");
     for (const char* s : {"[scenario]", "[world]", "[sensors]", "[ultrasonic]", "[robot.r1]",
@@ -356,11 +360,18 @@ TEST(MrlocErrors, RangesFromBeaconsNotInTheMapAreAWarningAndTheHeadlineKeepsOdom
     const auto& h = m["headline"];
     EXPECT_TRUE(h["reached"].get<bool>());
     ASSERT_GE(h["figures"].size(), 4u);
-    EXPECT_EQ(h["figures"][0]["name"], "RMSE");
-    EXPECT_DOUBLE_EQ(h["figures"][0]["value"].get<double>(), m["rmse_m"].get<double>());
+    // the headline's error is on the truth's timeline, with its coverage beside it
+    EXPECT_EQ(h["figures"][0]["name"], "APE RMSE");
+    EXPECT_DOUBLE_EQ(h["figures"][0]["value"].get<double>(),
+                     m["truth_timeline"]["ape"]["rmse_m"].get<double>());
+    EXPECT_EQ(h["figures"][1]["name"], "truth stamps covered");
+    EXPECT_DOUBLE_EQ(h["figures"][1]["value"].get<double>(),
+                     100 * m["truth_timeline"]["share"].get<double>());
     EXPECT_TRUE(h["figures"].back()["baseline"].get<bool>());
     // the CLI's last line is the headline
-    EXPECT_NE(r.output.find("beacons: tracked: RMSE 2.17 m"), std::string::npos) << r.output;
+    EXPECT_NE(r.output.find("beacons: tracked: APE RMSE 2.14 m, truth stamps covered 98.8%"),
+              std::string::npos)
+        << r.output;
 }
 
 TEST(MrlocCli, SwappedArgumentsFoldersAndTextFilesAreSaidInWords) {
@@ -411,7 +422,9 @@ TEST(MrlocCli, ARunIntoAUsedFolderLeavesNoStaleOutputsAndKeepsTheUsersFiles) {
     EXPECT_TRUE(fs::exists(dir + "/estimates.medium.txt"));
     EXPECT_EQ(slurp(dir + "/notes.txt"), "mine\n");  // not mrloc's: kept
     const auto p = common::readJsonFile(dir + "/provenance.json");
-    EXPECT_EQ(p["outputs"]["run"].size(), 19u) << p.dump(2);  // 2 robots x 5 + 9
+    // 2 robots x 7 (estimates, truth, odometry, covariance, simulated truth, pose_time,
+    // error_topview) + 9
+    EXPECT_EQ(p["outputs"]["run"].size(), 23u) << p.dump(2);
 }
 
 // The hard case: 30 % of the ranges read long by 2 cm to 1 m, the pillar's echoes,

@@ -154,3 +154,46 @@ TEST(Evaluation, HeadingsInterpolateAlongTheShorterArc) {
     EXPECT_EQ(j["rpe"].size(), 2u);
     EXPECT_TRUE(j["rpe"][0]["translation"]["rmse_m"].is_null());  // no pair: null, never 0
 }
+
+TEST(Evaluation, TheUncoveredStretchesAreTheGapTheLateStartAndTheEarlyEnd) {
+    // the pictures shade these: from the covered stamp before to the covered stamp after
+    const auto truth = straight(0, 10, 0.1);
+    Trajectory estimate;
+    for (const auto& p : truth)
+        if (p.t > 1 + 1e-9 && p.t < 9 - 1e-9 && (p.t < 4 - 1e-9 || p.t > 6 + 1e-9))
+            estimate.push_back(at(p.t, p.pose.x(), 0));
+    const auto e = evaluate(estimate, truth);
+    ASSERT_EQ(e.coverage.uncovered.size(), 3u);
+    EXPECT_NEAR(e.coverage.uncovered[0].first, 0.0, 1e-9);  // the truth's start
+    EXPECT_NEAR(e.coverage.uncovered[0].second, 1.1, 1e-9);
+    EXPECT_NEAR(e.coverage.uncovered[1].first, 3.9, 1e-9);
+    EXPECT_NEAR(e.coverage.uncovered[1].second, 6.1, 1e-9);
+    EXPECT_NEAR(e.coverage.uncovered[2].first, 8.9, 1e-9);
+    EXPECT_NEAR(e.coverage.uncovered[2].second, 10.0, 1e-9);  // the truth's end
+    EXPECT_NEAR(e.coverage.longestGap, 2.2, 1e-9);
+    // every covered stamp carries the poses the pictures draw
+    ASSERT_FALSE(e.errors.empty());
+    EXPECT_NEAR(e.errors.front().truth.x(), 1.1, 1e-9);
+    EXPECT_NEAR(e.errors.front().estimate.x(), 1.1, 1e-9);
+    // nothing covered: the whole truth is one stretch
+    const auto none = evaluate({at(100, 0, 0), at(101, 1, 0)}, truth);
+    ASSERT_EQ(none.coverage.uncovered.size(), 1u);
+    EXPECT_NEAR(none.coverage.uncovered[0].second - none.coverage.uncovered[0].first, 10, 1e-9);
+}
+
+TEST(Evaluation, PooledRpeIsOverEveryRobotsPairs) {
+    // robot a drifts 2 sin(0.05) per metre (a 0.1 rad heading error), robot b not at all:
+    // 10 pairs each, so the pooled RMSE is sqrt(10 (2 sin 0.05)^2 / 20)
+    const auto truth = straight(0, 10, 0.5);
+    Trajectory turned;
+    for (const auto& p : truth) turned.push_back(at(p.t, p.pose.x(), p.pose.y(), 0.1));
+    const auto j = pooledJson({evaluate(turned, truth), evaluate(truth, truth)});
+    ASSERT_TRUE(j.contains("rpe"));
+    ASSERT_EQ(j["rpe"].size(), 2u);
+    EXPECT_EQ(j["rpe"][0]["unit"], "m");
+    EXPECT_EQ(j["rpe"][0]["translation"]["n"], 20u);
+    EXPECT_NEAR(j["rpe"][0]["translation"]["rmse_m"].get<double>(),
+                std::sqrt(0.5) * 2 * std::sin(0.05), 1e-12);
+    EXPECT_EQ(j["rpe"][1]["unit"], "s");
+    EXPECT_EQ(j["truth_stamps"], 42u);
+}

@@ -40,29 +40,40 @@ TEST(Outcome, TheLineKeepsBaselinesApart) {
               "beacons: tracked: RMSE 0.0271 m; baseline: odometry alone RMSE 0.76 m");
 }
 
-TEST(Outcome, TrajectoryFiguresPoolTheOdometryBaselineByItsCounts) {
-    // two robots: odometry RMSE 1 m over 3 readings and 2 m over 1: pooled sqrt((3+4)/4)
-    const auto metrics = nlohmann::json::parse(R"({"rmse_m": 0.05, "robots": {
-        "r1": {"odometry": {"rmse_m": 1.0, "n": 3}},
-        "r2": {"odometry": {"rmse_m": 2.0, "n": 1}}}})");
+TEST(Outcome, TrajectoryFiguresAreOnTheTruthsTimelineAndPoolTheBaselineByItsCounts) {
+    // the headline's APE, coverage and RPE are metrics.json's truth_timeline (not rmse_m, the
+    // errors at the estimates' stamps); two robots' odometry: APE RMSE 1 m over 3 stamps and
+    // 2 m over 1, pooled sqrt((3 + 4) / 4)
+    const auto metrics = nlohmann::json::parse(R"({"rmse_m": 0.05,
+        "truth_timeline": {"share": 0.5, "ape": {"rmse_m": 0.25, "n": 4},
+                           "rpe": [{"delta": 1.0, "unit": "m", "translation": {"rmse_m": 0.02}},
+                                   {"delta": 1.0, "unit": "s", "translation": {"rmse_m": 0.03}}]},
+        "robots": {
+        "r1": {"odometry": {"rmse_m": 9.0, "n": 3, "truth_timeline": {"ape": {"rmse_m": 1.0, "n": 3}}}},
+        "r2": {"odometry": {"rmse_m": 9.0, "n": 1, "truth_timeline": {"ape": {"rmse_m": 2.0, "n": 1}}}}}})");
     const auto f = common::trajectoryFigures(metrics);
-    ASSERT_EQ(f.size(), 2u);
-    EXPECT_DOUBLE_EQ(*f[0].value, 0.05);
+    ASSERT_EQ(f.size(), 4u);
+    EXPECT_EQ(f[0].name, "APE RMSE");
+    EXPECT_DOUBLE_EQ(*f[0].value, 0.25);
     EXPECT_FALSE(f[0].baseline);
-    EXPECT_NEAR(*f[1].value, std::sqrt(7.0 / 4.0), 1e-12);
-    EXPECT_TRUE(f[1].baseline);
-    EXPECT_EQ(f[1].name, "odometry alone RMSE");
+    EXPECT_DOUBLE_EQ(*f[1].value, 50.0);
+    EXPECT_EQ(f[1].unit, "%");
+    EXPECT_EQ(f[2].name, "RPE over 1 m RMSE");
+    EXPECT_DOUBLE_EQ(*f[2].value, 0.02);
+    EXPECT_NEAR(*f[3].value, std::sqrt(7.0 / 4.0), 1e-12);
+    EXPECT_TRUE(f[3].baseline);
+    EXPECT_EQ(f[3].name, "odometry alone APE RMSE");
     // robots standing on test points: an exact odometry is said to be so, not offered as a
     // baseline the method failed to beat
-    const auto still = common::trajectoryFigures(nlohmann::json::parse(R"({"rmse_m": 0.05,
-        "robots": {"p1": {"odometry": {"rmse_m": 0.0, "max_m": 0.0, "n": 801}}}})"));
-    ASSERT_EQ(still.size(), 2u);
-    EXPECT_EQ(still[1].name, "odometry alone RMSE (the robots stand still: nothing to drift)");
-    EXPECT_DOUBLE_EQ(*still[1].value, 0.0);
-    // no truth: RMSE none, and no baseline invented
+    const auto still = common::trajectoryFigures(nlohmann::json::parse(R"({"robots": {"p1":
+        {"odometry": {"truth_timeline": {"ape": {"rmse_m": 0.0, "max_m": 0.0, "n": 801}}}}}})"));
+    ASSERT_EQ(still.size(), 4u);
+    EXPECT_EQ(still[3].name, "odometry alone APE RMSE (the robots stand still: nothing to drift)");
+    EXPECT_DOUBLE_EQ(*still[3].value, 0.0);
+    // no truth: every figure none, and no baseline invented
     const auto none = common::trajectoryFigures(nlohmann::json::parse(R"({"rmse_m": null})"));
-    ASSERT_EQ(none.size(), 1u);
-    EXPECT_FALSE(none[0].value.has_value());
+    ASSERT_EQ(none.size(), 3u);
+    for (const auto& fig : none) EXPECT_FALSE(fig.value.has_value()) << fig.name;
 }
 
 TEST(Outcome, NearMissFindsOneOrTwoEditsAndNothingFarther) {

@@ -1,6 +1,8 @@
 // Report pictures: the off-screen top view puts things where they are; plots and HTML exist.
 #include <gtest/gtest.h>
 #include <mrloc/common/Error.h>
+#include <mrloc/common/Evaluation.h>
+#include <mrloc/report/EvaluationPlots.h>
 #include <mrloc/report/Plots.h>
 #include <mrloc/report/TopView.h>
 #include <mrpt/img/CImage.h>
@@ -88,15 +90,15 @@ TEST(TopView, DrawsPathsAndBeaconsWhereTheyAre) {
 
 TEST(Plots, GnuplotWritesPngs) {
     report::RobotErrors e;
-    for (int i = 0; i < 50; ++i) e["r1"].push_back({0.1 * i, 0.01 * (i % 7)});
+    for (int i = 0; i < 5; ++i) e["r" + std::to_string(i)].push_back({0.1 * i, 0.01 * i});
     const std::string dir = testing::TempDir();
-    report::plotErrorOverTime(e, dir + "/mrloc_err.png");
-    report::plotErrorCdf(e, dir + "/mrloc_cdf.png");
+    report::plotErrorPerRobot(e, dir + "/mrloc_err.png");
     mrpt::img::CImage img;
     ASSERT_TRUE(img.loadFromFile(dir + "/mrloc_err.png"));
     EXPECT_EQ(img.getWidth(), 900u);
-    ASSERT_TRUE(img.loadFromFile(dir + "/mrloc_cdf.png"));
-    EXPECT_THROW(report::plotErrorCdf({}, dir + "/mrloc_none.png"), Error);
+    EXPECT_THROW(report::plotErrorPerRobot({}, dir + "/mrloc_none.png"), Error);
+    EXPECT_FALSE(std::filesystem::exists(dir + "/mrloc_none.png"));
+    EXPECT_THROW(report::plotTruthTimelineCdf({}, dir + "/mrloc_none.png"), Error);
     EXPECT_FALSE(std::filesystem::exists(dir + "/mrloc_none.png"));
 }
 
@@ -127,16 +129,107 @@ TEST(Plots, GnuplotStringsRunNothing) {
     for (const auto& name : hostile) {
         const std::string png = dir + "/p" + std::to_string(i++) + ".png";
         report::RobotErrors errors{{name, {{0.0, 0.1}, {1.0, 0.2}}}};
-        report::plotErrorOverTime(errors, png);
+        report::EvaluatedTrack track;  // a robot's name is every truth-timeline title
+        track.name = name;
+        track.truth = {{0.0, mrpt::poses::CPose3D()},
+                       {1.0, mrpt::poses::CPose3D(1, 0, 0, 0, 0, 0)}};
+        track.estimate = common::evaluate(track.truth, track.truth);
+        report::plotTruthTimelineError({track}, png);
+        report::plotPoseOverTime(track, png + ".pose.png");
+        report::plotErrorTopView(track, png + ".top.png");
         report::plotErrorPerRobot(errors, png + ".robots.png");
         report::runGnuplot("m = 'touch " + marker + "'\nset title " + report::gnuplotString(name) +
                                "\nplot x title " + report::gnuplotString(name) + "\n",
                            png + ".title.png");
-        EXPECT_TRUE(report::isCompletePng(png)) << name;
-        EXPECT_TRUE(report::isCompletePng(png + ".title.png")) << name;
+        for (const char* suffix : {"", ".pose.png", ".top.png", ".robots.png", ".title.png"})
+            EXPECT_TRUE(report::isCompletePng(png + suffix)) << name << suffix;
         EXPECT_FALSE(fs::exists(marker)) << "ran: " << name;
     }
     // gnuplot's own check: a raw string would have run the command (the test can fail)
     report::runGnuplot("system('touch " + marker + "')\nplot x\n", dir + "/raw.png");
     EXPECT_TRUE(fs::exists(marker));
+}
+
+namespace {
+
+/** Pixels of exactly this colour in the whole picture. */
+size_t countExactly(const mrpt::img::CImage& img, uint8_t r, uint8_t g, uint8_t b) {
+    size_t n = 0;
+    for (int y = 0; y < int(img.getHeight()); ++y)
+        for (int x = 0; x < int(img.getWidth()); ++x) {
+            const uint8_t* p = img(x, y);  // BGR
+            n += p[2] == r && p[1] == g && p[0] == b;
+        }
+    return n;
+}
+
+common::Trajectory straightDrive(double t1, double dt) {
+    common::Trajectory out;
+    for (int k = 0; k * dt <= t1 + 1e-9; ++k)
+        out.push_back({k * dt, mrpt::poses::CPose3D(k * dt, 0, 0, 0, 0, 0)});
+    return out;
+}
+
+}  // namespace
+
+// The shaded stretches are where the truth has no estimate: a 2 s gap of a 10 s drive shades
+// about a fifth of the plot's width; the same drive without the gap shades nothing but the
+// legend's swatch.
+TEST(EvaluationPlots, TheUncoveredStretchIsShadedAndOnlyIt) {
+    const auto truth = straightDrive(10, 0.1);
+    common::Trajectory gapped, whole;
+    for (const auto& p : truth) {
+        auto q = p;
+        q.pose.x_incr(0.05 + 0.01 * std::sin(p.t));
+        whole.push_back(q);
+        if (p.t < 4 - 1e-9 || p.t > 6 + 1e-9) gapped.push_back(q);
+    }
+    const std::string dir = testing::TempDir();
+    report::EvaluatedTrack t;
+    t.name = "r1";
+    t.truth = truth;
+    t.estimate = common::evaluate(gapped, truth);
+    ASSERT_EQ(t.estimate.coverage.uncovered.size(), 1u);
+    report::plotTruthTimelineError({t}, dir + "/mrloc_eval_gap.png");
+    t.estimate = common::evaluate(whole, truth);
+    report::plotTruthTimelineError({t}, dir + "/mrloc_eval_whole.png");
+    mrpt::img::CImage gap, full;
+    ASSERT_TRUE(gap.loadFromFile(dir + "/mrloc_eval_gap.png"));
+    ASSERT_TRUE(full.loadFromFile(dir + "/mrloc_eval_whole.png"));
+    // #c8c8c8 at 0.6 opacity over white: 222, 222, 222
+    const size_t shadedGap = countExactly(gap, 222, 222, 222);
+    const size_t shadedWhole = countExactly(full, 222, 222, 222);
+    EXPECT_LT(shadedWhole, 50u);  // measured 7: antialiased edges that happen to match
+    // a 1000 x 500 picture, about 300 px of plot height: a fifth of ~700 px wide is ~140 px
+    EXPECT_GT(shadedGap, 100u * 250u) << shadedGap;
+    EXPECT_LT(shadedGap, 200u * 450u) << shadedGap;
+    // the other pictures draw from the same evaluation
+    report::plotPoseOverTime(t, dir + "/mrloc_eval_pose.png");
+    report::plotErrorTopView(t, dir + "/mrloc_eval_top.png");
+    report::plotTruthTimelineCdf({t}, dir + "/mrloc_eval_cdf.png");
+    for (const char* f : {"mrloc_eval_pose.png", "mrloc_eval_top.png", "mrloc_eval_cdf.png"})
+        EXPECT_TRUE(report::isCompletePng(dir + "/" + f)) << f;
+}
+
+TEST(EvaluationPlots, TheTwoSigmaEllipseOfACovarianceHasItsAxesAndAngle) {
+    mrpt::math::CMatrixDouble33 c;
+    c.setZero();
+    c(0, 0) = 4, c(1, 1) = 1;  // sigma 2 m along x, 1 m along y: full axes 8 m and 4 m
+    auto e = report::twoSigmaEllipse(c);
+    ASSERT_TRUE(e);
+    EXPECT_NEAR(e->major, 8, 1e-12);
+    EXPECT_NEAR(e->minor, 4, 1e-12);
+    EXPECT_NEAR(std::fmod(e->angleDeg + 360, 180), 0, 1e-9);
+    // the same turned by 30 degrees: R diag(4, 1) R^T
+    const double a = M_PI / 6, ca = std::cos(a), sa = std::sin(a);
+    c(0, 0) = 4 * ca * ca + sa * sa;
+    c(1, 1) = 4 * sa * sa + ca * ca;
+    c(0, 1) = c(1, 0) = 3 * ca * sa;
+    e = report::twoSigmaEllipse(c);
+    ASSERT_TRUE(e);
+    EXPECT_NEAR(e->major, 8, 1e-9);
+    EXPECT_NEAR(e->minor, 4, 1e-9);
+    EXPECT_NEAR(std::fmod(e->angleDeg + 360, 180), 30, 1e-9);
+    c(0, 0) = NAN;  // a method that does not estimate a term writes nan
+    EXPECT_FALSE(report::twoSigmaEllipse(c));
 }

@@ -80,18 +80,20 @@ Coverage coverageOf(const std::vector<Pair>& pairs, const Trajectory& truth, dou
     if (truth.empty()) return c;
     if (pairs.empty()) {
         c.longestGap = truth.back().t - truth.front().t;
+        c.uncovered.emplace_back(truth.front().t, truth.back().t);
         return c;
     }
     c.start = pairs.front().t;
     c.end = pairs.back().t;
     // a stretch of uncovered stamps, from the covered stamp before it (or the truth's start)
     // to the covered stamp after it (or the truth's end)
-    if (pairs.front().index > 0) c.longestGap = pairs.front().t - truth.front().t;
+    if (pairs.front().index > 0) c.uncovered.emplace_back(truth.front().t, pairs.front().t);
     for (size_t k = 1; k < pairs.size(); ++k)
         if (pairs[k].index > pairs[k - 1].index + 1)
-            c.longestGap = std::max(c.longestGap, pairs[k].t - pairs[k - 1].t);
+            c.uncovered.emplace_back(pairs[k - 1].t, pairs[k].t);
     if (pairs.back().index + 1 < truth.size())
-        c.longestGap = std::max(c.longestGap, truth.back().t - pairs.back().t);
+        c.uncovered.emplace_back(pairs.back().t, truth.back().t);
+    for (const auto& [from, to] : c.uncovered) c.longestGap = std::max(c.longestGap, to - from);
     return c;
 }
 
@@ -116,7 +118,8 @@ CPose2D alignmentOf(Alignment a, const std::vector<Pair>& pairs) {
 RelativeError relativeErrors(const std::vector<Pair>& pairs, double delta, bool byDistance) {
     RelativeError r;
     r.delta = delta;
-    std::vector<double> translation, heading;
+    auto& translation = r.translations;
+    auto& heading = r.headings;
     size_t i = 0;
     while (i < pairs.size()) {
         double travelled = 0;
@@ -157,7 +160,7 @@ Evaluation evaluate(const Trajectory& estimate, const Trajectory& truth,
         p.estimate = e.alignment + p.estimate;
         const double dt = std::hypot(p.estimate.x() - p.truth.x(), p.estimate.y() - p.truth.y());
         const double dh = std::abs(mrpt::math::wrapToPi(p.estimate.phi() - p.truth.phi()));
-        e.errors.push_back({p.t, dt, dh});
+        e.errors.push_back({p.t, dt, dh, p.truth, p.estimate});
         translation.push_back(dt);
         heading.push_back(dh);
     }
@@ -197,12 +200,29 @@ nlohmann::json pooledJson(const std::vector<Evaluation>& robots) {
         for (const auto& p : e.errors)
             translation.push_back(p.translation), heading.push_back(p.heading);
     }
-    return {{"robots", robots.size()},
-            {"truth_stamps", stamps},
-            {"covered", covered},
-            {"share", stamps ? double(covered) / double(stamps) : 0.0},
-            {"ape", statsToJson(computeStats(translation), "m")},
-            {"ape_heading", statsToJson(computeStats(heading), "deg", mrpt::RAD2DEG(1.0))}};
+    nlohmann::json j{
+        {"robots", robots.size()},
+        {"truth_stamps", stamps},
+        {"covered", covered},
+        {"share", stamps ? double(covered) / double(stamps) : 0.0},
+        {"ape", statsToJson(computeStats(translation), "m")},
+        {"ape_heading", statsToJson(computeStats(heading), "deg", mrpt::RAD2DEG(1.0))}};
+    if (robots.empty()) return j;
+    // RPE per delta over every robot's pairs (the robots share the options, so the deltas)
+    for (const bool byDistance : {true, false}) {
+        std::vector<double> t, h;
+        for (const auto& e : robots) {
+            const auto& r = byDistance ? e.rpeDistance : e.rpeTime;
+            t.insert(t.end(), r.translations.begin(), r.translations.end());
+            h.insert(h.end(), r.headings.begin(), r.headings.end());
+        }
+        const auto& first = byDistance ? robots.front().rpeDistance : robots.front().rpeTime;
+        j["rpe"].push_back({{"delta", first.delta},
+                            {"unit", byDistance ? "m" : "s"},
+                            {"translation", statsToJson(computeStats(t), "m")},
+                            {"heading", statsToJson(computeStats(h), "deg", mrpt::RAD2DEG(1.0))}});
+    }
+    return j;
 }
 
 }  // namespace mrloc::common

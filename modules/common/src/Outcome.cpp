@@ -1,5 +1,6 @@
 #include <mrloc/common/Error.h>
 #include <mrloc/common/Outcome.h>
+#include <mrpt/core/format.h>
 
 #include <algorithm>
 #include <cmath>
@@ -94,24 +95,48 @@ std::optional<double> numberAt(const nlohmann::json& j, const std::string& path)
     return std::isfinite(v) ? std::optional<double>(v) : std::nullopt;
 }
 
+namespace {
+
+/** The translation RMSE of a truth_timeline's RPE over a travelled distance, with its delta. */
+std::pair<std::optional<double>, double> rpeOverDistance(const nlohmann::json& timeline) {
+    if (timeline.is_object() && timeline.contains("rpe") && timeline["rpe"].is_array())
+        for (const auto& r : timeline["rpe"])
+            if (r.is_object() && r.value("unit", "") == "m")
+                return {numberAt(r, "translation/rmse_m"), numberAt(r, "delta").value_or(1.0)};
+    return {std::nullopt, 1.0};
+}
+
+}  // namespace
+
 std::vector<HeadlineFigure> trajectoryFigures(const nlohmann::json& metrics) {
+    // on the truth's timeline (doc/evaluation.md): every truth stamp the estimates cover,
+    // and how many they do, so that a localizer that stops answering is not scored on less
     std::vector<HeadlineFigure> figures;
-    figures.push_back({"RMSE", numberAt(metrics, "rmse_m"), "m", "", "", false});
-    // odometry alone over every robot that has it: the RMSE of the pooled errors
+    const nlohmann::json none;
+    const auto& timeline = metrics.contains("truth_timeline") ? metrics["truth_timeline"] : none;
+    figures.push_back({"APE RMSE", numberAt(timeline, "ape/rmse_m"), "m", "", "", false});
+    const auto share = numberAt(timeline, "share");
+    figures.push_back({"truth stamps covered", share ? std::optional(100 * *share) : std::nullopt,
+                       "%", "", "", false});
+    const auto [rpe, delta] = rpeOverDistance(timeline);
+    figures.push_back({mrpt::format("RPE over %g m RMSE", delta), rpe, "m", "", "", false});
+    // odometry alone over every robot that has it, on its truth's timeline: the RMSE of the
+    // pooled errors
     double sum2 = 0, worst = 0;
     size_t n = 0;
     if (metrics.contains("robots") && metrics["robots"].is_object())
         for (const auto& [robot, r] : metrics["robots"].items())
-            if (const auto rmse = numberAt(r, "odometry/rmse_m"))
-                if (const auto k = numberAt(r, "odometry/n"); k && *k > 0) {
+            if (const auto rmse = numberAt(r, "odometry/truth_timeline/ape/rmse_m"))
+                if (const auto k = numberAt(r, "odometry/truth_timeline/ape/n"); k && *k > 0) {
                     sum2 += *rmse * *rmse * *k, n += size_t(*k);
-                    worst = std::max(worst, numberAt(r, "odometry/max_m").value_or(*rmse));
+                    worst = std::max(
+                        worst, numberAt(r, "odometry/truth_timeline/ape/max_m").value_or(*rmse));
                 }
     // robots on test points never move: their odometry is exact by construction, and a
     // baseline of 0 m says nothing about the method
     if (n)
-        figures.push_back({worst > 0 ? "odometry alone RMSE"
-                                     : "odometry alone RMSE (the robots stand still: nothing "
+        figures.push_back({worst > 0 ? "odometry alone APE RMSE"
+                                     : "odometry alone APE RMSE (the robots stand still: nothing "
                                        "to drift)",
                            std::sqrt(sum2 / double(n)), "m", "", "", true});
     return figures;

@@ -4,9 +4,11 @@
 #include <mrloc/formation/FormationFiles.h>
 #include <mrloc/formation/FormationLocalizer.h>
 #include <mrloc/formation/FormationPayload.h>
+#include <mrpt/math/wrap2pi.h>
 #include <mrpt/obs/CObservationComment.h>
 #include <mrpt/obs/CObservationOdometry.h>
 
+#include <algorithm>
 #include <cmath>
 
 namespace mrloc::formation {
@@ -37,6 +39,11 @@ void FormationLocalizer::configure(const mrpt::config::CConfigFileBase& ini) {
     config_.loadFromConfigFile(ini, "formation");
     team_.emplace(teamOptions(config_));
     estimates_.clear();
+    track_.clear();
+    moveStart_.clear();
+    moveFrom_.clear();
+    lastReading_.clear();
+    lastArrival_ = lastTime_ = -1;
     deadReckoned_.reset();
     cameraLostMoves_ = 0;
 }
@@ -61,6 +68,8 @@ void FormationLocalizer::process(const mrpt::obs::CObservation::Ptr& obs) {
                                                               config_.deadReckoning.dt)
                                       : config_.worldRoute().front();
         estimates_[kDeadReckoningRobot].push_back({t, pose3(*deadReckoned_, heading)});
+        track_[kDeadReckoningRobot].push_back(estimates_[kDeadReckoningRobot].back());
+        lastTime_ = std::max(lastTime_, t);
         return;
     }
     {  // what observationUse counts: the team's kinds of observation, and whose they are
@@ -83,14 +92,76 @@ void FormationLocalizer::process(const mrpt::obs::CObservation::Ptr& obs) {
         obs->sensorLabel.size() > 10 &&
         obs->sensorLabel.compare(obs->sensorLabel.size() - 10, 10, ".obstacles") == 0;
     team_->observe(obs);
-    if (firstSighting)  // the start: where the strip puts it
-        estimates_[team_->options().names[*robot]].push_back(
+    lastTime_ = std::max(lastTime_, t);
+    noteMotion(obs, t);
+    if (firstSighting) {  // the start: where the strip puts it
+        const std::string& name = team_->options().names[*robot];
+        estimates_[name].push_back(
             {t, pose3(team_->believed()[*robot], team_->believedHeading(*robot))});
+        track_[name].push_back(estimates_[name].back());
+        lastArrival_ = std::max(lastArrival_, t);
+    }
     if (team_->moves().size() > before) {
         const size_t r = team_->moves().back().move.robot;
-        estimates_[team_->options().names[r]].push_back(
-            {t, pose3(team_->believed()[r], team_->believedHeading(r))});
+        const std::string& name = team_->options().names[r];
+        auto& track = track_[name];
+        // it stood where it was until its odometry first moved (else, one robot moving at a
+        // time in seed 003 Algorithm 2, until the team's previous arrival), and moved from there
+        const auto started = moveStart_.find(name);
+        const double from = started != moveStart_.end() ? started->second : lastArrival_;
+        if (!track.empty() && from > track.back().t && from < t)
+            track.push_back({from, track.back().pose});
+        moveStart_.erase(name);
+        estimates_[name].push_back({t, pose3(team_->believed()[r], team_->believedHeading(r))});
+        // the vertex replaces the odometry's pose of the same instant
+        if (!track.empty() && track.back().t >= t - 1e-6) track.pop_back();
+        track.push_back(estimates_[name].back());
+        lastArrival_ = t;
     }
+}
+
+void FormationLocalizer::noteMotion(const mrpt::obs::CObservation::Ptr& obs, double t) {
+    const auto odo = std::dynamic_pointer_cast<mrpt::obs::CObservationOdometry>(obs);
+    const auto [name, sensor] = common::parseSensorLabel(obs->sensorLabel);
+    if (!odo || sensor != "odom" || !team_->indexOf(name)) return;
+    // at rest: the odometry does not change between two readings (to 1e-6 m and rad; its
+    // noise grows with the motion, none while the robot stands)
+    constexpr double kAtRest = 1e-6;
+    const auto last = lastReading_.find(name);
+    const bool moving =
+        last != lastReading_.end() &&
+        (std::abs(odo->odometry.x() - last->second.pose.x()) > kAtRest ||
+         std::abs(odo->odometry.y() - last->second.pose.y()) > kAtRest ||
+         std::abs(mrpt::math::wrapToPi(odo->odometry.phi() - last->second.pose.phi())) > kAtRest);
+    auto& track = track_[name];
+    if (track.empty()) {  // not seen yet: the team places it at its first scan
+        lastReading_[name] = {t, odo->odometry, moving};
+        return;
+    }
+    if (moving && !moveStart_.count(name)) {
+        // the move begins: from the held estimate, at the reading before
+        moveStart_[name] = last->second.t;
+        moveFrom_[name] = {mrpt::poses::CPose2D(track.back().pose), last->second.pose};
+    }
+    // at rest the robot is where the team placed it; during a move it knows only its
+    // odometry (seed 003 places it again at the vertex): the held pose moved by the
+    // odometry since the move began
+    const auto from = moveFrom_.find(name);
+    const mrpt::poses::CPose3D now =
+        moveStart_.count(name) && from != moveFrom_.end()
+            ? mrpt::poses::CPose3D(from->second.first + (odo->odometry - from->second.second))
+            : track.back().pose;
+    if (t > track.back().t + 1e-6) track.push_back({t, now});
+    lastReading_[name] = {t, odo->odometry, moving};
+}
+
+common::Trajectories FormationLocalizer::estimates() const {
+    common::Trajectories out = track_;
+    // after its last arrival a robot stands still: it would have reported another
+    for (auto& [name, track] : out)
+        if (name != kDeadReckoningRobot && !track.empty() && lastTime_ > track.back().t)
+            track.push_back({lastTime_, track.back().pose});
+    return out;
 }
 
 common::ObservationUse FormationLocalizer::observationUse() const {

@@ -353,6 +353,11 @@ common::Headline formationHeadline(const method::HeadlineOf<FormationLocalizer>&
     h.figures.push_back({h.reached ? "error at the destination" : "error at the last move", own,
                          "m", claim, differs, false});
     h.figures.push_back({"dead reckoning", dr, "m", "", "", true});
+    // along the march, on the truth's timeline: every robot's estimate at every truth stamp
+    for (auto f : common::trajectoryFigures(in.metrics)) {
+        f.name = "along the march: " + f.name;
+        h.figures.push_back(std::move(f));
+    }
     return h;
 }
 

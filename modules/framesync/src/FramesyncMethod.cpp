@@ -305,6 +305,11 @@ common::Headline framesyncHeadline(const method::HeadlineOf<FramesyncLocalizer>&
             h.figures.push_back({"own odometry" + over, o / double(n), "m", own, differs, true});
         }
     }
+    // each robot's pose in the shared frame against its truth there, on the truth's timeline
+    for (auto f : common::trajectoryFigures(in.metrics)) {
+        f.name = "in the shared frame: " + f.name;
+        h.figures.push_back(std::move(f));
+    }
     return h;
 }
 

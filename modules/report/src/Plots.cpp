@@ -14,7 +14,6 @@
 #include <cstring>
 #include <filesystem>
 #include <fstream>
-#include <limits>
 
 namespace mrloc::report {
 
@@ -124,38 +123,9 @@ std::string dataBlock(const std::string& name, const std::vector<std::pair<doubl
     return s + "EOD\n";
 }
 
-/** At most this many errors per robot are plotted as markers. */
-constexpr size_t kSparse = 50;
-
 bool oneErrorPerRobot(const RobotErrors& errors) {
     return std::all_of(errors.begin(), errors.end(),
                        [](const auto& robotErrors) { return robotErrors.second.size() <= 1; });
-}
-
-void plotErrorOverTime(const RobotErrors& errors, const std::string& pngPath) {
-    double t0 = std::numeric_limits<double>::infinity();  // the first estimate of any robot
-    for (const auto& [robot, e] : errors)
-        if (!e.empty()) t0 = std::min(t0, e.front().t);
-    std::string body, plot;
-    int i = 0;
-    for (const auto& [robot, e] : errors) {
-        if (e.empty()) continue;
-        std::vector<std::pair<double, double>> xy;
-        for (const auto& te : e) xy.emplace_back(te.t - t0, te.error);
-        body += dataBlock("d" + std::to_string(i), xy);
-        // Sparse errors (a few trials at a test point) as markers, not a zig-zag line.
-        const std::string style = e.size() <= kSparse ? "points pt 7 ps 1" : "lines lw 1.5";
-        plot += std::string(plot.empty() ? "plot " : ", ") + "$d" + std::to_string(i) +
-                " using 1:2 with " + style + " lc " + std::to_string(i + 1) + " title " +
-                gnuplotString(robot);
-        ++i;
-    }
-    if (plot.empty()) throw Error("no errors to plot for " + pngPath);
-    runGnuplot(body +
-                   "set xlabel 'time since the first estimate (s)'\n"
-                   "set ylabel 'position error (m)'\nset yrange [0:*]\n" +
-                   plot + "\n",
-               pngPath);
 }
 
 void plotErrorPerRobot(const RobotErrors& errors, const std::string& pngPath) {
@@ -177,30 +147,6 @@ void plotErrorPerRobot(const RobotErrors& errors, const std::string& pngPath) {
                    std::to_string(every) +
                    " == 0 ? stringcolumn(3) : '') with points pt 7 ps 1.5 lc rgb '#d00000' "
                    "title 'error of the estimate'\n",
-               pngPath);
-}
-
-void plotErrorCdf(const RobotErrors& errors, const std::string& pngPath) {
-    std::string body, plot;
-    int i = 0;
-    for (const auto& [robot, e] : errors) {
-        if (e.empty()) continue;
-        std::vector<double> v;
-        for (const auto& te : e) v.push_back(te.error);
-        std::sort(v.begin(), v.end());
-        std::vector<std::pair<double, double>> xy;
-        for (size_t k = 0; k < v.size(); ++k)
-            xy.emplace_back(v[k], double(k + 1) / double(v.size()));
-        body += dataBlock("c" + std::to_string(i), xy);
-        plot += std::string(plot.empty() ? "plot " : ", ") + "$c" + std::to_string(i) +
-                " using 1:2 with steps lw 1.5 title " + gnuplotString(robot);
-        ++i;
-    }
-    if (plot.empty()) throw Error("no errors to plot for " + pngPath);
-    runGnuplot(body +
-                   "set xlabel 'position error (m)'\nset ylabel 'fraction of estimates'\n"
-                   "set yrange [0:1]\nset key outside right top\n" +
-                   plot + "\n",
                pngPath);
 }
 

@@ -1,14 +1,17 @@
 #include <mrloc/common/AtomicFile.h>
 #include <mrloc/common/Error.h>
+#include <mrloc/common/Evaluation.h>
 #include <mrloc/common/IniSection.h>
 #include <mrloc/common/Metrics.h>
 #include <mrloc/common/Names.h>
 #include <mrloc/common/Outcome.h>
 #include <mrloc/common/RunDirectory.h>
+#include <mrloc/report/EvaluationPlots.h>
 #include <mrloc/report/Plots.h>
 #include <mrloc/report/Report.h>
 #include <mrloc/report/ReportOptions.h>
 #include <mrloc/report/TopView.h>
+#include <mrpt/core/format.h>
 
 #include <filesystem>
 #include <fstream>
@@ -111,6 +114,82 @@ common::Trajectories odometryPaths(const RunView& run) {
         const mrpt::poses::CPose3D align = *start + (-odo.front().pose);
         for (const auto& p : odo) out[robot].push_back({p.t, align + p.pose});
     }
+    return out;
+}
+
+/** Robots whose path and x, y, heading get pictures of their own (a swarm's first few). */
+constexpr size_t kRobotsPictured = 4;
+
+bool isBaseline(const RunView& run, const std::string& robot) {
+    const auto& robots = run.metrics["robots"];
+    return robots.contains(robot) && robots[robot].is_object() &&
+           robots[robot].value("baseline", false);
+}
+
+/** Each robot's evaluation on the truth's timeline, as metrics.json's (doc/evaluation.md),
+ *  drawn: the error over time and its CDF for all, and the first robots' x, y, heading and
+ *  path coloured by the error. */
+std::vector<EvaluatedTrack> truthTimelinePictures(const RunView& run, const std::string& dir) {
+    std::vector<EvaluatedTrack> tracks;
+    const auto odometry = odometryPaths(run);
+    for (const auto& [robot, est] : run.estimates) {
+        const auto gt = run.truth.find(robot);
+        if (gt == run.truth.end() || est.empty()) continue;
+        EvaluatedTrack t;
+        t.name = isBaseline(run, robot) ? robot + " (baseline)" : robot;
+        t.estimate = common::evaluate(est, gt->second);
+        if (const auto odo = odometry.find(robot); odo != odometry.end())
+            t.odometry = common::evaluate(odo->second, gt->second);
+        t.truth = gt->second;
+        if (const auto path = common::run_dir::covariance(dir, robot);
+            std::filesystem::exists(path))
+            t.covariances = common::loadCovariances(path);
+        tracks.push_back(std::move(t));
+    }
+    if (tracks.empty()) return tracks;
+    plotTruthTimelineError(tracks, dir + "/error_time.png");
+    plotTruthTimelineCdf(tracks, dir + "/error_cdf.png");
+    size_t pictured = 0;
+    for (const auto& [robot, est] : run.estimates)
+        for (const auto& t : tracks)
+            if (pictured < kRobotsPictured && t.name == robot && !t.estimate.errors.empty()) {
+                plotPoseOverTime(t, dir + "/pose_time." + robot + ".png");
+                plotErrorTopView(t, dir + "/error_topview." + robot + ".png");
+                ++pictured;
+            }
+    return tracks;
+}
+
+/** The truth-timeline pictures with what they show. */
+Html truthTimelineSection(const std::vector<EvaluatedTrack>& tracks) {
+    Html out = heading(2, "Error on the truth's timeline") +
+               paragraph(
+                   "At every stamp of the truth, the estimate interpolated there (doc/"
+                   "evaluation.md); grey where there is no estimate to interpolate (before the "
+                   "first, after the last, or across a gap longer than the limit), counted as "
+                   "not covered, never left out. Odometry alone is dashed in the robot's "
+                   "colour.") +
+               Figure{"error_time.png", "position error against time"}.html() +
+               Figure{"error_cdf.png", "CDF of the position error"}.html();
+    size_t pictured = 0;
+    for (const auto& t : tracks) {
+        if (t.name.find(" (baseline)") != std::string::npos || t.estimate.errors.empty() ||
+            pictured == kRobotsPictured)
+            continue;
+        ++pictured;
+        out += heading(3, "Robot " + t.name) +
+               Figure{"pose_time." + t.name + ".png", "x, y and heading against time"}.html() +
+               Figure{"error_topview." + t.name + ".png",
+                      t.covariances.empty() ? "path coloured by the error"
+                                            : "path coloured by the error, 2-sigma ellipses"}
+                   .html();
+    }
+    if (tracks.size() > pictured)
+        out +=
+            paragraph(mrpt::format("x, y, heading and the path coloured by the error are "
+                                   "drawn for the first %zu robots; the error plots above "
+                                   "hold all %zu.",
+                                   pictured, tracks.size()));
     return out;
 }
 
@@ -261,13 +340,12 @@ std::string makeReport(const std::string& dir, const Section& section) {
         renderTopView(view, dir + "/topview.png");
     }
     const bool perRobot = !errors.empty() && oneErrorPerRobot(errors);
+    std::vector<EvaluatedTrack> tracks;
     if (!errors.empty()) {
-        if (perRobot) {
+        if (perRobot)
             plotErrorPerRobot(errors, dir + "/error_robots.png");
-        } else {
-            plotErrorOverTime(errors, dir + "/error_time.png");
-            plotErrorCdf(errors, dir + "/error_cdf.png");
-        }
+        else
+            tracks = truthTimelinePictures(run, dir);
     }
 
     const auto provenance = provenanceOf(dir);
@@ -312,8 +390,7 @@ std::string makeReport(const std::string& dir, const Section& section) {
                 paragraph("One estimate per robot: one marker each.") +
                 Figure{"error_robots.png", "error per robot"}.html();
     else
-        body += heading(2, "Error over time") + Figure{"error_time.png", "error over time"}.html() +
-                heading(2, "Error CDF") + Figure{"error_cdf.png", "error CDF"}.html();
+        body += truthTimelineSection(tracks);
     const std::string page = htmlPage(title, body);
     common::writeFileAtomically(common::run_dir::report(dir), page);
     return common::run_dir::report(dir);

@@ -11,6 +11,7 @@
 
 #include <optional>
 #include <string>
+#include <utility>
 #include <vector>
 
 namespace mrloc::common {
@@ -38,6 +39,7 @@ struct PoseError {
     double t = 0;
     double translation = 0;  ///< m, in the plane
     double heading = 0;      ///< rad, |wrapped difference|
+    mrpt::poses::CPose2D truth, estimate;  ///< there (the estimate interpolated and aligned)
 };
 
 struct Coverage {
@@ -49,6 +51,10 @@ struct Coverage {
      *  truth's first stamp to the first covered one, or from the last covered one to the
      *  truth's end (the whole truth when none is covered). */
     double longestGap = 0;
+    /** The stretches of the truth's timeline with no covered stamp, as [from, to] (s): from
+     *  the covered stamp before (or the truth's first) to the covered stamp after (or the
+     *  truth's last); what the pictures shade. */
+    std::vector<std::pair<double, double>> uncovered;
     double share() const { return truthStamps ? double(covered) / double(truthStamps) : 0.0; }
 };
 
@@ -57,6 +63,7 @@ struct Coverage {
 struct RelativeError {
     double delta = 0;
     ErrorStats translation, heading;
+    std::vector<double> translations, headings;  ///< each pair's (m, rad): pooled over robots
 };
 
 struct Evaluation {
@@ -79,7 +86,8 @@ Evaluation evaluate(const Trajectory& estimate, const Trajectory& truth,
 nlohmann::json toJson(const Evaluation& e);
 
 /** Several robots' evaluations as one figure: their stamps and covered stamps summed, APE
- *  over every covered stamp of all of them (metrics.json's top-level "truth_timeline"). */
+ *  over every covered stamp of all of them, RPE over every pair of all of them
+ *  (metrics.json's top-level "truth_timeline"). */
 nlohmann::json pooledJson(const std::vector<Evaluation>& robots);
 
 }  // namespace mrloc::common

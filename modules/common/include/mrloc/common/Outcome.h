@@ -67,8 +67,10 @@ std::string figureText(const HeadlineFigure& f);
 /** The CLI's last line: "beacons: localized: RMSE 0.027 m; odometry alone 0.76 m". */
 std::string headlineLine(const std::string& method, const Headline& h);
 
-/** RMSE and the odometry-only baseline from metrics.json's generic figures: the headline
- *  figures of a method whose output is a trajectory per robot. */
+/** The headline figures of a method whose output is a trajectory per robot, from
+ *  metrics.json's truth_timeline (doc/evaluation.md): APE RMSE over every covered truth stamp,
+ *  the share of the truth's stamps covered beside it, RPE over 1 m, and odometry alone on its
+ *  own truth timeline (a baseline). */
 std::vector<HeadlineFigure> trajectoryFigures(const nlohmann::json& metrics);
 
 /** A number of metrics.json at `path` (a/b/c), if present and finite. */

@@ -1,6 +1,6 @@
 #pragma once
-// Plots drawn by gnuplot (pngcairo): error over time and the error CDF, one curve per robot,
-// and the runner every method's plots use.
+// Plots drawn by gnuplot (pngcairo): the error per robot of a method with one estimate each
+// (EvaluationPlots.h draws the truth timeline's), and the runner every method's plots use.
 #include <mrloc/common/Metrics.h>
 
 #include <map>
@@ -11,12 +11,10 @@ namespace mrloc::report {
 
 using RobotErrors = std::map<std::string, std::vector<common::TimedError>>;
 
-void plotErrorOverTime(const RobotErrors& errors, const std::string& pngPath);
 /** True when no robot has more than one error: a line over time would be empty. */
 bool oneErrorPerRobot(const RobotErrors& errors);
 /** One marker per estimate, robots along the x axis (a method with one estimate each). */
 void plotErrorPerRobot(const RobotErrors& errors, const std::string& pngPath);
-void plotErrorCdf(const RobotErrors& errors, const std::string& pngPath);
 
 /** Runs a gnuplot script (pngcairo, grid, key top left) whose data blocks are inline;
  *  writes pngPath atomically. Every plot of mrloc, the methods' included, goes through it. */

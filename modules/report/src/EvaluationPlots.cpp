@@ -1,0 +1,318 @@
+#include <mrloc/common/Error.h>
+#include <mrloc/report/EvaluationPlots.h>
+#include <mrloc/report/Plots.h>
+#include <mrpt/core/bits_math.h>
+#include <mrpt/core/format.h>
+
+#include <Eigen/Eigenvalues>
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <set>
+
+namespace mrloc::report {
+
+namespace {
+
+/** Points per curve at most: a 10^6-stamp truth is thinned to every k-th stamp, which a
+ *  900-pixel-wide picture cannot tell apart from all of them. */
+constexpr size_t kMaxPoints = 4000;
+/** Shaded stretches at most: the longest, when a log has more. */
+constexpr size_t kMaxShaded = 300;
+constexpr const char* kShade = "'#c8c8c8'";
+
+size_t strideFor(size_t n) { return std::max<size_t>(1, (n + kMaxPoints - 1) / kMaxPoints); }
+
+/** The earliest truth stamp of all the tracks: the time axis' origin. */
+double originOf(const std::vector<EvaluatedTrack>& tracks) {
+    double t0 = std::numeric_limits<double>::infinity();
+    for (const auto& tr : tracks)
+        if (!tr.truth.empty()) t0 = std::min(t0, tr.truth.front().t);
+    return std::isfinite(t0) ? t0 : 0.0;
+}
+
+/** A data block of (t - t0, value(error)) at the covered stamps, thinned, with a blank line
+ *  (gnuplot breaks the line there) where an uncovered stretch lies between two of them or
+ *  `breakBetween` says so. */
+template <class Value, class Break>
+std::string coveredBlock(const std::string& name, const common::Evaluation& e, double t0,
+                         Value value, Break breakBetween) {
+    std::set<double> gapStarts;
+    for (const auto& [from, to] : e.coverage.uncovered) gapStarts.insert(from);
+    std::string s = "$" + name + " << EOD\n";
+    const size_t stride = strideFor(e.errors.size());
+    const common::PoseError* written = nullptr;
+    bool pendingBreak = false;
+    for (size_t k = 0; k < e.errors.size(); ++k) {
+        const auto& p = e.errors[k];
+        const bool afterGap = k > 0 && gapStarts.count(e.errors[k - 1].t);
+        pendingBreak = pendingBreak || afterGap;
+        // a gap's edges are never thinned away
+        const bool keep =
+            k % stride == 0 || k + 1 == e.errors.size() || gapStarts.count(p.t) || afterGap;
+        if (!keep) continue;
+        if (written && (pendingBreak || breakBetween(*written, p))) s += "\n";
+        s += mrpt::format("%.6f %.9g\n", p.t - t0, value(p));
+        written = &p;
+        pendingBreak = false;
+    }
+    return s + "EOD\n";
+}
+
+std::string errorBlock(const std::string& name, const common::Evaluation& e, double t0) {
+    return coveredBlock(
+        name, e, t0, [](const common::PoseError& p) { return p.translation; },
+        [](const common::PoseError&, const common::PoseError&) { return false; });
+}
+
+/** gnuplot objects shading each uncovered stretch of the tracks (behind the curves). */
+std::string shading(const std::vector<const common::Evaluation*>& evaluations, double t0) {
+    std::vector<std::pair<double, double>> spans;
+    for (const auto* e : evaluations)
+        spans.insert(spans.end(), e->coverage.uncovered.begin(), e->coverage.uncovered.end());
+    if (spans.size() > kMaxShaded) {
+        std::nth_element(
+            spans.begin(), spans.begin() + kMaxShaded, spans.end(),
+            [](const auto& a, const auto& b) { return a.second - a.first > b.second - b.first; });
+        spans.resize(kMaxShaded);
+    }
+    std::string s;
+    for (const auto& [from, to] : spans)
+        s += mrpt::format(
+            "set object rect from %.6f, graph 0 to %.6f, graph 1 fc rgb %s fs solid 0.6 "
+            "noborder behind\n",
+            from - t0, std::max(to - t0, from - t0 + 1e-6), kShade);
+    return s;
+}
+
+std::string shadingKey(bool any) {
+    return any ? std::string(", NaN with boxes fs solid 0.6 noborder lc rgb ") + kShade +
+                     " title 'not covered (no estimate)'"
+               : "";
+}
+
+bool anyUncovered(const std::vector<const common::Evaluation*>& evaluations) {
+    for (const auto* e : evaluations)
+        if (!e->coverage.uncovered.empty()) return true;
+    return false;
+}
+
+std::string truthBlock(const std::string& name, const common::Trajectory& truth, double t0,
+                       int column) {
+    std::string s = "$" + name + " << EOD\n";
+    const size_t stride = strideFor(truth.size());
+    double previousHeading = NAN;
+    for (size_t k = 0; k < truth.size(); k += stride) {
+        const auto& p = truth[k].pose;
+        const double heading = mrpt::RAD2DEG(p.yaw());
+        if (column == 2 && std::abs(heading - previousHeading) > 180) s += "\n";
+        previousHeading = heading;
+        s += mrpt::format("%.6f %.9g\n", truth[k].t - t0,
+                          column == 0   ? p.x()
+                          : column == 1 ? p.y()
+                                        : heading);
+    }
+    return s + "EOD\n";
+}
+
+}  // namespace
+
+std::optional<Ellipse> twoSigmaEllipse(const mrpt::math::CMatrixDouble33& cov) {
+    Eigen::Matrix2d c;
+    c << cov(0, 0), cov(0, 1), cov(1, 0), cov(1, 1);
+    if (!c.allFinite() || c(0, 0) < 0 || c(1, 1) < 0) return std::nullopt;
+    const Eigen::SelfAdjointEigenSolver<Eigen::Matrix2d> eig(c);
+    if (eig.info() != Eigen::Success || eig.eigenvalues()(0) < -1e-12) return std::nullopt;
+    const double minor = std::sqrt(std::max(0.0, eig.eigenvalues()(0)));
+    const double major = std::sqrt(std::max(0.0, eig.eigenvalues()(1)));
+    const Eigen::Vector2d axis = eig.eigenvectors().col(1);
+    // 2 sigma each side: full axes of 4 sigma
+    return Ellipse{4 * major, 4 * minor, mrpt::RAD2DEG(std::atan2(axis.y(), axis.x()))};
+}
+
+/** Each track's uncovered stretches as a band in its colour along the bottom of the plot,
+ *  one band per track (several robots: a full-height shade of one would hide the others). */
+std::string bands(const std::vector<EvaluatedTrack>& tracks, double t0) {
+    std::string s;
+    const double height = std::min(0.03, 0.25 / double(tracks.size()));
+    int i = 0;
+    for (const auto& tr : tracks) {
+        ++i;
+        auto spans = tr.estimate.coverage.uncovered;
+        if (spans.size() > kMaxShaded) spans.resize(kMaxShaded);  // in time order: the first
+        for (const auto& [from, to] : spans)
+            s += mrpt::format(
+                "set object rect from %.6f, graph %.4f to %.6f, graph %.4f fc lt %d fs solid "
+                "0.8 noborder front\n",
+                from - t0, height * (i - 1), std::max(to - t0, from - t0 + 1e-6), height * i, i);
+    }
+    return s;
+}
+
+void plotTruthTimelineError(const std::vector<EvaluatedTrack>& tracks, const std::string& pngPath) {
+    const double t0 = originOf(tracks);
+    std::string body, plot;
+    std::vector<const common::Evaluation*> shaded;
+    int i = 0;
+    for (const auto& tr : tracks) {
+        ++i;
+        if (!tr.estimate.errors.empty()) {
+            body += errorBlock("e" + std::to_string(i), tr.estimate, t0);
+            plot += std::string(plot.empty() ? "" : ", ") + "$e" + std::to_string(i) +
+                    " using 1:2 with lines lw 1.5 lc " + std::to_string(i) + " title " +
+                    gnuplotString(tr.name);
+        }
+        shaded.push_back(&tr.estimate);
+        if (tr.odometry && !tr.odometry->errors.empty()) {
+            body += errorBlock("o" + std::to_string(i), *tr.odometry, t0);
+            plot += std::string(plot.empty() ? "" : ", ") + "$o" + std::to_string(i) +
+                    " using 1:2 with lines dt 2 lw 1.2 lc " + std::to_string(i) + " title " +
+                    gnuplotString(tr.name + ": odometry alone");
+        }
+    }
+    if (plot.empty()) throw Error("no covered truth stamp to plot for " + pngPath);
+    const bool one = tracks.size() == 1;
+    const std::string key = !anyUncovered(shaded) ? ""
+                            : one                 ? shadingKey(true)
+                                  : ", NaN with boxes fs solid 0.8 noborder lc rgb '#777777' title "
+                                    "'band at the bottom: that robot not covered'";
+    runGnuplot(body + (one ? shading(shaded, t0) : bands(tracks, t0)) +
+                   "set xlabel 'time since the truth''s first stamp (s)'\n"
+                   "set ylabel 'position error at the truth''s stamps (m)'\nset yrange [0:*]\n"
+                   "plot " +
+                   plot + key + "\n",
+               pngPath, "1000,500");
+}
+
+void plotTruthTimelineCdf(const std::vector<EvaluatedTrack>& tracks, const std::string& pngPath) {
+    std::string body, plot;
+    const auto curve = [&](const common::Evaluation& e, const std::string& name, int colour,
+                           const std::string& title, const char* dash) {
+        if (e.errors.empty()) return;
+        std::vector<double> v;
+        for (const auto& p : e.errors) v.push_back(p.translation);
+        std::sort(v.begin(), v.end());
+        std::vector<std::pair<double, double>> xy;
+        const size_t stride = strideFor(v.size());
+        for (size_t k = 0; k < v.size(); k += stride)
+            xy.emplace_back(v[k], double(k + 1) / double(v.size()));
+        xy.emplace_back(v.back(), 1.0);
+        body += dataBlock(name, xy);
+        plot += std::string(plot.empty() ? "plot " : ", ") + "$" + name +
+                " using 1:2 with steps lw 1.5 " + dash + " lc " + std::to_string(colour) +
+                " title " + gnuplotString(title);
+    };
+    int i = 0;
+    for (const auto& tr : tracks) {
+        ++i;
+        curve(tr.estimate, "c" + std::to_string(i), i, tr.name, "");
+        if (tr.odometry)
+            curve(*tr.odometry, "d" + std::to_string(i), i, tr.name + ": odometry alone", "dt 2");
+    }
+    if (plot.empty()) throw Error("no covered truth stamp to plot for " + pngPath);
+    runGnuplot(body +
+                   "set xlabel 'position error (m)'\n"
+                   "set ylabel 'share of the covered truth stamps'\nset yrange [0:1.02]\n"
+                   "set xrange [0:*]\n" +
+                   plot + "\n",
+               pngPath, "1000,500");
+}
+
+void plotPoseOverTime(const EvaluatedTrack& tr, const std::string& pngPath) {
+    if (tr.estimate.errors.empty()) throw Error("no covered truth stamp to plot for " + pngPath);
+    const double t0 = originOf({tr});
+    const auto noBreak = [](const common::PoseError&, const common::PoseError&) { return false; };
+    std::string body =
+        truthBlock("tx", tr.truth, t0, 0) + truthBlock("ty", tr.truth, t0, 1) +
+        truthBlock("th", tr.truth, t0, 2) +
+        coveredBlock(
+            "ex", tr.estimate, t0, [](const common::PoseError& p) { return p.estimate.x(); },
+            noBreak) +
+        coveredBlock(
+            "ey", tr.estimate, t0, [](const common::PoseError& p) { return p.estimate.y(); },
+            noBreak) +
+        coveredBlock(
+            "eh", tr.estimate, t0,
+            [](const common::PoseError& p) { return mrpt::RAD2DEG(p.estimate.phi()); },
+            [](const common::PoseError& a, const common::PoseError& b) {
+                return std::abs(a.estimate.phi() - b.estimate.phi()) > M_PI;  // across +-180
+            });
+    const std::string shade = shading({&tr.estimate}, t0);
+    const std::string key = shadingKey(!tr.estimate.coverage.uncovered.empty());
+    // one margin for the three panels, whatever their keys, so that their time axes line up
+    std::string panels = "set lmargin 10\nset rmargin 36\nset multiplot layout 3,1 title " +
+                         gnuplotString(tr.name + ": truth and estimate against time") + "\n";
+    const char* names[] = {"x (m)", "y (m)", "heading (deg)"};
+    const char* truthBlocks[] = {"$tx", "$ty", "$th"};
+    const char* estimateBlocks[] = {"$ex", "$ey", "$eh"};
+    for (int k = 0; k < 3; ++k) {
+        panels += shade + "set ylabel '" + std::string(names[k]) + "'\n";
+        panels += k == 2 ? "set xlabel 'time since the truth''s first stamp (s)'\n"
+                           "set yrange [-180:180]\nset ytics 90\n"
+                         : "unset xlabel\n";
+        panels += "plot " + std::string(truthBlocks[k]) +
+                  " using 1:2 with lines lw 2 lc rgb '#555555' title 'truth', " +
+                  estimateBlocks[k] + " using 1:2 with lines lw 1.2 lc 1 title 'estimate'" +
+                  (k == 0 ? key : "") + "\nunset object\n";
+    }
+    runGnuplot(body + panels + "unset multiplot\n", pngPath, "1000,800");
+}
+
+void plotErrorTopView(const EvaluatedTrack& tr, const std::string& pngPath) {
+    if (tr.estimate.errors.empty()) throw Error("no covered truth stamp to plot for " + pngPath);
+    std::string body = "$truth << EOD\n";
+    for (size_t k = 0, s = strideFor(tr.truth.size()); k < tr.truth.size(); k += s)
+        body += mrpt::format("%.6f %.6f\n", tr.truth[k].pose.x(), tr.truth[k].pose.y());
+    body += "EOD\n";
+    // the estimate as "x y error" at the covered stamps, thinned, broken where a stretch is
+    // not covered: the error is the colour
+    body += "$path << EOD\n";
+    std::set<double> gapStarts;
+    for (const auto& [from, to] : tr.estimate.coverage.uncovered) gapStarts.insert(from);
+    bool broken = false;
+    for (size_t k = 0, s = strideFor(tr.estimate.errors.size()); k < tr.estimate.errors.size();
+         ++k) {
+        const auto& p = tr.estimate.errors[k];
+        if (gapStarts.count(p.t)) broken = true;
+        if (k % s != 0 && k + 1 != tr.estimate.errors.size()) continue;
+        body += mrpt::format("%.6f %.6f %.6f\n", p.estimate.x(), p.estimate.y(), p.translation);
+        if (broken) body += "\n", broken = false;
+    }
+    body += "EOD\n";
+    // ellipses at the covered estimate nearest each covariance's stamp, a few spread evenly
+    std::string ellipses = "$ell << EOD\n";
+    size_t drawn = 0;
+    const auto& errors = tr.estimate.errors;
+    const size_t every = std::max<size_t>(1, tr.covariances.size() / 40);
+    for (size_t k = 0; k < tr.covariances.size() && !errors.empty(); k += every) {
+        const auto& c = tr.covariances[k];
+        const auto at =
+            std::lower_bound(errors.begin(), errors.end(), c.t,
+                             [](const common::PoseError& p, double t) { return p.t < t; });
+        if (at == errors.end() || std::abs(at->t - c.t) > tr.estimate.coverage.maxGap) continue;
+        const auto e = twoSigmaEllipse(c.cov);
+        if (!e) continue;
+        ellipses +=
+            mrpt::format("%.6f %.6f %.6f %.6f %.3f\n", at->estimate.x(), at->estimate.y(), e->major,
+                         e->minor, e->angleDeg + mrpt::RAD2DEG(tr.estimate.alignment.phi()));
+        ++drawn;
+    }
+    ellipses += "EOD\n";
+    std::string plot =
+        "plot $truth using 1:2 with lines lw 1.5 lc rgb '#9a9a9a' title 'truth', "
+        "$path using 1:2:3 with lines lw 2.5 lc palette title 'estimate (colour: its error)'";
+    if (drawn)
+        plot +=
+            ", $ell using 1:2:3:4:5 with ellipses lw 1 lc rgb '#1f4fb4' title "
+            "'2-sigma position covariance'";
+    runGnuplot(body + ellipses +
+                   "set size ratio -1\nset xlabel 'x (m)'\nset ylabel 'y (m)'\n"
+                   "set cblabel 'position error (m)'\nset cbrange [0:*]\n"
+                   "set palette defined (0 '#1a9850', 0.5 '#fdae61', 1 '#b2182b')\n"
+                   "set title " +
+                   gnuplotString(tr.name + ": path from above, coloured by the error") + "\n" +
+                   "set key outside bottom center horizontal\n" + plot + "\n",
+               pngPath, "900,800");
+}
+
+}  // namespace mrloc::report
