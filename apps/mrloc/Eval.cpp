@@ -26,18 +26,31 @@ namespace mrloc::app {
 
 namespace {
 
-/** The times of the first odometry stream of a rawlog (MRPT's actions give one reading per
- *  step): the time base of a file that counts steps. */
-std::vector<double> odometryStepTimes(const std::string& rawlog) {
+/** A step's time: its odometry reading's (the action, as `mrloc localize` times MRPT's
+ *  ground truth), or its sensory frame's (the observations after the action: where
+ *  pf-localization's estimate after step i is). */
+enum class StepTime { Odometry, Frame };
+
+/** The time of each step of a rawlog, by its first odometry stream (MRPT's actions give one
+ *  reading per step): the time base of a file that counts steps. */
+std::vector<double> stepTimes(const std::string& rawlog, StepTime at) {
     common::RawlogReader reader(rawlog);
     std::vector<double> times;
     std::string label;
-    for (mrpt::obs::CObservation::Ptr obs; reader.next(obs);)
-        if (const auto odo = std::dynamic_pointer_cast<mrpt::obs::CObservationOdometry>(obs)) {
-            if (label.empty()) label = odo->sensorLabel;
-            if (odo->sensorLabel == label && odo->timestamp != INVALID_TIMESTAMP)
-                times.push_back(common::stampSeconds(odo->timestamp));
+    bool waitingForFrame = false;  // a step whose frame's time is not known yet
+    for (mrpt::obs::CObservation::Ptr obs; reader.next(obs);) {
+        const auto odo = std::dynamic_pointer_cast<mrpt::obs::CObservationOdometry>(obs);
+        if (odo && label.empty()) label = odo->sensorLabel;
+        if (odo && odo->sensorLabel == label && odo->timestamp != INVALID_TIMESTAMP) {
+            if (waitingForFrame) times.pop_back();  // a step with no frame: none to time it
+            times.push_back(common::stampSeconds(odo->timestamp));
+            waitingForFrame = at == StepTime::Frame;
+        } else if (!odo && waitingForFrame && obs->timestamp != INVALID_TIMESTAMP) {
+            times.back() = common::stampSeconds(obs->timestamp);
+            waitingForFrame = false;
         }
+    }
+    if (waitingForFrame) times.pop_back();
     if (times.empty())
         throw Error("rawlog " + common::pathInWords(rawlog) +
                     ": no odometry to time a file of steps by");
@@ -47,7 +60,7 @@ std::vector<double> odometryStepTimes(const std::string& rawlog) {
 /** A TUM file, or a file of steps (MRPT's ground truth formats, doc/import.md) timed by the
  *  odometry of `rawlog`. */
 common::Trajectory trajectoryFile(const std::string& path, const std::string& what,
-                                  const std::string& rawlog) {
+                                  const std::string& rawlog, StepTime at) {
     const auto format = common::groundTruthFormatOf(path);
     common::Trajectory t;
     if (format && *format != "tum") {
@@ -58,7 +71,7 @@ common::Trajectory trajectoryFile(const std::string& path, const std::string& wh
         common::GroundTruthSource source;
         source.path = path;
         source.format = *format;
-        t = common::loadGroundTruth(source, odometryStepTimes(rawlog));
+        t = common::loadGroundTruth(source, stepTimes(rawlog, at));
     } else {
         t = common::loadTum(path);
     }
@@ -167,6 +180,12 @@ int eval(int argc, char** argv) {
         "the rawlog whose odometry steps time a file of steps (MRPT's i x y phi or x y z yaw "
         "pitch roll ground truth)",
         false, "", "RAWLOG", cmd);
+    TCLAP::ValueArg<std::string> stepsAt(
+        "", "steps-at",
+        "a step's time with --rawlog: its odometry reading (default, as mrloc localize times "
+        "MRPT's ground truth) or its sensory frame (frame: where pf-localization's estimate "
+        "after the step is)",
+        false, "odometry", "odometry|frame", cmd);
     TCLAP::ValueArg<std::string> out(
         "o", "out", "a folder to write eval.json and the pictures to (doc/evaluation.md)", false,
         "", "DIR", cmd);
@@ -182,10 +201,14 @@ int eval(int argc, char** argv) {
             throw Error("--max-gap must be a time above 0 s");
         o.maxGap = maxGap.getValue();
     }
+    if (stepsAt.getValue() != "odometry" && stepsAt.getValue() != "frame")
+        throw Error("--steps-at " + common::printable(stepsAt.getValue()) + ": odometry or frame");
+    const StepTime at = stepsAt.getValue() == "frame" ? StepTime::Frame : StepTime::Odometry;
     const auto truthPath = truth.getValue();
-    const auto truthTrajectory = trajectoryFile(truthPath, "the truth", rawlog.getValue());
-    const auto e = common::evaluate(
-        trajectoryFile(estimate.getValue(), "the estimate", rawlog.getValue()), truthTrajectory, o);
+    const auto truthTrajectory = trajectoryFile(truthPath, "the truth", rawlog.getValue(), at);
+    const auto e =
+        common::evaluate(trajectoryFile(estimate.getValue(), "the estimate", rawlog.getValue(), at),
+                         truthTrajectory, o);
     if (out.isSet()) {
         common::checkRunFolderPath(out.getValue(), "--out");
         const StderrLog log(false);

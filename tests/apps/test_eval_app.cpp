@@ -101,6 +101,21 @@ TEST(MrlocEval, AFileOfStepsIsTimedByTheRawlogsOdometry) {
     EXPECT_EQ(j["coverage"]["truth_stamps"], 342);  // the log's 342 odometry steps
     EXPECT_EQ(j["coverage"]["covered"], 342);
     EXPECT_NEAR(j["ape"]["max_m"].get<double>(), 0.0, 1e-9);
+    // a step at its sensory frame's time (--steps-at frame, where pf-localization's estimate
+    // after the step is) or its odometry reading's: pf-localization's converged path of
+    // localization_demo (data/real/mrpt-references) starts at step 8, whose action is stamped
+    // 1137772795.033 s and whose scan 1137772795.138 s
+    const std::string ref = std::string(MRLOC_SOURCE_DIR) +
+                            "/data/real/mrpt-references/pf-localization.localization_demo.txt";
+    for (const auto& [at, start] : std::vector<std::pair<std::string, double>>{
+             {"odometry", 1137772795.033}, {"frame", 1137772795.138}}) {
+        const auto p = mrlocCmd("eval " + ref + " " + ref + " --rawlog " + data +
+                                "localization_demo.rawlog --json --steps-at " + at);
+        ASSERT_EQ(p.code, 0) << p.output;
+        const auto pj = nlohmann::json::parse(p.output);
+        EXPECT_EQ(pj["coverage"]["covered"], 29) << at;
+        EXPECT_NEAR(pj["coverage"]["start_s"].get<double>(), start, 0.001) << at;
+    }
     // the kf-slam demo's odometry stamps its 249 steps within 8 ms, some within a microsecond:
     // refused, not scored against the wrong neighbour
     const auto k = mrlocCmd("eval " + data + "kf-slam_demo_ground_truth_robot_path.txt " + steps +

@@ -55,6 +55,7 @@ double defaultMaxGap(const Trajectory& estimate) {
 std::vector<Pair> associate(const Trajectory& estimate, const Trajectory& truth, double maxGap) {
     std::vector<Pair> pairs;
     if (estimate.empty()) return pairs;
+    pairs.reserve(truth.size());
     size_t j = 0;  // the last estimate at or before the truth stamp
     for (size_t i = 0; i < truth.size(); ++i) {
         const double t = truth[i].t;
@@ -156,8 +157,11 @@ Evaluation evaluate(const Trajectory& estimate, const Trajectory& truth,
     e.coverage = coverageOf(pairs, truth, maxGap);
     e.alignment = alignmentOf(o.align, pairs);
     std::vector<double> translation, heading;
+    translation.reserve(pairs.size());
+    heading.reserve(pairs.size());
+    e.errors.reserve(pairs.size());
     for (auto& p : pairs) {
-        p.estimate = e.alignment + p.estimate;
+        if (o.align != Alignment::None) p.estimate = e.alignment + p.estimate;
         const double dt = std::hypot(p.estimate.x() - p.truth.x(), p.estimate.y() - p.truth.y());
         const double dh = std::abs(mrpt::math::wrapToPi(p.estimate.phi() - p.truth.phi()));
         e.errors.push_back({p.t, dt, dh, p.truth, p.estimate});

@@ -298,6 +298,25 @@ void plotErrorTopView(const EvaluatedTrack& tr, const std::string& pngPath) {
         ++drawn;
     }
     ellipses += "EOD\n";
+    // a long, thin path drawn to scale would be a line: each side is at least 40 % of the
+    // longer one, so the picture keeps a readable height with its scale still true
+    double x0 = std::numeric_limits<double>::infinity(), x1 = -x0, y0 = x0, y1 = -x0;
+    const auto extend = [&](const auto& p) {  // a CPose2D or CPose3D
+        x0 = std::min(x0, p.x()), x1 = std::max(x1, p.x());
+        y0 = std::min(y0, p.y()), y1 = std::max(y1, p.y());
+    };
+    for (const auto& p : tr.truth) extend(p.pose);
+    for (const auto& p : errors) extend(p.estimate);
+    const double side = std::max({x1 - x0, y1 - y0, 0.1}) * 1.1;
+    const auto range = [&](double lo, double hi) {
+        const double half = std::max(hi - lo + 0.05 * side, 0.4 * side) / 2, mid = (lo + hi) / 2;
+        return mrpt::format("[%.6f:%.6f]", mid - half, mid + half);
+    };
+    // the canvas's height follows the drawn aspect (plot about 700 px wide, title, axis and
+    // key about 200 px), so a wide path leaves no empty band above and below it
+    const double aspect =
+        std::max(y1 - y0 + 0.05 * side, 0.4 * side) / std::max(x1 - x0 + 0.05 * side, 0.4 * side);
+    const int height = static_cast<int>(std::clamp(200 + 700 * aspect, 450.0, 950.0));
     std::string plot =
         "plot $truth using 1:2 with lines lw 1.5 lc rgb '#9a9a9a' title 'truth', "
         "$path using 1:2:3 with lines lw 2.5 lc palette title 'estimate (colour: its error)'";
@@ -307,12 +326,15 @@ void plotErrorTopView(const EvaluatedTrack& tr, const std::string& pngPath) {
             "'2-sigma position covariance'";
     runGnuplot(body + ellipses +
                    "set size ratio -1\nset xlabel 'x (m)'\nset ylabel 'y (m)'\n"
+                   "set xrange " +
+                   range(x0, x1) + "\nset yrange " + range(y0, y1) +
+                   "\n"
                    "set cblabel 'position error (m)'\nset cbrange [0:*]\n"
                    "set palette defined (0 '#1a9850', 0.5 '#fdae61', 1 '#b2182b')\n"
                    "set title " +
                    gnuplotString(tr.name + ": path from above, coloured by the error") + "\n" +
                    "set key outside bottom center horizontal\n" + plot + "\n",
-               pngPath, "900,800");
+               pngPath, mrpt::format("900,%d", height));
 }
 
 }  // namespace mrloc::report
