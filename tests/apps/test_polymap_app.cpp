@@ -17,6 +17,19 @@ namespace fs = std::filesystem;
 using namespace mrloc;
 using namespace mrloc::testing_cli;
 
+namespace {
+
+/** The headline's "start error (worst robot)" (m): the start found against the truth there. */
+double startErrorOf(const nlohmann::json& metrics) {
+    for (const auto& f : metrics["headline"]["figures"])
+        if (f["name"] == "start error (worst robot)" && f["value"].is_number())
+            return f["value"].get<double>();
+    ADD_FAILURE() << "no start error in the headline: " << metrics["headline"].dump();
+    return NAN;
+}
+
+}  // namespace
+
 TEST(MrlocPolymap, StepsMapRunFindsTwelveHypothesesWithTheTruthAmongThem) {
     const std::string out = tmp("polymap_steps");
     const auto r = mrlocCmd("run " + config("polymap_steps") + " -q --out " + out);
@@ -254,8 +267,12 @@ TEST(MrlocPolymap, DrivingRobotEliminatesAndLocalizeReplaysIt) {
     EXPECT_GE(e["probes"].get<int>(), 1);
     EXPECT_LE(e["probes"].get<int>(), 5);
     EXPECT_LT(e["travel_m"].get<double>(), 20.0);
-    EXPECT_EQ(m["robots"]["r1"]["estimates"], e["probes"].get<int>() + 1);
-    EXPECT_LT(m["rmse_m"].get<double>(), 0.002);
+    EXPECT_LT(startErrorOf(m), 0.002);
+    // the start found, carried by odometry, covers every truth stamp (the first scan is the
+    // log's first stamp); measured 7.7 mm APE RMSE over the 6.4 m drive (odometry's drift:
+    // odometry alone from the true start 7.5 mm), bound 1.3 times that
+    EXPECT_EQ(m["truth_timeline"]["covered"], m["truth_timeline"]["truth_stamps"]);
+    EXPECT_LT(m["truth_timeline"]["ape"]["rmse_m"].get<double>(), 0.01);
     EXPECT_NE(slurp(out + "/report.html").find("The robot eliminated as it drove"),
               std::string::npos);
     // `mrloc localize` on the rawlog takes the same decisions: the same estimates, byte for byte.
@@ -285,7 +302,7 @@ TEST(MrlocPolymap, DrivingWithEveryAlgorithmFromTwoStarts) {
             const auto m = common::readJsonFile(out + "/metrics.json");
             EXPECT_TRUE(m["polymap"]["robots"]["r1"]["elimination"]["localized"].get<bool>())
                 << strategy << " start " << site;
-            EXPECT_LT(m["rmse_m"].get<double>(), 0.002) << strategy << " start " << site;
+            EXPECT_LT(startErrorOf(m), 0.002) << strategy << " start " << site;
         }
 }
 
@@ -355,7 +372,7 @@ void expectLocalized(const std::string& out, const std::string& strategy, double
     const auto& e = m["polymap"]["robots"]["r1"]["elimination"];
     EXPECT_TRUE(e["localized"].get<bool>()) << strategy << " " << e.dump();
     EXPECT_LT(e["travel_m"].get<double>(), travel) << strategy;
-    EXPECT_LT(m["rmse_m"].get<double>(), rmse) << strategy;
+    EXPECT_LT(startErrorOf(m), rmse) << strategy;
 }
 
 }  // namespace
@@ -442,7 +459,7 @@ TEST(MrlocPolymap, RoomsWithPillarsLocalizeFromAGeneratedMapAndFromItsPolyFile) 
     const auto m = common::readJsonFile(fromFile + "/metrics.json");
     EXPECT_TRUE(m["polymap"]["robots"]["r1"]["elimination"]["localized"].get<bool>());
     EXPECT_EQ(m["polymap"]["robots"]["r1"]["hypotheses"].get<int>(), 3);
-    EXPECT_LT(m["rmse_m"].get<double>(), 0.005);
+    EXPECT_LT(startErrorOf(m), 0.005);
 }
 
 // issue 52, one seed: the randomized algorithm's points drew from elimination_seed = 1

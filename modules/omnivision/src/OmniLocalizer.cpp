@@ -49,6 +49,7 @@ void OmniLocalizer::configure(const mrpt::config::CConfigFileBase& ini) {
     firstTime_.reset();
     odometer_.clear();
     odometryPaths_.clear();
+    odometryPoses_.clear();
     lidar_.clear();
     result_.reset();
 }
@@ -76,6 +77,7 @@ void OmniLocalizer::process(const mrpt::obs::CObservation::Ptr& obs) {
         const auto o = expect<mrpt::obs::CObservationOdometry>(obs, "CObservationOdometry");
         auto& path = odometryPaths_[robot];
         path.add(t, o->odometry);
+        odometryPoses_[robot].push_back({t, mrpt::poses::CPose3D(o->odometry)});
         auto& readings = odometer_[robot];
         const double heading =
             readings.empty()
@@ -256,9 +258,18 @@ std::map<std::string, common::Trajectory> OmniLocalizer::estimates() const {
     const auto heading = r.finalHeading();
     for (size_t k = 0; k < r.robots.size(); ++k) {
         auto& traj = out[r.robots[k]];
-        if (final[k] && heading[k])
-            traj.push_back(
-                {r.time, mrpt::poses::CPose3D(final[k]->x(), final[k]->y(), 0, *heading[k], 0, 0)});
+        if (!final[k] || !heading[k]) continue;
+        const mrpt::poses::CPose3D layout(final[k]->x(), final[k]->y(), 0, *heading[k], 0, 0);
+        traj.push_back({r.time, layout});
+        // paper 000 solves one instant; from then on each robot's own odometry carries its
+        // pose: layout (+) (odometry at the layout's time)^-1 (+) odometry now
+        const auto odometry = odometryPoses_.find(r.robots[k]);
+        if (odometry == odometryPoses_.end()) continue;
+        const auto atLayout = common::interpolate(odometry->second, r.time);
+        if (!atLayout) continue;
+        const mrpt::poses::CPose3D fromLayout = -*atLayout;
+        for (const auto& s : odometry->second)
+            if (s.t > r.time + 1e-6) traj.push_back({s.t, layout + (fromLayout + s.pose)});
     }
     return out;
 }

@@ -28,6 +28,7 @@ void PolymapLocalizer::configure(const mrpt::config::CConfigFileBase& ini) {
     else
         options_.loadFromConfigFile(ini, "polymap");
     results_.clear();
+    odometry_.clear();
     scanRobots_.clear();
     scansSeen_ = scansUsed_ = 0;
     map_.reset();
@@ -139,6 +140,12 @@ RobotHypotheses hypothesesFromScan(const PolymapOptions& options, const common::
 
 void PolymapLocalizer::process(const mrpt::obs::CObservation::Ptr& obs) {
     if (options_.scanMode) return processScanMode(obs);
+    if (const auto odo = std::dynamic_pointer_cast<mrpt::obs::CObservationOdometry>(obs)) {
+        if (odo->timestamp != INVALID_TIMESTAMP)
+            odometry_[common::robotOfLabel(odo->sensorLabel)].push_back(
+                {mrpt::Clock::toDouble(odo->timestamp), mrpt::poses::CPose3D(odo->odometry)});
+        return;
+    }
     const auto scan = std::dynamic_pointer_cast<mrpt::obs::CObservation2DRangeScan>(obs);
     if (!scan) return;
     ++scansSeen_;
@@ -220,15 +227,28 @@ std::map<std::string, common::Trajectory> PolymapLocalizer::estimates() const {
     };
     for (const auto& [robot, r] : results_) {
         auto& traj = out[robot];
-        if (r.hypotheses.size() == 1) {
-            traj.push_back(at(r.time, r.hypotheses[0].point));
-        } else if (r.session && r.session->live().size() == 1) {
-            // Localized by elimination: the start, and every probe the robot scanned at.
-            const size_t s = r.session->live().front();
-            const TPoint2D p = r.hypotheses[s].point;
-            traj.push_back(at(r.time, p));
+        std::optional<size_t> left;  // the hypothesis left: the start
+        if (r.hypotheses.size() == 1)
+            left = 0;
+        else if (r.session && r.session->live().size() == 1)
+            left = r.session->live().front();
+        if (!left) continue;
+        const TPoint2D start = r.hypotheses[*left].point;
+        traj.push_back(at(r.time, start));
+        // the start carried by the robot's odometry: start (+) odometry(t0)^-1 (+) odometry(t)
+        const auto odometry = odometry_.find(robot);
+        const auto atStart = odometry == odometry_.end()
+                                 ? std::nullopt
+                                 : common::interpolate(odometry->second, r.time);
+        if (atStart) {
+            const mrpt::poses::CPose3D fromStart = -*atStart;
+            for (const auto& o : odometry->second)
+                if (o.t > r.time + 1e-6)
+                    traj.push_back({o.t, traj.front().pose + (fromStart + o.pose)});
+        } else if (r.session) {
+            // no odometry logged: the start, and every probe the robot scanned at
             for (size_t k = 0; k < r.probeTimes.size(); ++k)
-                traj.push_back(at(r.probeTimes[k], p + r.session->stoppedAt(k, s)));
+                traj.push_back(at(r.probeTimes[k], start + r.session->stoppedAt(k, *left)));
         }
     }
     return out;

@@ -1,6 +1,7 @@
 #include <mrloc/common/Error.h>
 #include <mrloc/common/IniSection.h>
 #include <mrloc/common/Metrics.h>
+#include <mrloc/common/Outcome.h>
 #include <mrloc/common/RunDirectory.h>
 #include <mrloc/polymap/EliminationExperiment.h>
 #include <mrloc/polymap/PolygonView.h>
@@ -323,6 +324,11 @@ common::Headline polymapHeadline(const method::HeadlineOf<PolymapLocalizer>& in)
     }
     h.figures.push_back(
         {"start error (worst robot)", startError(in.localizer, in.outDir), "m", "", "", false});
+    // on the truth's timeline: the start found, carried by each robot's odometry (doc/polymap.md)
+    for (auto f : common::trajectoryFigures(in.metrics)) {
+        if (!f.baseline) f.name = "from the start found, by odometry: " + f.name;
+        h.figures.push_back(std::move(f));
+    }
     return h;
 }
 

@@ -48,6 +48,9 @@ class OmniLocalizer : public common::Localizer {
     void configure(const mrpt::config::CConfigFileBase& ini) override;
     void saveConfig(mrpt::config::CConfigFileBase& target) const override;
     void process(const mrpt::obs::CObservation::Ptr& obs) override;
+    /** Each robot's pose in the layout at its time, then carried on by its own odometry at
+     *  every later reading (beyond paper 000, which solves one instant): the relative
+     *  positions over the rest of the log, with the odometry's drift. */
     std::map<std::string, common::Trajectory> estimates() const override;
     /** The refinement's covariance of (x, y, heading) at the layout's time (A's x and y
      *  are zero: it is the frame's origin; B's y too). None without `refine`. */
@@ -80,6 +83,8 @@ class OmniLocalizer : public common::Localizer {
     };
     std::map<std::string, std::vector<OdometerReading>> odometer_;
     std::map<std::string, common::OdometryPath> odometryPaths_;
+    /** Per robot, its odometry readings as poses: they carry the layout on after its time. */
+    std::map<std::string, common::Trajectory> odometryPoses_;
     struct LidarReading {
         double time;
         std::string from, to;

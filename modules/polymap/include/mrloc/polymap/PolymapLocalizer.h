@@ -77,6 +77,10 @@ class PolymapLocalizer : public common::Localizer {
     void configure(const mrpt::config::CConfigFileBase& ini) override;
     void saveConfig(mrpt::config::CConfigFileBase& target) const override;
     void process(const mrpt::obs::CObservation::Ptr& obs) override;
+    /** Hypotheses mode: once one hypothesis is left, the start it gives, then that start
+     *  carried by the robot's odometry to each of its readings from the first scan on (the
+     *  path from the start found, after the fact); without odometry, the start and each probe
+     *  the robot scanned at. Scan mode: the hypothesis left at every scan it lived. */
     std::map<std::string, common::Trajectory> estimates() const override;
     /** 2-D scans: the first of each robot (its hypotheses) and those at the probes the
      *  elimination planned; a scan after the robot is localized is not needed. */
@@ -120,6 +124,9 @@ class PolymapLocalizer : public common::Localizer {
     double probeRadius_ = 0;         ///< from the INI's [scenario] dt and its robot's speed
     std::unique_ptr<GeneratedMap> map_;
     std::map<std::string, RobotHypotheses> results_;
+    /** Per robot, its odometry readings (hypotheses mode): they carry the start found on to
+     *  every reading. */
+    std::map<std::string, common::Trajectory> odometry_;
     size_t scansSeen_ = 0, scansUsed_ = 0;
 };
 
