@@ -77,6 +77,9 @@ long+='|MrlocFramesync\.SameIniAndSeedGiveByteIdenticalRawlogsAndResults'
 long+='|RunFolder\.OutFoldersThatCouldRunOrEscapeAreTakenLiterallyOrRefused'
 long+='|MrlocBatch\.(BadArgumentsAreRefusedBeforeAnythingIsWritten|LinksInABatchFolderAreRefusedAndItsLockIsHeld)'
 long+='|MrptData\.InfoAgreesWithMrptsLoaderOnEveryDataset|Mutations\.PolymapRawlogIsRefusedOrCountedNeverSilentlyTaken'
+# every method's trials over several seeds, whole runs again (15 s in Release): a trial's code
+# is sanitized by MrlocTrial.OneLineDeterministicPerSeed and each method's own runs
+long+='|MrlocTrial\.EveryMethodsTrialsDifferFromSeedToSeed'
 if [ "${MRLOC_SANITIZE_ALL:-0}" = 1 ]; then
   ctest --output-on-failure -j "$(nproc)" "$@"
 else
