@@ -80,6 +80,14 @@ long+='|MrptData\.InfoAgreesWithMrptsLoaderOnEveryDataset|Mutations\.PolymapRawl
 # every method's trials over several seeds, whole runs again (15 s in Release): a trial's code
 # is sanitized by MrlocTrial.OneLineDeterministicPerSeed and each method's own runs
 long+='|MrlocTrial\.EveryMethodsTrialsDifferFromSeedToSeed'
+# process behaviour again (byte-identical repeats, a used folder, a failed run's exit code),
+# MRPT's own INI on the log RealPolymap.LocalizationDemoBesidePfLocalization runs sanitized,
+# and sweeps whose code the rest of their suite runs sanitized (the overlay against sampling,
+# the detector over many positions, identical rooms with pillars besides those without)
+long+='|MrlocFormation\.SameIniAndSeedGiveByteIdenticalRawlogs|MrlocCli\.ARunIntoAUsedFolder'
+long+='|RealPolymap\.AScanThatFitsNoPlaceOfTheMapIsAFailedRunExitThree|RealPolymap\.MrptsPfLocalizationIniRunsUnchanged'
+long+='|Overlay\.StepsMapTwelveHypothesesAgainstSampling|MarkerDetector\.AMarkerOffAViewsAxisHasNoBias'
+long+='|Elimination\.IdenticalRoomsWithPillarsEveryLayoutEveryAlgorithm'
 if [ "${MRLOC_SANITIZE_ALL:-0}" = 1 ]; then
   ctest --output-on-failure -j "$(nproc)" "$@"
 else
