@@ -160,6 +160,23 @@ std::vector<EvaluatedTrack> truthTimelinePictures(const RunView& run, const std:
     return tracks;
 }
 
+/** The alignment the errors are taken under and the gap limit, in a sentence. */
+std::string alignmentInWords(const std::vector<EvaluatedTrack>& tracks) {
+    std::string limits;
+    for (const auto& t : tracks)
+        if (t.name.find(" (baseline)") == std::string::npos && !t.estimate.errors.empty())
+            limits += mrpt::format("%s%s %.3g s", limits.empty() ? "" : ", ", t.name.c_str(),
+                                   t.estimate.coverage.maxGap);
+    const auto align = tracks.empty() ? common::Alignment::None : tracks.front().estimate.align;
+    return std::string("Alignment: ") + common::alignmentName(align) +
+           (align == common::Alignment::None
+                ? " (the estimates are scored in the truth's frame, the map's: an offset of the "
+                  "whole path is an error; mrloc eval --align se2 or origin scores them otherwise)"
+                : "") +
+           ". Gap limit (5 times the median interval between estimates, at least 1 s): " +
+           (limits.empty() ? std::string("no robot has a covered stamp") : limits) + ".";
+}
+
 /** The truth-timeline pictures with what they show. */
 Html truthTimelineSection(const std::vector<EvaluatedTrack>& tracks) {
     Html out = heading(2, "Error on the truth's timeline") +
@@ -169,6 +186,7 @@ Html truthTimelineSection(const std::vector<EvaluatedTrack>& tracks) {
                    "first, after the last, or across a gap longer than the limit), counted as "
                    "not covered, never left out. Odometry alone is dashed in the robot's "
                    "colour.") +
+               paragraph(alignmentInWords(tracks)) +
                Figure{"error_time.png", "position error against time"}.html() +
                Figure{"error_cdf.png", "CDF of the position error"}.html();
     size_t pictured = 0;
