@@ -192,6 +192,29 @@ TEST(Rawlog, MissingEmptyTruncatedAndWrongClassAreClearErrors) {
         Error);
 }
 
+// A pose known at one instant carried on by odometry (omnivision's layout, polymap's start):
+// odometry driving along its x at 1 m/s, read every second; the pose at t0 = 1.5 s faces +y,
+// so each later reading moves it along +y by what the odometry moved since 1.5 s.
+TEST(Trajectory, APoseIsCarriedOnByTheOdometrysMotionSinceItsTime) {
+    common::Trajectory odometry;
+    for (int k = 0; k <= 3; ++k)
+        odometry.push_back({double(k), mrpt::poses::CPose3D(k, 0, 0, 0, 0, 0)});
+    const mrpt::poses::CPose3D pose(10, 5, 0, M_PI / 2, 0, 0);
+    const auto carried = common::carriedByOdometry(pose, 1.5, odometry);
+    ASSERT_EQ(carried.size(), 3u);  // the pose, then the readings at 2 and 3 s
+    EXPECT_EQ(carried[0].t, 1.5);
+    EXPECT_EQ(carried[1].t, 2.0);
+    EXPECT_EQ(carried[2].t, 3.0);
+    for (const auto& [i, y] : std::vector<std::pair<size_t, double>>{{0, 5}, {1, 5.5}, {2, 6.5}}) {
+        EXPECT_NEAR(carried[i].pose.x(), 10, 1e-12) << i;
+        EXPECT_NEAR(carried[i].pose.y(), y, 1e-12) << i;
+        EXPECT_NEAR(carried[i].pose.yaw(), M_PI / 2, 1e-12) << i;
+    }
+    // odometry that does not reach t0, or none: the pose alone
+    EXPECT_EQ(common::carriedByOdometry(pose, 3.5, odometry).size(), 1u);
+    EXPECT_EQ(common::carriedByOdometry(pose, 1.5, {}).size(), 1u);
+}
+
 TEST(Trajectory, TumRoundTripInterpolationAndBadLines) {
     common::Trajectory t = {{10.0, mrpt::poses::CPose3D(0, 0, 0, 0, 0, 0)},
                             {11.0, mrpt::poses::CPose3D(1, 2, 0, M_PI / 2, 0, 0)}};

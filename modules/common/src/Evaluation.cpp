@@ -161,6 +161,7 @@ Evaluation evaluate(const Trajectory& estimate, const Trajectory& truth,
     heading.reserve(pairs.size());
     e.errors.reserve(pairs.size());
     for (auto& p : pairs) {
+        // none: the identity, whose composition a 10^6-stamp evaluation need not pay for
         if (o.align != Alignment::None) p.estimate = e.alignment + p.estimate;
         const double dt = std::hypot(p.estimate.x() - p.truth.x(), p.estimate.y() - p.truth.y());
         const double dh = std::abs(mrpt::math::wrapToPi(p.estimate.phi() - p.truth.phi()));

@@ -107,6 +107,17 @@ mrpt::poses::CPose3D interpolateBetween(const StampedPose& lo, const StampedPose
                                 p0.z() + a * (p1.z() - p0.z()), yaw, p0.pitch(), p0.roll());
 }
 
+Trajectory carriedByOdometry(const mrpt::poses::CPose3D& pose, double t0,
+                             const Trajectory& odometry) {
+    Trajectory out{{t0, pose}};
+    const auto atT0 = interpolate(odometry, t0);
+    if (!atT0) return out;
+    const mrpt::poses::CPose3D fromT0 = -*atT0;
+    for (const auto& reading : odometry)
+        if (reading.t > t0 + 1e-6) out.push_back({reading.t, pose + (fromT0 + reading.pose)});
+    return out;
+}
+
 std::string groundTruthPath(const std::string& rawlogPath, const std::string& robot) {
     std::string stem = rawlogPath;
     const std::string ext = ".rawlog";

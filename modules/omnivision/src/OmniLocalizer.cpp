@@ -257,19 +257,14 @@ std::map<std::string, common::Trajectory> OmniLocalizer::estimates() const {
     const auto final = r.final();
     const auto heading = r.finalHeading();
     for (size_t k = 0; k < r.robots.size(); ++k) {
-        auto& traj = out[r.robots[k]];
+        auto& traj = out[r.robots[k]];  // a robot the layout did not place: none
         if (!final[k] || !heading[k]) continue;
-        const mrpt::poses::CPose3D layout(final[k]->x(), final[k]->y(), 0, *heading[k], 0, 0);
-        traj.push_back({r.time, layout});
-        // paper 000 solves one instant; from then on each robot's own odometry carries its
-        // pose: layout (+) (odometry at the layout's time)^-1 (+) odometry now
+        // paper 000 solves one instant; from then on each robot's own odometry carries it
         const auto odometry = odometryPoses_.find(r.robots[k]);
-        if (odometry == odometryPoses_.end()) continue;
-        const auto atLayout = common::interpolate(odometry->second, r.time);
-        if (!atLayout) continue;
-        const mrpt::poses::CPose3D fromLayout = -*atLayout;
-        for (const auto& s : odometry->second)
-            if (s.t > r.time + 1e-6) traj.push_back({s.t, layout + (fromLayout + s.pose)});
+        const common::Trajectory none;
+        traj = common::carriedByOdometry(
+            mrpt::poses::CPose3D(final[k]->x(), final[k]->y(), 0, *heading[k], 0, 0), r.time,
+            odometry == odometryPoses_.end() ? none : odometry->second);
     }
     return out;
 }

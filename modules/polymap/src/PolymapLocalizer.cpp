@@ -141,9 +141,11 @@ RobotHypotheses hypothesesFromScan(const PolymapOptions& options, const common::
 void PolymapLocalizer::process(const mrpt::obs::CObservation::Ptr& obs) {
     if (options_.scanMode) return processScanMode(obs);
     if (const auto odo = std::dynamic_pointer_cast<mrpt::obs::CObservationOdometry>(obs)) {
-        if (odo->timestamp != INVALID_TIMESTAMP)
-            odometry_[common::robotOfLabel(odo->sensorLabel)].push_back(
-                {mrpt::Clock::toDouble(odo->timestamp), mrpt::poses::CPose3D(odo->odometry)});
+        if (odo->timestamp == INVALID_TIMESTAMP) return;
+        // on the scans' clock (r.time, probeTimes): what the start is carried from
+        const double t = mrpt::Clock::toDouble(odo->timestamp);
+        odometry_[common::robotOfLabel(odo->sensorLabel)].push_back(
+            {t, mrpt::poses::CPose3D(odo->odometry)});
         return;
     }
     const auto scan = std::dynamic_pointer_cast<mrpt::obs::CObservation2DRangeScan>(obs);
@@ -234,22 +236,15 @@ std::map<std::string, common::Trajectory> PolymapLocalizer::estimates() const {
             left = r.session->live().front();
         if (!left) continue;
         const TPoint2D start = r.hypotheses[*left].point;
-        traj.push_back(at(r.time, start));
-        // the start carried by the robot's odometry: start (+) odometry(t0)^-1 (+) odometry(t)
+        // the start carried by the robot's odometry to each of its readings
         const auto odometry = odometry_.find(robot);
-        const auto atStart = odometry == odometry_.end()
-                                 ? std::nullopt
-                                 : common::interpolate(odometry->second, r.time);
-        if (atStart) {
-            const mrpt::poses::CPose3D fromStart = -*atStart;
-            for (const auto& o : odometry->second)
-                if (o.t > r.time + 1e-6)
-                    traj.push_back({o.t, traj.front().pose + (fromStart + o.pose)});
-        } else if (r.session) {
-            // no odometry logged: the start, and every probe the robot scanned at
+        const common::Trajectory none;
+        const auto& readings = odometry == odometry_.end() ? none : odometry->second;
+        traj = common::carriedByOdometry(at(r.time, start).pose, r.time, readings);
+        if (!common::interpolate(readings, r.time) && r.session)
+            // no odometry to carry it: the start, and every probe the robot scanned at
             for (size_t k = 0; k < r.probeTimes.size(); ++k)
                 traj.push_back(at(r.probeTimes[k], start + r.session->stoppedAt(k, *left)));
-        }
     }
     return out;
 }

@@ -308,14 +308,16 @@ void plotErrorTopView(const EvaluatedTrack& tr, const std::string& pngPath) {
     for (const auto& p : tr.truth) extend(p.pose);
     for (const auto& p : errors) extend(p.estimate);
     const double side = std::max({x1 - x0, y1 - y0, 0.1}) * 1.1;
+    const auto drawnSpan = [&](double lo, double hi) {  // the width drawn for [lo, hi]
+        return std::max(hi - lo + 0.05 * side, 0.4 * side);
+    };
     const auto range = [&](double lo, double hi) {
-        const double half = std::max(hi - lo + 0.05 * side, 0.4 * side) / 2, mid = (lo + hi) / 2;
+        const double half = drawnSpan(lo, hi) / 2, mid = (lo + hi) / 2;
         return mrpt::format("[%.6f:%.6f]", mid - half, mid + half);
     };
     // the canvas's height follows the drawn aspect (plot about 700 px wide, title, axis and
     // key about 200 px), so a wide path leaves no empty band above and below it
-    const double aspect =
-        std::max(y1 - y0 + 0.05 * side, 0.4 * side) / std::max(x1 - x0 + 0.05 * side, 0.4 * side);
+    const double aspect = drawnSpan(y0, y1) / drawnSpan(x0, x1);
     const int height = static_cast<int>(std::clamp(200 + 700 * aspect, 450.0, 950.0));
     std::string plot =
         "plot $truth using 1:2 with lines lw 1.5 lc rgb '#9a9a9a' title 'truth', "

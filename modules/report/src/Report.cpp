@@ -160,11 +160,16 @@ std::vector<EvaluatedTrack> truthTimelinePictures(const RunView& run, const std:
     return tracks;
 }
 
+/** A robot with covered stamps that is not a baseline: one its pictures and gap limit are for. */
+bool isPicturedTrack(const EvaluatedTrack& t) {
+    return t.name.find(" (baseline)") == std::string::npos && !t.estimate.errors.empty();
+}
+
 /** The alignment the errors are taken under and the gap limit, in a sentence. */
 std::string alignmentInWords(const std::vector<EvaluatedTrack>& tracks) {
     std::string limits;
     for (const auto& t : tracks)
-        if (t.name.find(" (baseline)") == std::string::npos && !t.estimate.errors.empty())
+        if (isPicturedTrack(t))
             limits += mrpt::format("%s%s %.3g s", limits.empty() ? "" : ", ", t.name.c_str(),
                                    t.estimate.coverage.maxGap);
     const auto align = tracks.empty() ? common::Alignment::None : tracks.front().estimate.align;
@@ -191,9 +196,7 @@ Html truthTimelineSection(const std::vector<EvaluatedTrack>& tracks) {
                Figure{"error_cdf.png", "CDF of the position error"}.html();
     size_t pictured = 0;
     for (const auto& t : tracks) {
-        if (t.name.find(" (baseline)") != std::string::npos || t.estimate.errors.empty() ||
-            pictured == kRobotsPictured)
-            continue;
+        if (!isPicturedTrack(t) || pictured == kRobotsPictured) continue;
         ++pictured;
         out += heading(3, "Robot " + t.name) +
                Figure{"pose_time." + t.name + ".png", "x, y and heading against time"}.html() +

@@ -68,6 +68,13 @@ std::optional<mrpt::poses::CPose3D> interpolate(const Trajectory& traj, double t
 /** The pose at t between two stamped poses (a.t < t < b.t): the position linearly, the yaw
  *  along the shorter arc, pitch and roll a's. interpolate's rule, and common::evaluate's. */
 mrpt::poses::CPose3D interpolateBetween(const StampedPose& a, const StampedPose& b, double t);
+/** A pose known at one instant t0, carried on by a robot's odometry: `pose` at t0, then at
+ *  each odometry reading after t0 (by more than 1 us) pose (+) odometry(t0)^-1 (+)
+ *  odometry(t), the odometry at t0 interpolated. Only `pose` when the odometry does not
+ *  reach t0 (or there is none). How a method that solves one instant (omnivision's layout,
+ *  polymap's start) gives estimates over the rest of the log. */
+Trajectory carriedByOdometry(const mrpt::poses::CPose3D& pose, double t0,
+                             const Trajectory& odometry);
 
 /** Where a baseline starts: the truth's pose at t. A truth of positions only (every
  *  orientation the identity while the path moves: libRSF's point2, TUM files written without
