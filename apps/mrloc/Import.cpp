@@ -34,7 +34,13 @@ constexpr const char* kImportUsage =
 int import(int argc, char** argv) {
     for (int i = 1; i < argc; ++i)
         if (!std::strcmp(argv[i], "--help") || !std::strcmp(argv[i], "-h") || argc == 1) {
-            std::cout << kImportUsage << logimport::formatsHelp(formats());
+            // `mrloc import <format> --help`: that format's options only
+            const auto named = formats().all().find(argc > 2 ? argv[1] : "");
+            std::cout << kImportUsage
+                      << (named != formats().all().end()
+                              ? "format:\n" + logimport::formatHelp(named->second) +
+                                    "doc/import.md#" + named->first + " says more.\n"
+                              : logimport::formatsHelp(formats()));
             return 0;
         }
     if (argc < 2) {

@@ -31,11 +31,7 @@ struct Stream {
     bool timed = false;
 };
 
-std::string utc(double t) {
-    // MRPT's date text wraps before 1970 (the year 60425), as its toDouble does
-    if (t < 0) return "before 1970";
-    return mrpt::system::dateTimeToString(mrpt::Clock::fromDouble(t)) + " UTC";
-}
+std::string utc(double t) { return common::timeInWords(t); }
 
 }  // namespace
 
@@ -65,7 +61,7 @@ int info(int argc, char** argv) {
             continue;
         }
         const double t = common::stampSeconds(obs->timestamp);
-        s.before1970 += t <= 0;
+        s.before1970 += t < 0;
         if (!s.timed) s.t0 = t, s.t1 = t, s.timed = true;
         s.t0 = std::min(s.t0, t), s.t1 = std::max(s.t1, t);
         if (!comment) first = std::min(first, t), last = std::max(last, t);

@@ -97,7 +97,7 @@ TEST(FrontDoor, MrptGroundTruthIsPickedUpWhereMrptsAppsLook) {
     EXPECT_TRUE(contains(m["ground_truth_from"].get<std::string>(),
                          "MRPT's [ro-localization] groundTruthFile"));
     // the same figures as with the hand-written [scenario] block of MrptData's test
-    EXPECT_EQ(m["n"], 337);
+    EXPECT_EQ(m["n"], 679);
     EXPECT_LT(m["rmse_m"].get<double>(), 0.32);
     // a copy of the log elsewhere: the INI's truth is not its; the _GT.txt beside it is
     const std::string folder = testing::TempDir() + "/apps_mrpt_copy";
@@ -116,7 +116,7 @@ TEST(FrontDoor, MrptGroundTruthIsPickedUpWhereMrptsAppsLook) {
     ASSERT_EQ(r.code, 0) << r.output;
     m = common::readJsonFile(out2 + "/metrics.json");
     EXPECT_EQ(m["ground_truth_from"], "uwb_GT.txt beside the rawlog (MRPT's naming)");
-    EXPECT_EQ(m["n"], 337);
+    EXPECT_EQ(m["n"], 679);
     // the report says where the truth came from, and that the log was recorded elsewhere
     ASSERT_EQ(mrlocCmd("report " + out2).code, 0);
     const std::string page = slurp(out2 + "/report.html");

@@ -6,6 +6,7 @@
 #include <mrloc/common/Trajectory.h>
 #include <mrpt/core/bits_math.h>
 #include <mrpt/core/format.h>
+#include <mrpt/obs/CObservationBearingRange.h>
 #include <mrpt/obs/CObservationOdometry.h>
 #include <mrpt/system/datetime.h>
 
@@ -36,12 +37,22 @@ BeaconTracker& BeaconLocalizer::trackerOf(const std::string& robot) {
 
 void BeaconLocalizer::process(const mrpt::obs::CObservation::Ptr& obs) {
     const std::string robot = common::robotOfLabel(obs->sensorLabel);
-    const double t = mrpt::Clock::toDouble(obs->timestamp);
+    const double t = common::stampSeconds(obs->timestamp);
+    firstSeen_.emplace(robot, t);
     if (auto odo = std::dynamic_pointer_cast<mrpt::obs::CObservationOdometry>(obs)) {
-        trackerOf(robot).onOdometry(odo->odometry);
+        BeaconTracker& tracker = trackerOf(robot);
+        tracker.onOdometry(odo->odometry);
         auto& path = odometry_[robot];
         path.add(t, odo->odometry);
         spacing_[robot].sinceLast += path.lastStep();
+        // between sightings the estimate is the odometry's prediction, at its rate, with its
+        // growing covariance: a gap in the ranges is never a hole in the output
+        if (options_.mode == BeaconOptions::Mode::Tracker && tracker.initialized())
+            addEstimate(robot, t, tracker, /*measured=*/false);
+        return;
+    }
+    if (auto camera = std::dynamic_pointer_cast<mrpt::obs::CObservationBearingRange>(obs)) {
+        if (options_.mode == BeaconOptions::Mode::Tracker) sighted(robot, t, *camera);
         return;
     }
     auto ranges = std::dynamic_pointer_cast<mrpt::obs::CObservationBeaconRanges>(obs);
@@ -64,6 +75,29 @@ void BeaconLocalizer::process(const mrpt::obs::CObservation::Ptr& obs) {
     // pose at its time (at 0.3 m/s and 20 Hz, up to 15 mm along the path otherwise).
     if (const auto path = odometry_.find(robot); path != odometry_.end())
         if (const auto atStamp = path->second.extrapolate(t)) tracker.onOdometry(*atStamp);
+    // not started: each range also goes to the particle start-up, which starts the filter
+    // from ranges read one at a time (ParticleStart.h); this observation is then spent
+    if (!tracker.initialized()) {
+        std::vector<BeaconTracker::Sighting> seen;
+        for (const auto& m : ranges->sensedData) {
+            const auto b = options_.map.find(m.beaconID);
+            if (b == options_.map.end() || !std::isfinite(m.sensedDistance) ||
+                m.sensedDistance <= 0)
+                continue;
+            const auto& s = m.sensorLocationOnRobot;
+            BeaconTracker::Sighting v;
+            v.beacon = {b->second.x, b->second.y, b->second.z};
+            v.sensorOnRobot = {s.x(), s.y(), s.z()};
+            v.range = m.sensedDistance;
+            v.rangeSigma = options_.tracker.rangeSigma;
+            v.beaconId = m.beaconID;
+            seen.push_back(v);
+        }
+        if (tracker.feedStart(t, seen)) {
+            addEstimate(robot, t, tracker, /*measured=*/true);
+            return;
+        }
+    }
     const size_t windowBefore = windowEpochs_;
     const auto epoch = windowed(robot, t, *ranges);
     if (!epoch) return;
@@ -72,12 +106,42 @@ void BeaconLocalizer::process(const mrpt::obs::CObservation::Ptr& obs) {
     if (windowEpochs_ != windowBefore)
         countWindowed(before, tracker.stats(), ranges->sensedData.size());
     if (pose) {
-        addEstimate(robot, t, mrpt::poses::CPose3D(*pose));
-        common::StampedCovariance c{t, {}};
-        c.cov.fill(NAN);  // before the filter starts: a bootstrap fix, no covariance kept
-        if (tracker.initialized()) c.cov = tracker.pdf().cov;
-        covariances_[robot].push_back(c);
+        if (tracker.initialized()) return addEstimate(robot, t, tracker, /*measured=*/true);
+        // before the filter starts: a bootstrap fix, no covariance kept
+        addEstimate(robot, t, mrpt::poses::CPose3D(*pose), std::nullopt, /*measured=*/true);
     }
+}
+
+void BeaconLocalizer::sighted(const std::string& robot, double t,
+                              const mrpt::obs::CObservationBearingRange& camera) {
+    ++sightingObservations_;
+    BeaconTracker& tracker = trackerOf(robot);
+    if (const auto path = odometry_.find(robot); path != odometry_.end())
+        if (const auto atStamp = path->second.extrapolate(t)) tracker.onOdometry(*atStamp);
+    const auto& sensor = camera.sensorLocationOnRobot;
+    std::vector<BeaconTracker::Sighting> seen;
+    for (const auto& m : camera.sensedData) {
+        const auto b = options_.map.find(m.landmarkID);
+        if (b == options_.map.end()) {
+            ++sightingsNotInMap_;  // another robot, or a landmark the map lacks
+            continue;
+        }
+        BeaconTracker::Sighting v;
+        v.beacon = {b->second.x, b->second.y, b->second.z};
+        v.sensorOnRobot = {sensor.x(), sensor.y(), sensor.z()};
+        v.sensorYaw = sensor.yaw();
+        v.beaconId = m.landmarkID;
+        v.rangeSigma = options_.tracker.rangeSigma;
+        v.bearingSigma = options_.tracker.bearingSigma;
+        if (options_.sightings != BeaconOptions::Sightings::Bearing && std::isfinite(m.range) &&
+            m.range > 0)
+            v.range = m.range;
+        if (options_.sightings != BeaconOptions::Sightings::Range && std::isfinite(m.yaw))
+            v.bearing = m.yaw;
+        if (v.range || v.bearing) seen.push_back(v);
+    }
+    if (seen.empty()) return;
+    if (tracker.onSightings(t, seen)) addEstimate(robot, t, tracker, /*measured=*/true);
 }
 
 void BeaconLocalizer::countWindowed(const TrackerStats& before, const TrackerStats& after,
@@ -156,18 +220,43 @@ mrpt::obs::CObservationBeaconRanges BeaconLocalizer::compensateMotion(
     return out;
 }
 
+void BeaconLocalizer::addEstimate(const std::string& robot, double t, const BeaconTracker& tracker,
+                                  bool measured) {
+    addEstimate(robot, t, mrpt::poses::CPose3D(tracker.pdf().mean), tracker.pdf().cov, measured);
+}
+
 void BeaconLocalizer::addEstimate(const std::string& robot, double t,
-                                  const mrpt::poses::CPose3D& pose) {
+                                  const mrpt::poses::CPose3D& pose,
+                                  const std::optional<mrpt::math::CMatrixDouble33>& cov,
+                                  bool measured) {
     auto& traj = estimates_[robot];
+    auto& covariances = covariances_[robot];
+    // an epoch stamped before the last odometry reading updates the filter there: the pose
+    // is the one at that reading's time, already written, which it replaces
+    if (!traj.empty()) t = std::max(t, traj.back().t);
+    // how far apart the estimates from measurements are (the bridged ones between them not)
     auto& sp = spacing_[robot];
-    if (!traj.empty()) {
-        sp.maxDistance = std::max(sp.maxDistance, sp.sinceLast);
-        sp.sumDistance += sp.sinceLast;
-        sp.maxTime = std::max(sp.maxTime, t - traj.back().t);
-        ++sp.gaps;
+    if (measured) {
+        if (sp.lastMeasured) {
+            sp.maxDistance = std::max(sp.maxDistance, sp.sinceLast);
+            sp.sumDistance += sp.sinceLast;
+            sp.maxTime = std::max(sp.maxTime, t - *sp.lastMeasured);
+            ++sp.gaps;
+        }
+        sp.sinceLast = 0;
+        sp.lastMeasured = t;
     }
-    sp.sinceLast = 0;
+    common::StampedCovariance c{t, {}};
+    c.cov.fill(NAN);
+    if (cov) c.cov = *cov;
+    // one estimate per time stamp: an odometry reading at a sighting's stamp, the later wins
+    if (!traj.empty() && traj.back().t == t) {
+        traj.back().pose = pose;
+        covariances.back() = c;
+        return;
+    }
     traj.push_back({t, pose});
+    covariances.push_back(c);
 }
 
 std::optional<mrpt::poses::CPose3D> BeaconLocalizer::latestEstimate(
@@ -186,12 +275,12 @@ void BeaconLocalizer::fixOnly(const std::string& robot, double t,
     const double z = options_.threeD ? f->position.z() - sensorZ : 0.0;
     const auto odometry = odometry_.find(robot);
     const double heading = odometry == odometry_.end() ? 0.0 : odometry->second.last()->phi();
-    addEstimate(robot, t, mrpt::poses::CPose3D(f->position.x(), f->position.y(), z, heading, 0, 0));
-    common::StampedCovariance c{t, {}};
-    c.cov.fill(NAN);  // the heading is odometry's: the fix says nothing of it
+    mrpt::math::CMatrixDouble33 cov;
+    cov.fill(NAN);  // the heading is odometry's: the fix says nothing of it
     for (int i = 0; i < 2; ++i)
-        for (int j = 0; j < 2; ++j) c.cov(i, j) = f->covariance(i, j);
-    covariances_[robot].push_back(c);
+        for (int j = 0; j < 2; ++j) cov(i, j) = f->covariance(i, j);
+    addEstimate(robot, t, mrpt::poses::CPose3D(f->position.x(), f->position.y(), z, heading, 0, 0),
+                cov, /*measured=*/true);
 }
 
 common::ObservationUse BeaconLocalizer::observationUse() const {
@@ -202,6 +291,15 @@ common::ObservationUse BeaconLocalizer::observationUse() const {
     use.seen = total.rangesReceived - windowCount_.fedReceived + windowCount_.seen;
     use.used = total.rangesUsed - windowCount_.fedUsed + windowCount_.used;
     use.unmatched.push_back({"ranges from beacons not in the map", total.rangesUnknownBeacon});
+    if (sightingObservations_ > 0) {
+        // a camera's sightings: each range and each bearing counted as one measurement
+        use.kind += " and camera sightings (CObservationBearingRange: ranges and bearings)";
+        use.seen += total.bearingsReceived + sightingsNotInMap_;
+        use.used += total.bearingsUsed;
+        use.unmatched.push_back(
+            {"sightings of ids not in the map (other robots, unmapped landmarks)",
+             sightingsNotInMap_});
+    }
     if (total.fixFailures > 0)  // counted in epochs: the ranges of an epoch fail together
         use.unmatched.push_back(
             {"epochs whose multilateration failed (do the map's beacon positions fit this log?)",
@@ -228,12 +326,23 @@ nlohmann::json BeaconLocalizer::methodMetrics() const {
     j["window_epochs"] = windowEpochs_;
     j["filter_resets"] = total.resets;
     j["offsets_reopened"] = total.offsetsReopened;  // a beacon kept failing the gate
+    j["particle_starts"] = total.particleStarts;    // starts and re-starts from the particles
+    j["bearings_received"] = total.bearingsReceived;
+    j["bearings_used"] = total.bearingsUsed;
+    j["bearings_gated"] = total.bearingsGated;
+    j["sightings_not_in_map"] = sightingsNotInMap_;  // other robots, or landmarks not mapped
     for (const auto& [robot, sp] : spacing_) {
         auto& r = j["robots"][robot];
         r["estimates"] = estimates_.count(robot) ? estimates_.at(robot).size() : 0;
         r["max_distance_between_fixes_m"] = sp.maxDistance;
         r["mean_distance_between_fixes_m"] = sp.gaps ? sp.sumDistance / double(sp.gaps) : 0.0;
         r["max_time_between_fixes_s"] = sp.maxTime;
+        // from the robot's first observation to its first estimate (null: none)
+        const auto e = estimates_.find(robot);
+        r["time_to_first_estimate_s"] =
+            e == estimates_.end() || e->second.empty() || !firstSeen_.count(robot)
+                ? nlohmann::json()
+                : nlohmann::json(e->second.front().t - firstSeen_.at(robot));
     }
     // the range biases each robot's tracker estimated, as they stand at the end of the log
     for (const auto& [robot, tr] : trackers_) {

@@ -76,6 +76,7 @@ void setRangeDelay(const mrpt::config::CConfigFileBase& src, O& o) {
 
 const common::KeyTable<BeaconOptions>& BeaconOptions::keys() {
     using Mode = BeaconOptions::Mode;
+    using Sightings = BeaconOptions::Sightings;
     static const auto table =
         common::KeyTable<O>("beacons")
             .choice("mode", MRLOC_KEY_FIELD(mode),
@@ -140,14 +141,38 @@ const common::KeyTable<BeaconOptions>& BeaconOptions::keys() {
                                                      : "from MRPT's " + o.rangeSigmaFrom);
                 },
                 common::keyNumberText(TrackerOptions{}.rangeSigma))
+            .real("bearing_sigma", MRLOC_KEY_FIELD(tracker.bearingSigma), {1e-6, 3}, "rad",
+                  "a camera's bearing noise to a landmark (CObservationBearingRange), for the "
+                  "tracker and its start-up")
+            .choice(
+                "sightings", MRLOC_KEY_FIELD(sightings),
+                std::vector<std::pair<std::string, Sightings>>{{"range_bearing", Sightings::Both},
+                                                               {"range", Sightings::Range},
+                                                               {"bearing", Sightings::Bearing}},
+                "what the tracker takes of a camera's sightings of the map's landmarks "
+                "(CObservationBearingRange, ids through the beacon map; other ids, other "
+                "robots, are counted and left out): `range_bearing`, `range` or `bearing`")
             .real("gate_probability", MRLOC_KEY_FIELD(tracker.gateProbability), {0.5, 1.0 - 1e-12},
-                  "", "chi-square(1) gate on each range innovation")
+                  "", "chi-square(1) gate on each range (and bearing) innovation")
+            .real("huber_k", MRLOC_KEY_FIELD(tracker.huberK), {0, 100}, "sigma",
+                  "Huber's loss: a range or bearing that passed the gate with an innovation "
+                  "beyond this many sigmas counts as if its variance were larger (its pull "
+                  "capped at k sigmas' worth); `0`: the plain EKF update")
             .real("odometry_sigma_xy", MRLOC_KEY_FIELD(tracker.odomSigmaPerMetre), {0, 10}, "m/m",
-                  "filter's odometry noise per metre")
+                  "filter's odometry noise per reading, per metre of its increment")
             .real("odometry_sigma_phi", MRLOC_KEY_FIELD(tracker.odomSigmaPhiPerRad), {0, 10},
                   "rad/rad", "per radian turned")
             .real("odometry_sigma_phi_per_m", MRLOC_KEY_FIELD(tracker.odomSigmaPhiPerMetre),
                   {0, 10}, "rad/m", "per metre")
+            .real("odometry_walk_xy", MRLOC_KEY_FIELD(tracker.odomWalkXY), {0, 10}, "m/sqrt(m)",
+                  "the odometry's random walk along the path: its sd after 1 m whatever the "
+                  "reading rate (the per-reading terms above add up to less as the rate grows); "
+                  "`0` (the default) for mrloc's simulated logs, whose noise is per reading; "
+                  "`mrloc import` writes 0.05 for a real log")
+            .real("odometry_walk_phi", MRLOC_KEY_FIELD(tracker.odomWalkPhiPerRad), {0, 10},
+                  "rad/sqrt(rad)", "heading's random walk, sd after 1 rad turned (import: 0.05)")
+            .real("odometry_walk_phi_per_m", MRLOC_KEY_FIELD(tracker.odomWalkPhiPerMetre), {0, 10},
+                  "rad/sqrt(m)", "heading's random walk, sd after 1 m travelled (import: 0.02)")
             .real("random_walk_sigma", MRLOC_KEY_FIELD(tracker.randomWalkSigma), {0, 100},
                   "m/sqrt(s)", "prediction when the rawlog has no odometry")
             .real("bootstrap_baseline", MRLOC_KEY_FIELD(tracker.bootstrapBaseline), {0.01, 100},
@@ -198,6 +223,9 @@ const common::KeyTable<BeaconOptions>& BeaconOptions::keys() {
                   "to receive a section's beacon table")
             .real("shot_interval", MRLOC_KEY_FIELD(system.shotInterval), {1e-4, 10}, "s",
                   "between two beacons' shots in an epoch (flight time + echoes dying out)")
+            .integer("beacons_per_epoch", MRLOC_KEY_FIELD(system.beaconsPerEpoch), 0, 1000, "",
+                     "the section's beacons fired per epoch, in turn from where the robot's "
+                     "last epoch stopped (a radio beacon ranged one at a time: `1`); `0`: all")
             .integer("shots_per_beacon", MRLOC_KEY_FIELD(system.shotsPerBeacon), 1, 10, "",
                      "rounds of the section's beacons in one epoch: each beacon fires this many "
                      "times and a fix (`mode = fixes`) takes each beacon's mean range; the "

@@ -33,7 +33,21 @@ const common::KeyTable<BeaconRobotOptions>& BeaconRobotOptions::keys() {
                   "(beacons) most ranging epochs per second the robot asks the RF beacon for")
             .integer("ranging_epochs", MRLOC_KEY_FIELD(rangingEpochs), 0, 1000000000L, "",
                      "(beacons) stops asking after this many epochs (0: never); paper 001's 10 "
-                     "trials per point");
+                     "trials per point")
+            .custom(
+                "ranging_pause", "s", "",
+                "(beacons) `t0 t1`: asks for no ranging epoch from t0 to t1 s after the start "
+                "(out of the beacons' reach: a gap in the ranges)",
+                [](common::IniSection& s, R& r) {
+                    if (!s.has("ranging_pause")) return;
+                    const auto v = s.reals("ranging_pause", {}, 2);
+                    if (!(v[0] >= 0 && v[1] > v[0])) s.fail("ranging_pause", "needs 0 <= t0 < t1");
+                    r.pauseStart = v[0], r.pauseEnd = v[1];
+                },
+                [](const R& r) -> std::optional<std::string> {
+                    if (r.pauseEnd <= r.pauseStart) return std::nullopt;
+                    return common::keyListText({r.pauseStart, r.pauseEnd});
+                });
     return table;
 }
 
@@ -111,8 +125,9 @@ void BeaconPayload::sense(sim::Step& step) {
     std::vector<RobotReport> requests;
     for (size_t i = 0; i < step.fleet.size(); ++i) {
         const long cap = robots_[i].rangingEpochs;
+        const bool paused = t >= robots_[i].pauseStart && t < robots_[i].pauseEnd;
         if (t - state_[i].lastEpoch >= 1.0 / robots_[i].beaconRate - 1e-9 &&
-            (cap == 0 || state_[i].epochs < cap))
+            (cap == 0 || state_[i].epochs < cap) && !paused)
             requests.push_back(report(step, i));
     }
     if (requests.empty()) return;

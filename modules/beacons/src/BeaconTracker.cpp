@@ -26,7 +26,8 @@ BeaconTracker::BeaconTracker(BeaconMap map, TrackerOptions options)
     : map_(std::move(map)),
       o_(std::move(options)),
       gate_(chi2Quantile1(o_.gateProbability)),
-      divergenceGate_(-2.0 * std::log(1.0 - o_.gateProbability)) {  // chi-square(2) quantile
+      divergenceGate_(-2.0 * std::log(1.0 - o_.gateProbability)),  // chi-square(2) quantile
+      start_(map_, {o_.rangeSigma, o_.bearingSigma, o_.randomWalkSigma, 1}, odometryNoise()) {
     Eigen::Index n = 3;
     if (o_.estimateBias) {
         if (o_.scaleSigma > 0) scaleIndex_ = n++;
@@ -65,15 +66,19 @@ void BeaconTracker::initialize(const CPose2D& pose, const Matrix3d& poseCov) {
     syncPdf();
 }
 
+OdometryNoise BeaconTracker::odometryNoise() const {
+    return {o_.odomSigmaPerMetre, o_.odomSigmaPhiPerRad, o_.odomSigmaPhiPerMetre,
+            o_.odomWalkXY,        o_.odomWalkPhiPerRad,  o_.odomWalkPhiPerMetre};
+}
+
 void BeaconTracker::onOdometry(const CPose2D& odo) {
     startIfGiven();
+    if (!initialized_ && lastOdometry_)
+        pendingStartMotion_ = pendingStartMotion_ + (odo - *lastOdometry_);
     if (initialized_ && lastOdometry_) {
         const CPose2D delta = odo - *lastOdometry_;  // increment in the robot frame
         const double d = std::hypot(delta.x(), delta.y());
-        const double sxy = o_.odomSigmaPerMetre * d + 1e-4;
-        const double sphi =
-            o_.odomSigmaPhiPerRad * std::abs(delta.phi()) + o_.odomSigmaPhiPerMetre * d + 1e-4;
-        const Matrix3d Q = Vector3d(sxy * sxy, sxy * sxy, sphi * sphi).asDiagonal();
+        const Matrix3d Q = odometryNoise().of(delta);
         // pose (+) delta, as CPosePDFGaussian's composition does, carried to the whole
         // state: the bias states do not move, their cross-covariance turns with the pose
         mrpt::math::CMatrixDouble33 dfDx, dfDu;
@@ -186,9 +191,41 @@ BeaconTracker::Innovation BeaconTracker::innovationOf(const Range& r) const {
 }
 
 bool BeaconTracker::updateWithRange(const Range& r, double gate) {
-    const Innovation in = innovationOf(r);
-    if (!in.valid || in.value * in.value / in.S > gate) return false;
-    const double R = o_.rangeSigma * o_.rangeSigma;
+    return scalarUpdate(innovationOf(r), o_.rangeSigma * o_.rangeSigma, gate);
+}
+
+BeaconTracker::Innovation BeaconTracker::bearingInnovation(const Sighting& m) const {
+    // h = atan2(by - sy, bx - sx) - phi - yaw, the sensor s at p + R(phi) o
+    Innovation in;
+    const double c = std::cos(state_(2)), s = std::sin(state_(2));
+    const double ox = m.sensorOnRobot.x(), oy = m.sensorOnRobot.y();
+    const double dx = m.beacon.x() - (state_(0) + c * ox - s * oy);
+    const double dy = m.beacon.y() - (state_(1) + s * ox + c * oy);
+    const double q = dx * dx + dy * dy;
+    if (q < 1e-12 || !m.bearing) return in;
+    in.H = Eigen::RowVectorXd::Zero(state_.size());
+    in.H(0) = dy / q;
+    in.H(1) = -dx / q;
+    in.H(2) = dy / q * (-s * ox - c * oy) - dx / q * (c * ox - s * oy) - 1.0;
+    const double predicted = std::atan2(dy, dx) - state_(2) - m.sensorYaw;
+    in.value = mrpt::math::wrapToPi(*m.bearing - predicted);
+    in.S = (in.H * cov_ * in.H.transpose())(0, 0) + m.bearingSigma * m.bearingSigma;
+    in.valid = true;
+    return in;
+}
+
+bool BeaconTracker::scalarUpdate(const Innovation& given, double R, double gate) {
+    if (!given.valid || given.value * given.value / given.S > gate) return false;
+    Innovation in = given;
+    // Huber's loss on the normalised innovation: beyond k sigmas the measurement counts as
+    // if its variance were larger, so one that passed the gate by a little moves the state
+    // by k sigmas' worth at most (IRLS weight k / |z|: S' = S / w, R' = S' - H P H^T)
+    const double k = o_.huberK, z = std::abs(in.value) / std::sqrt(in.S);
+    if (k > 0 && z > k) {
+        const double inflated = in.S * z / k;
+        R += inflated - in.S;
+        in.S = inflated;
+    }
     const Eigen::VectorXd K = cov_ * in.H.transpose() / in.S;
     const Eigen::MatrixXd IKH = Eigen::MatrixXd::Identity(state_.size(), state_.size()) - K * in.H;
     // Joseph form keeps the covariance symmetric positive definite.
@@ -389,6 +426,98 @@ std::optional<Fix> BeaconTracker::fixOnly(const mrpt::obs::CObservationBeaconRan
     return f;
 }
 
+void BeaconTracker::predictToTime(double t) {
+    const double dt = lastT_ ? std::max(0.0, t - *lastT_) : 0.0;
+    if (!lastOdometry_) {  // no odometry in this log: a random walk
+        const double q = o_.randomWalkSigma * o_.randomWalkSigma * dt;
+        cov_(0, 0) += q;
+        cov_(1, 1) += q;
+    }
+    for (const auto& [id, i] : offsetIndex_) cov_(i, i) += o_.biasDrift * o_.biasDrift * dt;
+    lastT_ = t;
+}
+
+bool BeaconTracker::lostBySingleMeasurements(bool accepted) {
+    recentGated_.push_back(!accepted);
+    if (recentGated_.size() > kLostWindow) recentGated_.pop_front();
+    if (recentGated_.size() < kLostWindow ||
+        size_t(std::count(recentGated_.begin(), recentGated_.end(), true)) < kLostRejected)
+        return false;
+    recentGated_.clear();
+    return true;
+}
+
+void BeaconTracker::restart() {
+    // (without odometry there is no heading to keep: the estimates meanwhile say 0)
+    if (lastOdometry_) headingOffset_ = state_(2) - lastOdometry_->phi();
+    // the particles about the lost pose, as wide as the odometry may have drifted; the
+    // sightings' own draws find the pose if it is farther
+    const double sxy = std::max(2.0, 3.0 * std::sqrt(cov_(0, 0) + cov_(1, 1)));
+    const double sphi = std::min(M_PI, std::max(0.5, 3.0 * std::sqrt(cov_(2, 2))));
+    start_.seedAround(pdf_.mean, sxy, sphi);
+    pendingStartMotion_ = CPose2D();
+    lastStartT_ = lastT_;
+    initialized_ = false;
+    track_.clear();
+    epochsLost_ = 0;
+    recentGated_.clear();
+    ++stats_.resets;
+}
+
+bool BeaconTracker::feedStart(double t, const std::vector<Sighting>& seen) {
+    startIfGiven();
+    if (initialized_ || seen.empty()) return false;
+    if (!lastOdometry_ && lastStartT_) start_.onTime(t - *lastStartT_);
+    lastStartT_ = t;
+    start_.onOdometry(pendingStartMotion_);  // the particles move once per sighting
+    pendingStartMotion_ = CPose2D();
+    for (const auto& s : seen) start_.onSighting(s);
+    const auto start = start_.converged(lastOdometry_.has_value());
+    if (!start) return false;
+    initialize(start->mean, start->cov);
+    lastT_ = t;
+    start_.clear();
+    track_.clear();
+    recentGated_.clear();
+    ++stats_.particleStarts;
+    return true;
+}
+
+std::optional<CPose2D> BeaconTracker::onSightings(double t, const std::vector<Sighting>& seen) {
+    if (!initialized_) {
+        for (const auto& s : seen) stats_.rangesReceived += bool(s.range);
+        for (const auto& s : seen) stats_.bearingsReceived += bool(s.bearing);
+        if (!feedStart(t, seen)) return std::nullopt;
+        for (const auto& s : seen) stats_.rangesUsed += bool(s.range);
+        for (const auto& s : seen) stats_.bearingsUsed += bool(s.bearing);
+        return pdf_.mean;
+    }
+    predictToTime(t);
+    for (const auto& s : seen) {
+        bool lost = false;
+        if (s.range) {
+            ++stats_.rangesReceived;
+            const Range r{s.beacon, s.sensorOnRobot, *s.range, s.beaconId};
+            const bool accepted = updateWithRange(r, gate_);
+            accepted ? ++stats_.rangesUsed : ++stats_.rangesGated;
+            noteGate(s.beaconId, accepted);
+            lost = lostBySingleMeasurements(accepted);
+        }
+        if (s.bearing && !lost) {
+            ++stats_.bearingsReceived;
+            const bool accepted =
+                scalarUpdate(bearingInnovation(s), s.bearingSigma * s.bearingSigma, gate_);
+            accepted ? ++stats_.bearingsUsed : ++stats_.bearingsGated;
+            lost = lostBySingleMeasurements(accepted);
+        }
+        if (lost) {
+            restart();
+            return std::nullopt;
+        }
+    }
+    return pdf_.mean;
+}
+
 std::optional<CPose2D> BeaconTracker::onRanges(double t,
                                                const mrpt::obs::CObservationBeaconRanges& obs) {
     ++stats_.epochs;
@@ -398,14 +527,7 @@ std::optional<CPose2D> BeaconTracker::onRanges(double t,
         lastT_ = t;
         return bootstrap(ranges);
     }
-    const double dt = lastT_ ? std::max(0.0, t - *lastT_) : 0.0;
-    if (!lastOdometry_) {  // no odometry in this log: a random walk
-        const double q = o_.randomWalkSigma * o_.randomWalkSigma * dt;
-        cov_(0, 0) += q;
-        cov_(1, 1) += q;
-    }
-    for (const auto& [id, i] : offsetIndex_) cov_(i, i) += o_.biasDrift * o_.biasDrift * dt;
-    lastT_ = t;
+    predictToTime(t);
 
     // Started from a given pose, the filter has a prior but no evidence yet: its gate is
     // wide enough to let two long echoes in, and the bias states would keep them. Until one
@@ -426,10 +548,12 @@ std::optional<CPose2D> BeaconTracker::onRanges(double t,
     std::stable_sort(order.begin(), order.end(),
                      [](const auto& a, const auto& b) { return a.first < b.first; });
     size_t used = 0;
+    bool lostBySingles = false;
     for (const auto& [nis, r] : order) {
         const bool accepted = updateWithRange(*r, gate_);
         accepted ? ++used : ++stats_.rangesGated;
         noteGate(r->beaconId, accepted);
+        lostBySingles = lostBySingleMeasurements(accepted) || lostBySingles;
     }
     stats_.rangesUsed += used;
     // Lost track: every range rejected, or consistent fixes (ranges corrected by the bias
@@ -439,14 +563,10 @@ std::optional<CPose2D> BeaconTracker::onRanges(double t,
     } else if (ranges.size() >= 3) {
         epochsLost_ = disagreesWithFix(ranges) ? epochsLost_ + 1 : 0;
     }
-    if (epochsLost_ >= o_.resetAfter) {
+    if (epochsLost_ >= o_.resetAfter || lostBySingles) {
         // lost: start again, as at the beginning, from fixes that fit the odometry's path
-        // (without odometry there is no heading to keep: the estimates meanwhile say 0)
-        if (lastOdometry_) headingOffset_ = state_(2) - lastOdometry_->phi();
-        initialized_ = false;
-        track_.clear();
-        epochsLost_ = 0;
-        ++stats_.resets;
+        // or from the particles
+        restart();
         return bootstrap(ranges);
     }
     return pdf_.mean;

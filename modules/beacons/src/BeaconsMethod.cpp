@@ -304,7 +304,7 @@ void registerMethod(method::Registry& registry) {
     // MRPT's range-only localization INIs (ro-localization, pf-localization's RO demo) name
     // no mrloc section: their beacon likelihood section says they are this method's
     m.foreignSections = {"MetricMap_landmarksMap_00_likelihoodOpts"};
-    m.reads = {"CObservationBeaconRanges"};
+    m.reads = {"CObservationBeaconRanges", "CObservationBearingRange"};
     m.exampleConfig = "config/quickstart.ini (a map of your beacons in [beacons])";
     m.headline = beaconsHeadline;
     m.scenario = [](const mrpt::config::CConfigFileBase& ini, const BeaconLocalizer&) {

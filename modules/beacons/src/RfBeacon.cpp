@@ -3,6 +3,9 @@
 namespace mrloc::beacons {
 
 double RfBeaconOptions::shotAge(int id) const {
+    // beacons in turn: the epoch's k shots in its order, whichever they are; their mean age
+    if (beaconsPerEpoch > 0)
+        return (double(beaconsPerEpoch * shotsPerBeacon) - 1) / 2 * shotInterval;
     for (const auto& s : sections.sections())
         for (size_t k = 0; k < s.beacons.size(); ++k)
             if (s.beacons[k] == id) {
@@ -52,8 +55,16 @@ std::optional<RangingEpoch> RfBeacon::nextEpoch(double t,
     RangingEpoch e;
     e.robot = candidates[i].robot;
     e.section = sec.name;
+    std::vector<int> fired = sec.beacons;
+    if (o_.beaconsPerEpoch > 0 && !sec.beacons.empty()) {
+        // the next k of the section's beacons, in turn
+        size_t& next = nextBeacon_[e.robot];
+        fired.clear();
+        for (int k = 0; k < o_.beaconsPerEpoch; ++k)
+            fired.push_back(sec.beacons[next++ % sec.beacons.size()]);
+    }
     for (int round = 0; round < o_.shotsPerBeacon; ++round)
-        e.beacons.insert(e.beacons.end(), sec.beacons.begin(), sec.beacons.end());
+        e.beacons.insert(e.beacons.end(), fired.begin(), fired.end());
     e.shotInterval = o_.shotInterval;
     e.aimPoints.assign(e.beacons.size(), o_.activeAiming ? candidates[i].receiver : sec.aim);
     return e;

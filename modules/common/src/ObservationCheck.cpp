@@ -62,7 +62,8 @@ void ObservationCheck::check(const mrpt::obs::CObservation& obs) {
     if (!IS_CLASS(obs, CObservationComment)) {
         if (obs.timestamp == INVALID_TIMESTAMP)
             throw Error("no time stamp (0), and no sensory frame time to take");
-        if (!std::isfinite(seconds) || seconds <= 0)
+        // 0 and on: a log whose clock starts at 0 is relative time (common::isRelativeTime)
+        if (!std::isfinite(seconds) || seconds < 0)
             throw Error(mrpt::format("time stamp %.6f s is before 1970", seconds));
         if (label.stamp && obs.timestamp < *label.stamp)
             throw Error(mrpt::format("time runs backwards: %.6f s after %.6f s of the same label",

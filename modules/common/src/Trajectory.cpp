@@ -5,6 +5,7 @@
 #include <mrpt/core/format.h>
 #include <mrpt/math/CQuaternion.h>
 #include <mrpt/math/wrap2pi.h>
+#include <mrpt/system/datetime.h>
 
 #include <algorithm>
 #include <cmath>
@@ -37,6 +38,13 @@ double stampSeconds(mrpt::Clock::time_point stamp) {
     // MRPT's ticks are 100 ns from 1601 (Windows' FILETIME); 1970 is this many after
     constexpr int64_t kTicksAt1970 = 116444736000000000LL;
     return double(stamp.time_since_epoch().count() - kTicksAt1970) / 1e7;
+}
+
+std::string timeInWords(double seconds) {
+    // MRPT's date text wraps before 1970 (the year 60425), as its toDouble does
+    if (!std::isfinite(seconds) || seconds < 0) return "before 1970";
+    if (isRelativeTime(seconds)) return mrpt::format("t = %.3f s (relative clock)", seconds);
+    return mrpt::system::dateTimeToString(mrpt::Clock::fromDouble(seconds)) + " UTC";
 }
 
 void checkTrajectoryPose(double t, double x, double y, double z, const std::string& where) {

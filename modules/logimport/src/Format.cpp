@@ -92,15 +92,31 @@ const Format& FormatRegistry::get(const std::string& name) const {
                 (near ? " (did you mean '" + *near + "'?)" : "") + "; the formats: " + list);
 }
 
+std::string formatHelp(const Format& f) {
+    std::string out = "  " + f.name + " " + f.inputs + "\n      " + f.summary + "\n";
+    for (const auto& o : f.options)
+        out += "      --opt " + o.key + "=" + (o.defaultValue.empty() ? "..." : o.defaultValue) +
+               "   " + o.help + "\n";
+    return out;
+}
+
 std::string formatsHelp(const FormatRegistry& registry) {
     std::string out = "formats:\n";
-    for (const auto& [name, f] : registry.all()) {
-        out += "  " + name + " " + f.inputs + "\n      " + f.summary + "\n";
-        for (const auto& o : f.options)
-            out += "      --opt " + o.key + "=" +
-                   (o.defaultValue.empty() ? "..." : o.defaultValue) + "   " + o.help + "\n";
-    }
+    for (const auto& [name, f] : registry.all()) out += formatHelp(f);
     return out;
+}
+
+std::string realLogBeaconKeys() {
+    return "# A real log's odometry drifts along its path whatever its reading rate: a random\n"
+           "# walk beside the per-reading noise (doc/beacons.md, \"Odometry noise\"). Raise it\n"
+           "# if the tracker refuses good ranges after a stretch without any (a poor odometry).\n"
+           "odometry_walk_xy = 0.05\n"
+           "odometry_walk_phi = 0.05\n"
+           "odometry_walk_phi_per_m = 0.02\n"
+           "# Keys you may want to change (doc/ini.md): range_sigma, the ranges' noise (m);\n"
+           "# gate_probability and huber_k, how gross errors are refused or weighed less;\n"
+           "# start = x y phi_deg, if you know where the robot starts (else the tracker finds\n"
+           "# it from the ranges: doc/beacons.md, \"Start-up\").\n";
 }
 
 namespace {
@@ -120,13 +136,9 @@ ImportSummary convertAll(const Format& format, const ImportRequest& request,
 }
 
 nlohmann::json toJson(const ImportSummary& s) {
-    nlohmann::json j{{"rawlog", s.rawlog},
-                     {"groundTruth", s.groundTruth},
-                     {"files", s.files},
-                     {"notes", s.notes},
-                     {"t0", s.t0},
-                     {"t1", s.t1},
-                     {"observations", s.observations}};
+    nlohmann::json j{{"rawlog", s.rawlog}, {"groundTruth", s.groundTruth},  {"files", s.files},
+                     {"notes", s.notes},   {"warnings", s.warnings},        {"t0", s.t0},
+                     {"t1", s.t1},         {"observations", s.observations}};
     for (const auto& [key, c] : s.streams)
         j["streams"].push_back({key.first, key.second, c.count, c.t0, c.t1});
     return j;
@@ -138,6 +150,7 @@ ImportSummary fromJson(const nlohmann::json& j) {
     s.groundTruth = j["groundTruth"].get<std::map<std::string, size_t>>();
     s.files = j["files"].get<std::vector<std::string>>();
     s.notes = j["notes"].get<std::vector<std::string>>();
+    s.warnings = j.value("warnings", std::vector<std::string>{});
     s.t0 = j["t0"], s.t1 = j["t1"], s.observations = j["observations"];
     for (const auto& r : j["streams"])
         s.streams[{r[0].get<std::string>(), r[1].get<std::string>()}] = {r[2], r[3], r[4]};

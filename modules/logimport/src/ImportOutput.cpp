@@ -1,8 +1,9 @@
-#include <mrloc/common/Trajectory.h>
 #include <mrloc/common/Error.h>
 #include <mrloc/common/Names.h>
+#include <mrloc/common/Trajectory.h>
 #include <mrloc/logimport/ImportOutput.h>
 #include <mrpt/core/format.h>
+#include <mrpt/obs/CObservationOdometry.h>
 #include <mrpt/system/datetime.h>
 
 #include <cmath>
@@ -13,6 +14,10 @@ namespace mrloc::logimport {
 namespace fs = std::filesystem;
 
 namespace {
+
+/** Odometry readings kept per robot for the check against the truth: its first minute at
+ *  up to 1 kHz */
+constexpr size_t kOdometryKept = 60000;
 
 std::string checkedRawlogPath(const std::string& path) {
     const fs::path p(path);
@@ -67,6 +72,10 @@ void ImportOutput::writeHeldBefore(double limit) {
             throw Error(where + ": " + e.what());
         }
         writer_.write(*obs);
+        if (const auto* odo = dynamic_cast<const mrpt::obs::CObservationOdometry*>(obs.get());
+            odo && odometry_[common::robotOfLabel(odo->sensorLabel)].size() < kOdometryKept)
+            odometry_[common::robotOfLabel(odo->sensorLabel)].push_back(
+                {t, mrpt::poses::CPose3D(odo->odometry)});
         auto& s = summary_.streams[{obs->sensorLabel, obs->GetRuntimeClass()->className}];
         if (s.count++ == 0) s.t0 = t;
         s.t1 = t;
@@ -94,12 +103,30 @@ void ImportOutput::addSideFile(const std::string& suffix, const std::string& con
     sideFiles_.emplace_back(stem_ + suffix, content);
 }
 
+void ImportOutput::checkOdometryAgainstTruth() {
+    for (const auto& [robot, odometry] : odometry_) {
+        const auto truth = truth_.find(robot);
+        if (truth == truth_.end()) continue;
+        const auto fit = fitOdometry(odometry, truth->second);
+        if (!fit) continue;
+        if (const auto w =
+                odometryWarning(robot, *fit, odometryAdvice_ ? odometryAdvice_(*fit) : ""))
+            summary_.warnings.push_back(*w);
+    }
+}
+
 ImportSummary ImportOutput::commit() {
     writeHeldBefore(INFINITY);
+    checkOdometryAgainstTruth();
     if (copies_)
         note(mrpt::format("%zu observations left out: exact copies of the one before them", copies_));
     if (summary_.observations == 0)
         throw Error("no observation was converted: nothing to write to " + rawlogPath_);
+    if (common::isRelativeTime(summary_.t0))
+        note(
+            mrpt::format("the log's clock starts at %.3f s: relative time, kept as it is (in "
+                         "the rawlog, seconds after 1970-01-01 00:00 UTC; doc/import.md#time)",
+                         summary_.t0));
     // every file under its temporary name first; then the renames, which do not fail on a
     // full disk
     std::vector<std::unique_ptr<common::PendingFile>> pending;
@@ -125,9 +152,7 @@ ImportSummary ImportOutput::commit() {
 std::string summaryText(const ImportSummary& s) {
     std::string out;
     for (const auto& f : s.files) out += "wrote " + f + "\n";
-    const auto utc = [](double t) {
-        return mrpt::system::dateTimeToString(mrpt::Clock::fromDouble(t)) + " UTC";
-    };
+    const auto utc = [](double t) { return common::timeInWords(t); };
     out += mrpt::format("%zu observations from %s to %s (%.3f s)\n", s.observations,
                         utc(s.t0).c_str(), utc(s.t1).c_str(), s.t1 - s.t0);
     out +=
@@ -138,6 +163,7 @@ std::string summaryText(const ImportSummary& s) {
     for (const auto& [robot, n] : s.groundTruth)
         out += mrpt::format("ground truth %s: %zu poses\n", robot.c_str(), n);
     for (const auto& n : s.notes) out += "note: " + n + "\n";
+    for (const auto& w : s.warnings) out += "warning: " + w + "\n";
     return out;
 }
 

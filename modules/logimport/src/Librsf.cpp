@@ -49,7 +49,7 @@ std::string beaconIni(const std::string& source, const std::string& stem,
         s += mrpt::format("beacon_%ld = %.6f %.6f %.6f\n", id, a.x, a.y, anchorZ);
     s += "# the median of the log's own range variances, as a standard deviation\n";
     s += mrpt::format("range_sigma = %.6f\n", rangeSigma);
-    return s;
+    return s + realLogBeaconKeys();
 }
 
 void convertLibrsf(const ImportRequest& req, ImportOutput& out) {
@@ -61,6 +61,18 @@ void convertLibrsf(const ImportRequest& req, ImportOutput& out) {
     const double baseScale = req.options.number("wheel_base_scale");
     if (!(baseScale > 0 && baseScale <= 100)) throw Error("--opt wheel_base_scale: 0 to 100");
     const bool swapWheels = req.options.flag("swap_wheels");
+    // the odometry turns at (v_r - v_l) / wheel base: the wheels' columns the other way round
+    // turn it the other way, a wheel base off by k turns it 1/k times as fast
+    out.setOdometryAdvice([=](const OdometryFit& fit) {
+        std::string advice;
+        if (fit.mirrored())
+            advice += std::string("--opt swap_wheels=") + (swapWheels ? "no" : "yes");
+        if (fit.turnRateOff())
+            advice +=
+                (advice.empty() ? "" : " ") +
+                mrpt::format("--opt wheel_base_scale=%.3g", baseScale * std::abs(fit.turnGain));
+        return advice;
+    });
 
     std::map<long, Anchor> anchors;
     std::vector<double> variances;

@@ -13,7 +13,8 @@ from sensor_msgs.msg import LaserScan, Range
 from std_msgs.msg import String
 from tf2_msgs.msg import TFMessage
 
-T0 = 1700000000.0  # s
+# s; a second argument moves the clock (0: a bag whose clock starts at 0, test_import.cpp)
+T0 = float(sys.argv[2]) if len(sys.argv) > 2 else 1700000000.0
 
 
 def stamp(t):

@@ -12,6 +12,7 @@
 #include <mrloc/common/Localizer.h>
 #include <mrloc/common/OdometryPath.h>
 #include <mrpt/config/CLoadableOptions.h>
+#include <mrpt/obs/CObservationBearingRange.h>
 
 #include <map>
 #include <vector>
@@ -22,6 +23,9 @@ namespace mrloc::beacons {
 struct BeaconOptions : public mrpt::config::CLoadableOptions {
     enum class Mode { Tracker, Fixes };
     Mode mode = Mode::Tracker;
+    /** What the tracker takes of a camera's sightings (CObservationBearingRange). */
+    enum class Sightings { Both, Range, Bearing };
+    Sightings sightings = Sightings::Both;
     bool threeD = false;  ///< 3-D fixes; default 2-D with the receiver height known
     BeaconMap map;
     TrackerOptions tracker;
@@ -102,11 +106,22 @@ class BeaconLocalizer : public common::Localizer {
     /** Ranges as they would have been read at the epoch's time stamp (see doc/beacons.md). */
     mrpt::obs::CObservationBeaconRanges compensateMotion(
         const std::string& robot, const mrpt::obs::CObservationBeaconRanges& obs);
-    void addEstimate(const std::string& robot, double t, const mrpt::poses::CPose3D& pose);
+    /** An estimate and its covariance (unknown terms nan); `measured`: at a sighting or an
+     *  epoch, not bridged by odometry between them (the spacing counts those only). */
+    void addEstimate(const std::string& robot, double t, const mrpt::poses::CPose3D& pose,
+                     const std::optional<mrpt::math::CMatrixDouble33>& cov, bool measured);
+    void addEstimate(const std::string& robot, double t, const BeaconTracker& tracker,
+                     bool measured);
+    /** A camera's sightings of landmarks (range and bearing, BeaconOptions::sightings). */
+    void sighted(const std::string& robot, double t,
+                 const mrpt::obs::CObservationBearingRange& camera);
+    size_t sightingObservations_ = 0, sightingsNotInMap_ = 0;
+    std::map<std::string, double> firstSeen_;  ///< per robot: its first observation's time
 
     /** How far apart (by odometry) and how long apart a robot's estimates are. */
     struct Spacing {
         double sinceLast = 0;  ///< odometry path length since the last estimate (m)
+        std::optional<double> lastMeasured;  ///< time of the last estimate from a sighting
         double maxDistance = 0, sumDistance = 0, maxTime = 0;
         size_t gaps = 0;
     };

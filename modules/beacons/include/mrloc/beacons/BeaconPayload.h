@@ -20,6 +20,9 @@ struct BeaconRobotOptions {
     mrpt::math::TPoint3D receiver{0, 0, 0.3};  ///< receiver = x y z on the robot (m)
     double beaconRate = 5;   ///< beacon_rate: most ranging epochs it asks for (Hz)
     long rangingEpochs = 0;  ///< ranging_epochs: stops asking after this many (0: never)
+    /** ranging_pause = t0 t1 (s from the start): asks for no epoch in [t0, t1) (out of the
+     *  beacons' reach: a gap in the ranges); none if t1 <= t0 */
+    double pauseStart = 0, pauseEnd = 0;
 
     /** The beacon method's keys of [robot.<name>] (doc/ini.md shows them with the
      *  simulator's). */

@@ -18,6 +18,8 @@
 // robust fixes that fit the odometry's path (consensus, then Umeyama). doc/beacons.md.
 #include <mrloc/beacons/BeaconMap.h>
 #include <mrloc/beacons/Multilateration.h>
+#include <mrloc/beacons/OdometryNoise.h>
+#include <mrloc/beacons/ParticleStart.h>
 #include <mrloc/beacons/StartupTrack.h>
 #include <mrloc/beacons/Ultrasonic.h>
 #include <mrpt/obs/CObservationBeaconRanges.h>
@@ -32,10 +34,20 @@ namespace mrloc::beacons {
 
 struct TrackerOptions {
     double rangeSigma = 0.03;            ///< m
+    double bearingSigma = 0.02;          ///< rad, a camera's bearing to a landmark
     double gateProbability = 0.999;      ///< chi-square(1) gate on each range innovation
+    /** Huber's loss on a measurement's normalised innovation beyond this many sigmas (it
+     *  counts as if noisier); 0: the plain EKF update. */
+    double huberK = 1.345;               ///< Huber's constant for 95 % efficiency on Gaussian noise
     double odomSigmaPerMetre = 0.05;     ///< translation noise per metre travelled
     double odomSigmaPhiPerRad = 0.05;    ///< heading noise per radian turned
     double odomSigmaPhiPerMetre = 0.02;  ///< heading noise per metre travelled (rad/m)
+    /** The odometry's random walk (OdometryNoise.h): sd after 1 m (or 1 rad) whatever the
+     *  reading rate; 0 by default, as the simulator's and MRPT's noise are per reading;
+     *  `mrloc import` writes a real log's. */
+    double odomWalkXY = 0;               ///< m/sqrt(m)
+    double odomWalkPhiPerRad = 0;        ///< rad/sqrt(rad) turned
+    double odomWalkPhiPerMetre = 0;      ///< rad/sqrt(m) travelled
     double randomWalkSigma = 0.5;        ///< m/sqrt(s), when the rawlog has no odometry
     double bootstrapBaseline = 0.3;      ///< m the start-up fixes must span along the path
     int resetAfter = 5;  ///< epochs in a row lost (every range rejected, or consistent
@@ -64,12 +76,16 @@ struct TrackerStats {
     size_t epochs = 0, rangesReceived = 0, rangesUsed = 0, rangesGated = 0, rangesUnknownBeacon = 0;
     size_t fixes = 0, fixFailures = 0, mirrorResolved = 0, resets = 0;
     size_t offsetsReopened = 0;  ///< a beacon's ranges failed the gate 8 times in 10
+    size_t bearingsReceived = 0, bearingsUsed = 0, bearingsGated = 0;
+    size_t particleStarts = 0;  ///< starts (and re-starts) from the particle start-up
 
     TrackerStats& operator+=(const TrackerStats& o) {
         epochs += o.epochs, rangesReceived += o.rangesReceived, rangesUsed += o.rangesUsed;
         rangesGated += o.rangesGated, rangesUnknownBeacon += o.rangesUnknownBeacon;
         fixes += o.fixes, fixFailures += o.fixFailures, mirrorResolved += o.mirrorResolved;
         resets += o.resets, offsetsReopened += o.offsetsReopened;
+        bearingsReceived += o.bearingsReceived, bearingsUsed += o.bearingsUsed;
+        bearingsGated += o.bearingsGated, particleStarts += o.particleStarts;
         return *this;
     }
 };
@@ -82,6 +98,16 @@ class BeaconTracker {
     /** Returns the robot pose after this epoch, or nullopt while not yet localized. */
     std::optional<mrpt::poses::CPose2D> onRanges(double t,
                                                  const mrpt::obs::CObservationBeaconRanges& obs);
+
+    using Sighting = ParticleStart::Sighting;
+    /** Single sightings of known beacons or landmarks (ranges, bearings or both), as one
+     *  observation gives them. Not yet started: they go to the particle start-up, which
+     *  starts the filter once its particles gather (ParticleStart.h); started: each is an
+     *  EKF update through its chi-square gate. Returns the pose once started. */
+    std::optional<mrpt::poses::CPose2D> onSightings(double t, const std::vector<Sighting>& seen);
+    /** Before the filter starts: the particle start-up takes the sightings (a range
+     *  observation's, before any window gathers them); true if the filter started now. */
+    bool feedStart(double t, const std::vector<Sighting>& seen);
 
     /** Seed 001 as published: one multilateration from this epoch's ranges alone (no
      *  filter, no outlier rejection); the filter state is left untouched. */
@@ -130,6 +156,19 @@ class BeaconTracker {
     std::optional<Fix> fixFrom(const std::vector<Range>& ranges, bool robust = true,
                                std::vector<Range>* used = nullptr, bool counted = true);
     bool updateWithRange(const Range& r, double gate);
+    /** The odometry's noise model, from the options. */
+    OdometryNoise odometryNoise() const;
+    Innovation bearingInnovation(const Sighting& s) const;
+    /** The EKF's update with one scalar measurement of variance R, if it passes `gate`. */
+    bool scalarUpdate(const Innovation& in, double R, double gate);
+    /** Without odometry: the random walk over the time since the last measurement; the
+     *  offsets' drift either way. */
+    void predictToTime(double t);
+    /** Counts a single measurement's gate outcome; lost when kLostRejected of the last
+     *  kLostWindow were refused (gross errors alone, even 45 %, almost never do that). */
+    bool lostBySingleMeasurements(bool accepted);
+    /** Lost: start again, from fixes (ranges enough) or the particles about the last pose. */
+    void restart();
     std::optional<mrpt::poses::CPose2D> bootstrap(const std::vector<Range>& ranges);
     /** Starts at o_.startPose, once, before the first odometry reading. */
     void startIfGiven();
@@ -167,6 +206,11 @@ class BeaconTracker {
     static constexpr double kMaxBootstrapGdop = 5.0;  ///< a poorer fix is no start
     double headingOffset_ = 0;
     static constexpr size_t kGateWindow = 10, kGateReopen = 8;
+    static constexpr size_t kLostWindow = 30, kLostRejected = 25;
+    std::deque<bool> recentGated_;  // the last single measurements: refused by the gate
+    ParticleStart start_;
+    std::optional<double> lastStartT_;             // the particles' last random walk (no odometry)
+    mrpt::poses::CPose2D pendingStartMotion_;      // odometry since the particles last moved
     std::map<int, std::deque<bool>> gateHistory_;  // beacon -> gated, its last ranges
     bool settled_ = true;  // false from a given start pose until one consistent epoch
     int epochsLost_ = 0;   // epochs in a row with every range rejected or the fix apart

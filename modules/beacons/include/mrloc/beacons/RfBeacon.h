@@ -30,6 +30,9 @@ struct RfBeaconOptions {
     /** shots_per_beacon: rounds of the section's beacons in one epoch (each beacon fires
      *  this many times; a fix takes each beacon's mean range) */
     int shotsPerBeacon = 1;
+    /** beacons_per_epoch: the section's beacons fired per epoch, in turn from where the
+     *  robot's last epoch stopped (a radio beacon ranged one at a time: 1); 0: all */
+    int beaconsPerEpoch = 0;
     SectionMap sections;
 
     /** How long before the end of its epoch beacon `id` fired, on average over its rounds
@@ -57,6 +60,7 @@ class RfBeacon : public beacons::RangingController {
     RfBeaconOptions o_;
     ShotScheduler scheduler_;
     std::map<std::string, std::map<size_t, double>> tableReadyAt_;  ///< robot -> section -> t
+    std::map<std::string, size_t> nextBeacon_;  ///< robot -> its next beacon (beacons_per_epoch)
     RfBeaconStats stats_;
 };
 

@@ -17,6 +17,16 @@ namespace mrloc::common {
  *  "before 1970" on it never fired (negative stamps reached a report as 1.8e12 s). */
 double stampSeconds(mrpt::Clock::time_point stamp);
 
+/** One time rule for import, localize and every output (doc/import.md#time): a stamp is
+ *  seconds since 1970-01-01 00:00 UTC, MRPT's epoch. A log whose clock starts at 0 (most
+ *  datasets: seconds from the start of the recording) keeps its numbers: in the rawlog it is
+ *  that many seconds after 1970, and it is shown as relative time. Stamps before this limit
+ *  (3 March 1973) are read as such a relative clock. */
+constexpr double kRelativeClockLimit = 1e8;
+inline bool isRelativeTime(double seconds) { return seconds >= 0 && seconds < kRelativeClockLimit; }
+/** A time as a user reads it: a UTC date, "t = 12.500 s (relative clock)", or "before 1970". */
+std::string timeInWords(double seconds);
+
 struct StampedPose {
     double t = 0;  ///< seconds since 1970 (stampSeconds of the observation's stamp)
     mrpt::poses::CPose3D pose;

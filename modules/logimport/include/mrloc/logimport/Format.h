@@ -62,6 +62,12 @@ class FormatRegistry {
 
 /** `mrloc import --help`: the formats, their inputs and options. */
 std::string formatsHelp(const FormatRegistry& registry);
+/** `mrloc import <format> --help`: that format's inputs and options. */
+std::string formatHelp(const Format& format);
+
+/** The [beacons] keys every beacon INI an import writes carries for a real log (the
+ *  odometry's random walk), with comments on the keys a user may want to change and why. */
+std::string realLogBeaconKeys();
 
 /** Runs `format` on the inputs into `rawlogPath`, all or nothing. */
 ImportSummary runImport(const Format& format, const std::vector<std::string>& inputs,

@@ -6,9 +6,11 @@
 #include <mrloc/common/ObservationCheck.h>
 #include <mrloc/common/Rawlog.h>
 #include <mrloc/common/Trajectory.h>
+#include <mrloc/logimport/OdometryFit.h>
 #include <mrpt/obs/CObservation.h>
 
 #include <cmath>
+#include <functional>
 #include <map>
 #include <memory>
 #include <string>
@@ -29,6 +31,8 @@ struct ImportSummary {
     std::map<std::string, size_t> groundTruth;                           ///< robot -> poses
     std::vector<std::string> files;                                      ///< every file written
     std::vector<std::string> notes;  ///< what was dropped and why, counted
+    /** What looks wrong in what was written: the odometry not fitting the truth. */
+    std::vector<std::string> warnings;
     double t0 = 0, t1 = 0;
     size_t observations = 0;
 };
@@ -52,6 +56,12 @@ class ImportOutput {
     /** A line for the summary: what was left out and why. */
     void note(const std::string& line) { summary_.notes.push_back(line); }
 
+    /** The options to suggest when a robot's odometry does not fit its truth (OdometryFit.h),
+     *  as "--opt key=value ..."; the format's own knowledge of its odometry. */
+    void setOdometryAdvice(std::function<std::string(const OdometryFit&)> advice) {
+        odometryAdvice_ = std::move(advice);
+    }
+
     /** Writes the truth and the side files, then renames everything to its final name. */
     ImportSummary commit();
     const std::string& stem() const { return stem_; }
@@ -60,6 +70,9 @@ class ImportOutput {
     std::string rawlogPath_, stem_;
     common::RawlogWriter writer_;
     std::map<std::string, common::Trajectory> truth_;
+    std::map<std::string, common::Trajectory> odometry_;  ///< per robot, as written
+    std::function<std::string(const OdometryFit&)> odometryAdvice_;
+    void checkOdometryAgainstTruth();
     std::vector<std::pair<std::string, std::string>> sideFiles_;  ///< path, content
     /** Writes the held observations stamped before `limit`, in stamp order. */
     void writeHeldBefore(double limit);
