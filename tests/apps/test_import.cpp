@@ -420,9 +420,10 @@ TEST(RealLogs, BeaconTrackerOnMrclamDataset6) {
     // each of the 5 robots from its camera's sightings (range and bearing) of the 15 surveyed
     // landmarks and its odometry, against Vicon, with the INI import wrote, unchanged (the
     // shipped config/beacons_mrclam.ini has its keys). Measured on the truth's timeline: pooled
-    // APE RMSE 0.260 m over 96.2 % of the stamps; per robot r1-r5 0.192 / 0.321 / 0.274 /
-    // 0.275 / 0.202 m (coverage 92.0-98.0 %) against odometry alone 1.77-4.17 m. Before issue
-    // 54 (ranges only, no particle start): 0.832 m over 48.1 %. Bounds 10 % above
+    // APE RMSE 0.244 m over 96.3 % of the stamps; per robot r1-r5 0.194 / 0.260 / 0.261 /
+    // 0.281 / 0.206 m (coverage 92.0-98.0 %) against odometry alone 1.77-4.17 m. Before issue
+    // 54 (ranges only, no particle start): 0.832 m over 48.1 %. Bounds 10 % above; the issue's
+    // goal, 0.3 m for every robot, is asserted as it is
     const std::string src = kShared + "/mrclam-ds6";
     if (!fs::is_directory(src))
         GTEST_SKIP() << "../shared/data/mrclam-ds6 is absent: MRCLAM is not in the repository";
@@ -436,12 +437,12 @@ TEST(RealLogs, BeaconTrackerOnMrclamDataset6) {
          at = written.find("beacon_", at + 1))
         EXPECT_NE(shipped.find(written.substr(at, written.find('\n', at) - at)), std::string::npos);
     const auto m = localized(dir + "/m.beacons.ini", dir + "/m.rawlog", "mrclam_tracker");
-    EXPECT_LT(m["truth_timeline"]["ape"]["rmse_m"].get<double>(), 0.29);
+    EXPECT_LT(m["truth_timeline"]["ape"]["rmse_m"].get<double>(), 0.27);
     EXPECT_GT(m["truth_timeline"]["share"].get<double>(), 0.95);
     ASSERT_EQ(m["robots"].size(), 5u);
     for (const auto& [robot, r] : m["robots"].items()) {
         const auto& tt = r["truth_timeline"];
-        EXPECT_LT(tt["ape"]["rmse_m"].get<double>(), 0.36) << robot;
+        EXPECT_LT(tt["ape"]["rmse_m"].get<double>(), 0.30) << robot;
         EXPECT_GT(tt["coverage"]["share"].get<double>(), 0.90) << robot;
         EXPECT_LT(tt["ape"]["rmse_m"].get<double>(),
                   r["odometry"]["truth_timeline"]["ape"]["rmse_m"].get<double>())

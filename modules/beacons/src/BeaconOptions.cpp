@@ -154,6 +154,15 @@ const common::KeyTable<BeaconOptions>& BeaconOptions::keys() {
                 "robots, are counted and left out): `range_bearing`, `range` or `bearing`")
             .real("gate_probability", MRLOC_KEY_FIELD(tracker.gateProbability), {0.5, 1.0 - 1e-12},
                   "", "chi-square(1) gate on each range (and bearing) innovation")
+            .choice("robust_loss", MRLOC_KEY_FIELD(tracker.robustLoss),
+                    std::vector<std::pair<std::string, TrackerOptions::RobustLoss>>{
+                        {"huber", TrackerOptions::RobustLoss::Huber},
+                        {"mixture", TrackerOptions::RobustLoss::Mixture}},
+                    "after the gate: `huber` (`huber_k`) or `mixture`, a Gaussian and a uniform "
+                    "of share `outlier_share` (each measurement weighed by its probability of "
+                    "being no gross error)")
+            .real("outlier_share", MRLOC_KEY_FIELD(tracker.outlierShare), {0, 0.99}, "",
+                  "`robust_loss = mixture`: the prior share of gross errors")
             .real("huber_k", MRLOC_KEY_FIELD(tracker.huberK), {0, 100}, "sigma",
                   "Huber's loss: a range or bearing that passed the gate with an innovation "
                   "beyond this many sigmas counts as if its variance were larger (its pull "

@@ -27,6 +27,7 @@ BeaconTracker::BeaconTracker(BeaconMap map, TrackerOptions options)
       o_(std::move(options)),
       gate_(chi2Quantile1(o_.gateProbability)),
       divergenceGate_(-2.0 * std::log(1.0 - o_.gateProbability)),  // chi-square(2) quantile
+      rangeSpan_(ParticleStart::rangeSpanOf(map_)),
       start_(map_, {o_.rangeSigma, o_.bearingSigma, o_.randomWalkSigma, 1}, odometryNoise()) {
     Eigen::Index n = 3;
     if (o_.estimateBias) {
@@ -191,7 +192,7 @@ BeaconTracker::Innovation BeaconTracker::innovationOf(const Range& r) const {
 }
 
 bool BeaconTracker::updateWithRange(const Range& r, double gate) {
-    return scalarUpdate(innovationOf(r), o_.rangeSigma * o_.rangeSigma, gate);
+    return scalarUpdate(innovationOf(r), o_.rangeSigma * o_.rangeSigma, gate, rangeSpan_);
 }
 
 BeaconTracker::Innovation BeaconTracker::bearingInnovation(const Sighting& m) const {
@@ -214,17 +215,31 @@ BeaconTracker::Innovation BeaconTracker::bearingInnovation(const Sighting& m) co
     return in;
 }
 
-bool BeaconTracker::scalarUpdate(const Innovation& given, double R, double gate) {
+double BeaconTracker::normalisedSquare(const Innovation& in) {
+    return in.valid ? in.value * in.value / in.S : 0.0;
+}
+
+bool BeaconTracker::scalarUpdate(const Innovation& given, double R, double gate, double span) {
     if (!given.valid || given.value * given.value / given.S > gate) return false;
     Innovation in = given;
-    // Huber's loss on the normalised innovation: beyond k sigmas the measurement counts as
-    // if its variance were larger, so one that passed the gate by a little moves the state
-    // by k sigmas' worth at most (IRLS weight k / |z|: S' = S / w, R' = S' - H P H^T)
-    const double k = o_.huberK, z = std::abs(in.value) / std::sqrt(in.S);
-    if (k > 0 && z > k) {
-        const double inflated = in.S * z / k;
-        R += inflated - in.S;
-        in.S = inflated;
+    const double z = std::abs(in.value) / std::sqrt(in.S);
+    // the measurement counts as if its innovation variance were S / w (R' = S / w - H P H^T)
+    double w = 1;
+    if (o_.robustLoss == TrackerOptions::RobustLoss::Huber && o_.huberK > 0 && z > o_.huberK) {
+        // Huber's loss: beyond k sigmas the IRLS weight k / |z|, so one that passed the gate
+        // by a little moves the state by k sigmas' worth at most
+        w = o_.huberK / z;
+    } else if (o_.robustLoss == TrackerOptions::RobustLoss::Mixture) {
+        // a Gaussian and a uniform over the span of what the sensor can read: w is the
+        // probability that this one is no gross error
+        const double e = o_.outlierShare;
+        const double inlier = (1 - e) * std::exp(-0.5 * z * z) / std::sqrt(2 * M_PI * in.S);
+        w = inlier / (inlier + e / span);
+        if (w < 1e-6) return false;
+    }
+    if (w < 1) {
+        R += in.S / w - in.S;
+        in.S /= w;
     }
     const Eigen::VectorXd K = cov_ * in.H.transpose() / in.S;
     const Eigen::MatrixXd IKH = Eigen::MatrixXd::Identity(state_.size(), state_.size()) - K * in.H;
@@ -437,11 +452,11 @@ void BeaconTracker::predictToTime(double t) {
     lastT_ = t;
 }
 
-bool BeaconTracker::lostBySingleMeasurements(bool accepted) {
-    recentGated_.push_back(!accepted);
+bool BeaconTracker::lostBySingleMeasurements(double nis) {
+    recentGated_.push_back(nis > kLostNis);
     if (recentGated_.size() > kLostWindow) recentGated_.pop_front();
     if (recentGated_.size() < kLostWindow ||
-        size_t(std::count(recentGated_.begin(), recentGated_.end(), true)) < kLostRejected)
+        size_t(std::count(recentGated_.begin(), recentGated_.end(), true)) < kLostFar)
         return false;
     recentGated_.clear();
     return true;
@@ -498,17 +513,19 @@ std::optional<CPose2D> BeaconTracker::onSightings(double t, const std::vector<Si
         if (s.range) {
             ++stats_.rangesReceived;
             const Range r{s.beacon, s.sensorOnRobot, *s.range, s.beaconId};
+            const double nis = normalisedSquare(innovationOf(r));
             const bool accepted = updateWithRange(r, gate_);
             accepted ? ++stats_.rangesUsed : ++stats_.rangesGated;
             noteGate(s.beaconId, accepted);
-            lost = lostBySingleMeasurements(accepted);
+            lost = lostBySingleMeasurements(nis);
         }
         if (s.bearing && !lost) {
             ++stats_.bearingsReceived;
+            const Innovation in = bearingInnovation(s);
             const bool accepted =
-                scalarUpdate(bearingInnovation(s), s.bearingSigma * s.bearingSigma, gate_);
+                scalarUpdate(in, s.bearingSigma * s.bearingSigma, gate_, 2 * M_PI);
             accepted ? ++stats_.bearingsUsed : ++stats_.bearingsGated;
-            lost = lostBySingleMeasurements(accepted);
+            lost = lostBySingleMeasurements(normalisedSquare(in));
         }
         if (lost) {
             restart();
@@ -553,7 +570,7 @@ std::optional<CPose2D> BeaconTracker::onRanges(double t,
         const bool accepted = updateWithRange(*r, gate_);
         accepted ? ++used : ++stats_.rangesGated;
         noteGate(r->beaconId, accepted);
-        lostBySingles = lostBySingleMeasurements(accepted) || lostBySingles;
+        lostBySingles = lostBySingleMeasurements(nis) || lostBySingles;
     }
     stats_.rangesUsed += used;
     // Lost track: every range rejected, or consistent fixes (ranges corrected by the bias

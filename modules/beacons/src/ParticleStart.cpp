@@ -9,12 +9,15 @@ namespace mrloc::beacons {
 
 ParticleStart::ParticleStart(const BeaconMap& map, ParticleStartOptions options,
                              OdometryNoise noise)
-    : map_(map), o_(options), noise_(std::move(noise)) {
-    double extent = 0;
-    for (const auto& [i, a] : map_)
-        for (const auto& [j, b] : map_) extent = std::max(extent, std::hypot(a.x - b.x, a.y - b.y));
-    rangeSpan_ = 2 * extent + 20;
+    : map_(map), o_(options), noise_(std::move(noise)), rangeSpan_(rangeSpanOf(map_)) {
     rng_.randomize(uint32_t(o_.seed));
+}
+
+double ParticleStart::rangeSpanOf(const BeaconMap& map) {
+    double extent = 0;
+    for (const auto& [i, a] : map)
+        for (const auto& [j, b] : map) extent = std::max(extent, std::hypot(a.x - b.x, a.y - b.y));
+    return 2 * extent + 20;
 }
 
 void ParticleStart::clear() {
@@ -218,6 +221,10 @@ std::optional<ParticleStart::Start> ParticleStart::converged(bool headingKnown) 
     const double resultant = std::hypot(sc, ss) / share;
     const double phiSd = std::sqrt(-2 * std::log(std::max(resultant, 1e-12)));
     if (headingKnown && phiSd > kConvergedPhiSd) return std::nullopt;
+    // the mode's sample covariance understates its spread (resampled copies, the mode's
+    // tails cut at its radius): the EKF starts with twice its sd, so that its first
+    // sightings can still move it
+    cov *= kStartInflation * kStartInflation;
     if (!headingKnown) cov(2, 2) = M_PI * M_PI, cov(0, 2) = cov(2, 0) = cov(1, 2) = cov(2, 1) = 0;
     return Start{mrpt::poses::CPose2D(centre.x(), centre.y(), headingKnown ? mphi : 0.0), cov};
 }

@@ -38,6 +38,10 @@ struct TrackerOptions {
     double gateProbability = 0.999;      ///< chi-square(1) gate on each range innovation
     /** Huber's loss on a measurement's normalised innovation beyond this many sigmas (it
      *  counts as if noisier); 0: the plain EKF update. */
+    enum class RobustLoss { Huber, Mixture };
+    /** After the gate: Huber's loss, or a Gaussian-plus-uniform mixture (robust_loss). */
+    RobustLoss robustLoss = RobustLoss::Huber;
+    double outlierShare = 0.3;           ///< the mixture's prior share of gross errors
     double huberK = 1.345;               ///< Huber's constant for 95 % efficiency on Gaussian noise
     double odomSigmaPerMetre = 0.05;     ///< translation noise per metre travelled
     double odomSigmaPhiPerRad = 0.05;    ///< heading noise per radian turned
@@ -160,13 +164,18 @@ class BeaconTracker {
     OdometryNoise odometryNoise() const;
     Innovation bearingInnovation(const Sighting& s) const;
     /** The EKF's update with one scalar measurement of variance R, if it passes `gate`. */
-    bool scalarUpdate(const Innovation& in, double R, double gate);
+    /** `span`: the support of the gross errors' uniform density (m or rad), for the mixture. */
+    bool scalarUpdate(const Innovation& in, double R, double gate, double span);
     /** Without odometry: the random walk over the time since the last measurement; the
      *  offsets' drift either way. */
     void predictToTime(double t);
-    /** Counts a single measurement's gate outcome; lost when kLostRejected of the last
-     *  kLostWindow were refused (gross errors alone, even 45 %, almost never do that). */
-    bool lostBySingleMeasurements(bool accepted);
+    /** Counts a single measurement's normalised innovation squared (before its update);
+     *  lost when kLostFar of the last kLostWindow were over kLostNis, chi-square(1)'s 95 %:
+     *  a filter right but for 45 % gross errors has 48 % of them there, and 25 of 30 about
+     *  once in 16,000 windows; a filter confidently wrong has most of them there, whether the
+     *  gate takes them or not. */
+    bool lostBySingleMeasurements(double nis);
+    static double normalisedSquare(const Innovation& in);
     /** Lost: start again, from fixes (ranges enough) or the particles about the last pose. */
     void restart();
     std::optional<mrpt::poses::CPose2D> bootstrap(const std::vector<Range>& ranges);
@@ -206,8 +215,10 @@ class BeaconTracker {
     static constexpr double kMaxBootstrapGdop = 5.0;  ///< a poorer fix is no start
     double headingOffset_ = 0;
     static constexpr size_t kGateWindow = 10, kGateReopen = 8;
-    static constexpr size_t kLostWindow = 30, kLostRejected = 25;
-    std::deque<bool> recentGated_;  // the last single measurements: refused by the gate
+    static constexpr size_t kLostWindow = 30, kLostFar = 25;
+    static constexpr double kLostNis = 3.84;
+    std::deque<bool> recentGated_;  // the last single measurements: over kLostNis
+    double rangeSpan_;              // m: the ranges' uniform part (ParticleStart::rangeSpanOf)
     ParticleStart start_;
     std::optional<double> lastStartT_;             // the particles' last random walk (no odometry)
     mrpt::poses::CPose2D pendingStartMotion_;      // odometry since the particles last moved

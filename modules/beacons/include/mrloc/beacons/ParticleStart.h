@@ -16,7 +16,8 @@
 //    uniform density over the ranges the map allows, so 40-50 % gross errors weigh little;
 //  - converged: after enough measurements, one mode holds 90 % of the weight and its position
 //    sd (the larger axis) is below kConvergedSd (and its heading's circular sd below
-//    kConvergedPhiSd when odometry gives a heading): tight enough for the EKF's linearisation.
+//    kConvergedPhiSd when odometry gives a heading): tight enough for the EKF's linearisation;
+//    the EKF starts at the mode's mean with twice its sd.
 //  - the odometry between two sightings moves the particles once, composed (the noise of
 //    the composed increment): the particles cost nothing while no sighting comes.
 #include <mrloc/beacons/BeaconMap.h>
@@ -52,6 +53,8 @@ class ParticleStart {
     /** The mode: particles within this of its centre (m, or 10 range sigmas if larger)
      *  must hold this share of the weight. */
     static constexpr double kModeRadius = 1.0, kModeShare = 0.9;
+    /** The EKF starts with this times the mode's sd (see converged). */
+    static constexpr double kStartInflation = 2.0;
 
     /** `noise`: the tracker's odometry noise, for each increment. */
     ParticleStart(const BeaconMap& map, ParticleStartOptions options, OdometryNoise noise);
@@ -71,6 +74,8 @@ class ParticleStart {
         int beaconId = -1;  ///< the map's id (the tracker's per-beacon offset)
     };
     void onSighting(const Sighting& s);
+    /** The span a gross range error is spread over: twice the map's extent plus 20 m. */
+    static double rangeSpanOf(const BeaconMap& map);
 
     /** Draws the particles about a pose (a lost track's last estimate), instead of from the
      *  next measurement. */
