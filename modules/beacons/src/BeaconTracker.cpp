@@ -74,29 +74,27 @@ OdometryNoise BeaconTracker::odometryNoise() const {
 
 void BeaconTracker::onOdometry(const CPose2D& odo) {
     startIfGiven();
-    if (!initialized_ && lastOdometry_)
-        pendingStartMotion_ = pendingStartMotion_ + (odo - *lastOdometry_);
-    if (initialized_ && lastOdometry_) {
-        const CPose2D delta = odo - *lastOdometry_;  // increment in the robot frame
-        const double d = std::hypot(delta.x(), delta.y());
-        const Matrix3d Q = odometryNoise().of(delta);
-        // pose (+) delta, as CPosePDFGaussian's composition does, carried to the whole
-        // state: the bias states do not move, their cross-covariance turns with the pose
-        mrpt::math::CMatrixDouble33 dfDx, dfDu;
-        mrpt::poses::CPosePDF::jacobiansPoseComposition(pdf_.mean, delta, dfDx, dfDu);
-        const Matrix3d Jx = dfDx.asEigen(), Ju = dfDu.asEigen();
-        const CPose2D moved = pdf_.mean + delta;
-        state_.head<3>() = Vector3d(moved.x(), moved.y(), moved.phi());
-        const Eigen::Index m = cov_.rows() - 3;
-        cov_.topLeftCorner<3, 3>() =
-            Jx * cov_.topLeftCorner<3, 3>() * Jx.transpose() + Ju * Q * Ju.transpose();
-        if (m > 0) {
-            cov_.topRightCorner(3, m) = Jx * cov_.topRightCorner(3, m);
-            cov_.bottomLeftCorner(m, 3) = cov_.topRightCorner(3, m).transpose();
-        }
-        syncPdf();
-    }
+    if (!lastOdometry_) return void(lastOdometry_ = odo);  // the first reading: no motion yet
+    const CPose2D delta = odo - *lastOdometry_;  // increment in the robot frame
     lastOdometry_ = odo;
+    // not started: the particles take the motion at their next sighting, composed
+    if (!initialized_) return void(pendingStartMotion_ = pendingStartMotion_ + delta);
+    const Matrix3d Q = odometryNoise().of(delta);
+    // pose (+) delta, as CPosePDFGaussian's composition does, carried to the whole
+    // state: the bias states do not move, their cross-covariance turns with the pose
+    mrpt::math::CMatrixDouble33 dfDx, dfDu;
+    mrpt::poses::CPosePDF::jacobiansPoseComposition(pdf_.mean, delta, dfDx, dfDu);
+    const Matrix3d Jx = dfDx.asEigen(), Ju = dfDu.asEigen();
+    const CPose2D moved = pdf_.mean + delta;
+    state_.head<3>() = Vector3d(moved.x(), moved.y(), moved.phi());
+    const Eigen::Index m = cov_.rows() - 3;
+    cov_.topLeftCorner<3, 3>() =
+        Jx * cov_.topLeftCorner<3, 3>() * Jx.transpose() + Ju * Q * Ju.transpose();
+    if (m > 0) {
+        cov_.topRightCorner(3, m) = Jx * cov_.topRightCorner(3, m);
+        cov_.bottomLeftCorner(m, 3) = cov_.topRightCorner(3, m).transpose();
+    }
+    syncPdf();
 }
 
 void BeaconTracker::startIfGiven() {
@@ -500,11 +498,11 @@ bool BeaconTracker::feedStart(double t, const std::vector<Sighting>& seen) {
 
 std::optional<CPose2D> BeaconTracker::onSightings(double t, const std::vector<Sighting>& seen) {
     if (!initialized_) {
-        for (const auto& s : seen) stats_.rangesReceived += bool(s.range);
-        for (const auto& s : seen) stats_.bearingsReceived += bool(s.bearing);
+        size_t ranges = 0, bearings = 0;
+        for (const auto& s : seen) ranges += bool(s.range), bearings += bool(s.bearing);
+        stats_.rangesReceived += ranges, stats_.bearingsReceived += bearings;
         if (!feedStart(t, seen)) return std::nullopt;
-        for (const auto& s : seen) stats_.rangesUsed += bool(s.range);
-        for (const auto& s : seen) stats_.bearingsUsed += bool(s.bearing);
+        stats_.rangesUsed += ranges, stats_.bearingsUsed += bearings;  // all went to the start
         return pdf_.mean;
     }
     predictToTime(t);
