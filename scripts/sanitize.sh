@@ -46,7 +46,8 @@ long+='|Mutations\.OmnivisionRawlogIsRefusedOrCountedNeverSilentlyTaken'
 long+='|Mutations\.FormationRawlogIsRefusedOrCountedNeverSilentlyTaken|RealLogs\.BeaconTrackerOnMrclamDataset6'
 # polymap's whole-map searches on a real log and on synthetic scans (the Release suite runs
 # them; the sanitized suite runs the same code on localization_demo)
-long+='|RealPolymap\.SenaLogOnIcpSlamsMapBesideIcpSlam|ScanLocalizer\.ClutteredHalfTurnScan'
+long+='|RealPolymap\.SenaLogOnIcpSlamsMapBesideIcpSlam|RealPolymap\.SenaLogOnMrptsBuildingMap'
+long+='|ScanLocalizer\.ClutteredHalfTurnScan'
 # twenty identical rooms, every layout and algorithm (Release; 2-5 rooms stay sanitized)
 long+='|Elimination\.TwentyIdenticalRoomsEveryLayout|MrlocPolymap\.TwentyIdenticalRoomsEveryAlgorithmEnds'
 # whole runs whose code other sanitized tests already cover, and checks of process behaviour

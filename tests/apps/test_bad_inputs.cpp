@@ -148,6 +148,26 @@ TEST(BadRawlog, MrptExampleRawlogsWithInvalidBoolBytesRead) {
     }
 }
 
+// --- maps ---
+
+TEST(BadPoly, HolesSharingAVertexAreRefused) {
+    // Two pillars meeting at one vertex: the map is refused in one line before anything runs
+    // (it once passed validation and stopped the triangulation with an internal error).
+    const std::string ini = testing::TempDir() + "/pinched_pillars.ini";
+    std::ofstream(ini) << "[scenario]\nname = pinched\nmethod = polymap\nseed = 1\n"
+                          "[polymap]\nmap = "
+                       << badInput("holes_sharing_vertex.poly") << "\nstart = 1 1\n";
+    const std::string out = tmp("bad_pinched_pillars");
+    const auto r = mrlocCmd("run " + quoted(ini) + " --quiet --out " + out);
+    EXPECT_EQ(r.code, 1) << r.output;
+    EXPECT_EQ(std::count(r.output.begin(), r.output.end(), '\n'), 1) << r.output;
+    expectHas(r.output,
+              "mrloc run: error: " + badInput("holes_sharing_vertex.poly") +
+                  ": two rings cross or touch: ring 3 (line 14) and ring 2 (line 10) share the "
+                  "vertex (5 5)");
+    EXPECT_FALSE(fs::exists(out));
+}
+
 // --- INI files ---
 
 TEST(BadIni, NulByteIsRefusedWithItsLine) {

@@ -123,6 +123,7 @@ struct Drive {
     size_t probes = 0;
     double travel = 0;   ///< m, along the planned paths
     bool ended = false;  ///< no plan left (the session's end), not the probe cap
+    std::string sources;  ///< each probe's ProbeSource, space separated
 };
 
 /** The robot starts at site `truth`, drives to each probe and stops up to 2 cm off it (the
@@ -147,6 +148,7 @@ Drive driveSession(const polymap::GeneratedMap& map, size_t truth, ProbeStrategy
                               ? at
                               : map.sites[truth] + session.plan()->at;
         d.travel += session.plan()->path.length;
+        d.sources += (d.sources.empty() ? "" : " ") + probeSourceName(session.plan()->source);
         session.observe(*sim::scanFloorPlan(map.polygon, {stop.x, stop.y, heading}, scanner, rng));
     }
     d.live = session.live();
@@ -178,7 +180,7 @@ TEST(Elimination, IdenticalRoomsEveryLayoutEveryAlgorithm) {
                 EXPECT_EQ(d.live, std::vector<size_t>{truth})
                     << map.description << ", " << strategyName(strategy);
                 std::cout << map.description << ", " << strategyName(strategy) << ": " << d.probes
-                          << " probes, " << d.travel << " m\n";
+                          << " probes, " << d.travel << " m (" << d.sources << ")\n";
             }
         }
 }
@@ -212,7 +214,7 @@ TEST(Elimination, IdenticalRoomsWithPillarsEveryLayoutEveryAlgorithm) {
                 EXPECT_EQ(d.live, std::vector<size_t>{truth})
                     << map.description << ", " << strategyName(strategy);
                 std::cout << map.description << " with pillars, " << strategyName(strategy) << ": "
-                          << d.probes << " probes, " << d.travel << " m\n";
+                          << d.probes << " probes, " << d.travel << " m (" << d.sources << ")\n";
             }
             if (layout == polymap::RoomsLayout::Side)
                 for (const auto strategy : kAll) everyStartEndsWithTheTruth(map, strategy);
@@ -276,4 +278,54 @@ TEST(Elimination, BadOptionsAreRefused) {
     // One hypothesis: nothing to do.
     const polymap::Eliminator one(map.polygon, {map.sites[0]}, {});
     EXPECT_FALSE(one.chooseProbe({0}, {0, 0}));
+}
+
+namespace {
+
+/** Three identical L-shaped rooms standing on a base corridor that ends flush with the end
+ *  rooms: a 1 m column (4 m high) with an arm at its top going right, the arm's corner the
+ *  only reflex corner the rooms' overlay region has. From the arm every room looks the same;
+ *  what tells them apart (the corridor's ends, the neighbours' doors) is seen only from low
+ *  in the column, looking out of the region into the corridor. Sites: in each arm. */
+polymap::GeneratedMap lShapedRoomsOnACorridor() {
+    std::vector<polymap::TPoint2D> v{{0.5, 0}, {7.5, 0}};
+    for (int i = 2; i >= 0; --i) {
+        const double x = 3.0 * i;
+        for (const polymap::TPoint2D p : {polymap::TPoint2D{x + 1.5, i == 2 ? 0.0 : 1.0},
+                                          {x + 1.5, 8},
+                                          {x + 2.5, 8},
+                                          {x + 2.5, 9},
+                                          {x + 0.5, 9},
+                                          {x + 0.5, i == 0 ? 0.0 : 1.0}})
+            if (!((p - v.back()).norm() < 1e-12)) v.push_back(p);
+    }
+    v.pop_back();  // (0.5 0): the first vertex
+    polymap::GeneratedMap map{common::Polygon::fromVertices(v, "L-shaped rooms"), {}, ""};
+    for (int i = 0; i < 3; ++i) map.sites.push_back({3.0 * i + 2.2, 8.5});
+    map.description = "three L-shaped rooms on a corridor";
+    return map;
+}
+
+}  // namespace
+
+// No algorithm may stop while a separating probe exists (issue 55): on an L-shaped overlay
+// region whose rooms differ only below it, cells' chords through the region's own reflex
+// corner and windows' middles of views inside the region separate nothing; their candidates
+// are completed (the map's chords, windows of views beyond the region, the triangulation's
+// probe) and every start ends on itself.
+TEST(Elimination, AnLShapedRegionWhoseRoomsDifferBelowItEndsOnTheTruth) {
+    const auto map = lShapedRoomsOnACorridor();
+    const polymap::HypothesisGenerator generator(map.polygon);
+    ASSERT_EQ(generator.generate(polymap::visibilityPolygon(map.polygon, map.sites[1])).size(), 3u);
+    for (const auto strategy : kAll) {
+        everyStartEndsWithTheTruth(map, strategy);
+        for (size_t truth = 0; truth < 3; ++truth) {
+            const auto d = driveSession(map, truth, strategy);
+            EXPECT_TRUE(d.ended) << strategyName(strategy);
+            EXPECT_EQ(d.live, std::vector<size_t>{truth}) << strategyName(strategy);
+            std::cout << map.description << ", " << strategyName(strategy) << ", start " << truth
+                      << ": " << d.probes << " probes, " << d.travel << " m (" << d.sources
+                      << ")\n";
+        }
+    }
 }

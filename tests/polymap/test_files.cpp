@@ -1,6 +1,7 @@
 // The file between the polymap localizer and its report section round-trips.
 #include <gtest/gtest.h>
 #include <mrloc/common/Error.h>
+#include <mrloc/polymap/EliminationExperiment.h>
 #include <mrloc/polymap/PolymapFiles.h>
 
 #include <filesystem>
@@ -43,4 +44,31 @@ TEST(PolymapFiles, HypothesesFileRoundTripsAndNamesABadLine) {
                   std::string::npos)
             << e.what();
     }
+}
+
+// Tables 1-2 count the probes an algorithm took beyond its own candidates (issue 55): the
+// count per start round-trips, a file written before it (6 fields) reads as none, and the
+// report's table says which start fell back and how many probes each algorithm took so.
+TEST(PolymapFiles, EliminationFileKeepsEachStartsFallBacksAndTheTableShowsThem) {
+    const std::string dir = testing::TempDir() + "/polymap_elimination_file";
+    std::filesystem::create_directories(dir);
+    polymap::EliminationFile f;
+    f.columns.push_back({"cells", {2.5, 3.0}, {1, 2}, {1, 1}, {0, 0}, {}, {}, {}});
+    f.columns.push_back({"windows", {4.0, 5.5}, {1, 2}, {1, 1}, {1, 2}, {}, {}, {}});
+    f.write(dir);
+    const auto g = polymap::EliminationFile::read(dir);
+    ASSERT_EQ(g.columns.size(), 2u);
+    EXPECT_EQ(g.columns[0].fallbacks, (std::vector<int>{0, 0}));
+    EXPECT_EQ(g.columns[1].fallbacks, (std::vector<int>{1, 2}));
+    polymap::EliminationTimes times;
+    times.seconds = {{0.001, 0.002}, {0.003, 0.004}};
+    times.write(dir);
+    const std::string html = polymap::eliminationSection(dir, g).markup();
+    EXPECT_NE(html.find("5.50 (2 fell back)"), std::string::npos) << html;
+    EXPECT_NE(html.find("probes beyond the algorithm's own candidates</td><td>0</td><td>3"),
+              std::string::npos)
+        << html;
+    // before issue 55: "R column start travel probes survivors"
+    std::ofstream(polymap::EliminationFile::path(dir)) << "C 0 cells\nR 0 0 2.5 1 1\n";
+    EXPECT_EQ(polymap::EliminationFile::read(dir).columns[0].fallbacks, std::vector<int>{0});
 }

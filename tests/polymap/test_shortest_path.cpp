@@ -11,10 +11,13 @@
 #include <limits>
 #include <queue>
 
+#include "RandomInside.h"
+
 using namespace mrloc;
 using common::orientation;
 using common::Polygon;
 using common::TPoint2D;
+using test::randomInside;
 
 namespace {
 
@@ -67,14 +70,6 @@ double bruteForceDistance(const Polygon& P, const TPoint2D& a, const TPoint2D& b
                 dist[k] = dist[u] + (nodes[k] - nodes[u]).norm();
     }
     return dist[dst];
-}
-
-TPoint2D randomInside(const Polygon& P, mrpt::random::CRandomGenerator& rng) {
-    for (;;) {
-        const TPoint2D p{rng.drawUniform(P.min().x, P.max().x),
-                         rng.drawUniform(P.min().y, P.max().y)};
-        if (P.locate(p) == Polygon::Where::Inside) return p;
-    }
 }
 
 /** Checks one query: the path stays in P, ends where asked, and is as long as the brute

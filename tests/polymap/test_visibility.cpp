@@ -8,6 +8,7 @@
 #include <cmath>
 #include <iostream>
 
+#include "RandomInside.h"
 #include "RayOracle.h"
 #include "TestPaths.h"
 
@@ -16,6 +17,7 @@ using common::Polygon;
 using common::TPoint2D;
 using common::TVector2D;
 using polymap::visibilityPolygon;
+using test::randomInside;
 
 namespace {
 
@@ -38,14 +40,6 @@ double worstDisagreement(const Polygon& P, const TPoint2D& q, int rays = 2000) {
         worst = std::max(worst, std::abs(V.radius(dir) - oracle(P, q, dir)));
     }
     return worst;
-}
-
-TPoint2D randomInside(const Polygon& P, mrpt::random::CRandomGenerator& rng) {
-    for (;;) {
-        const TPoint2D p{rng.drawUniform(P.min().x, P.max().x),
-                         rng.drawUniform(P.min().y, P.max().y)};
-        if (P.locate(p) == Polygon::Where::Inside) return p;
-    }
 }
 
 }  // namespace

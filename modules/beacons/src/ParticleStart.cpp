@@ -162,7 +162,10 @@ void ParticleStart::resampleIfDegenerate() {
     std::vector<double> w(particles_.size());
     double sum = 0, sumSquares = 0;
     for (size_t k = 0; k < particles_.size(); ++k) sum += w[k] = std::exp(particles_[k].logWeight);
-    for (auto& v : w) sumSquares += (v /= sum) * v;
+    for (auto& v : w) {
+        v /= sum;
+        sumSquares += v * v;
+    }
     if (1.0 / sumSquares >= 0.5 * double(particles_.size())) return;
     // systematic resampling: one uniform draw, N evenly spaced pointers into the weights
     std::vector<Particle> out;

@@ -255,6 +255,14 @@ Polygon Polygon::fromRings(std::vector<std::vector<TPoint2D>> rings, const std::
                             ", another hole");
         }
     }
+    // Two rings through one point: the sweep below misses it where one ring's edges all end
+    // there and the other's all begin there (they are never side by side in its status).
+    if (const auto repeat = repeatedVertex(P.v_, P.eps_)) {
+        const TPoint2D& at = P.v_[repeat->first];
+        throw Error(what + ": two rings cross or touch: " + ringName(P.ring_[repeat->second]) +
+                    " and " + ringName(P.ring_[repeat->first]) +
+                    mrpt::format(" share the vertex (%g %g)", at.x, at.y));
+    }
     std::vector<size_t> next(P.v_.size());
     for (size_t i = 0; i < next.size(); ++i) next[i] = P.next(i);
     if (const auto meet = touchingEdges(P.v_, next, P.eps_)) {

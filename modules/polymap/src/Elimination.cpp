@@ -7,11 +7,26 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <mutex>
 #include <queue>
 #include <random>
 #include <set>
 
 namespace mrloc::polymap {
+
+std::string probeSourceName(ProbeSource s) {
+    switch (s) {
+        case ProbeSource::Own:
+            return "own";
+        case ProbeSource::Completed:
+            return "completed";
+        case ProbeSource::Triangulation:
+            return "triangulation";
+        case ProbeSource::Every:
+            return "every algorithm's";
+    }
+    return "?";
+}
 
 std::string strategyName(ProbeStrategy s) {
     switch (s) {
@@ -129,6 +144,23 @@ double radialMismatch(const RadialProfile& V, double angle, double range, double
     return e > tolerance ? std::min({e, off(-0.5 * step), off(0.5 * step)}) : e;
 }
 
+}  // namespace
+
+double beamMismatch(const ScanBeams& beams, const VisibilityPolygon& V, double quantile) {
+    const RadialProfile profile(V);
+    std::vector<double> error(beams.range.size());
+    for (size_t b = 0; b < error.size(); ++b)
+        error[b] = beams.noReturn[b]
+                       ? std::max(0.0, beams.range[b] - profile.radius(beams.angle[b]))
+                       : radialMismatch(profile, beams.angle[b], beams.range[b], beams.step, 0);
+    if (error.empty()) return 0;
+    const size_t k = std::min(error.size() - 1, size_t(quantile * double(error.size())));
+    std::nth_element(error.begin(), error.begin() + long(k), error.end());
+    return error[k];
+}
+
+namespace {
+
 /** Over 2 % of `beams` directions see ranges differing by more than `margin`, ranges beyond
  *  `maxRange` being one (the scanner sees no return there). */
 bool beamsTellApart(const VisibilityPolygon& a, const VisibilityPolygon& b, int beams,
@@ -210,7 +242,11 @@ std::vector<TPoint2D> Eliminator::positionsOf(const std::vector<size_t>& live) c
 
 Eliminator::Eliminator(const common::Polygon& P, std::vector<TPoint2D> hypotheses,
                        EliminationOptions options)
-    : P_(P), T_(P), hypotheses_(std::move(hypotheses)), options_(options) {
+    : P_(P),
+      T_(P),
+      hypotheses_(std::move(hypotheses)),
+      options_(options),
+      chords_(std::make_shared<ChordCache>()) {
     if (hypotheses_.empty()) throw Error("elimination: no hypotheses");
     if (options_.randomPoints < 1) throw Error("elimination: random_points must be at least 1");
     if (!(options_.tolerance > 0)) throw Error("elimination: the tolerance must be positive");
@@ -229,43 +265,130 @@ bool Eliminator::sameView(const VisibilityPolygon& a, const VisibilityPolygon& b
     return boundaryDistance(a, b, std::max(tolerance / 4, extent / 250), tolerance) <= tolerance;
 }
 
-std::vector<TPoint2D> Eliminator::chordCandidates(const Region& region, double chordSpacing,
-                                                  int perChord) const {
-    std::vector<TPoint2D> out;
-    const double clearance = options_.clearance;
-    // Algorithm 1 (Dudek-Romanik-Whitesides): what a point of OI sees changes only
-    // where its sight line to a vertex grazes a reflex vertex, i.e. across the chord
-    // that extends the line from vertex v through reflex vertex r into OI. The
-    // decomposition's cells are bounded by these chords and OI's edges, and the
-    // nearest point of a cell lies on its boundary: candidates are points along
-    // every chord (every chordSpacing, at most perChord), on both sides of it.
-    const auto& R = region.polygon.vertices();
+namespace {
+
+/** The critical chords of a polygon (Dudek-Romanik-Whitesides 1998): what a point sees
+ *  changes only where its sight line to a vertex grazes a reflex vertex, i.e. across the
+ *  chord that extends the line from vertex v through reflex vertex r into the polygon. */
+template <class Chord>
+std::vector<Chord> criticalChords(const common::Polygon& poly, const Triangulation& T) {
+    std::vector<Chord> out;
+    const auto& R = poly.vertices();
     const size_t m = R.size();
-    const double eps = region.polygon.epsilon();
+    const double eps = poly.epsilon();
     for (size_t r = 0; r < m; ++r) {
-        if (!region.polygon.isReflex(r)) continue;
+        if (!poly.isReflex(r)) continue;
         // What r sees: the vertices v it sees and, past r, where each chord ends.
-        const VisibilityPolygon Vr = visibilityPolygon(region.triangles, R[r]);
+        const VisibilityPolygon Vr = visibilityPolygon(T, R[r]);
         for (size_t v = 0; v < m; ++v) {
             if (v == r) continue;
             const TVector2D toV = R[v] - R[r];
-            const bool adjacent = v == region.polygon.next(r) || r == region.polygon.next(v);
+            const bool adjacent = v == poly.next(r) || r == poly.next(v);
             if (!adjacent && Vr.radius(toV * (1 / toV.norm())) < toV.norm() - eps)
                 continue;  // v hidden from r
             const TVector2D d = toV * (-1 / toV.norm());
             const double hit = Vr.radius(d);
-            if (hit <= 1e3 * eps) continue;  // the extension leaves OI at once
-            const TVector2D normal{-d.y, d.x};
-            const int samples = std::clamp((int)std::ceil(hit / chordSpacing), 1, perChord);
-            for (int k = 0; k < samples; ++k) {
-                const TPoint2D on = R[r] + d * (hit * (k + 0.5) / samples);
-                for (const double side : {-1.0, 1.0}) {
-                    const TPoint2D c = on + normal * (side * std::max(clearance, 1e-6));
-                    out.push_back(c);  // cleared when reached: see nearest()
-                }
-            }
+            if (hit <= 1e3 * eps) continue;  // the extension leaves the polygon at once
+            out.push_back({R[r], d, hit});
         }
     }
+    return out;
+}
+
+/** Points along a chord (every `spacing`, at most perChord), both sides of it at the
+ *  clearance, moved by `shift`. The nearest point of a cell lies on its boundary. */
+void sampleSegment(const TPoint2D& from, const TVector2D& d, double length, double spacing,
+                   int perChord, double clearance, const TVector2D& shift,
+                   std::vector<TPoint2D>& out) {
+    const TVector2D normal{-d.y, d.x};
+    const int samples = std::clamp((int)std::ceil(length / spacing), 1, perChord);
+    for (int k = 0; k < samples; ++k) {
+        const TPoint2D on = from + d * (length * (k + 0.5) / samples) + shift;
+        for (const double side : {-1.0, 1.0})
+            out.push_back(on + normal * (side * std::max(clearance, 1e-6)));
+    }
+}
+
+bool inBox(const TPoint2D& p, const common::Polygon& box) {
+    return p.x >= box.min().x && p.y >= box.min().y && p.x <= box.max().x && p.y <= box.max().y;
+}
+
+}  // namespace
+
+struct Eliminator::ChordCache {
+    std::once_flag once;
+    std::vector<Chord> chords;
+};
+
+const std::vector<Eliminator::Chord>& Eliminator::mapChords() const {
+    std::call_once(chords_->once, [this] { chords_->chords = criticalChords<Chord>(P_, T_); });
+    return chords_->chords;
+}
+
+std::vector<TPoint2D> Eliminator::chordCandidates(const Region& region, double chordSpacing,
+                                                  int perChord) const {
+    // Algorithm 1 (Dudek-Romanik-Whitesides): the decomposition's cells are bounded by OI's
+    // critical chords and OI's edges, and the nearest point of a cell lies on its boundary:
+    // candidates are points along every chord, on both sides of it (cleared when reached:
+    // see nearest()).
+    std::vector<TPoint2D> out;
+    for (const auto& c : criticalChords<Chord>(region.polygon, region.triangles))
+        sampleSegment(c.from, c.d, c.length, chordSpacing, perChord, options_.clearance, {0, 0},
+                      out);
+    return out;
+}
+
+std::vector<TPoint2D> Eliminator::mapChordCandidates(const std::vector<size_t>& live,
+                                                     const Region& region, double chordSpacing,
+                                                     int perChord) const {
+    std::vector<TPoint2D> out, chord;
+    for (const auto& c : mapChords())
+        for (size_t i : live) {
+            chord.clear();
+            sampleSegment(c.from, c.d, c.length, chordSpacing, perChord, options_.clearance,
+                          hypotheses_[i] * -1.0, chord);
+            for (const auto& p : chord)
+                if (inBox(p, region.polygon)) out.push_back(p);
+        }
+    return out;
+}
+
+std::vector<TPoint2D> Eliminator::mapWindowCandidates(const std::vector<size_t>& live,
+                                                      const Region& region,
+                                                      const TPoint2D& from) const {
+    // The windows of what the robot would see in the map under each live hypothesis, from
+    // where it stands and from algorithm 4's middles, where the window itself may lie beyond
+    // OI (a corridor seen from OI's edge): points along each window, and along the way from
+    // the viewpoint towards its middle (walking up to a window shows what is behind it).
+    std::vector<TPoint2D> viewpoints{from}, out;
+    const auto middles = windowCandidates(region, from);
+    viewpoints.insert(viewpoints.end(), middles.begin(), middles.end());
+    const double spacing = std::max(options_.clearance, 1e-3);
+    for (const auto& vp : viewpoints)
+        for (size_t i : live) {
+            VisibilityPolygon V;
+            try {
+                V = viewOf(i, vp);
+            } catch (const Error&) {  // vp off the map under this hypothesis (by rounding)
+                continue;
+            }
+            for (size_t e = 0; e < V.size(); ++e) {
+                if (!V.isRadial(e)) continue;
+                const TPoint2D a = V.vertices[e], b = V.vertices[(e + 1) % V.size()];
+                const double length = (b - a).norm();
+                if (!(length > 0)) continue;
+                std::vector<TPoint2D> window;
+                sampleSegment(a, (b - a) * (1 / length), length, spacing, 32, options_.clearance,
+                              vp, window);
+                const TVector2D toMiddle = (a + b) * 0.5;
+                const double reach = toMiddle.norm();
+                if (reach > 0)
+                    sampleSegment({0, 0}, toMiddle * (1 / reach), reach, spacing, 32,
+                                  options_.clearance, vp, window);
+                for (const auto& p : window)
+                    if (inBox(p, region.polygon)) out.push_back(p);
+            }
+        }
     return out;
 }
 
@@ -379,18 +502,14 @@ std::optional<Probe> Eliminator::chooseProbe(const std::vector<size_t>& live, co
     const Region region(P_, positionsOf(live));
     Probe probe;
     probe.oiArea = region.oi.area;
+    const size_t step = hypotheses_.size() - live.size();
+    const double spacing = std::max(options_.clearance, 1e-3);
     std::vector<TPoint2D> found;
     std::optional<std::pair<double, size_t>> best;
-    // Algorithm 2 draws another X points while none separates (a place that tells the
-    // hypotheses apart may be small: a passage's far leg), up to kRandomBatches draws; the
-    // other algorithms' candidates are fixed. Batch b of step s is seeded by s + b * k.
-    const size_t batches = options_.strategy == ProbeStrategy::Randomized ? kRandomBatches : 1;
-    for (size_t batch = 0; batch < batches && !best; ++batch) {
-        found = candidates(live, region, at,
-                           hypotheses_.size() - live.size() + batch * hypotheses_.size(),
-                           options_.strategy, std::max(options_.clearance, 1e-3), 32);
+    // Nearest first by travel inside OI; the first that separates is the probe (step 7).
+    const auto search = [&](std::vector<TPoint2D> candidates) {
+        found = std::move(candidates);
         probe.candidates += found.size();
-        // Nearest first by travel inside OI; the first that separates is the probe (step 7).
         best = region.nearest(
             at, found, options_.clearance,
             [&](const TPoint2D& c) {
@@ -399,11 +518,49 @@ std::optional<Probe> Eliminator::chooseProbe(const std::vector<size_t>& live, co
                 return separates(live, c);
             },
             &probe.tested);
-    }
+        return best.has_value();
+    };
+    // The paper's own candidates first. Algorithm 2 draws another X points while none
+    // separates (a place that tells the hypotheses apart may be small: a passage's far leg),
+    // up to kRandomBatches draws; the other algorithms' candidates are fixed. Batch b of step
+    // s is seeded by s + b * k.
+    const size_t batches = options_.strategy == ProbeStrategy::Randomized ? kRandomBatches : 1;
+    for (size_t batch = 0; batch < batches && !best; ++batch)
+        search(candidates(live, region, at, step + batch * hypotheses_.size(), options_.strategy,
+                          spacing, 32));
+    // Then, only if none separates, the completions (ProbeSource): what tells the hypotheses
+    // apart may be seen only beyond OI's own corners and windows.
+    const auto fallBack = [&](ProbeSource source, std::vector<TPoint2D> more) {
+        if (best || !search(std::move(more))) return;
+        probe.source = source;
+    };
+    if (options_.strategy == ProbeStrategy::VisibilityCells)
+        fallBack(ProbeSource::Completed, mapChordCandidates(live, region, spacing, 32));
+    if (options_.strategy == ProbeStrategy::Windows)
+        fallBack(ProbeSource::Completed, mapWindowCandidates(live, region, at));
+    if (options_.strategy != ProbeStrategy::Triangulation && !best)
+        fallBack(ProbeSource::Triangulation,
+                 candidates(live, region, at, step, ProbeStrategy::Triangulation, spacing, 32));
+    if (!best) fallBack(ProbeSource::Every, everyCandidate(live, region, at, spacing, 4096));
     if (!best) return std::nullopt;
     probe.at = found[best->second];
     probe.path = region.paths.path(at, probe.at);
     return probe;
+}
+
+std::vector<TPoint2D> Eliminator::everyCandidate(const std::vector<size_t>& live,
+                                                 const Region& region, const TPoint2D& at,
+                                                 double spacing, int perChord) const {
+    std::vector<TPoint2D> out;
+    for (const auto strategy : {ProbeStrategy::VisibilityCells, ProbeStrategy::Randomized,
+                                ProbeStrategy::Triangulation, ProbeStrategy::Windows}) {
+        const auto more = candidates(live, region, at, 0, strategy, spacing, perChord);
+        out.insert(out.end(), more.begin(), more.end());
+    }
+    for (const auto& more : {mapChordCandidates(live, region, spacing, perChord),
+                             mapWindowCandidates(live, region, at)})
+        out.insert(out.end(), more.begin(), more.end());
+    return out;
 }
 
 std::pair<std::vector<TPoint2D>, OverlayRegion> Eliminator::candidatesAndRegion(
@@ -422,12 +579,7 @@ std::optional<double> Eliminator::firstSeparation(const std::vector<size_t>& liv
                                                   const TPoint2D& at, double spacing) const {
     if (live.size() < 2) return std::nullopt;
     const Region region(P_, positionsOf(live));
-    std::vector<TPoint2D> found;
-    for (const auto strategy : {ProbeStrategy::VisibilityCells, ProbeStrategy::Randomized,
-                                ProbeStrategy::Triangulation, ProbeStrategy::Windows}) {
-        const auto more = candidates(live, region, at, 0, strategy, spacing, 1 << 20);
-        found.insert(found.end(), more.begin(), more.end());
-    }
+    const auto found = everyCandidate(live, region, at, spacing, 1 << 20);
     const auto best = region.nearest(at, found, options_.clearance,
                                      [&](const TPoint2D& c) { return separates(live, c); });
     if (!best) return std::nullopt;

@@ -14,6 +14,7 @@
 #include <chrono>
 #include <cmath>
 #include <filesystem>
+#include <numeric>
 
 namespace mrloc::polymap {
 
@@ -147,6 +148,7 @@ class EliminationTables {
         report::Table t(head(travel));
         for (size_t i = 0; i < starts_; ++i) t.row(startRow(i, travel));
         meanRows(t, travel);
+        if (travel) fallbackRow(t);
         if (travel) boundRows(t);
         report::Html out = t.html();
         if (travel && paperColumn_[0] >= 0) out += rankingNote();
@@ -176,7 +178,10 @@ class EliminationTables {
         if (tourColumn(travel)) cells.push_back(number("%.2f", file_.tour[i]));
         for (size_t c = 0; c < file_.columns.size(); ++c) {
             const auto& col = file_.columns[c];
-            const std::string ok = col.survivors[i] == 1 ? "" : " (not localized)";
+            const std::string ok =
+                (col.survivors[i] == 1 ? "" : " (not localized)") +
+                (col.fallbacks[i] > 0 ? mrpt::format(" (%d fell back)", col.fallbacks[i])
+                                      : std::string());
             cells.push_back(travel ? mrpt::format("%.2f", col.travel[i]) + ok
                                    : mrpt::format("%.2f", 1e3 * times_.seconds.at(c).at(i)));
             if (paperColumn_[c] >= 0)
@@ -206,6 +211,21 @@ class EliminationTables {
             }
         }
         t.row(avg).row(ratio);
+    }
+
+    /** The probes each algorithm took beyond its own candidates, over every start (issue
+     *  55: the completed candidates, the triangulation's, every algorithm's); only if any. */
+    void fallbackRow(report::Table& t) const {
+        std::vector<report::Html> cells{"probes beyond the algorithm's own candidates"};
+        if (tours_) cells.push_back("");
+        int any = 0;
+        for (const auto& col : file_.columns) {
+            const int n = std::accumulate(col.fallbacks.begin(), col.fallbacks.end(), 0);
+            any += n;
+            cells.push_back(std::to_string(n));
+            if (paperColumn_[&col - file_.columns.data()] >= 0) cells.push_back("");
+        }
+        if (any > 0) t.row(std::move(cells));
     }
 
     /** Each algorithm's mean path over the bounds: the first-separation distance, and, start
@@ -455,6 +475,9 @@ std::vector<std::string> eliminationExperiment(const method::ExperimentOf<Polyma
             col.travel.push_back(run.travel);
             col.probes.push_back((int)run.probes.size());
             col.survivors.push_back((int)run.survivors.size());
+            col.fallbacks.push_back(
+                (int)std::count_if(run.probes.begin(), run.probes.end(),
+                                   [](const Probe& p) { return p.source != ProbeSource::Own; }));
             for (const auto& probe : run.probes) probesFrom[start].push_back(probe.at);
             if (start != file.trueStart) continue;
             col.route.push_back(positions[start]);

@@ -1,4 +1,5 @@
 #include <mrloc/common/Error.h>
+#include <mrloc/common/Polygon.h>
 #include <mrloc/common/RawlogProbe.h>
 #include <mrloc/polymap/GridTrace.h>
 #include <mrpt/config/CConfigFileBase.h>
@@ -9,8 +10,10 @@
 #include <mrpt/serialization/CArchive.h>
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <opencv2/imgproc.hpp>
+#include <unordered_map>
 
 namespace mrloc::polymap {
 
@@ -165,6 +168,143 @@ WallMap traceGrid(const mrpt::maps::COccupancyGridMap2D& grid, const GridTraceOp
     map.rings = std::move(rings);
     if (stats) *stats = s;
     return map;
+}
+
+namespace {
+
+/** Twice the signed area of a ring (positive: counter-clockwise). */
+double twiceArea(const std::vector<TPoint2D>& ring) {
+    double a = 0;
+    for (size_t i = 0; i < ring.size(); ++i)
+        a += common::cross(ring[i], ring[(i + 1) % ring.size()]);
+    return a;
+}
+
+/** Douglas-Peucker within `tolerance` (m), by OpenCV, in cells from `origin` (OpenCV takes
+ *  floats: a quarter cell is exact in them); a ring too small to simplify is kept. */
+std::vector<TPoint2D> simplified(const std::vector<TPoint2D>& ring, double tolerance,
+                                 const TPoint2D& origin, double res) {
+    if (tolerance <= 0) return ring;
+    std::vector<cv::Point2f> in, out;
+    for (const auto& p : ring)
+        in.push_back({float((p.x - origin.x) / res), float((p.y - origin.y) / res)});
+    cv::approxPolyDP(in, out, tolerance / res, true);
+    if (out.size() < 3) return ring;
+    std::vector<TPoint2D> r;
+    for (const auto& p : out) r.push_back({origin.x + p.x * res, origin.y + p.y * res});
+    return r;
+}
+
+}  // namespace
+
+std::vector<std::vector<TPoint2D>> traceFreeSpace(const mrpt::maps::COccupancyGridMap2D& grid,
+                                                  const GridTraceOptions& o, const TPoint2D& inside,
+                                                  const std::string& description) {
+    const int w = int(grid.getSizeX()), h = int(grid.getSizeY());
+    const double res = grid.getResolution(), x0 = grid.getXMin(), y0 = grid.getYMin();
+    const int sx = grid.x2idx(inside.x), sy = grid.y2idx(inside.y);
+    if (sx < 0 || sy < 0 || sx >= w || sy >= h || !(grid.getCell(sx, sy) > o.free))
+        throw Error(description + mrpt::format(": (%g %g) is not on a free cell of the map (free "
+                                               "probability above %g)",
+                                               inside.x, inside.y, o.free));
+    // the region: free cells 4-connected to the start's
+    std::vector<uint8_t> region(size_t(w) * h, 0);
+    const auto in = [&](int x, int y) {
+        return x >= 0 && y >= 0 && x < w && y < h && region[size_t(y) * w + x];
+    };
+    std::vector<std::pair<int, int>> stack{{sx, sy}};
+    region[size_t(sy) * w + sx] = 1;
+    while (!stack.empty()) {
+        const auto [x, y] = stack.back();
+        stack.pop_back();
+        for (const auto& [dx, dy] : {std::pair{1, 0}, {-1, 0}, {0, 1}, {0, -1}}) {
+            const int nx = x + dx, ny = y + dy;
+            if (nx < 0 || ny < 0 || nx >= w || ny >= h || region[size_t(ny) * w + nx] ||
+                !(grid.getCell(nx, ny) > o.free))
+                continue;
+            region[size_t(ny) * w + nx] = 1;
+            stack.push_back({nx, ny});
+        }
+    }
+    // The boundary along cell edges, region on the left: edge e runs from corner from[e] in
+    // direction dir[e] (a unit step); corners are numbered y * (w + 1) + x.
+    struct Edge {
+        int x, y, dx, dy;
+    };
+    std::vector<Edge> edges;
+    for (int y = 0; y < h; ++y)
+        for (int x = 0; x < w; ++x) {
+            if (!in(x, y)) continue;
+            if (!in(x, y - 1)) edges.push_back({x, y, 1, 0});
+            if (!in(x + 1, y)) edges.push_back({x + 1, y, 0, 1});
+            if (!in(x, y + 1)) edges.push_back({x + 1, y + 1, -1, 0});
+            if (!in(x - 1, y)) edges.push_back({x, y + 1, 0, -1});
+            if (edges.size() > 4 * kMaxWallVertices)
+                throw Error(description + mrpt::format(": the free space's boundary has more "
+                                                       "than %zu cell edges",
+                                                       4 * kMaxWallVertices));
+        }
+    const auto corner = [w](int x, int y) { return int64_t(y) * (w + 1) + x; };
+    std::unordered_map<int64_t, std::array<int, 2>> leaving;  // at most two: a pinch
+    for (size_t e = 0; e < edges.size(); ++e) {
+        auto [it, fresh] = leaving.try_emplace(corner(edges[e].x, edges[e].y), std::array{-1, -1});
+        it->second[fresh ? 0 : 1] = int(e);
+    }
+    std::vector<uint8_t> used(edges.size(), 0);
+    std::vector<std::vector<TPoint2D>> rings;
+    for (size_t first = 0; first < edges.size(); ++first) {
+        if (used[first]) continue;
+        std::vector<TPoint2D> ring;
+        int e = int(first);
+        do {
+            used[size_t(e)] = 1;
+            const Edge& E = edges[size_t(e)];
+            const int cx = E.x + E.dx, cy = E.y + E.dy;
+            const auto& out = leaving.at(corner(cx, cy));
+            int next = out[0];
+            const bool pinch = out[1] >= 0;
+            if (pinch)  // turn left: stay around the cell on the left (4-connected region)
+                next = edges[size_t(out[0])].dx == -E.dy && edges[size_t(out[0])].dy == E.dx
+                           ? out[0]
+                           : out[1];
+            const Edge& N = edges[size_t(next)];
+            if (pinch) {  // the pinch vertex becomes two: the corner cut a quarter cell
+                ring.push_back({x0 + (cx - 0.25 * E.dx) * res, y0 + (cy - 0.25 * E.dy) * res});
+                ring.push_back({x0 + (cx + 0.25 * N.dx) * res, y0 + (cy + 0.25 * N.dy) * res});
+            } else if (N.dx != E.dx || N.dy != E.dy) {
+                ring.push_back({x0 + cx * res, y0 + cy * res});
+            }
+            e = next;
+            if (used[size_t(e)] && e != int(first))  // every edge is walked once
+                throw Error(description +
+                            ": the free space's boundary did not close "
+                            "(internal error)");
+        } while (e != int(first));
+        rings.push_back(std::move(ring));
+    }
+    // the outer ring (the one counter-clockwise ring of a connected region) first, then the
+    // holes not below speckCells cells
+    std::vector<std::vector<TPoint2D>> kept;
+    for (auto& r : rings)
+        if (twiceArea(r) > 0) kept.insert(kept.begin(), std::move(r));
+    if (kept.size() != 1)
+        throw Error(description + ": the free space traced into " + std::to_string(kept.size()) +
+                    " outer rings (internal error)");
+    const double sliver = 2 * o.speckCells * res * res;
+    for (auto& r : rings)
+        if (!r.empty() && twiceArea(r) <= -sliver) kept.push_back(std::move(r));
+    // simplified within the tolerance, halved until every ring and the whole validate
+    for (double tolerance = o.simplify > 0 ? o.simplify : 0.5 * res;; tolerance /= 2) {
+        if (tolerance < res / 64) tolerance = 0;  // as traced: valid by construction
+        std::vector<std::vector<TPoint2D>> out;
+        for (const auto& r : kept) out.push_back(simplified(r, tolerance, {x0, y0}, res));
+        try {
+            common::Polygon::fromRings(out, description, kMaxWallVertices);
+            return out;
+        } catch (const Error&) {
+            if (tolerance == 0) throw;
+        }
+    }
 }
 
 void renderMap(const mrpt::maps::COccupancyGridMap2D* grid, const WallMap& map,

@@ -88,7 +88,8 @@ std::optional<size_t> HypothesisGenerator::vertexNear(const TPoint2D& p, const F
 }
 
 std::vector<Hypothesis> HypothesisGenerator::generate(const VisibilityPolygon& V,
-                                                      HypothesisStats* stats) const {
+                                                      HypothesisStats* stats,
+                                                      const Verify& secondChance) const {
     if (V.size() < 3)
         throw Error(
             "hypothesis generation: the scan's visibility polygon has fewer than 3 "
@@ -160,7 +161,10 @@ std::vector<Hypothesis> HypothesisGenerator::generate(const VisibilityPolygon& V
         const VisibilityPolygon Vp = visibilityPolygon(triangulation_, p);
         double mismatch = vertexwiseDistance(V, Vp);
         if (mismatch > options_.tolerance) mismatch = boundaryDistance(V, Vp, step);
-        if (mismatch <= options_.tolerance) H.push_back({p, {0, 0}, mismatch});
+        if (mismatch <= options_.tolerance)
+            H.push_back({p, {0, 0}, mismatch});
+        else if (const auto second = secondChance ? secondChance(p, Vp) : std::nullopt)
+            H.push_back({p, {0, 0}, *second});
     }
     std::sort(H.begin(), H.end(), [](const Hypothesis& a, const Hypothesis& b) {
         return a.point.x < b.point.x || (a.point.x == b.point.x && a.point.y < b.point.y);

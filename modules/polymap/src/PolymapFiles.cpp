@@ -59,7 +59,8 @@ void EliminationFile::write(const std::string& dir) const {
     out << "# polymap elimination experiment (paper 002 Tables 1-2), exact views\n"
         << "# true_start i: the run's true start, index into H (0-based)\n"
         << "# C column name: an algorithm (cells, randomized:X, triangulation, windows)\n"
-        << "# R column start travel probes survivors: one localization (m)\n"
+        << "# R column start travel probes survivors fallbacks: one localization (m;\n"
+        << "#   fallbacks: probes beyond the algorithm's own candidates)\n"
         << "# P column x y: the route from the true start; Q column x y: its probes (m)\n"
         << "# K column x y: the first step's candidates; O x y: OI at the true start (m)\n"
         << "# bound d: the first-separation distance, a bound on every strategy's travel (m)\n"
@@ -79,7 +80,7 @@ void EliminationFile::write(const std::string& dir) const {
         out << "C " << c << " " << col.name << "\n";
         for (size_t i = 0; i < col.travel.size(); ++i)
             out << "R " << c << " " << i << " " << formatNumber(col.travel[i]) << " "
-                << col.probes[i] << " " << col.survivors[i] << "\n";
+                << col.probes[i] << " " << col.survivors[i] << " " << col.fallbacks.at(i) << "\n";
         for (const auto& p : col.route)
             out << "P " << c << " " << formatNumber(p.x) << " " << formatNumber(p.y) << "\n";
         for (const auto& p : col.stops)
@@ -110,15 +111,16 @@ EliminationFile EliminationFile::read(const std::string& dir) {
             line.expectFields(3);
             if (line.number(1) != (double)f.columns.size())
                 throw Error(line.where + ": columns must be numbered 0, 1, ... in order");
-            f.columns.push_back({line.fields[2], {}, {}, {}, {}, {}, {}});
+            f.columns.push_back({line.fields[2], {}, {}, {}, {}, {}, {}, {}});
         } else if (kind == "R") {
-            line.expectFields(6);
+            if (line.fields.size() != 6) line.expectFields(7);  // before issue 55: 6
             auto& col = column();
             if (line.number(2) != (double)col.travel.size())
                 throw Error(line.where + ": starts must be numbered 0, 1, ... in order");
             col.travel.push_back(line.number(3));
             col.probes.push_back((int)line.number(4));
             col.survivors.push_back((int)line.number(5));
+            col.fallbacks.push_back(line.fields.size() > 6 ? (int)line.number(6) : 0);
         } else if (kind == "P" || kind == "Q" || kind == "K") {
             line.expectFields(4);
             (kind == "P"   ? column().route

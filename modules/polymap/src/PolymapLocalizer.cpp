@@ -34,10 +34,22 @@ void PolymapLocalizer::configure(const mrpt::config::CConfigFileBase& ini) {
     map_.reset();
     wallMap_.reset();
     grid_.reset();
-    if (options_.scanMode)
+    if (options_.scanMode) {
         configureScanMode();
-    else
+    } else if (isMrptMapFile(options_.mapFile)) {
+        // the exact pipeline on an MRPT grid: the free space around the start, as a polygon
+        // with holes (GridTrace.h's traceFreeSpace)
+        const auto grid = loadGridMap(options_.mapFile, options_.trace);
+        const std::string what = "map " + options_.mapFile;
+        GridTraceOptions trace = options_.trace;
+        if (trace.simplify == 0) trace.simplify = kExactTraceSimplify;
+        map_ = std::make_unique<GeneratedMap>(GeneratedMap{
+            common::Polygon::fromRings(traceFreeSpace(grid, trace, *options_.start, what), what),
+            {},
+            "the free space around the start in " + what + ", traced"});
+    } else {
         map_ = std::make_unique<GeneratedMap>(options_.buildMap());
+    }
     options_.trace.insertOptions = nullptr;  // the INI's lifetime ends with this call
     if (!map_) return;                       // a grid map: nothing to simulate, no exact pipeline
     // the simulator's step and the robot's speed, as checked by the scenario's loader (the
@@ -127,7 +139,16 @@ RobotHypotheses hypothesesFromScan(const PolymapOptions& options, const common::
     for (const auto& v : r.sensed.vertices) rMax = std::max(rMax, v.norm());
     r.tolerance = options.toleranceFor(rMax);
     const HypothesisGenerator gen(map, {r.tolerance, options.angleTolerance * M_PI / 180});
-    r.hypotheses = gen.generate(r.sensed, &r.stats);
+    // A place is kept if its exact view is within the tolerance of V's boundary, or else of
+    // 99 % of the scan's beams: a traced building's view has slits narrower than a beam step that
+    // the boundary distance counts in full and the beams pass between (doc/polymap.md).
+    const ScanBeams beams = beamsOf(scan, options.heading * M_PI / 180);
+    const auto byBeams = [&](const TPoint2D&,
+                             const VisibilityPolygon& Vp) -> std::optional<double> {
+        const double mismatch = beamMismatch(beams, Vp, kBeamsThatMustAgree);
+        return mismatch <= r.tolerance ? std::optional(mismatch) : std::nullopt;
+    };
+    r.hypotheses = gen.generate(r.sensed, &r.stats, byBeams);
     if (options.drive && r.hypotheses.size() > 1) {
         std::vector<TPoint2D> positions;
         for (const auto& h : r.hypotheses) positions.push_back(h.point);
@@ -385,11 +406,15 @@ nlohmann::json PolymapLocalizer::methodMetrics() const {
             d["strategy"] = strategyName(options_.drive.value());
             d["probes"] = r.session->visited().size();
             double travel = 0;
+            size_t fallbacks = 0;
             for (const auto& p : r.session->visited()) {
                 travel += p.path.length;
                 d["probe_points"].push_back({p.at.x, p.at.y});
+                d["probe_sources"].push_back(probeSourceName(p.source));
+                fallbacks += p.source != ProbeSource::Own;
             }
             d["travel_m"] = travel;
+            d["fallbacks"] = fallbacks;  // probes beyond the algorithm's own candidates
             d["left"] = r.session->live().size();
             d["localized"] = r.session->live().size() == 1;
             rj["elimination"] = d;

@@ -17,6 +17,7 @@
 #include <algorithm>
 #include <cmath>
 #include <filesystem>
+#include <map>
 #include <optional>
 
 namespace mrloc::polymap {
@@ -203,7 +204,12 @@ report::Html polymapSection(const report::RunView& run) {
             out += report::paragraph(
                 "The robot eliminated as it drove (" +
                 report::code("drive = " + value("strategy")) + "): " + value("probes") +
-                " probe(s), " + travel + " m of travel, " +
+                " probe(s)" +
+                (e.value("fallbacks", 0) > 0
+                     ? " (" + value("fallbacks") +
+                           " beyond the algorithm's own candidates: doc/polymap.md#fall-backs)"
+                     : std::string()) +
+                ", " + travel + " m of travel, " +
                 (e.value("localized", nlohmann::json()) == true
                      ? "localized: one hypothesis left, the errors above are its estimates."
                      : "not localized: " + value("left") + " hypotheses left."));
@@ -268,6 +274,7 @@ common::Headline polymapHeadline(const method::HeadlineOf<PolymapLocalizer>& in)
     std::string notLocalized;
     double hypotheses = 0, travel = 0;
     bool drove = false;
+    std::string fellBack;  // probes beyond the algorithm's own candidates, per robot
     for (const auto& [robot, r] : in.localizer.results()) {
         hypotheses += double(r.hypotheses.size());
         const size_t left = r.session ? r.session->live().size() : r.hypotheses.size();
@@ -300,11 +307,22 @@ common::Headline polymapHeadline(const method::HeadlineOf<PolymapLocalizer>& in)
                           : "from the first scan, no drive to eliminate them ([polymap] drive)");
         if (r.session) {
             drove = true;
-            for (const auto& p : r.session->visited()) travel += p.path.length;
+            std::map<std::string, size_t> sources;
+            for (const auto& p : r.session->visited()) {
+                travel += p.path.length;
+                if (p.source != ProbeSource::Own) ++sources[probeSourceName(p.source)];
+            }
+            for (const auto& [source, n] : sources)
+                fellBack += mrpt::format("%s%zu of robot '%s''s %zu probes from %s candidates",
+                                         fellBack.empty() ? "" : ", ", n, robot.c_str(),
+                                         r.session->visited().size(), source.c_str());
         }
     }
     h.reached = notLocalized.empty();
     h.status = h.reached ? "localized" : "not localized: " + notLocalized;
+    if (!fellBack.empty())  // the algorithm's own candidates separated nothing (issue 55)
+        h.status += " (the " + strategyName(in.localizer.options().drive.value()) +
+                    " algorithm fell back: " + fellBack + ")";
     h.figures.push_back({"hypotheses from the first scan", hypotheses, "", "", "", false});
     if (drove) h.figures.push_back({"travel", travel, "m", "", "", false});
     // the bounds the travel is measured against, when the experiment computed them (seed 002

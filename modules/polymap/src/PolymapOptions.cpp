@@ -206,7 +206,8 @@ const common::KeyTable<PolymapOptions>& PolymapOptions::keys() {
             .custom(
                 "localizer", "", "auto, exact, scan",
                 "`exact` (paper 002's visibility polygons: a polygon, holes allowed, 360-degree "
-                "scans, heading known) or `scan` (real scans of any field of view, heading "
+                "scans, heading known; an MRPT grid map is traced into one, the free space "
+                "around `start`) or `scan` (real scans of any field of view, heading "
                 "unknown unless `heading` is given, passive elimination as the robot drives); "
                 "`auto`: `scan` for a grid map or a `.poly` with holes, else `exact`. An INI of "
                 "MRPT's pf-localization (with `[MetricMap_occupancyGrid_00_creationOpts]`, no "
@@ -222,9 +223,6 @@ const common::KeyTable<PolymapOptions>& PolymapOptions::keys() {
                         common::Polygon::readRings(o.mapFile, kMaxWallVertices, kMaxRings).size() >
                             1;
                     o.scanMode = mode == "scan" || (mode == "auto" && (mrptMap || holes));
-                    if (!o.scanMode && mrptMap)
-                        s.fail("localizer",
-                               "exact needs a .poly map; an MRPT grid map is localized with scan");
                 },
                 [](const Opt& o) { return std::string(o.scanMode ? "scan" : "exact"); }, "auto")
             .savedFromHereOnlyIf(scanModeOf)  // the scan localizer's keys
@@ -244,7 +242,8 @@ const common::KeyTable<PolymapOptions>& PolymapOptions::keys() {
             .real("min_agreement", MRLOC_KEY_FIELD(scan.minAgreement), {0.05, 1}, "",
                   "(scan) no hypothesis agrees with fewer of the beams")
             .real("max_through", MRLOC_KEY_FIELD(scan.maxThrough), {0, 1}, "",
-                  "(scan) a pose with more of its beams passing through walls is refused")
+                  "(scan) a pose with more of its beams passing through walls is refused; 1: "
+                  "no such share (the beam model weighs those beams, doc/polymap.md)")
             .real("max_clutter", MRLOC_KEY_FIELD(scan.maxClutter), {0, 1}, "",
                   "(scan) a pose with more of its beams stopped short in front of a mapped wall "
                   "is refused (the truth of MRPT's two logs: 0.03 and 0.11; their scans in a "
@@ -262,7 +261,8 @@ const common::KeyTable<PolymapOptions>& PolymapOptions::keys() {
             .integer("speck_cells", MRLOC_KEY_FIELD(trace.speckCells), 1, 10000, "cells",
                      "wall blobs of fewer cells are dropped when tracing")
             .real("trace_simplify", MRLOC_KEY_FIELD(trace.simplify), {0, 1}, "m",
-                  "the traced rings' simplification tolerance; 0: half a cell")
+                  "the traced rings' simplification tolerance; 0: half a cell (with `localizer "
+                  "= exact`: 0.2 m, doc/polymap.md)")
             .real("free_clearance", MRLOC_KEY_FIELD(trace.clearance), {0, 2}, "m",
                   "(scan) the scanner stands at least this far from a wall")
             .custom(

@@ -6,6 +6,7 @@
 #include <mrpt/math/wrap2pi.h>
 
 #include <algorithm>
+#include <boost/math/distributions/binomial.hpp>
 #include <cmath>
 #include <unordered_map>
 
@@ -101,11 +102,23 @@ ScanBeamSet beamSetOf(const mrpt::obs::CObservation2DRangeScan& scan) {
     return b;
 }
 
-BeamAgreement scoreScan(const WallMap& map, const ScanBeamSet& beams, const TPose2D& robot,
-                        double tolerance, size_t stride) {
+bool throughBeamsAreRandom(size_t through, size_t returns) {
+    if (through == 0 || returns == 0) return true;
+    const boost::math::binomial_distribution<double> random(double(returns), BeamModel::random);
+    // P(X >= through) = 1 - P(X <= through - 1)
+    return boost::math::cdf(boost::math::complement(random, double(through - 1))) >=
+           BeamModel::throughTail;
+}
+
+namespace {
+
+template <bool kLikelihood>
+BeamAgreement scored(const WallMap& map, const ScanBeamSet& beams, const TPose2D& robot,
+                     double tolerance, size_t stride) {
     BeamAgreement a;
     const TPoint2D origin = sensorAt(robot, beams.sensor);
     const double tol2 = tolerance * tolerance;
+    const double sigma = 0.5 * tolerance, hitPeak = BeamModel::hit / (sigma * std::sqrt(2 * M_PI));
     for (size_t i = 0; i < beams.range.size(); i += stride) {
         const double r = beams.range[i];
         if (std::isnan(r)) continue;
@@ -122,14 +135,32 @@ BeamAgreement scoreScan(const WallMap& map, const ScanBeamSet& beams, const TPos
         else
             ++a.through;
         a.cost += std::min(e * e, tol2);
+        if constexpr (kLikelihood) {
+            const double p = hitPeak * std::exp(-0.5 * e * e / (sigma * sigma)) +
+                             (e < 0 ? BeamModel::shortReading / std::max(predicted, 0.01) : 0) +
+                             BeamModel::random / beams.maxRange;
+            a.logRatio += std::log(p * beams.maxRange);
+        }
     }
     return a;
+}
+
+}  // namespace
+
+BeamAgreement scoreScan(const WallMap& map, const ScanBeamSet& beams, const TPose2D& robot,
+                        double tolerance, size_t stride) {
+    return scored<true>(map, beams, robot, tolerance, stride);
+}
+
+BeamAgreement costOfScan(const WallMap& map, const ScanBeamSet& beams, const TPose2D& robot,
+                         double tolerance, size_t stride) {
+    return scored<false>(map, beams, robot, tolerance, stride);
 }
 
 PoseHypothesis refinePose(const WallMap& map, const ScanBeamSet& beams, const TPose2D& start,
                           double tolerance, double step, double angleStep, size_t stride) {
     TPose2D pose = start;
-    double best = scoreScan(map, beams, pose, tolerance, stride).cost;
+    double best = costOfScan(map, beams, pose, tolerance, stride).cost;
     for (double s = step, a = angleStep; s >= 0.01 || a >= 0.1 * kDeg; s *= 0.5, a *= 0.5) {
         for (int round = 0; round < 8; ++round) {
             bool moved = false;
@@ -137,7 +168,7 @@ PoseHypothesis refinePose(const WallMap& map, const ScanBeamSet& beams, const TP
                                       {0, -s, 0}, {0, 0, a},  {0, 0, -a}};
             for (const auto& m : moves) {
                 const TPose2D p{pose.x + m.x, pose.y + m.y, mrpt::math::wrapToPi(pose.phi + m.phi)};
-                const double c = scoreScan(map, beams, p, tolerance, stride).cost;
+                const double c = costOfScan(map, beams, p, tolerance, stride).cost;
                 if (c < best) best = c, pose = p, moved = true;
             }
             if (!moved) break;
@@ -199,6 +230,13 @@ std::vector<PoseHypothesis> globalHypotheses(const WallMap& map, const ScanBeamS
     const double rangeCap =
         std::min(beams.maxRange, std::hypot(map.max.x - map.min.x, map.max.y - map.min.y));
     const size_t needed = size_t(std::ceil(o.minAgreement * 0.8 * double(used.size())));
+    // on the coarse grid, the beams through walls the beam model lets a pose have, and 3
+    // more (a grid pose is up to half a step off the refined one)
+    size_t allowed = 0;
+    while (allowed < used.size() && throughBeamsAreRandom(allowed + 1, used.size())) ++allowed;
+    if (o.maxThrough < 1)
+        allowed = std::min(allowed, size_t(o.maxThrough * 2 * double(used.size())));
+    const size_t throughCap = 3 + allowed;
     // one row of positions: its candidates, in order (rows run on every core; concatenated
     // in row order, the result does not depend on the number of threads)
     struct Row {
@@ -231,8 +269,7 @@ std::vector<PoseHypothesis> globalHypotheses(const WallMap& map, const ScanBeamS
                     else if (e > 0)
                         ++through;
                 }
-                if (agree < needed || through > 3 + size_t(o.maxThrough * 2 * double(used.size())))
-                    continue;
+                if (agree < needed || through > throughCap) continue;
                 PoseHypothesis c;
                 c.pose = robot;
                 c.score.returns = used.size();
@@ -267,18 +304,28 @@ std::vector<PoseHypothesis> globalHypotheses(const WallMap& map, const ScanBeamS
         refined[i].path.push_back({beams.time, refined[i].pose});
     });
     st.refined = refined.size();
+    // best first by the beam model's likelihood (BeamModel)
     std::sort(refined.begin(), refined.end(), [](const PoseHypothesis& a, const PoseHypothesis& b) {
-        return a.score.agree != b.score.agree ? a.score.agree > b.score.agree
-                                              : a.score.cost < b.score.cost;
+        return a.score.logRatio != b.score.logRatio ? a.score.logRatio > b.score.logRatio
+                                                    : a.score.cost < b.score.cost;
     });
     const size_t all = refined.size();
     refined = distinct(std::move(refined), 0.5 * o.mergeDistance, 0.5 * o.mergeAngle * kDeg, all);
+    // a pose fits if the map explains its scan better than noise, with enough beams agreeing
+    // and not too many short in front of mapped walls; kept within the margin of the best
+    const auto fits = [&o](const PoseHypothesis& h) {
+        return h.score.logRatio > 0 && h.score.agreement() >= o.minAgreement &&
+               throughBeamsAreRandom(h.score.through, h.score.returns) &&
+               h.score.throughFraction() <= o.maxThrough &&
+               h.score.clutterFraction() <= o.maxClutter;
+    };
+    double best = 0;
+    for (const auto& h : refined)
+        if (fits(h)) best = std::max(best, h.score.agreement());
     std::vector<PoseHypothesis> kept;
-    const double best = refined.empty() ? 0 : refined.front().score.agreement();
     for (auto& h : refined)
-        if (h.score.agreement() >= std::max(o.minAgreement, best - o.keepMargin) &&
-            h.score.throughFraction() <= o.maxThrough &&
-            h.score.clutterFraction() <= o.maxClutter && kept.size() < o.maxHypotheses) {
+        if (fits(h) && h.score.agreement() >= best - o.keepMargin &&
+            kept.size() < o.maxHypotheses) {
             h.rank = kept.size() + 1;
             h.evidence = h.score.agreement();
             kept.push_back(std::move(h));
@@ -320,10 +367,12 @@ void PassiveElimination::update(const TPose2D& motion, double travelled, const S
     for (auto& h : live_) {
         const bool trails = h.score.agreement() < best - options_.keepMargin;
         h.trailing = trails ? h.trailing + 1 : 0;
-        const bool dropped = h.trailing >= 2 || h.score.throughFraction() > options_.maxThrough;
+        const bool dropped = h.trailing >= 2 || h.score.logRatio <= 0 ||
+                             !throughBeamsAreRandom(h.score.through, h.score.returns) ||
+                             h.score.throughFraction() > options_.maxThrough;
         if (!dropped) next.push_back(std::move(h));
     }
-    if (next.empty()) {  // every one sees through walls: keep the best, say nothing is known
+    if (next.empty()) {  // the map explains no one's scan: keep the best, say nothing is known
         auto it = std::max_element(live_.begin(), live_.end(), [](const auto& a, const auto& b) {
             return a.score.agreement() < b.score.agreement();
         });

@@ -18,6 +18,7 @@
 // inside OI. Frame: displacements from the robot's start, axes along the map's.
 #include <mrloc/common/Polygon.h>
 #include <mrloc/polymap/Overlay.h>
+#include <mrloc/polymap/ScanPolygon.h>
 #include <mrloc/polymap/ShortestPath.h>
 #include <mrloc/polymap/Triangulation.h>
 #include <mrloc/polymap/Visibility.h>
@@ -26,6 +27,7 @@
 #include <cstdint>
 #include <limits>
 #include <map>
+#include <memory>
 #include <optional>
 #include <string>
 #include <vector>
@@ -73,6 +75,16 @@ struct EliminationOptions {
     double clearance = 0.1;
 };
 
+/** Where a probe came from. Each algorithm tries its own (the paper's) candidates first;
+ *  only if none separates does it try, in turn, its candidates completed beyond OI (cells:
+ *  the map's critical chords placed at every live hypothesis, not only OI's; windows: the
+ *  windows of the hypotheses' views in the map, not only in OI), the triangulation
+ *  algorithm's probe, and the union of every algorithm's candidates with the map's chords:
+ *  so no algorithm stops while another finds a separating probe (issue 55). */
+enum class ProbeSource { Own, Completed, Triangulation, Every };
+/** "own", "completed", "triangulation", "every algorithm's" (for reports). */
+std::string probeSourceName(ProbeSource s);
+
 /** One probe: where, how the robot gets there, and what the choice cost. */
 struct Probe {
     TPoint2D at;            ///< displacement from the start
@@ -80,6 +92,7 @@ struct Probe {
     size_t candidates = 0;  ///< the strategy's candidates (cells': chord points, cleared lazily)
     size_t tested = 0;      ///< candidates whose views were computed (nearest first)
     double oiArea = 0;      ///< m^2
+    ProbeSource source = ProbeSource::Own;  ///< not Own: the algorithm fell back
 };
 
 class Eliminator {
@@ -167,6 +180,27 @@ class Eliminator {
     /** Algorithm 4's candidates: the middles of the windows of the robot's view in OI from
      *  `from`, and of the views from those middles, breadth first. */
     std::vector<TPoint2D> windowCandidates(const Region& region, const TPoint2D& from) const;
+    /** Cells' completion: points along the map's own critical chords placed at every live
+     *  hypothesis (displacements; those off OI's box dropped). Each hypothesis' view changes
+     *  only across its copy of them, so every cell of views inside OI is bounded by one. */
+    std::vector<TPoint2D> mapChordCandidates(const std::vector<size_t>& live, const Region& region,
+                                             double chordSpacing, int perChord) const;
+    /** Windows' completion: points along the windows of each live hypothesis' view in the
+     *  map (not in OI) from `from` and from algorithm 4's middles, both sides. */
+    std::vector<TPoint2D> mapWindowCandidates(const std::vector<size_t>& live, const Region& region,
+                                              const TPoint2D& from) const;
+    /** A critical chord: from a reflex vertex, `length` along the unit direction d. */
+    struct Chord {
+        TPoint2D from;
+        TVector2D d;
+        double length = 0;
+    };
+    /** Every algorithm's candidates, OI's chords every `spacing` (at most perChord per
+     *  chord), and both completions: the last resort, and the first-separation search. */
+    std::vector<TPoint2D> everyCandidate(const std::vector<size_t>& live, const Region& region,
+                                         const TPoint2D& at, double spacing, int perChord) const;
+    /** The map's critical chords (its frame), computed once, on first use. */
+    const std::vector<Chord>& mapChords() const;
     /** The live hypotheses' views at displacement `at` differ (and none sees a wall
      *  edge-on). */
     bool separates(const std::vector<size_t>& live, const TPoint2D& at) const;
@@ -175,7 +209,17 @@ class Eliminator {
     Triangulation T_;
     std::vector<TPoint2D> hypotheses_;
     EliminationOptions options_;
+    struct ChordCache;
+    std::shared_ptr<ChordCache> chords_;  ///< shared by copies: the map's, whatever is live
 };
+
+/** The range error that a share `quantile` of a full-turn scan's beams (ScanPolygon's
+ *  beamsOf) stay within against V's boundary, each beam along its direction or half a beam
+ *  step either side (a window's end); a beam without return errs only by how far V stops
+ *  short of its range. */
+double beamMismatch(const ScanBeams& beams, const VisibilityPolygon& V, double quantile);
+/** The share of a scan's beams a hypothesis' view must explain (1 %: consistentWithScan's). */
+constexpr double kBeamsThatMustAgree = 0.99;
 
 /** One robot's elimination as it happens, scan by scan: what the simulated robot's on-board
  *  part runs, and what `mrloc localize` runs again on the rawlog, so that both take the same

@@ -60,6 +60,34 @@ mrpt::maps::COccupancyGridMap2D loadGridMap(const std::string& path,
 WallMap traceGrid(const mrpt::maps::COccupancyGridMap2D& grid, const GridTraceOptions& options,
                   const std::string& description, TraceStats* stats = nullptr);
 
+/** m: how much the exact pipeline simplifies a traced map unless `trace_simplify` says. A
+ *  traced staircase's steps would each be a corner the hypothesis generation matches, and
+ *  corners closer than the scan's tolerance (0.1 m) cannot be told apart; measured on
+ *  localization_demo, 12 random starts: the truth among the hypotheses from 3 starts at
+ *  0.07 m, 5 at 0.1, 8 at 0.15, 9 at 0.2, 8 at 0.3 (doc/polymap.md). */
+inline constexpr double kExactTraceSimplify = 0.2;
+
+/** The free space of `grid` around `inside` as rings the exact pipeline takes
+ *  (common::Polygon::fromRings: the outer ring first, then holes), traced along the cells'
+ *  edges rather than their centres (doc/polymap.md, "Traced maps in the exact pipeline"):
+ *  - the free cells (free probability above `free`) 4-connected to the cell at `inside` are
+ *    the region (a robot does not pass between two cells that touch at a corner alone);
+ *  - its boundary runs along cell edges, region on the left; where the boundary meets itself
+ *    at a cell corner (two region cells touching diagonally: a pinch vertex) it turns to stay
+ *    around its own cell, and each of the two passes cuts that cell's corner a quarter cell
+ *    from it: a pinch vertex becomes two on each pass, the passes half a cell apart (the
+ *    area given up: a 32nd of a cell per pass);
+ *  - holes of fewer than `speckCells` cells (slivers below the grid's resolution: a chair leg,
+ *    a speck of noise) are dropped;
+ *  - each ring is simplified within `simplify` (0: half a cell) by Douglas-Peucker, the
+ *    tolerance halved until the rings validate (a simplification may make two rings touch);
+ *    unsimplified, the rings are valid by construction.
+ *  Throws mrloc::Error if `inside` is not on a free cell, or the region is too large. */
+std::vector<std::vector<TPoint2D>> traceFreeSpace(const mrpt::maps::COccupancyGridMap2D& grid,
+                                                  const GridTraceOptions& options,
+                                                  const TPoint2D& inside,
+                                                  const std::string& description);
+
 /** What a map picture shows besides the map. */
 struct MapOverlay {
     std::vector<mrpt::math::TPose2D> hypotheses;  ///< drawn as arrows

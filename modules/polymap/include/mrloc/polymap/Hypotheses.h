@@ -14,6 +14,8 @@
 #include <mrloc/polymap/Triangulation.h>
 #include <mrloc/polymap/Visibility.h>
 
+#include <functional>
+#include <optional>
 #include <unordered_map>
 #include <vector>
 
@@ -47,10 +49,17 @@ class HypothesisGenerator {
     /** Triangulates P and indexes its vertices by edge directions and by position; P must
      *  outlive this. */
     HypothesisGenerator(const common::Polygon& map, HypothesisOptions options = {});
+    /** A verdict on a proposed place p, from its exact view Vp: the mismatch to keep it
+     *  with, or nothing to refuse it. */
+    using Verify =
+        std::function<std::optional<double>(const TPoint2D& p, const VisibilityPolygon& Vp)>;
     /** H, sorted by x then y; hypotheses[0] is the origin of the translations. Throws
-     *  mrloc::Error if V has no feature to anchor on. */
-    std::vector<Hypothesis> generate(const VisibilityPolygon& V,
-                                     HypothesisStats* stats = nullptr) const;
+     *  mrloc::Error if V has no feature to anchor on. A place whose V(p) is beyond the
+     *  tolerance of V's boundary gets `secondChance`, if given (a scan's beams against
+     *  V(p): a real building's view has slits narrower than a beam step, which a boundary
+     *  distance counts in full and the beams pass between). */
+    std::vector<Hypothesis> generate(const VisibilityPolygon& V, HypothesisStats* stats = nullptr,
+                                     const Verify& secondChance = {}) const;
     const HypothesisOptions& options() const { return options_; }
 
  private:

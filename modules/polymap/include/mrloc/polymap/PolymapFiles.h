@@ -36,6 +36,8 @@ struct EliminationFile {
         std::vector<double> travel;        ///< m, per start
         std::vector<int> probes;           ///< per start
         std::vector<int> survivors;        ///< per start: hypotheses left (1: localized)
+        /** per start: probes beyond the algorithm's own candidates (Probe::source) */
+        std::vector<int> fallbacks;
         std::vector<TPoint2D> route;       ///< the run's true start: its path (map frame)
         std::vector<TPoint2D> stops;       ///< and its probes (map frame)
         std::vector<TPoint2D> candidates;  ///< its first step's candidates (map frame)
