@@ -530,18 +530,21 @@ std::optional<Probe> Eliminator::chooseProbe(const std::vector<size_t>& live, co
                           spacing, 32));
     // Then, only if none separates, the completions (ProbeSource): what tells the hypotheses
     // apart may be seen only beyond OI's own corners and windows.
-    const auto fallBack = [&](ProbeSource source, std::vector<TPoint2D> more) {
-        if (best || !search(std::move(more))) return;
+    // (each set computed only if the ones before it separated nothing)
+    const auto fallBack = [&](ProbeSource source, const auto& more) {
+        if (best || !search(more())) return;
         probe.source = source;
     };
     if (options_.strategy == ProbeStrategy::VisibilityCells)
-        fallBack(ProbeSource::Completed, mapChordCandidates(live, region, spacing, 32));
+        fallBack(ProbeSource::Completed,
+                 [&] { return mapChordCandidates(live, region, spacing, 32); });
     if (options_.strategy == ProbeStrategy::Windows)
-        fallBack(ProbeSource::Completed, mapWindowCandidates(live, region, at));
-    if (options_.strategy != ProbeStrategy::Triangulation && !best)
-        fallBack(ProbeSource::Triangulation,
-                 candidates(live, region, at, step, ProbeStrategy::Triangulation, spacing, 32));
-    if (!best) fallBack(ProbeSource::Every, everyCandidate(live, region, at, spacing, 4096));
+        fallBack(ProbeSource::Completed, [&] { return mapWindowCandidates(live, region, at); });
+    if (options_.strategy != ProbeStrategy::Triangulation)
+        fallBack(ProbeSource::Triangulation, [&] {
+            return candidates(live, region, at, step, ProbeStrategy::Triangulation, spacing, 32);
+        });
+    fallBack(ProbeSource::Every, [&] { return everyCandidate(live, region, at, spacing, 4096); });
     if (!best) return std::nullopt;
     probe.at = found[best->second];
     probe.path = region.paths.path(at, probe.at);
