@@ -74,7 +74,10 @@ OdometryNoise BeaconTracker::odometryNoise() const {
 
 void BeaconTracker::onOdometry(const CPose2D& odo) {
     startIfGiven();
-    if (!lastOdometry_) return void(lastOdometry_ = odo);  // the first reading: no motion yet
+    if (!lastOdometry_) {  // the first reading: no motion yet
+        lastOdometry_ = odo;
+        return;
+    }
     const CPose2D delta = odo - *lastOdometry_;  // increment in the robot frame
     lastOdometry_ = odo;
     // not started: the particles take the motion at their next sighting, composed

@@ -142,10 +142,12 @@ RobotHypotheses hypothesesFromScan(const PolymapOptions& options, const common::
     // A place is kept if its exact view is within the tolerance of V's boundary, or else of
     // 99 % of the scan's beams: a traced building's view has slits narrower than a beam step that
     // the boundary distance counts in full and the beams pass between (doc/polymap.md).
-    const ScanBeams beams = beamsOf(scan, options.heading * M_PI / 180);
+    // (the beams read only if a place needs them: most views pass on their boundary)
+    std::optional<ScanBeams> beams;
     const auto byBeams = [&](const TPoint2D&,
                              const VisibilityPolygon& Vp) -> std::optional<double> {
-        const double mismatch = beamMismatch(beams, Vp, kBeamsThatMustAgree);
+        if (!beams) beams = beamsOf(scan, options.heading * M_PI / 180);
+        const double mismatch = beamMismatch(*beams, Vp, kBeamsThatMustAgree);
         return mismatch <= r.tolerance ? std::optional(mismatch) : std::nullopt;
     };
     r.hypotheses = gen.generate(r.sensed, &r.stats, byBeams);
