@@ -376,6 +376,16 @@ void expectLocalized(const std::string& out, const std::string& strategy, double
     EXPECT_LT(startErrorOf(m), rmse) << strategy;
 }
 
+/** The robot's start as the run in `out` placed it: its ground truth's first pose (x, y). */
+std::pair<double, double> firstTruePosition(const std::string& out) {
+    std::istringstream gt(slurp(out + "/groundtruth.r1.txt"));
+    std::string header;
+    std::getline(gt, header);
+    double t = 0, x = NAN, y = NAN;
+    gt >> t >> x >> y;
+    return {x, y};
+}
+
 }  // namespace
 
 // Twenty identical rooms side by side, the robot in the tenth: each algorithm drives until the
@@ -421,11 +431,7 @@ TEST(MrlocPolymap, FeaturesBelowTheScansToleranceKeepTheTruthByTheBeams) {
     const auto& robot = m["polymap"]["robots"]["r1"];
     ASSERT_EQ(robot["hypotheses"], 2) << robot.dump();
     // the truth (the robot's first ground-truth pose) is one of them, within 5 mm
-    std::istringstream gt(slurp(out + "/groundtruth.r1.txt"));
-    std::string header;
-    std::getline(gt, header);
-    double t = 0, x = NAN, y = NAN;
-    gt >> t >> x >> y;
+    const auto [x, y] = firstTruePosition(out);
     double nearest = INFINITY;
     for (const auto& p : robot["points"])
         nearest = std::min(nearest, std::hypot(p[0].get<double>() - x, p[1].get<double>() - y));
@@ -453,11 +459,7 @@ TEST(MrlocPolymap, RoomsWithPillarsLocalizeFromAGeneratedMapAndFromItsPolyFile) 
     EXPECT_NEAR(P.area(), common::Polygon::fromVertices(P.ringVertices(0), "outer").area() - 0.75,
                 1e-9);
     // the robot's start as the generator placed it: the run's ground truth, first pose
-    std::istringstream gt(slurp(lastRun + "/groundtruth.r1.txt"));
-    std::string header;
-    std::getline(gt, header);
-    double t = 0, x = NAN, y = NAN;
-    gt >> t >> x >> y;
+    const auto [x, y] = firstTruePosition(lastRun);
     ASSERT_TRUE(std::isfinite(x) && std::isfinite(y));
     // config/polymap_rooms.ini's scenario and scanner, the map from the file
     const std::string text = mrpt::format(

@@ -21,6 +21,7 @@
 #include <mrloc/polymap/ScanPolygon.h>
 #include <mrloc/polymap/ShortestPath.h>
 #include <mrloc/polymap/Triangulation.h>
+#include <mrloc/polymap/ViewComparison.h>
 #include <mrloc/polymap/Visibility.h>
 #include <mrpt/obs/CObservation2DRangeScan.h>
 
@@ -212,14 +213,6 @@ class Eliminator {
     struct ChordCache;
     std::shared_ptr<ChordCache> chords_;  ///< shared by copies: the map's, whatever is live
 };
-
-/** The range error that a share `quantile` of a full-turn scan's beams (ScanPolygon's
- *  beamsOf) stay within against V's boundary, each beam along its direction or half a beam
- *  step either side (a window's end); a beam without return errs only by how far V stops
- *  short of its range. */
-double beamMismatch(const ScanBeams& beams, const VisibilityPolygon& V, double quantile);
-/** The share of a scan's beams a hypothesis' view must explain (1 %: consistentWithScan's). */
-constexpr double kBeamsThatMustAgree = 0.99;
 
 /** One robot's elimination as it happens, scan by scan: what the simulated robot's on-board
  *  part runs, and what `mrloc localize` runs again on the rawlog, so that both take the same
