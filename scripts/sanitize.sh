@@ -103,6 +103,9 @@ long+='|Mutations\.BeaconsRawlogIsRefusedOrCountedNeverSilentlyTaken'
 long+='|MrlocFormation\.AMarchWhoseCamerasFindNoTagSaysSoInTheHeadline'
 long+='|MrlocRun\.BeaconReportsShowTheDistanceBetweenFixesPerScheduling'
 long+='|MrlocPolymap\.IdenticalRoomsBehindNarrowPassagesSayWhy|MrlocPolymap\.FeaturesBelowTheScansTolerance'
+# the shafts map's whole run (4 s here): Elimination.StepsJoinedByShafts* sanitizes its
+# eliminations, PolymapFiles.TheTableSaysWhereEachAlgorithmParts* its table note
+long+='|MrlocPolymap\.StepsJoinedByShaftsRunsThePapersTables'
 if [ "${MRLOC_SANITIZE_ALL:-0}" = 1 ]; then
   ctest --output-on-failure -j "$(nproc)" "$@"
 else

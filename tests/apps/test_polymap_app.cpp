@@ -225,6 +225,39 @@ TEST(MrlocPolymap, PaperExperimentOnTheSteps76MapLocalizesFromEveryStart) {
     }
 }
 
+// config/polymap_steps148_shafts.ini, the steps map closest to paper 002's text (issue 55):
+// the simulated robot localizes, every start of every algorithm ends on its truth, the path
+// grows from the end steps to the middle ones as in the paper's Table 1, and where the order
+// of the algorithms is not the paper's the report says at which probe each parts from
+// algorithm 1. Measured: the run 51.7 m of travel, start error 0.25 mm; Table 1 means cells
+// 14.86, randomized 28.37 / 27.34, triangulation 17.83, windows 26.22 m; the windows
+// algorithm parts from cells at probe 5 (3 hypotheses left against 1).
+TEST(MrlocPolymap, StepsJoinedByShaftsRunsThePapersTablesAndSaysWhereTheOrderDiffers) {
+    const std::string out = tmp("polymap_steps148_shafts");
+    const auto r = mrlocCmd("run " + config("polymap_steps148_shafts") + " -q --out " + out);
+    ASSERT_EQ(r.code, 0) << r.output;
+    const auto m = common::readJsonFile(out + "/metrics.json");
+    EXPECT_TRUE(m["polymap"]["robots"]["r1"]["elimination"]["localized"].get<bool>());
+    EXPECT_LT(startErrorOf(m), 0.005);
+    const auto file = polymap::EliminationFile::read(out);
+    ASSERT_EQ(file.columns.size(), 5u);
+    for (const auto& col : file.columns) {
+        ASSERT_EQ(col.travel.size(), 12u);
+        for (size_t s = 0; s < 12; ++s) EXPECT_EQ(col.survivors[s], 1) << col.name << " " << s;
+        // ends (starts 1-2, 11-12) against the middle (5-8): 4.9-7.6 m and 13.4-53.8 m
+        for (const size_t end : {0, 1, 10, 11}) EXPECT_LT(col.travel[end], 8.0) << col.name;
+        for (const size_t mid : {4, 5, 6, 7}) EXPECT_GT(col.travel[mid], 11.0) << col.name;
+        ASSERT_EQ(col.stopsLeft.size(), col.stops.size());
+        EXPECT_EQ(col.stopsLeft.back(), 1) << col.name;
+    }
+    const std::string html = slurp(out + "/report.html");
+    EXPECT_NE(html.find("From the run's start (start 4) the algorithms first part from cells"),
+              std::string::npos);
+    EXPECT_NE(html.find("windows at probe 5: (32.50, 11.88) m, leaving 3 hypotheses, where "
+                        "cells took (32.38, 10.10) m, leaving 1 hypothesis"),
+              std::string::npos);
+}
+
 TEST(MrlocPolymap, SweepOverMapSizesDrawsFigsSixAndSeven) {
     // polymap_steps76.ini with a small sweep: steps maps of 1 and 2 steps (n = 28 and 52),
     // two starts each: every algorithm localizes, and both figures are drawn.

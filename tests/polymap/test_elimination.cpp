@@ -329,3 +329,44 @@ TEST(Elimination, AnLShapedRegionWhoseRoomsDifferBelowItEndsOnTheTruth) {
         }
     }
 }
+
+// The steps map joined by shafts (config/polymap_steps148_shafts.ini: a rise above the
+// corridor's height, so no sight line passes two steps): still n = 24 steps + 4, every start
+// of every algorithm ends on its truth, and, as in paper 002's Table 1, the path grows from the
+// end steps towards the middle ones: a middle step can tell itself from its neighbours only
+// where an end of the staircase is in view. Measured (clearance 0.1 m, every algorithm):
+// 4.9-7.6 m from the end steps' branches, 13.4-53.8 m from the middle steps'; bounds 8 and
+// 11 m (the ends' margin is 0.4 m: randomized's 7.56 m).
+TEST(Elimination, StepsJoinedByShaftsGrowTowardsTheMiddleAsInThePapersTable) {
+    polymap::StepsMapOptions s;
+    s.stepRise = 6;  // the corridor is 4 m high
+    s.shaftWidth = 1;
+    const auto map = polymap::stepsMap(s);
+    ASSERT_EQ(map.polygon.size(), 148u);
+    ASSERT_EQ(map.sites.size(), 12u);
+    for (const auto strategy : kAll) {
+        polymap::EliminationOptions o;
+        o.strategy = strategy;
+        o.clearance = 0.1;
+        const polymap::Eliminator eliminator(map.polygon, map.sites, o);
+        std::vector<double> travel;
+        for (size_t truth = 0; truth < map.sites.size(); ++truth) {
+            const auto run = polymap::eliminateExactly(eliminator, truth);
+            EXPECT_EQ(run.survivors, std::vector<size_t>{truth})
+                << polymap::strategyName(strategy) << ", start " << truth;
+            ASSERT_EQ(run.leftAfter.size(), run.probes.size());
+            EXPECT_EQ(run.leftAfter.back(), 1u);
+            for (size_t k = 1; k < run.leftAfter.size(); ++k)
+                EXPECT_LT(run.leftAfter[k], run.leftAfter[k - 1]);  // every probe eliminates
+            travel.push_back(run.travel);
+        }
+        std::cout << polymap::strategyName(strategy) << ":";
+        for (double d : travel) std::cout << " " << d;
+        std::cout << "\n";
+        for (const size_t end : {0, 1, 10, 11}) EXPECT_LT(travel[end], 8.0) << end;
+        for (const size_t middle : {4, 5, 6, 7}) EXPECT_GT(travel[middle], 11.0) << middle;
+    }
+    // a rise of the corridor's height or more needs a shaft
+    s.shaftWidth = 0;
+    EXPECT_THROW(polymap::stepsMap(s), Error);
+}

@@ -53,8 +53,8 @@ TEST(PolymapFiles, EliminationFileKeepsEachStartsFallBacksAndTheTableShowsThem) 
     const std::string dir = testing::TempDir() + "/polymap_elimination_file";
     std::filesystem::create_directories(dir);
     polymap::EliminationFile f;
-    f.columns.push_back({"cells", {2.5, 3.0}, {1, 2}, {1, 1}, {0, 0}, {}, {}, {}});
-    f.columns.push_back({"windows", {4.0, 5.5}, {1, 2}, {1, 1}, {1, 2}, {}, {}, {}});
+    f.columns.push_back({"cells", {2.5, 3.0}, {1, 2}, {1, 1}, {0, 0}, {}, {}, {}, {}});
+    f.columns.push_back({"windows", {4.0, 5.5}, {1, 2}, {1, 1}, {1, 2}, {}, {}, {}, {}});
     f.write(dir);
     const auto g = polymap::EliminationFile::read(dir);
     ASSERT_EQ(g.columns.size(), 2u);
@@ -71,4 +71,38 @@ TEST(PolymapFiles, EliminationFileKeepsEachStartsFallBacksAndTheTableShowsThem) 
     // before issue 55: "R column start travel probes survivors"
     std::ofstream(polymap::EliminationFile::path(dir)) << "C 0 cells\nR 0 0 2.5 1 1\n";
     EXPECT_EQ(polymap::EliminationFile::read(dir).columns[0].fallbacks, std::vector<int>{0});
+}
+
+// Where the ranking by path is not the paper's, the table says at which probe each algorithm's
+// elimination from the run's start first parts from algorithm 1's: the first probe after
+// which another number of hypotheses is left (the probes' positions, a few centimetres apart,
+// are not a parting), with both probes and what each left. The counts survive the file.
+TEST(PolymapFiles, TheTableSaysWhereEachAlgorithmPartsFromTheFirst) {
+    const std::string dir = testing::TempDir() + "/polymap_first_branching";
+    std::filesystem::create_directories(dir);
+    polymap::EliminationFile f;
+    f.trueStart = 3;
+    const std::vector<double> shorter(12, 5.0), longer(12, 9.0);
+    const std::vector<int> ones(12, 1), zeros(12, 0), probes(12, 3);
+    f.columns.push_back({"cells", shorter, probes, ones, zeros, {}, {}, {}, {}});
+    f.columns.push_back({"windows", longer, probes, ones, zeros, {}, {}, {}, {}});
+    f.columns[0].stops = {{1, 1}, {2, 2}, {3, 3}};
+    f.columns[0].stopsLeft = {7, 4, 1};
+    f.columns[1].stops = {{1.02, 1}, {2, 2.5}, {8, 8}};  // parts at the second probe
+    f.columns[1].stopsLeft = {7, 5, 1};
+    f.write(dir);
+    const auto g = polymap::EliminationFile::read(dir);
+    EXPECT_EQ(g.columns[1].stopsLeft, (std::vector<int>{7, 5, 1}));
+    polymap::EliminationTimes times;
+    times.seconds = {std::vector<double>(12, 0.001), std::vector<double>(12, 0.002)};
+    times.write(dir);
+    const std::string html = polymap::eliminationSection(dir, g).markup();
+    EXPECT_NE(html.find("From the run's start (start 4) the algorithms first part from cells as "
+                        "follows: windows at probe 2: (2.00, 2.50) m, leaving 5 hypotheses, "
+                        "where cells took (2.00, 2.00) m, leaving 4 hypotheses."),
+              std::string::npos)
+        << html;
+    // a file from before the counts: the probes without them
+    std::ofstream(polymap::EliminationFile::path(dir)) << "C 0 cells\nQ 0 1 2\n";
+    EXPECT_EQ(polymap::EliminationFile::read(dir).columns[0].stopsLeft, std::vector<int>{-1});
 }

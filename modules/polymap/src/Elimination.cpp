@@ -314,6 +314,7 @@ EliminationRun eliminateExactly(const Eliminator& eliminator, size_t truth) {
         if (!probe) break;  // no candidate of the strategy separates what is left
         run.survivors =
             eliminator.consistent(run.survivors, probe->at, eliminator.viewOf(truth, probe->at));
+        run.leftAfter.push_back(run.survivors.size());
         run.travel += probe->path.length;
         at = probe->at;
         run.probes.push_back(*probe);

@@ -286,8 +286,42 @@ class EliminationTables {
                            name(ourHigh).c_str(), ours[ourHigh], name(paperHigh).c_str(),
                            theirs[paperHigh]);
         if (differs.empty()) return {};
-        return report::paragraph(report::bold("Not the paper's order:") + " " + differs +
-                                 " (doc/polymap.md discusses why).");
+        return report::paragraph(report::bold("Not the paper's order:") + " " + differs + ". " +
+                                 firstBranching() + " (doc/polymap.md discusses why).");
+    }
+
+    /** Where each algorithm's elimination from the run's start first departs from column 1's
+     *  (a probe leaving another number of hypotheses): the probe each chose there and what it
+     *  left (a probe that leaves more to eliminate farther on makes a path longer). */
+    std::string firstBranching() const {
+        const auto& first = file_.columns.front();
+        const auto probeAt = [](const EliminationFile::Column& col, size_t k) {
+            if (k >= col.stops.size()) return std::string("no probe");
+            const std::string left = k < col.stopsLeft.size() && col.stopsLeft[k] >= 0
+                                         ? mrpt::format(", leaving %d hypothes%s", col.stopsLeft[k],
+                                                        col.stopsLeft[k] == 1 ? "is" : "es")
+                                         : std::string();
+            return mrpt::format("(%.2f, %.2f) m", col.stops[k].x, col.stops[k].y) + left;
+        };
+        std::string out;
+        for (size_t c = 1; c < file_.columns.size(); ++c) {
+            const auto& col = file_.columns[c];
+            size_t k = 0;
+            // the same count after each probe: the same branch of the elimination (the probes
+            // themselves differ by a few centimetres between the candidate sets)
+            while (k < col.stopsLeft.size() && k < first.stopsLeft.size() &&
+                   col.stopsLeft[k] == first.stopsLeft[k])
+                ++k;
+            if (k == col.stops.size() && k == first.stops.size()) continue;  // the same branch
+            out += std::string(out.empty() ? "" : "; ") +
+                   mrpt::format("%s at probe %zu: %s, where %s took %s", col.name.c_str(), k + 1,
+                                probeAt(col, k).c_str(), first.name.c_str(),
+                                probeAt(first, k).c_str());
+        }
+        if (out.empty()) return "From the run's start every algorithm takes the same probes.";
+        return mrpt::format("From the run's start (start %zu) the algorithms first part from %s ",
+                            file_.trueStart + 1, first.name.c_str()) +
+               "as follows: " + out + ".";
     }
 
     const EliminationFile& file_;
@@ -481,10 +515,12 @@ std::vector<std::string> eliminationExperiment(const method::ExperimentOf<Polyma
             for (const auto& probe : run.probes) probesFrom[start].push_back(probe.at);
             if (start != file.trueStart) continue;
             col.route.push_back(positions[start]);
-            for (const auto& probe : run.probes) {
+            for (size_t p = 0; p < run.probes.size(); ++p) {
+                const auto& probe = run.probes[p];
                 for (size_t k = 1; k < probe.path.points.size(); ++k)
                     col.route.push_back(positions[start] + probe.path.points[k]);
                 col.stops.push_back(positions[start] + probe.at);
+                col.stopsLeft.push_back((int)run.leftAfter[p]);
             }
         }
         file.columns.push_back(std::move(col));

@@ -45,11 +45,21 @@ GeneratedMap stepsMap(const StepsMapOptions& o) {
     if (gap <= 0)
         throw Error(mrpt::format("steps map: %d branches of width %g do not fit a step of %g m", b,
                                  branch, W));
-    if (R >= C) throw Error("steps map: the step rise must be below the corridor height");
+    // A rise of at least the corridor's height leaves no opening between the steps: a shaft
+    // joins each step's right end to the next step's left end instead, narrow enough that no
+    // sight line passes two of them (a step looks like the next from inside).
+    const double shaft = R >= C ? o.shaftWidth : 0;
+    if (R >= C && !(shaft > 0 && shaft < W))
+        throw Error(
+            mrpt::format("steps map: a rise of %g m, at least the corridor height %g m, "
+                         "needs a shaft width between 0 and the step width %g m (%g)",
+                         R, C, W, o.shaftWidth));
 
     std::vector<TPoint2D> v;
     std::vector<TPoint2D> sites;
-    for (int i = 0; i < o.steps; ++i) v.insert(v.end(), {{i * W, i * R}, {(i + 1) * W, i * R}});
+    for (int i = 0; i < o.steps; ++i)  // the floor; a shaft's right wall between two steps
+        v.insert(v.end(), {{i * W + (i > 0 ? shaft : 0), i * R},
+                           {(i + 1) * W + (i + 1 < o.steps ? shaft : 0), i * R}});
     for (int i = o.steps - 1; i >= 0; --i) {
         const double yc = i * R + C;
         v.push_back({(i + 1) * W, yc});

@@ -61,7 +61,8 @@ void EliminationFile::write(const std::string& dir) const {
         << "# C column name: an algorithm (cells, randomized:X, triangulation, windows)\n"
         << "# R column start travel probes survivors fallbacks: one localization (m;\n"
         << "#   fallbacks: probes beyond the algorithm's own candidates)\n"
-        << "# P column x y: the route from the true start; Q column x y: its probes (m)\n"
+        << "# P column x y: the route from the true start; Q column x y left: its probes (m)\n"
+        << "#   and the hypotheses live after each\n"
         << "# K column x y: the first step's candidates; O x y: OI at the true start (m)\n"
         << "# bound d: the first-separation distance, a bound on every strategy's travel (m)\n"
         << "# tour start d probes: the verification tour from that start (m; nan: none)\n"
@@ -83,8 +84,9 @@ void EliminationFile::write(const std::string& dir) const {
                 << col.probes[i] << " " << col.survivors[i] << " " << col.fallbacks.at(i) << "\n";
         for (const auto& p : col.route)
             out << "P " << c << " " << formatNumber(p.x) << " " << formatNumber(p.y) << "\n";
-        for (const auto& p : col.stops)
-            out << "Q " << c << " " << formatNumber(p.x) << " " << formatNumber(p.y) << "\n";
+        for (size_t k = 0; k < col.stops.size(); ++k)
+            out << "Q " << c << " " << formatNumber(col.stops[k].x) << " "
+                << formatNumber(col.stops[k].y) << " " << col.stopsLeft.at(k) << "\n";
         for (const auto& p : col.candidates)
             out << "K " << c << " " << formatNumber(p.x) << " " << formatNumber(p.y) << "\n";
     }
@@ -111,7 +113,7 @@ EliminationFile EliminationFile::read(const std::string& dir) {
             line.expectFields(3);
             if (line.number(1) != (double)f.columns.size())
                 throw Error(line.where + ": columns must be numbered 0, 1, ... in order");
-            f.columns.push_back({line.fields[2], {}, {}, {}, {}, {}, {}, {}});
+            f.columns.emplace_back().name = line.fields[2];
         } else if (kind == "R") {
             if (line.fields.size() != 6) line.expectFields(7);  // before issue 55: 6
             auto& col = column();
@@ -121,11 +123,13 @@ EliminationFile EliminationFile::read(const std::string& dir) {
             col.probes.push_back((int)line.number(4));
             col.survivors.push_back((int)line.number(5));
             col.fallbacks.push_back(line.fields.size() > 6 ? (int)line.number(6) : 0);
-        } else if (kind == "P" || kind == "Q" || kind == "K") {
+        } else if (kind == "Q") {
+            if (line.fields.size() != 4) line.expectFields(5);  // before issue 55: 4
+            column().stops.push_back({line.number(2), line.number(3)});
+            column().stopsLeft.push_back(line.fields.size() > 4 ? (int)line.number(4) : -1);
+        } else if (kind == "P" || kind == "K") {
             line.expectFields(4);
-            (kind == "P"   ? column().route
-             : kind == "Q" ? column().stops
-                           : column().candidates)
+            (kind == "P" ? column().route : column().candidates)
                 .push_back({line.number(2), line.number(3)});
         } else if (kind == "O") {
             line.expectFields(3);

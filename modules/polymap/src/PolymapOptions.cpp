@@ -69,7 +69,11 @@ const common::KeyTable<PolymapOptions>& PolymapOptions::keys() {
                      "branches on each step's ceiling; k = steps * branches_per_step")
             .real("step_width", MRLOC_KEY_FIELD(steps.stepWidth), {1e-3, 1e4}, "m", "a step's run")
             .real("step_rise", MRLOC_KEY_FIELD(steps.stepRise), {1e-3, 1e4}, "m",
-                  "a step's rise, below `corridor_height`")
+                  "a step's rise: below `corridor_height`, the steps see into each other; from "
+                  "it on, a shaft joins them")
+            .real("shaft_width", MRLOC_KEY_FIELD(steps.shaftWidth), {1e-3, 1e4}, "m",
+                  "the shaft from a step's right end up to the next step, when `step_rise` >= "
+                  "`corridor_height`")
             .real("corridor_height", MRLOC_KEY_FIELD(steps.corridorHeight), {1e-3, 1e4}, "m",
                   "the staircase corridor's height")
             .real("branch_width", MRLOC_KEY_FIELD(steps.branchWidth), {1e-3, 1e4}, "m",

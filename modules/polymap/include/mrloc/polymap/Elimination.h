@@ -256,6 +256,7 @@ class EliminationSession {
 struct EliminationRun {
     std::vector<Probe> probes;
     std::vector<size_t> survivors;  ///< one, the truth, when it worked
+    std::vector<size_t> leftAfter;  ///< hypotheses live after each probe
     double travel = 0;              ///< m, the sum of the probes' paths
 };
 EliminationRun eliminateExactly(const Eliminator& eliminator, size_t truth);

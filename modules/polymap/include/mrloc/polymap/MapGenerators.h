@@ -27,6 +27,9 @@ struct StepsMapOptions {
     int branchesPerStep = 2;
     double stepWidth = 16, stepRise = 2, corridorHeight = 4;  ///< m
     double branchWidth = 1, branchLeg = 2;  ///< a branch's width and the length of each leg
+    /** m: with stepRise >= corridorHeight, the width of the vertical shaft joining a step's
+     *  right end to the next step's floor (unused otherwise). */
+    double shaftWidth = 1;
 };
 GeneratedMap stepsMap(const StepsMapOptions& options);
 

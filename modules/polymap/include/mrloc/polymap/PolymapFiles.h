@@ -40,6 +40,7 @@ struct EliminationFile {
         std::vector<int> fallbacks;
         std::vector<TPoint2D> route;       ///< the run's true start: its path (map frame)
         std::vector<TPoint2D> stops;       ///< and its probes (map frame)
+        std::vector<int> stopsLeft;        ///< hypotheses live after each of them
         std::vector<TPoint2D> candidates;  ///< its first step's candidates (map frame)
     };
     size_t trueStart = 0;  ///< index in H of the run's true start
