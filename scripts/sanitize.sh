@@ -106,6 +106,9 @@ long+='|MrlocPolymap\.IdenticalRoomsBehindNarrowPassagesSayWhy|MrlocPolymap\.Fea
 # the shafts map's whole run (4 s here): Elimination.StepsJoinedByShafts* sanitizes its
 # eliminations, PolymapFiles.TheTableSaysWhereEachAlgorithmParts* its table note
 long+='|MrlocPolymap\.StepsJoinedByShaftsRunsThePapersTables'
+# the exact pipeline on MRPT's two building maps (six whole runs, 6 s here): the trace's
+# opening and the consensus pass run sanitized in FreeSpaceTrace.* and Hypotheses.Corners*
+long+='|RealPolymap\.ExactPipelineOnMrptsTracedBuildingMaps'
 if [ "${MRLOC_SANITIZE_ALL:-0}" = 1 ]; then
   ctest --output-on-failure -j "$(nproc)" "$@"
 else

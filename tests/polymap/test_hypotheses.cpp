@@ -113,3 +113,53 @@ TEST(Hypotheses, ViewpointsOnEdgesAndVertices) {
             EXPECT_TRUE(found) << q.asString();
         }
 }
+
+// A view with corners of its own (a traced building's laser-fan fringe, a wall the trace
+// bent): a rectangular notch, 0.3 x 0.2 m, pushed into one wall of the exact view at a steps
+// map's site. Its two corners point the way the map's corners do, so they match map vertices
+// but land on none at the truth: the strict pass (every feature on a vertex) finds nothing.
+// With a verdict on the places proposed (the beams' second chance in the localizer; here
+// "within 1 cm of a site"), the consensus pass proposes every site anew (each feature
+// anchoring in turn, a place kept where 3 land on vertices), and nothing else passes the
+// verdict. Without a verdict there is no consensus pass: H stays empty, as before.
+TEST(Hypotheses, CornersTheMapLacksDoNotHideTheTruthWhenAVerdictIsGiven) {
+    const auto map = polymap::stepsMap({});
+    const polymap::HypothesisOptions options;  // 5 cm, 3 degrees: a scan's
+    const HypothesisGenerator gen(map.polygon, options);
+    const TPoint2D truth = map.sites[3];
+    auto V = polymap::visibilityPolygon(map.polygon, truth);
+    // the longest wall of V (not a window) gets the notch in its middle
+    size_t wall = 0;
+    double longest = 0;
+    for (size_t i = 0; i < V.size(); ++i) {
+        const double length = (V.vertices[(i + 1) % V.size()] - V.vertices[i]).norm();
+        if (!V.isRadial(i) && length > longest) wall = i, longest = length;
+    }
+    ASSERT_GT(longest, 1.0);
+    const TPoint2D a = V.vertices[wall], b = V.vertices[(wall + 1) % V.size()];
+    const common::TVector2D along = (b - a) * (1 / longest), out{along.y, -along.x};  // away
+    const TPoint2D mid = a + along * (0.5 * longest);
+    const std::vector<TPoint2D> notch{mid - along * 0.15, mid - along * 0.15 + out * 0.2,
+                                      mid + along * 0.15 + out * 0.2, mid + along * 0.15};
+    V.vertices.insert(V.vertices.begin() + long(wall) + 1, notch.begin(), notch.end());
+
+    polymap::HypothesisStats strict;
+    EXPECT_TRUE(gen.generate(V, &strict).empty());
+    const auto nearSite = [&](const TPoint2D& p) {
+        for (const auto& s : map.sites)
+            if ((p - s).norm() < 0.01) return true;
+        return false;
+    };
+    polymap::HypothesisStats stats;
+    const auto H =
+        gen.generate(V, &stats, [&](const TPoint2D& p, const polymap::VisibilityPolygon&) {
+            return nearSite(p) ? std::optional<double>(0.0) : std::nullopt;
+        });
+    ASSERT_EQ(H.size(), map.sites.size());
+    for (const auto& h : H) EXPECT_TRUE(nearSite(h.point)) << h.point.asString();
+    size_t truthFound = 0;
+    for (const auto& h : H) truthFound += (h.point - truth).norm() < 0.01;
+    EXPECT_EQ(truthFound, 1u);
+    EXPECT_GT(stats.proposed, strict.proposed);
+    EXPECT_LE(stats.verified, strict.verified + HypothesisGenerator::kConsensusPlaces);
+}

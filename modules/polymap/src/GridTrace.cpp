@@ -207,6 +207,19 @@ std::vector<std::vector<TPoint2D>> traceFreeSpace(const mrpt::maps::COccupancyGr
         throw Error(description + mrpt::format(": (%g %g) is not on a free cell of the map (free "
                                                "probability above %g)",
                                                inside.x, inside.y, o.free));
+    // free cells, the passages narrower than `open` closed (an opening: erosion, then
+    // dilation, by a square of the fewest odd number of cells at least that wide)
+    cv::Mat freeCells(h, w, CV_8U);
+    for (int y = 0; y < h; ++y)
+        for (int x = 0; x < w; ++x) freeCells.at<uint8_t>(y, x) = grid.getCell(x, y) > o.free;
+    const int openCells = 2 * int(std::ceil(0.5 * (o.open / res - 1) - 1e-9)) + 1;
+    if (openCells > 1)
+        cv::morphologyEx(freeCells, freeCells, cv::MORPH_OPEN,
+                         cv::getStructuringElement(cv::MORPH_RECT, {openCells, openCells}));
+    if (!freeCells.at<uint8_t>(sy, sx))
+        throw Error(description + mrpt::format(": (%g %g) is in free space narrower than %g m "
+                                               "(trace_open)",
+                                               inside.x, inside.y, openCells * res));
     // the region: free cells 4-connected to the start's
     std::vector<uint8_t> region(size_t(w) * h, 0);
     const auto in = [&](int x, int y) {
@@ -220,7 +233,7 @@ std::vector<std::vector<TPoint2D>> traceFreeSpace(const mrpt::maps::COccupancyGr
         for (const auto& [dx, dy] : {std::pair{1, 0}, {-1, 0}, {0, 1}, {0, -1}}) {
             const int nx = x + dx, ny = y + dy;
             if (nx < 0 || ny < 0 || nx >= w || ny >= h || region[size_t(ny) * w + nx] ||
-                !(grid.getCell(nx, ny) > o.free))
+                !freeCells.at<uint8_t>(ny, nx))
                 continue;
             region[size_t(ny) * w + nx] = 1;
             stack.push_back({nx, ny});

@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <unordered_set>
 
 namespace mrloc::polymap {
 
@@ -87,6 +88,49 @@ std::optional<size_t> HypothesisGenerator::vertexNear(const TPoint2D& p, const F
     return best;
 }
 
+std::vector<TPoint2D> HypothesisGenerator::consensusPlaces(const std::vector<Feature>& features,
+                                                           const std::vector<bool>& inMap) const {
+    const size_t inCount = size_t(std::count(inMap.begin(), inMap.end(), true));
+    const size_t need = std::min<size_t>(inCount, 3);
+    struct Place {
+        size_t landed;
+        TPoint2D at;
+    };
+    std::vector<Place> places;
+    std::unordered_set<long long> tried;  // guesses by cells of the tolerance
+    const double cell = std::max(options_.tolerance, 1e-6);
+    for (size_t a = 0; a < features.size(); ++a) {
+        if (!inMap[a]) continue;
+        for (size_t j = 0; j < map_.size(); ++j) {
+            if (!matches(features[a], j)) continue;
+            const TPoint2D guess = map_[j] - features[a].at;
+            if (!tried.insert(cellKey(std::llround(guess.x / cell), std::llround(guess.y / cell)))
+                     .second)
+                continue;
+            TVector2D sum{0, 0};
+            size_t landed = 0;
+            for (size_t k = 0; k < features.size(); ++k) {
+                if (!inMap[k]) continue;
+                if (const auto v = vertexNear(guess + features[k].at, features[k]))
+                    sum += map_[*v] - features[k].at, ++landed;
+            }
+            if (landed >= need) places.push_back({landed, sum * (1.0 / double(landed))});
+        }
+    }
+    // the best supported first; one place per tolerance; at most kConsensusPlaces verified
+    std::stable_sort(places.begin(), places.end(),
+                     [](const Place& a, const Place& b) { return a.landed > b.landed; });
+    std::vector<TPoint2D> out;
+    for (const auto& p : places) {
+        if (out.size() == kConsensusPlaces) break;
+        if (std::none_of(out.begin(), out.end(), [&](const TPoint2D& q) {
+                return (q - p.at).norm() <= options_.tolerance;
+            }))
+            out.push_back(p.at);
+    }
+    return out;
+}
+
 std::vector<Hypothesis> HypothesisGenerator::generate(const VisibilityPolygon& V,
                                                       HypothesisStats* stats,
                                                       const Verify& secondChance) const {
@@ -132,6 +176,24 @@ std::vector<Hypothesis> HypothesisGenerator::generate(const VisibilityPolygon& V
     const double step = std::max(options_.tolerance / 4, (hi - lo).norm() / 500);
 
     std::vector<Hypothesis> H;
+    // Step 4: p in P (noise may push it out by up to the tolerance), then V(p) against V.
+    const auto verify = [&](TPoint2D p) {
+        if (const auto loc = triangulation_.locate(p);
+            loc.triangle == Triangulation::kNone || !triangulation_[loc.triangle].inside) {
+            if (map_.locate(p, options_.tolerance) == common::Polygon::Where::Outside) return;
+            p = map_.closestBoundaryPoint(p).first;
+        }
+        ++st.verified;
+        // Vertex by vertex when V and V(p) pair up (an exact or clean V: O(|V|)), else the
+        // sampled boundary distance (O(|V|^2), for a scan's V whose corners differ).
+        const VisibilityPolygon Vp = visibilityPolygon(triangulation_, p);
+        double mismatch = vertexwiseDistance(V, Vp);
+        if (mismatch > options_.tolerance) mismatch = boundaryDistance(V, Vp, step);
+        if (mismatch <= options_.tolerance)
+            H.push_back({p, {0, 0}, mismatch});
+        else if (const auto second = secondChance ? secondChance(p, Vp) : std::nullopt)
+            H.push_back({p, {0, 0}, *second});
+    };
     for (size_t j : bestMatches) {
         const TPoint2D guess = map_[j] - features[anchor].at;
         // Every feature must land on a matching vertex; their mean offset refines the guess.
@@ -147,24 +209,15 @@ std::vector<Hypothesis> HypothesisGenerator::generate(const VisibilityPolygon& V
             }
             sum += map_[*v] - f.at;
         }
-        if (!all) continue;
-        TPoint2D p = sum * (1.0 / double(std::count(inMap.begin(), inMap.end(), true)));
-        if (const auto loc = triangulation_.locate(p);
-            loc.triangle == Triangulation::kNone || !triangulation_[loc.triangle].inside) {
-            // Outside: sensing noise may have pushed it out by up to the tolerance.
-            if (map_.locate(p, options_.tolerance) == common::Polygon::Where::Outside) continue;
-            p = map_.closestBoundaryPoint(p).first;
-        }
-        ++st.verified;
-        // Vertex by vertex when V and V(p) pair up (an exact or clean V: O(|V|)), else the
-        // sampled boundary distance (O(|V|^2), for a scan's V whose corners differ).
-        const VisibilityPolygon Vp = visibilityPolygon(triangulation_, p);
-        double mismatch = vertexwiseDistance(V, Vp);
-        if (mismatch > options_.tolerance) mismatch = boundaryDistance(V, Vp, step);
-        if (mismatch <= options_.tolerance)
-            H.push_back({p, {0, 0}, mismatch});
-        else if (const auto second = secondChance ? secondChance(p, Vp) : std::nullopt)
-            H.push_back({p, {0, 0}, *second});
+        if (all) verify(sum * (1.0 / double(std::count(inMap.begin(), inMap.end(), true))));
+    }
+    if (H.empty() && secondChance) {
+        // None where every feature lands: a traced building's view has corners of its own
+        // (a laser fan's fringe, a wall the trace bent) that anchor a wrong place or land on
+        // no vertex at the true one. A consensus instead: every feature anchors in turn, and
+        // a place where most features land on matching vertices is verified as above.
+        for (const auto& p : consensusPlaces(features, inMap)) verify(p);
+        st.proposed += st.verified;
     }
     std::sort(H.begin(), H.end(), [](const Hypothesis& a, const Hypothesis& b) {
         return a.point.x < b.point.x || (a.point.x == b.point.x && a.point.y < b.point.y);

@@ -43,6 +43,7 @@ void PolymapLocalizer::configure(const mrpt::config::CConfigFileBase& ini) {
         const std::string what = "map " + options_.mapFile;
         GridTraceOptions trace = options_.trace;
         if (trace.simplify == 0) trace.simplify = kExactTraceSimplify;
+        if (trace.open == 0) trace.open = kExactTraceOpen;
         map_ = std::make_unique<GeneratedMap>(GeneratedMap{
             common::Polygon::fromRings(traceFreeSpace(grid, trace, *options_.start, what), what),
             {},

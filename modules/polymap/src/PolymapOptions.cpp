@@ -267,6 +267,9 @@ const common::KeyTable<PolymapOptions>& PolymapOptions::keys() {
             .real("trace_simplify", MRLOC_KEY_FIELD(trace.simplify), {0, 1}, "m",
                   "the traced rings' simplification tolerance; 0: half a cell (with `localizer "
                   "= exact`: 0.2 m, doc/polymap.md)")
+            .real("trace_open", MRLOC_KEY_FIELD(trace.open), {0, 5}, "m",
+                  "(exact) free space narrower than this is closed before tracing (laser-fan "
+                  "fringes, slits no robot passes); 0: 0.3 m")
             .real("free_clearance", MRLOC_KEY_FIELD(trace.clearance), {0, 2}, "m",
                   "(scan) the scanner stands at least this far from a wall")
             .custom(

@@ -28,6 +28,10 @@ struct GridTraceOptions {
     int speckCells = 4;        ///< occupied blobs of fewer cells are dropped
     double simplify = 0;       ///< m; 0: half a cell (the contour's own quantization)
     double clearance = 0.15;   ///< m from a wall where the scanner may stand
+    /** m; traceFreeSpace only: free space narrower than this is closed (a morphological
+     *  opening by a square this wide, in whole cells, odd): a mapping run's laser-fan fringes
+     *  and slits no robot passes. 0: none. */
+    double open = 0;
     /** For a simplemap: MRPT's insertion options section of an INI (pf-localization's
      *  MetricMap_occupancyGrid_00_insertOpts), if any. */
     const mrpt::config::CConfigFileBase* insertOptions = nullptr;
@@ -67,11 +71,20 @@ WallMap traceGrid(const mrpt::maps::COccupancyGridMap2D& grid, const GridTraceOp
  *  0.07 m, 5 at 0.1, 8 at 0.15, 9 at 0.2, 8 at 0.3 (doc/polymap.md). */
 inline constexpr double kExactTraceSimplify = 0.2;
 
+/** m: the free space narrower than this that the exact pipeline closes unless `trace_open`
+ *  says (GridTraceOptions::open): twice the scanner's default clearance. A mapping run's
+ *  laser fan leaves rays of free cells into unknown space, each a pair of corners the
+ *  hypothesis generation would match; measured on malaga-cs-fac-building, 12 random starts
+ *  (doc/polymap.md): the truth among the hypotheses from none without it. */
+inline constexpr double kExactTraceOpen = 0.3;
+
 /** The free space of `grid` around `inside` as rings the exact pipeline takes
  *  (common::Polygon::fromRings: the outer ring first, then holes), traced along the cells'
  *  edges rather than their centres (doc/polymap.md, "Traced maps in the exact pipeline"):
- *  - the free cells (free probability above `free`) 4-connected to the cell at `inside` are
- *    the region (a robot does not pass between two cells that touch at a corner alone);
+ *  - the free cells (free probability above `free`), opened by a square at least `open`
+ *    wide (free space narrower than it closed: laser-fan rays, slits), 4-connected to the
+ *    cell at `inside` are the region (a robot does not pass between two cells that touch at
+ *    a corner alone);
  *  - its boundary runs along cell edges, region on the left; where the boundary meets itself
  *    at a cell corner (two region cells touching diagonally: a pinch vertex) it turns to stay
  *    around its own cell, and each of the two passes cuts that cell's corner a quarter cell
@@ -82,7 +95,8 @@ inline constexpr double kExactTraceSimplify = 0.2;
  *  - each ring is simplified within `simplify` (0: half a cell) by Douglas-Peucker, the
  *    tolerance halved until the rings validate (a simplification may make two rings touch);
  *    unsimplified, the rings are valid by construction.
- *  Throws mrloc::Error if `inside` is not on a free cell, or the region is too large. */
+ *  Throws mrloc::Error if `inside` is not on a free cell or is in free space narrower than
+ *  `open`, or if the region is too large. */
 std::vector<std::vector<TPoint2D>> traceFreeSpace(const mrpt::maps::COccupancyGridMap2D& grid,
                                                   const GridTraceOptions& options,
                                                   const TPoint2D& inside,

@@ -53,6 +53,8 @@ class HypothesisGenerator {
      *  with, or nothing to refuse it. */
     using Verify =
         std::function<std::optional<double>(const TPoint2D& p, const VisibilityPolygon& Vp)>;
+    /** At most this many consensus places are verified (each costs an exact V(p)). */
+    static constexpr size_t kConsensusPlaces = 64;
     /** H, sorted by x then y; hypotheses[0] is the origin of the translations. Throws
      *  mrloc::Error if V has no feature to anchor on. A place whose V(p) is beyond the
      *  tolerance of V's boundary gets `secondChance`, if given (a scan's beams against
@@ -72,6 +74,11 @@ class HypothesisGenerator {
     bool matches(const Feature& f, size_t vertex) const;
     /** A vertex of P within tolerance of p matching f, if any. */
     std::optional<size_t> vertexNear(const TPoint2D& p, const Feature& f) const;
+    /** The consensus pass: each feature of the map (inMap) anchoring in turn at each vertex
+     *  it matches, the places where at least half of them (and 3) land on matching vertices,
+     *  refined by their mean offset, best supported first, one per tolerance. */
+    std::vector<TPoint2D> consensusPlaces(const std::vector<Feature>& features,
+                                          const std::vector<bool>& inMap) const;
 
     const common::Polygon& map_;
     Triangulation triangulation_;  ///< for V(p) by triangular expansion and point location
