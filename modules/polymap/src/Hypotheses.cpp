@@ -96,14 +96,24 @@ std::vector<TPoint2D> HypothesisGenerator::consensusPlaces(const std::vector<Fea
         size_t landed;
         TPoint2D at;
     };
+    // anchors: the features the map has, the rarest first (their guesses are the likeliest
+    // to be right, and the cap below then leaves out the commonest)
+    std::vector<std::vector<size_t>> anchors;
+    for (size_t a = 0; a < features.size(); ++a) {
+        if (!inMap[a]) continue;
+        anchors.emplace_back(1, a);
+        for (size_t j = 0; j < map_.size(); ++j)
+            if (matches(features[a], j)) anchors.back().push_back(j);
+    }
+    std::stable_sort(anchors.begin(), anchors.end(),
+                     [](const auto& x, const auto& y) { return x.size() < y.size(); });
     std::vector<Place> places;
     std::unordered_set<long long> tried;  // guesses by cells of the tolerance
     const double cell = std::max(options_.tolerance, 1e-6);
-    for (size_t a = 0; a < features.size(); ++a) {
-        if (!inMap[a]) continue;
-        for (size_t j = 0; j < map_.size(); ++j) {
-            if (!matches(features[a], j)) continue;
-            const TPoint2D guess = map_[j] - features[a].at;
+    for (const auto& anchor : anchors) {
+        const size_t a = anchor.front();
+        for (size_t m = 1; m < anchor.size() && tried.size() < kConsensusGuesses; ++m) {
+            const TPoint2D guess = map_[anchor[m]] - features[a].at;
             if (!tried.insert(cellKey(std::llround(guess.x / cell), std::llround(guess.y / cell)))
                      .second)
                 continue;
@@ -215,9 +225,10 @@ std::vector<Hypothesis> HypothesisGenerator::generate(const VisibilityPolygon& V
         // None where every feature lands: a traced building's view has corners of its own
         // (a laser fan's fringe, a wall the trace bent) that anchor a wrong place or land on
         // no vertex at the true one. A consensus instead: every feature anchors in turn, and
-        // a place where most features land on matching vertices is verified as above.
-        for (const auto& p : consensusPlaces(features, inMap)) verify(p);
-        st.proposed += st.verified;
+        // the places where the most features land on matching vertices are verified as above.
+        const auto places = consensusPlaces(features, inMap);
+        st.proposed += places.size();
+        for (const auto& p : places) verify(p);
     }
     std::sort(H.begin(), H.end(), [](const Hypothesis& a, const Hypothesis& b) {
         return a.point.x < b.point.x || (a.point.x == b.point.x && a.point.y < b.point.y);

@@ -55,6 +55,9 @@ class HypothesisGenerator {
         std::function<std::optional<double>(const TPoint2D& p, const VisibilityPolygon& Vp)>;
     /** At most this many consensus places are verified (each costs an exact V(p)). */
     static constexpr size_t kConsensusPlaces = 64;
+    /** At most this many places are tried in the consensus pass (each costs a lookup per
+     *  feature): a bound on a stranger's map of 20,000 vertices. */
+    static constexpr size_t kConsensusGuesses = 50000;
     /** H, sorted by x then y; hypotheses[0] is the origin of the translations. Throws
      *  mrloc::Error if V has no feature to anchor on. A place whose V(p) is beyond the
      *  tolerance of V's boundary gets `secondChance`, if given (a scan's beams against
@@ -75,8 +78,9 @@ class HypothesisGenerator {
     /** A vertex of P within tolerance of p matching f, if any. */
     std::optional<size_t> vertexNear(const TPoint2D& p, const Feature& f) const;
     /** The consensus pass: each feature of the map (inMap) anchoring in turn at each vertex
-     *  it matches, the places where at least half of them (and 3) land on matching vertices,
-     *  refined by their mean offset, best supported first, one per tolerance. */
+     *  it matches (the rarest features first, at most kConsensusGuesses places tried), the
+     *  places where at least 3 of them (all, if fewer) land on matching vertices, refined by
+     *  their mean offset, best supported first, one per tolerance, at most kConsensusPlaces. */
     std::vector<TPoint2D> consensusPlaces(const std::vector<Feature>& features,
                                           const std::vector<bool>& inMap) const;
 
