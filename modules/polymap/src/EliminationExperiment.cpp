@@ -399,6 +399,10 @@ std::vector<method::WorkItem> polymapWork(const PolymapLocalizer& localizer,
     const double n = double(localizer.generatedMap().polygon.size()),
                  mapFactor = std::max(1.0, n / 148);
     std::vector<method::WorkItem> out;
+    // what sets the map's vertices, in the keys' words
+    const char* vertices = !o.mapFile.empty()       ? "the map's"
+                           : o.generator == "steps" ? "steps x branches_per_step"
+                                                    : "rooms x room_steps";
     const double columns = double(experimentColumns(o, 0).size());  // 0 without elimination
     if (columns > 0) {
         // Tables 1-2: every hypothesis a start, every column; the hypotheses are the map's
@@ -408,8 +412,10 @@ std::vector<method::WorkItem> polymapWork(const PolymapLocalizer& localizer,
                                   : double(localizer.generatedMap().sites.size());
         method::WorkItem w;
         w.what = mrpt::format("the experiment's %.0f localizations", starts * columns);
-        w.keys = "[polymap] elimination (and random_points) x hypotheses, growing with the vertices "
-                 "(steps x branches_per_step)";
+        w.keys = mrpt::format(
+            "[polymap] elimination (and random_points) x hypotheses, growing with the vertices "
+            "(%s)",
+            vertices);
         w.seconds = starts * columns * perStart(n);
         out.push_back(w);
     }
@@ -433,8 +439,8 @@ std::vector<method::WorkItem> polymapWork(const PolymapLocalizer& localizer,
         const double scans = scenario->scenario.duration * o.scanRate;
         method::WorkItem w;
         w.what = mrpt::format("%.0f scans of %d rays", scans, o.scanRays);
-        w.keys = "[polymap] scan_rate x scan_rays, the vertices (steps x branches_per_step), x "
-                 "[scenario] duration";
+        w.keys = mrpt::format(
+            "[polymap] scan_rate x scan_rays, the vertices (%s), x [scenario] duration", vertices);
         w.seconds = scans * (kSecondsPerScan + double(o.scanRays) * kSecondsPerRay) * mapFactor;
         w.bytes = scans * double(o.scanRays) * kBytesPerRay;
         w.simulation = true;
