@@ -2,6 +2,7 @@
 // distance only while the wall's normal is inside the cone, a pillar echoes diffusely,
 // nothing comes back beyond the maximum range, and the noise has the INI's spread.
 #include <gtest/gtest.h>
+#include <mrloc/framesync/FramesyncPayload.h>
 #include <mrloc/framesync/Sonar.h>
 #include <mrpt/core/bits_math.h>
 
@@ -96,4 +97,27 @@ TEST(Sonar, RangeNoiseHasTheGivenSpread) {
     const double mean = sum / n, sd = std::sqrt(sq / n - mean * mean);
     EXPECT_NEAR(mean, 2.0, 0.001);  // 3 standard errors of the mean: 0.0005
     EXPECT_NEAR(sd, 0.01, 0.0006);  // 5 % (the sd's standard error: 1.1 %)
+}
+
+// The floor slices a batch job's trials share (issue 56): one set per world and set of mount
+// heights, computed anew when either changes; each slice the one sliceWorld computes.
+TEST(Sonar, SharedSlicesAreComputedOncePerWorldAndMountHeights) {
+    const auto w = std::make_shared<const sim::World>(world(6, 3));
+    auto r = rig();
+    r.mounts = {{"front", mrpt::poses::CPose3D(0.2, 0, 0.3, 0, 0, 0)},
+                {"left", mrpt::poses::CPose3D(0, 0.2, 0.3, M_PI / 2, 0, 0)}};
+    const auto a = sharedSlices(w, r);
+    ASSERT_EQ(a->size(), 1u);  // one height
+    EXPECT_EQ(sharedSlices(w, r), a);
+    r.mounts[1].pose.z(0.5);
+    const auto b = sharedSlices(w, r);
+    EXPECT_NE(b, a);
+    EXPECT_EQ(b->size(), 2u);
+    const auto other = std::make_shared<const sim::World>(world(6, 3));
+    EXPECT_NE(sharedSlices(other, r), b);  // another world, even an equal one
+    const auto fresh = sliceWorld(*w, r);
+    for (const double z : {0.3, 0.5}) {
+        const CPose2D sensor(2, 1, DEG2RAD(90.0));
+        EXPECT_EQ(nearestEcho(b->at(z), sensor, r), nearestEcho(fresh->at(z), sensor, r));
+    }
 }

@@ -179,3 +179,21 @@ TEST(Robot, EffectiveIniGivesBackTheStartAndWaypointsToTheDigit) {
     EXPECT_EQ(back.waypoints[0].x, 0.1000000001);
     EXPECT_EQ(back.waypoints[0].y, 2.718281828459045);
 }
+
+// A batch job's trials share one world (issue 56): sharedWorld builds it once while the
+// [world] keys stay the same (whatever the seed), and anew when one changes; the shared world
+// is the one World(options) builds (the same voxels).
+TEST(World, SharedWorldIsBuiltOnceWhileItsKeysStayTheSame) {
+    auto cfg = config();
+    const auto a = sim::sharedWorld(cfg.world);
+    EXPECT_EQ(sim::sharedWorld(cfg.world), a);
+    const sim::World fresh(cfg.world);
+    EXPECT_EQ(a->octree().size(), fresh.octree().size());
+    EXPECT_EQ(a->octree().getNumLeafNodes(), fresh.octree().getNumLeafNodes());
+    cfg.world.pillars.push_back({"p", 1.0, 3.0, 0.2, 1.0});
+    const auto b = sim::sharedWorld(cfg.world);
+    EXPECT_NE(b, a);
+    EXPECT_FALSE(b->lineOfSight({0.5, 3.0, 0.5}, {1.5, 3.0, 0.5}));  // the pillar is there
+    EXPECT_TRUE(a->lineOfSight({0.5, 3.0, 0.5}, {1.5, 3.0, 0.5}));   // a, still held, is not
+    EXPECT_EQ(sim::sharedWorld(cfg.world), b);
+}

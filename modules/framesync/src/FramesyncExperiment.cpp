@@ -83,8 +83,9 @@ FramesyncExperimentFile runExperiment(const sim::ScenarioConfig& scenario,
 
 common::Headline framesyncTrial(const method::TrialOf<FramesyncLocalizer>& in) {
     const auto& config = in.localizer.config();
-    const auto world = std::make_shared<const sim::World>(in.scenario.world);
-    const auto run = simulateRun(in.scenario, config, world, sliceWorld(*world, config.rig),
+    // a batch job's trials share the world and its slices, as the experiment's runs do
+    const auto world = sim::sharedWorld(in.scenario.world);
+    const auto run = simulateRun(in.scenario, config, world, sharedSlices(world, config.rig),
                                  in.scenario.scenario.seed, config.rig.sigma, 1.0);
     common::Headline h;
     h.reached = !config.team.sharing || run.redefinitions > 0;

@@ -4,7 +4,9 @@
 #include <mrpt/core/format.h>
 #include <mrpt/obs/CObservationComment.h>
 
+#include <algorithm>
 #include <cmath>
+#include <mutex>
 
 namespace mrloc::framesync {
 
@@ -17,6 +19,25 @@ std::shared_ptr<const FloorSlices> sliceWorld(const sim::World& world, const Son
     for (const auto& m : rig.mounts)
         if (!slices->count(m.pose.z())) slices->emplace(m.pose.z(), FloorSlice(world, m.pose.z()));
     return slices;
+}
+
+std::shared_ptr<const FloorSlices> sharedSlices(const std::shared_ptr<const sim::World>& world,
+                                                const SonarRigOptions& rig) {
+    std::vector<double> heights;
+    for (const auto& m : rig.mounts) heights.push_back(m.pose.z());
+    std::sort(heights.begin(), heights.end());
+    heights.erase(std::unique(heights.begin(), heights.end()), heights.end());
+    struct Last {  // the world is held, so its address names no other world
+        std::shared_ptr<const sim::World> world;
+        std::vector<double> heights;
+        std::shared_ptr<const FloorSlices> slices;
+    };
+    static std::mutex mutex;
+    static Last last;
+    const std::lock_guard<std::mutex> lock(mutex);
+    if (last.world != world || last.heights != heights)
+        last = {world, heights, sliceWorld(*world, rig)};
+    return last.slices;
 }
 
 std::string redefinitionText(const RedefinitionEvent& e) {

@@ -1,9 +1,11 @@
 #include <mrloc/common/KeyTable.h>
 #include <mrloc/sim/World.h>
+#include <mrpt/config/CConfigFileMemory.h>
 #include <mrpt/core/format.h>
 
 #include <algorithm>
 #include <cmath>
+#include <mutex>
 
 namespace mrloc::sim {
 
@@ -160,6 +162,18 @@ void World::fillBox(const TPoint3D& min, const TPoint3D& max) {
                     octomap::point3d(float(std::min(x, max.x)), float(std::min(y, max.y)),
                                      float(std::min(z, max.z))),
                     true, /*lazy_eval=*/true);
+}
+
+std::shared_ptr<const World> sharedWorld(const WorldOptions& options) {
+    mrpt::config::CConfigFileMemory saved;  // every key, as effective.ini has them
+    options.saveToConfigFile(saved, "world");
+    std::string key;
+    saved.getContent(key);
+    static std::mutex mutex;
+    static std::pair<std::string, std::shared_ptr<const World>> last;
+    const std::lock_guard<std::mutex> lock(mutex);
+    if (!last.second || last.first != key) last = {key, std::make_shared<const World>(options)};
+    return last.second;
 }
 
 bool World::lineOfSight(const TPoint3D& a, const TPoint3D& b) const {

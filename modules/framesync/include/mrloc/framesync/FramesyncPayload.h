@@ -20,6 +20,10 @@ namespace mrloc::framesync {
 /** The world cut at every mount's height. */
 using FloorSlices = std::map<double, FloorSlice>;
 std::shared_ptr<const FloorSlices> sliceWorld(const sim::World& world, const SonarRigOptions& rig);
+/** sliceWorld, computed once while a process asks for the same world and the same mount
+ *  heights (a batch job's trials; sim::sharedWorld gives the same world); thread-safe. */
+std::shared_ptr<const FloorSlices> sharedSlices(const std::shared_ptr<const sim::World>& world,
+                                                const SonarRigOptions& rig);
 
 /** The comment a decision layer writes for a redefinition. */
 std::string redefinitionText(const RedefinitionEvent& e);

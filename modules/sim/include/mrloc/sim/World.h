@@ -65,4 +65,9 @@ class World {
     std::unique_ptr<octomap::OcTree> tree_;
 };
 
+/** The world of `options`, built once while a process asks for the same options: a batch
+ *  job's trials share it as the in-process experiment does. A world depends on the [world]
+ *  keys alone, never on the seed. The last world asked for is kept; thread-safe. */
+std::shared_ptr<const World> sharedWorld(const WorldOptions& options);
+
 }  // namespace mrloc::sim
