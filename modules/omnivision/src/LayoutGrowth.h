@@ -145,15 +145,22 @@ class ImageTable {
  private:
     Error tooMuchWork() const;
 
-    // findImage's index: per robot, the first image at or after each of kBuckets equal
-    // slices of the circle (its hot loop's binary search, 47 % of N = 100, became a lookup)
-    static constexpr size_t kBuckets = 1024;
-    static constexpr double kBucketWidth = 2 * M_PI / double(kBuckets);
-    static double bucketStart(size_t i) { return -M_PI + double(i) * kBucketWidth; }
+    // findImage's index, per robot: the bearings unrolled over three turns (b - 2 pi, b,
+    // b + 2 pi), so that a window about any bearing is one contiguous run with no angle
+    // wrapped in the scan, and the first unrolled image at or after each of kCells equal
+    // slices of (-2 pi, 2 pi], so that the run's start is a lookup and a step or two.
+    // (A binary search here was 47 % of N = 100; wrapping each image's angle, later, 53 %.)
+    static constexpr size_t kCells = 2048;
+    static constexpr double kCellWidth = 4 * M_PI / double(kCells);
+    static double cellStart(size_t i) { return -2 * M_PI + double(i) * kCellWidth; }
+    static size_t cellOf(double a) {
+        return std::min(kCells - 1, size_t(std::max(0.0, (a + 2 * M_PI) / kCellWidth)));
+    }
 
     const Snapshot& snapshot_;
     std::vector<std::vector<PairAngle>> pairs_;
-    std::vector<std::vector<uint32_t>> buckets_;
+    std::vector<std::vector<double>> unrolled_;
+    std::vector<std::vector<uint32_t>> cells_;
     mutable size_t visits_ = 0;  // the work meter: a search's cost, bounded by maxVisits_
     size_t maxVisits_;
 };

@@ -18,13 +18,20 @@ Error ImageTable::tooMuchWork() const {
 }
 
 ImageTable::ImageTable(const Snapshot& s, size_t maxVisits)
-    : snapshot_(s), pairs_(s.robots()), buckets_(s.robots()), maxVisits_(maxVisits) {
+    : snapshot_(s),
+      pairs_(s.robots()),
+      unrolled_(s.robots()),
+      cells_(s.robots()),
+      maxVisits_(maxVisits) {
     for (int r = 0; r < robots(); ++r) {
         const auto& v = view(r);
-        auto& first = buckets_[size_t(r)];
-        first.resize(kBuckets);
-        for (size_t i = 0, img = 0; i < kBuckets; ++i) {
-            while (img < v.size() && v.bearings[img] < bucketStart(i)) ++img;
+        auto& unrolled = unrolled_[size_t(r)];
+        for (const double turn : {-2 * M_PI, 0.0, 2 * M_PI})
+            for (const double b : v.bearings) unrolled.push_back(b + turn);
+        auto& first = cells_[size_t(r)];
+        first.resize(kCells);
+        for (size_t i = 0, img = 0; i < kCells; ++i) {
+            while (img < unrolled.size() && unrolled[img] < cellStart(i)) ++img;
             first[i] = uint32_t(img);
         }
         for (int e = 0; e < int(v.size()); ++e)
@@ -37,28 +44,25 @@ ImageTable::ImageTable(const Snapshot& s, size_t maxVisits)
 
 /** The unlabeled image of robot r nearest the bearing b (robot frame), within tol. */
 int ImageTable::findImage(const Labels& labels, int r, double b, double tol) const {
-    const auto& v = snapshot_.views[size_t(r)].bearings;
-    const size_t n = v.size();
+    const auto& unrolled = unrolled_[size_t(r)];
+    const size_t n = unrolled.size() / 3;
     if (n == 0 || !std::isfinite(b)) return -1;  // wrapToPi loops on infinity
-    b = wrapToPi(b);
-    // the first bearing >= b: from its bucket's first image, a step or two on
-    size_t start = buckets_[size_t(r)][std::min(kBuckets - 1, size_t((b + M_PI) / kBucketWidth))];
-    while (start < n && v[start] < b) ++start;
-    start %= n;
+    if (++visits_ > maxVisits_) throw tooMuchWork();  // a lookup counts, as do its images
+    b = wrapToPi(b);                                  // the one wrap: the query's
+    tol = std::min(tol, M_PI);                        // each image once, at most
+    const double lo = b - tol, hi = b + tol;          // within (-2 pi, 2 pi]
+    size_t i = cells_[size_t(r)][cellOf(lo)];
+    while (i < unrolled.size() && unrolled[i] < lo) ++i;
     int best = -1;
     double bestD = tol;
-    const auto consider = [&](size_t i) {
+    for (; i < unrolled.size() && unrolled[i] <= hi; ++i) {
         // the work meter counts the images looked at too: with loose tolerances this scan,
         // not the angle pairs, is where the time goes (30 deg: 27 s before the pairs' bound)
         if (++visits_ > maxVisits_) throw tooMuchWork();
-        const double d = std::abs(wrapToPi(v[i] - b));
-        if (d > tol) return false;
-        if ((labels.empty() || labels[size_t(r)][i] < 0) && d <= bestD) best = int(i), bestD = d;
-        return true;
-    };
-    for (size_t k = 0; k < n && consider((start + k) % n); ++k) {
-    }
-    for (size_t k = 1; k <= n && consider((start + n - k) % n); ++k) {
+        const size_t img = i % n;
+        const double d = std::abs(unrolled[i] - b);
+        if ((labels.empty() || labels[size_t(r)][img] < 0) && d <= bestD)
+            best = int(img), bestD = d;
     }
     return best;
 }

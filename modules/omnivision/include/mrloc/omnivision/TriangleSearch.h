@@ -39,12 +39,12 @@ struct SearchOptions {
     double sumTolerance = 0.5 * M_PI / 180;      ///< |sum - 180 deg| accepted (rad)
     double bearingTolerance = 0.3 * M_PI / 180;  ///< a predicted bearing matches (rad)
     size_t maxSeeds = 200;  ///< seed triangles identify() grows before it gives up
-    /** Angle pairs and images identify() may examine while growing its seeds, in all, per
-     *  N^3 robots: tolerances too loose for the noise make every pair a candidate, and the
-     *  search then ran for hours (doc/errors.md, "Work"). Beyond it identify() throws
-     *  mrloc::Error naming the keys. 15000 N^3 is 4.05e8 for 30 robots, which need 0.3 to
-     *  13 million at 0.02 deg, and 3.2e8 for 200 chance seeds at 0.3 deg (nothing kept);
-     *  75 robots at 0.05 deg need 4.6e8 of 6.3e9. */
+    /** Angle pairs, image lookups and the images they look at that identify() may examine
+     *  while growing its seeds, in all, per N^3 robots: tolerances too loose for the noise
+     *  make every pair a candidate, and the search then ran for hours (doc/errors.md,
+     *  "Work"). Beyond it identify() throws mrloc::Error naming the keys. 15000 N^3 is
+     *  4.05e8 for 30 robots, which need 0.03 to 0.08 million at 0.02 deg (all in sight);
+     *  75 robots at 0.05 deg need 7 to 204 million of 6.3e9 (measured December 2026). */
     double maxPairVisitsPerRobotCubed = 15000;
     size_t maxPairVisits(size_t robots) const {
         const double n = double(robots);

@@ -40,7 +40,8 @@ struct Hypothesis {
 
 struct HypothesisStats {
     size_t features = 0;  ///< features of V used (corners, else window ends)
-    size_t proposed = 0;  ///< translations proposed by the anchor feature
+    size_t proposed = 0;  ///< translations proposed by the anchor feature (and places proposed by
+                          ///< the consensus pass)
     size_t verified = 0;  ///< exact visibility polygons computed
 };
 
