@@ -1,5 +1,6 @@
-// The seed-and-grow search's image lookup (modules/omnivision/src/LayoutGrowth.h, private):
-// the nearest unlabelled image within a tolerance, across the seam at +-180 degrees.
+// Pieces of the seed-and-grow search (modules/omnivision/src/LayoutGrowth.h, private): the
+// image lookup (the nearest unlabelled image within a tolerance, across the seam at +-180
+// degrees) and the final matching of images near the lines to several robots.
 #include <gtest/gtest.h>
 #include <mrloc/omnivision/Snapshot.h>
 
@@ -52,4 +53,68 @@ TEST(ImageTable, AnEmptyViewAndANonFiniteBearingFindNothing) {
     EXPECT_EQ(table.findImage({}, 0, INFINITY, 1), -1);
     EXPECT_EQ(table.findImage({}, 0, NAN, 1), -1);
     EXPECT_EQ(table.findImage({}, 0, 89.9 * kOneDegree, 0.2 * kOneDegree), 1);
+}
+
+namespace {
+
+/** Robot 0 at the origin, heading 0, with images at `images` (deg); robots 1 and 2 ten
+ *  metres away at bearings `robots` (deg), each seeing robot 0 (labelled). */
+struct NearLine {
+    Snapshot s;
+    seedgrow::Layout layout;
+    NearLine(std::vector<double> images, std::array<double, 2> robots) {
+        s = oneView(std::move(images));
+        for (const double b : robots) s.views.push_back(makeView({b * kOneDegree + M_PI}, "w"));
+        layout.placed.assign(3, 1);
+        layout.order = {0, 1, 2};
+        layout.heading.assign(3, 0);
+        layout.p = {seedgrow::Vec2::Zero(), 10 * seedgrow::unit(robots[0] * kOneDegree),
+                    10 * seedgrow::unit(robots[1] * kOneDegree)};
+        layout.labels = {std::vector<int>(s.views[0].size(), -1), {0}, {0}};
+        layout.scale = 1;
+    }
+};
+
+SearchOptions sigma005() {  // the tolerances for a 0.05 deg bearing sigma
+    SearchOptions o;
+    o.sumTolerance = 6 * 0.05 * kOneDegree;
+    o.bearingTolerance = 4 * 0.05 * kOneDegree;
+    return o;
+}
+
+}  // namespace
+
+TEST(NearLines, ImagesOfRobotsNearlyInLineAreMatchedWhenTheMatchIsBeyondDoubt) {
+    const auto o = sigma005();  // each prediction's tolerance: 0.21 deg at 10 m
+    {
+        // 0.15 deg apart, each image 0.01 deg from its robot: the other way round costs
+        // 14 squared sigmas more
+        NearLine n({10.01, 10.14, 100}, {10.0, 10.15});
+        const seedgrow::ImageTable table(n.s);
+        seedgrow::LayoutGrower(table, o).assignNearLines(n.layout);
+        EXPECT_EQ(n.layout.labels[0], (std::vector<int>{1, 2, -1}));
+    }
+    {
+        // 0.08 deg apart, the images 0.03 deg in from each: 1.2 squared sigmas between the
+        // two matchings, under the 9 required: left unlabelled
+        NearLine n({10.03, 10.05}, {10.0, 10.08});
+        const seedgrow::ImageTable table(n.s);
+        seedgrow::LayoutGrower(table, o).assignNearLines(n.layout);
+        EXPECT_EQ(n.layout.labels[0], (std::vector<int>{-1, -1}));
+    }
+    {
+        // one image for the two robots (one hides the other): not matched here
+        NearLine n({10.07}, {10.0, 10.15});
+        const seedgrow::ImageTable table(n.s);
+        seedgrow::LayoutGrower(table, o).assignNearLines(n.layout);
+        EXPECT_EQ(n.layout.labels[0], (std::vector<int>{-1}));
+    }
+    {
+        // an image already labelled stays, and its robot is not matched again
+        NearLine n({10.01, 10.14}, {10.0, 10.15});
+        n.layout.labels[0][1] = 1;
+        const seedgrow::ImageTable table(n.s);
+        seedgrow::LayoutGrower(table, o).assignNearLines(n.layout);
+        EXPECT_EQ(n.layout.labels[0], (std::vector<int>{-1, 1}));
+    }
 }

@@ -156,6 +156,23 @@ TEST(TriangleSearch, SeventyFiveAtFiveHundredthsOfADegreeKeepNoWrongLabel) {
     }
 }
 
+TEST(TriangleSearch, ImagesOfRobotsNearlyInLineAreMatchedOnceTheLayoutIsFinal) {
+    // 30 robots at 0.1 deg, the bench's scenes 1-5: images that two placed robots' lines
+    // share within the tolerance were left unlabelled (86.7-92.2 % labelled). The final
+    // layout's predictions are far better than a tolerance, so each such group is matched
+    // as a whole where the other matchings cost 9 squared sigmas more (assignNearLines).
+    // Measured since: 92.6-95.6 %, none wrong; bound 92 %, under the lowest scene by 5 of
+    // its 870 images. Without the matching: scenes 1, 2, 4 and 5 fail. (Over the bench's 10
+    // scenes a configuration, wrong labels appear at a margin of 1 squared sigma, none at 4.)
+    for (unsigned seed = 1; seed <= 5; ++seed) {
+        const auto sw = denseSwarm(30, seed, 0.1, false);
+        const auto id = identify(sw.snapshot, tolerancesFor(0.1));
+        const auto sc = score(id.labels, sw.truth);
+        EXPECT_EQ(sc.wrong, 0u) << "seed " << seed;
+        EXPECT_GE(double(sc.right), 0.92 * double(sc.images)) << "seed " << seed;
+    }
+}
+
 TEST(TriangleSearch, InRangeLimitedSwarmsARobotInLineTakesBackItsImages) {
     // Cameras that see 12 m through 0.15 m bands (the bench's occluded rows). Scene 6 at
     // N = 75, 0.02 deg: robot 7 stood where the sights 26-67 and 43-63 cross, those four

@@ -192,6 +192,9 @@ class LayoutGrower {
      *  every pair of placed robots with free images: a robot left unplaced there is seen
      *  by its neighbours only, rarely by the kAnchorGroups pairs with most free images. */
     void growFreed(Layout& layout) const;
+    /** The final layout's images left unlabelled near the lines to several robots, matched
+     *  as groups where the match is beyond doubt (LayoutPolish.cpp). */
+    void assignNearLines(Layout& layout) const;
 
  private:
     double tolAt(const Layout& layout, double dist) const;
@@ -259,6 +262,10 @@ class LayoutGrower {
     static void keepMutual(Layout& layout);
 
     static constexpr double kMinRayAngle = 0.02;  ///< sin of ~1.1 degrees
+    /** assignNearLines: the largest group of images matched as a whole (5! assignments),
+     *  and how much worse, in squared bearing sigmas, every other assignment must be. */
+    static constexpr size_t kMaxNearLine = 5;
+    static constexpr double kAssignMargin = 9;
     static constexpr size_t kSmallLayout = 6;     ///< below: every placed robot must agree
     static constexpr size_t kAnchors = 4;         ///< the first robots, whose pairs all give rays
     static constexpr size_t kMissSlack = 4;       ///< misses allowed beyond twice the hits

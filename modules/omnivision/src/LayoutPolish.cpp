@@ -164,4 +164,64 @@ void LayoutGrower::relabel(Layout& layout) const {
     }
 }
 
+/** Images relabel() left unlabelled because two placed robots lie near their line (or one
+ *  robot near two images): once the layout is final its predicted bearings are far better
+ *  than a tolerance, and the images of a few robots nearly in line can be matched as a
+ *  whole. Each group of unlabelled images and free robots linked by matches within the
+ *  tolerance, with as many images as robots (no one hidden), takes its best one-to-one
+ *  assignment when every other assignment is kAssignMargin worse in squared bearing sigmas
+ *  (the tolerance is 4 sigma), or when it is the only one. */
+void LayoutGrower::assignNearLines(Layout& layout) const {
+    for (int u : layout.order) {
+        auto& lab = layout.labels[size_t(u)];
+        const auto& v = table_.view(u).bearings;
+        std::vector<char> taken(size_t(n_), 0);
+        for (int w : lab)
+            if (w >= 0) taken[size_t(w)] = 1;
+        std::map<std::pair<int, int>, double> cost;  // (image, robot) -> squared sigmas
+        for (int w : layout.order) {
+            if (w == u || taken[size_t(w)]) continue;
+            const double b =
+                direction(layout.p[size_t(u)], layout.p[size_t(w)]) - layout.heading[size_t(u)];
+            const double t = tolAt(layout, (layout.p[size_t(w)] - layout.p[size_t(u)]).norm());
+            for (size_t i = 0; i < v.size(); ++i)
+                if (const double e = std::abs(wrapToPi(v[i] - b)); lab[i] < 0 && e <= t)
+                    cost[{int(i), w}] = std::pow(4 * e / t, 2);
+        }
+        // groups: images and robots joined by a match (image i as i, robot w as -1 - w)
+        std::map<int, int> parent;
+        const std::function<int(int)> root = [&](int x) {
+            auto it = parent.emplace(x, x).first;
+            return it->second == x ? x : it->second = root(it->second);
+        };
+        for (const auto& [m, c] : cost) parent[root(m.first)] = root(-1 - m.second);
+        std::map<int, std::pair<std::vector<int>, std::vector<int>>> groups;
+        for (const auto& [x, p] : parent) {
+            auto& g = groups[root(x)];
+            (x >= 0 ? g.first : g.second).push_back(x >= 0 ? x : -1 - x);
+        }
+        for (auto& [r, g] : groups) {
+            auto& [images, robots] = g;
+            if (images.size() != robots.size() || images.size() < 2 || images.size() > kMaxNearLine)
+                continue;
+            std::sort(robots.begin(), robots.end());
+            double best = INFINITY, second = INFINITY;
+            std::vector<int> bestRobots;
+            do {
+                double total = 0;
+                for (size_t k = 0; k < images.size() && std::isfinite(total); ++k) {
+                    const auto it = cost.find({images[k], robots[k]});
+                    total = it == cost.end() ? INFINITY : total + it->second;
+                }
+                if (total < best)
+                    second = best, best = total, bestRobots = robots;
+                else if (total < second)
+                    second = total;
+            } while (std::next_permutation(robots.begin(), robots.end()));
+            if (!std::isfinite(best) || second - best < kAssignMargin) continue;
+            for (size_t k = 0; k < images.size(); ++k) lab[size_t(images[k])] = bestRobots[k];
+        }
+    }
+}
+
 }  // namespace mrloc::omnivision::seedgrow

@@ -95,6 +95,7 @@ Identification identify(const Snapshot& s, const SearchOptions& o) {
     // one unplaced robot, each labelled as the placed robot it hides; grown once more, it
     // is placed and they are not wrong (once per search: per seed it doubled the work).
     if (best.order.size() > 3) grower.growFreed(best);
+    if (best.order.size() > 3) grower.assignNearLines(best);
     // A seed that grew no further is no evidence: three robots' angles summing to 180
     // degrees happen by chance. Nor is a small layout that no other seed grew again and
     // that does not place every robot (kAloneQuarter).
