@@ -212,6 +212,35 @@ TEST(TriangleSearch, WhereTheHullIsWiderThanTheRangeAPairOfHullRobotsSeedsTheLay
 }
 TEST(TriangleSearch, AHundredRobotsWithACameraRangeArePairSeeded) { expectPairSeedsLabel(100, 1); }
 
+TEST(TriangleSearch, AnUnresolvedRobotSaysWhy) {
+    // An equilateral triangle 0-1-2 (every interior angle 60 degrees) and robot 3
+    const auto view = [](std::vector<double> degrees) {
+        for (double& d : degrees) d *= kDeg;
+        return makeView(degrees, "test");
+    };
+    Snapshot s;
+    s.views = {view({0, 60}), view({120, 180}), view({-120, -60}), view({45})};
+    const Labels labels{{1, 2}, {2, 0}, {0, 1}, {-1}};
+    auto id = consistentTriangles(s, labels, 0.5 * kDeg);
+    EXPECT_EQ(id.unresolved, std::vector<int>{3});
+    EXPECT_EQ(whyUnresolved(s, id, 3), UnresolvedReason::SeesTooFew);
+    // two images, neither identified
+    s.views[3] = view({45, 90});
+    id = consistentTriangles(s, {{1, 2}, {2, 0}, {0, 1}, {-1, -1}}, 0.5 * kDeg);
+    EXPECT_EQ(whyUnresolved(s, id, 3), UnresolvedReason::NotPlaced);
+    // robot 3 labels 0 and 1, but only 0 labels it back: one robot both ways
+    s.views[0] = view({0, 30, 60});
+    id = consistentTriangles(s, {{1, 3, 2}, {2, 0}, {0, 1}, {0, 1}}, 0.5 * kDeg);
+    EXPECT_EQ(whyUnresolved(s, id, 3), UnresolvedReason::NotPlaced);
+    // robot 2's angle 5 degrees off: 0, 1 and 2 are identified both ways, in no triangle
+    s.views = {view({0, 60}), view({120, 180}), view({-120, -55})};
+    id = consistentTriangles(s, {{1, 2}, {2, 0}, {0, 1}}, 0.5 * kDeg);
+    EXPECT_EQ(id.unresolved, (std::vector<int>{0, 1, 2}));
+    for (int r = 0; r < 3; ++r) EXPECT_EQ(whyUnresolved(s, id, r), UnresolvedReason::NoTriangle);
+    EXPECT_STREQ(describe(UnresolvedReason::NoTriangle),
+                 "identified, but in no triangle summing to 180 degrees within the tolerance");
+}
+
 TEST(TriangleSearch, AChanceLayoutOfAFewRobotsIsNotKept) {
     // 30 robots at 0.3 deg (three times the worst noise): a tolerance window then
     // holds a chance bearing 1 time in 5, no true layout grows, and the search kept the

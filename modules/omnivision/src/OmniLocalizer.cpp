@@ -17,6 +17,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <map>
 #include <set>
 
 namespace mrloc::omnivision {
@@ -356,8 +357,13 @@ nlohmann::json OmniLocalizer::methodMetrics() const {
         const bool localized = options_.localizedSearch && r.ids.size() == 2 && s == 0;
         sj["search"] = localized ? "localized" : "full";
         std::vector<std::string> unresolved;
-        for (int k : r.ids[s].unresolved) unresolved.push_back(r.robots[size_t(k)]);
+        std::map<std::string, size_t> why;  // keyOf(reason) -> robots
+        for (int k : r.ids[s].unresolved) {
+            unresolved.push_back(r.robots[size_t(k)]);
+            ++why[keyOf(whyUnresolved(r.snapshots[s], r.ids[s], k))];
+        }
         sj["unresolved"] = unresolved;
+        sj["unresolved_why"] = why;
         j["snapshots"][r.ids.size() == 2 ? names[s] : "snapshot"] = sj;
     }
     if (r.refined) {

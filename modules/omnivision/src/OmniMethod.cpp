@@ -11,6 +11,7 @@
 #include <algorithm>
 #include <cmath>
 #include <filesystem>
+#include <map>
 #include <optional>
 
 namespace mrloc::omnivision {
@@ -336,15 +337,26 @@ report::Html omnivisionSection(const report::RunView& run) {
 common::Headline omnivisionHeadline(const method::HeadlineOf<OmniLocalizer>& in) {
     common::Headline h;
     size_t unresolved = 0;
+    std::map<UnresolvedReason, size_t> why;  // over the snapshots
     const auto method = in.metrics.value("omnivision", nlohmann::json::object());
     if (method.contains("snapshots") && method["snapshots"].is_object())
         for (const auto& [name, snapshot] : method["snapshots"].items())
             if (snapshot.is_object() && snapshot.value("search", "") != "localized" &&
-                snapshot.contains("unresolved") && snapshot["unresolved"].is_array())
+                snapshot.contains("unresolved") && snapshot["unresolved"].is_array()) {
                 unresolved += snapshot["unresolved"].size();  // localized: one triangle asked
+                const auto counts = snapshot.value("unresolved_why", nlohmann::json::object());
+                for (const auto reason : kUnresolvedReasons)
+                    if (const auto n = counts.find(keyOf(reason));
+                        n != counts.end() && n->is_number_unsigned())
+                        why[reason] += n->get<size_t>();
+            }
     h.reached = unresolved == 0;
     h.status = h.reached ? "every robot identified"
                          : mrpt::format("%zu robot views unresolved", unresolved);
+    std::string reasons;
+    for (const auto& [reason, count] : why)
+        reasons += (reasons.empty() ? " (" : "; ") + std::to_string(count) + " " + describe(reason);
+    if (!reasons.empty()) h.status += reasons + ")";
     const auto percent = [&](const char* key) -> std::optional<double> {
         const auto v = common::numberAt(method, std::string(key) + "/median");
         return v ? std::optional<double>(100 * *v) : std::nullopt;

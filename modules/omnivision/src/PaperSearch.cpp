@@ -149,6 +149,40 @@ Identification consistentTriangles(const Snapshot& s, Labels labels, double tol)
     return id;
 }
 
+UnresolvedReason whyUnresolved(const Snapshot& s, const Identification& id, int robot) {
+    const auto r = size_t(robot);
+    if (s.views[r].size() < 2) return UnresolvedReason::SeesTooFew;
+    size_t mutual = 0;
+    for (const int w : id.labels[r])
+        if (w >= 0 && std::count(id.labels[size_t(w)].begin(), id.labels[size_t(w)].end(), robot))
+            ++mutual;
+    return mutual < 2 ? UnresolvedReason::NotPlaced : UnresolvedReason::NoTriangle;
+}
+
+const char* describe(UnresolvedReason reason) {
+    switch (reason) {
+        case UnresolvedReason::SeesTooFew:
+            return "whose camera shows fewer than 2 robots";
+        case UnresolvedReason::NotPlaced:
+            return "not placed: identified both ways with fewer than 2 robots";
+        case UnresolvedReason::NoTriangle:
+            return "identified, but in no triangle summing to 180 degrees within the tolerance";
+    }
+    return "";
+}
+
+const char* keyOf(UnresolvedReason reason) {
+    switch (reason) {
+        case UnresolvedReason::SeesTooFew:
+            return "camera_shows_fewer_than_2";
+        case UnresolvedReason::NotPlaced:
+            return "not_placed";
+        case UnresolvedReason::NoTriangle:
+            return "in_no_triangle";
+    }
+    return "";
+}
+
 Identification identifyBruteForce(const Snapshot& s, const SearchOptions& o) {
     const auto candidates = bruteForceTriangles(s, o.sumTolerance);
     auto id = consistentTriangles(s, labelsByVotes(s, candidates), o.sumTolerance);

@@ -72,6 +72,21 @@ Labels labelsByVotes(const Snapshot& s, const std::vector<Triangle>& candidates)
 /** The triangles of mutually identified robots whose angles sum to 180 within tolerance. */
 Identification consistentTriangles(const Snapshot& s, Labels labels, double sumTolerance);
 
+/** Why a robot is in no consistent triangle (Identification::unresolved). */
+enum class UnresolvedReason {
+    SeesTooFew,  ///< its camera shows fewer than 2 robots
+    NotPlaced,   ///< fewer than 2 robots identified both ways with it (the search left it)
+    NoTriangle,  ///< identified with 2 or more, but no two of them form a triangle with
+                 ///< it: they do not identify each other, or the angles miss 180 degrees
+};
+UnresolvedReason whyUnresolved(const Snapshot& s, const Identification& id, int robot);
+/** A few words for each reason, as a headline says it after a count of robots. */
+const char* describe(UnresolvedReason reason);
+/** Its name in metrics.json (snapshots.<t>.unresolved_why). */
+const char* keyOf(UnresolvedReason reason);
+constexpr UnresolvedReason kUnresolvedReasons[] = {
+    UnresolvedReason::SeesTooFew, UnresolvedReason::NotPlaced, UnresolvedReason::NoTriangle};
+
 /** The paper's search and identification: the test oracle. */
 Identification identifyBruteForce(const Snapshot& s, const SearchOptions& o);
 
