@@ -237,7 +237,7 @@ TEST(TriangleSearch, AnUnresolvedRobotSaysWhy) {
     id = consistentTriangles(s, {{1, 2}, {2, 0}, {0, 1}}, 0.5 * kDeg);
     EXPECT_EQ(id.unresolved, (std::vector<int>{0, 1, 2}));
     for (int r = 0; r < 3; ++r) EXPECT_EQ(whyUnresolved(s, id, r), UnresolvedReason::NoTriangle);
-    EXPECT_STREQ(describe(UnresolvedReason::NoTriangle),
+    EXPECT_STREQ(textOf(UnresolvedReason::NoTriangle).words,
                  "identified, but in no triangle summing to 180 degrees within the tolerance");
 }
 

@@ -82,7 +82,7 @@ std::vector<Candidate> LayoutGrower::candidates(const Layout& layout, int s1, in
                                                 Round& round) const {
     std::vector<Candidate> out, points;
     std::vector<std::pair<int, int>> rays;
-    const double sigma2 = std::pow(o_.bearingTolerance / 4, 2);  // the tolerance is 4 sigma
+    const double sigma2 = std::pow(o_.bearingTolerance / kSigmasPerTolerance, 2);
     size_t maxRays = 0;
     const auto& lab = layout.labels;
     std::vector<std::pair<int, Vec2>> rays2;  // s2's unlabeled images and their rays

@@ -253,6 +253,12 @@ class LayoutGrower {
      *  covers, at most 1/2. */
     static double chancePerCheck(const ImageTable& table, const SearchOptions& o);
     void polish(Layout& layout, int sweeps) const;
+    /** An image of camera u within the tolerance of a placed robot's predicted bearing. */
+    struct Match {
+        double err;  ///< the miss over the tolerance, 0..1
+        int image, robot;
+    };
+    std::vector<Match> matchesAt(const Layout& layout, int u) const;
     void relabel(Layout& layout) const;
     /** The placed robot to take out first, if any: the most one-sided in what it sees
      *  (kMinSightShare), else the one that misses most (kMaxMissShare), else the worst
@@ -262,6 +268,8 @@ class LayoutGrower {
     static void keepMutual(Layout& layout);
 
     static constexpr double kMinRayAngle = 0.02;  ///< sin of ~1.1 degrees
+    /** The bearing tolerance is this many bearing sigmas ([omnivision] derives it so). */
+    static constexpr double kSigmasPerTolerance = 4;
     /** assignNearLines: the largest group of images matched as a whole (5! assignments),
      *  and how much worse, in squared bearing sigmas, every other assignment must be. */
     static constexpr size_t kMaxNearLine = 5;

@@ -1,5 +1,6 @@
 // Seed and grow: re-fitting the layout and re-assigning images from it.
 #include <algorithm>
+#include <boost/pending/disjoint_sets.hpp>
 #include <map>
 #include <set>
 #include <tuple>
@@ -118,23 +119,24 @@ void LayoutGrower::unplace(Layout& layout, int r) {
 /** Re-assigns every placed camera's labels from the polished layout: each image goes to
  *  the placed robot whose predicted bearing it matches best, one image per robot. This
  *  undoes a swap made early, when two robots were nearly in line from a camera. */
+std::vector<LayoutGrower::Match> LayoutGrower::matchesAt(const Layout& layout, int u) const {
+    std::vector<Match> ms;
+    const auto& v = table_.view(u).bearings;
+    for (int w : layout.order) {
+        if (w == u) continue;
+        const double b =
+            direction(layout.p[size_t(u)], layout.p[size_t(w)]) - layout.heading[size_t(u)];
+        const double t = tolAt(layout, (layout.p[size_t(w)] - layout.p[size_t(u)]).norm());
+        for (size_t i = 0; i < v.size(); ++i)
+            if (const double e = std::abs(wrapToPi(v[i] - b)); e <= t)
+                ms.push_back({e / t, int(i), w});
+    }
+    return ms;
+}
+
 void LayoutGrower::relabel(Layout& layout) const {
     for (int u : layout.order) {
-        struct Match {
-            double err;
-            int image, robot;
-        };
-        std::vector<Match> ms;
-        const auto& v = table_.view(u).bearings;
-        for (int w : layout.order) {
-            if (w == u) continue;
-            const double b =
-                direction(layout.p[size_t(u)], layout.p[size_t(w)]) - layout.heading[size_t(u)];
-            const double t = tolAt(layout, (layout.p[size_t(w)] - layout.p[size_t(u)]).norm());
-            for (size_t i = 0; i < v.size(); ++i)
-                if (const double e = std::abs(wrapToPi(v[i] - b)); e <= t)
-                    ms.push_back({e / t, int(i), w});
-        }
+        auto ms = matchesAt(layout, u);
         std::sort(ms.begin(), ms.end(), [](const Match& a, const Match& b) {
             return std::tie(a.err, a.image, a.robot) < std::tie(b.err, b.image, b.robot);
         });
@@ -174,43 +176,38 @@ void LayoutGrower::relabel(Layout& layout) const {
 void LayoutGrower::assignNearLines(Layout& layout) const {
     for (int u : layout.order) {
         auto& lab = layout.labels[size_t(u)];
-        const auto& v = table_.view(u).bearings;
+        const size_t images = lab.size();
         std::vector<char> taken(size_t(n_), 0);
         for (int w : lab)
             if (w >= 0) taken[size_t(w)] = 1;
         std::map<std::pair<int, int>, double> cost;  // (image, robot) -> squared sigmas
-        for (int w : layout.order) {
-            if (w == u || taken[size_t(w)]) continue;
-            const double b =
-                direction(layout.p[size_t(u)], layout.p[size_t(w)]) - layout.heading[size_t(u)];
-            const double t = tolAt(layout, (layout.p[size_t(w)] - layout.p[size_t(u)]).norm());
-            for (size_t i = 0; i < v.size(); ++i)
-                if (const double e = std::abs(wrapToPi(v[i] - b)); lab[i] < 0 && e <= t)
-                    cost[{int(i), w}] = std::pow(4 * e / t, 2);
+        // groups: images and robots joined by a match (image i as i, robot w as images + w)
+        boost::disjoint_sets_with_storage<> joined(images + size_t(n_));
+        for (const auto& m : matchesAt(layout, u))
+            if (lab[size_t(m.image)] < 0 && !taken[size_t(m.robot)]) {
+                cost[{m.image, m.robot}] = std::pow(kSigmasPerTolerance * m.err, 2);
+                joined.union_set(size_t(m.image), images + size_t(m.robot));
+            }
+        std::map<size_t, std::pair<std::vector<int>, std::vector<int>>> groups;
+        for (const auto& [m, c] : cost) {
+            auto& [groupImages, groupRobots] = groups[joined.find_set(size_t(m.first))];
+            if (std::find(groupImages.begin(), groupImages.end(), m.first) == groupImages.end())
+                groupImages.push_back(m.first);
+            if (std::find(groupRobots.begin(), groupRobots.end(), m.second) == groupRobots.end())
+                groupRobots.push_back(m.second);
         }
-        // groups: images and robots joined by a match (image i as i, robot w as -1 - w)
-        std::map<int, int> parent;
-        const std::function<int(int)> root = [&](int x) {
-            auto it = parent.emplace(x, x).first;
-            return it->second == x ? x : it->second = root(it->second);
-        };
-        for (const auto& [m, c] : cost) parent[root(m.first)] = root(-1 - m.second);
-        std::map<int, std::pair<std::vector<int>, std::vector<int>>> groups;
-        for (const auto& [x, p] : parent) {
-            auto& g = groups[root(x)];
-            (x >= 0 ? g.first : g.second).push_back(x >= 0 ? x : -1 - x);
-        }
-        for (auto& [r, g] : groups) {
-            auto& [images, robots] = g;
-            if (images.size() != robots.size() || images.size() < 2 || images.size() > kMaxNearLine)
+        for (auto& [root, group] : groups) {
+            auto& [groupImages, robots] = group;
+            if (groupImages.size() != robots.size() || robots.size() < 2 ||
+                robots.size() > kMaxNearLine)
                 continue;
             std::sort(robots.begin(), robots.end());
             double best = INFINITY, second = INFINITY;
             std::vector<int> bestRobots;
             do {
                 double total = 0;
-                for (size_t k = 0; k < images.size() && std::isfinite(total); ++k) {
-                    const auto it = cost.find({images[k], robots[k]});
+                for (size_t k = 0; k < robots.size() && std::isfinite(total); ++k) {
+                    const auto it = cost.find({groupImages[k], robots[k]});
                     total = it == cost.end() ? INFINITY : total + it->second;
                 }
                 if (total < best)
@@ -219,7 +216,7 @@ void LayoutGrower::assignNearLines(Layout& layout) const {
                     second = total;
             } while (std::next_permutation(robots.begin(), robots.end()));
             if (!std::isfinite(best) || second - best < kAssignMargin) continue;
-            for (size_t k = 0; k < images.size(); ++k) lab[size_t(images[k])] = bestRobots[k];
+            for (size_t k = 0; k < robots.size(); ++k) lab[size_t(groupImages[k])] = bestRobots[k];
         }
     }
 }

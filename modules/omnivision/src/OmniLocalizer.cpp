@@ -357,10 +357,10 @@ nlohmann::json OmniLocalizer::methodMetrics() const {
         const bool localized = options_.localizedSearch && r.ids.size() == 2 && s == 0;
         sj["search"] = localized ? "localized" : "full";
         std::vector<std::string> unresolved;
-        std::map<std::string, size_t> why;  // keyOf(reason) -> robots
+        std::map<std::string, size_t> why;  // reason's key -> robots
         for (int k : r.ids[s].unresolved) {
             unresolved.push_back(r.robots[size_t(k)]);
-            ++why[keyOf(whyUnresolved(r.snapshots[s], r.ids[s], k))];
+            ++why[textOf(whyUnresolved(r.snapshots[s], r.ids[s], k)).key];
         }
         sj["unresolved"] = unresolved;
         sj["unresolved_why"] = why;

@@ -337,7 +337,7 @@ report::Html omnivisionSection(const report::RunView& run) {
 common::Headline omnivisionHeadline(const method::HeadlineOf<OmniLocalizer>& in) {
     common::Headline h;
     size_t unresolved = 0;
-    std::map<UnresolvedReason, size_t> why;  // over the snapshots
+    std::map<UnresolvedReason, size_t> why;  // over the snapshots, in the table's order
     const auto method = in.metrics.value("omnivision", nlohmann::json::object());
     if (method.contains("snapshots") && method["snapshots"].is_object())
         for (const auto& [name, snapshot] : method["snapshots"].items())
@@ -345,17 +345,18 @@ common::Headline omnivisionHeadline(const method::HeadlineOf<OmniLocalizer>& in)
                 snapshot.contains("unresolved") && snapshot["unresolved"].is_array()) {
                 unresolved += snapshot["unresolved"].size();  // localized: one triangle asked
                 const auto counts = snapshot.value("unresolved_why", nlohmann::json::object());
-                for (const auto reason : kUnresolvedReasons)
-                    if (const auto n = counts.find(keyOf(reason));
+                for (const auto& t : kUnresolvedReasons)
+                    if (const auto n = counts.find(t.key);
                         n != counts.end() && n->is_number_unsigned())
-                        why[reason] += n->get<size_t>();
+                        why[t.reason] += n->get<size_t>();
             }
     h.reached = unresolved == 0;
     h.status = h.reached ? "every robot identified"
                          : mrpt::format("%zu robot views unresolved", unresolved);
     std::string reasons;
     for (const auto& [reason, count] : why)
-        reasons += (reasons.empty() ? " (" : "; ") + std::to_string(count) + " " + describe(reason);
+        reasons +=
+            (reasons.empty() ? " (" : "; ") + std::to_string(count) + " " + textOf(reason).words;
     if (!reasons.empty()) h.status += reasons + ")";
     const auto percent = [&](const char* key) -> std::optional<double> {
         const auto v = common::numberAt(method, std::string(key) + "/median");

@@ -1,5 +1,6 @@
 // The paper's triangle search (seed 000 eq. (9)) and the identification by votes of
 // triangle pairs (Fig. 4-6): the test oracle of the seed-and-grow search.
+#include <mrloc/common/Error.h>
 #include <mrloc/omnivision/TriangleSearch.h>
 
 #include <algorithm>
@@ -159,28 +160,10 @@ UnresolvedReason whyUnresolved(const Snapshot& s, const Identification& id, int 
     return mutual < 2 ? UnresolvedReason::NotPlaced : UnresolvedReason::NoTriangle;
 }
 
-const char* describe(UnresolvedReason reason) {
-    switch (reason) {
-        case UnresolvedReason::SeesTooFew:
-            return "whose camera shows fewer than 2 robots";
-        case UnresolvedReason::NotPlaced:
-            return "not placed: identified both ways with fewer than 2 robots";
-        case UnresolvedReason::NoTriangle:
-            return "identified, but in no triangle summing to 180 degrees within the tolerance";
-    }
-    return "";
-}
-
-const char* keyOf(UnresolvedReason reason) {
-    switch (reason) {
-        case UnresolvedReason::SeesTooFew:
-            return "camera_shows_fewer_than_2";
-        case UnresolvedReason::NotPlaced:
-            return "not_placed";
-        case UnresolvedReason::NoTriangle:
-            return "in_no_triangle";
-    }
-    return "";
+const UnresolvedReasonText& textOf(UnresolvedReason reason) {
+    for (const auto& t : kUnresolvedReasons)
+        if (t.reason == reason) return t;
+    throw Error("omnivision: an unresolved reason without words (internal error)");
 }
 
 Identification identifyBruteForce(const Snapshot& s, const SearchOptions& o) {

@@ -94,8 +94,10 @@ Identification identify(const Snapshot& s, const SearchOptions& o) {
     // Measured at 0.05 deg, N = 75: the 14 and 6 wrong labels of two scenes were images of
     // one unplaced robot, each labelled as the placed robot it hides; grown once more, it
     // is placed and they are not wrong (once per search: per seed it doubled the work).
-    if (best.order.size() > 3) grower.growFreed(best);
-    if (best.order.size() > 3) grower.assignNearLines(best);
+    if (best.order.size() > 3) {
+        grower.growFreed(best);
+        grower.assignNearLines(best);
+    }
     // A seed that grew no further is no evidence: three robots' angles summing to 180
     // degrees happen by chance. Nor is a small layout that no other seed grew again and
     // that does not place every robot (kAloneQuarter).

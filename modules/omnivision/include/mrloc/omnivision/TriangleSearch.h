@@ -80,12 +80,21 @@ enum class UnresolvedReason {
                  ///< it: they do not identify each other, or the angles miss 180 degrees
 };
 UnresolvedReason whyUnresolved(const Snapshot& s, const Identification& id, int robot);
-/** A few words for each reason, as a headline says it after a count of robots. */
-const char* describe(UnresolvedReason reason);
-/** Its name in metrics.json (snapshots.<t>.unresolved_why). */
-const char* keyOf(UnresolvedReason reason);
-constexpr UnresolvedReason kUnresolvedReasons[] = {
-    UnresolvedReason::SeesTooFew, UnresolvedReason::NotPlaced, UnresolvedReason::NoTriangle};
+/** Each reason's name in metrics.json (snapshots.<t>.unresolved_why) and its words, as a
+ *  headline says them after a count of robots. */
+struct UnresolvedReasonText {
+    UnresolvedReason reason;
+    const char* key;
+    const char* words;
+};
+constexpr UnresolvedReasonText kUnresolvedReasons[] = {
+    {UnresolvedReason::SeesTooFew, "camera_shows_fewer_than_2",
+     "whose camera shows fewer than 2 robots"},
+    {UnresolvedReason::NotPlaced, "not_placed",
+     "not placed: identified both ways with fewer than 2 robots"},
+    {UnresolvedReason::NoTriangle, "in_no_triangle",
+     "identified, but in no triangle summing to 180 degrees within the tolerance"}};
+const UnresolvedReasonText& textOf(UnresolvedReason reason);
 
 /** The paper's search and identification: the test oracle. */
 Identification identifyBruteForce(const Snapshot& s, const SearchOptions& o);
