@@ -1,5 +1,6 @@
 #!/usr/bin/env bash
-# Installs what is missing, builds, and runs every test (CI calls this).
+# Installs what is missing (the tests' packages too), builds everything, and runs every test
+# (CI calls this, with MRLOC_WERROR=ON).
 set -euo pipefail
 cd "$(dirname "$0")"
 scripts/install-deps.sh

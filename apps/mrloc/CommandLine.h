@@ -10,27 +10,51 @@
 
 namespace mrloc::app {
 
-/** TCLAP's usage errors in one line that names what is wrong ("missing <RAWLOG> (rawlog
- *  file)"), then the usage; TCLAP's own says "One or more required arguments missing!"
- *  without naming them. */
+/** Exit codes, as every help text lists them (kExitCodes). */
+constexpr int kExitUsage = 2;
+constexpr const char* kExitCodes =
+    "exit codes: 0 done (the method's goal reached or not: the last line says which), 1 error "
+    "(one line names the file and what), 2 usage, 3 the method failed on its input, 130 "
+    "interrupted (Ctrl-C), 143 terminated; the previous run in the folder is kept on any but 0 "
+    "and 3";
+
+/** mrloc's one help style for every command (top level included): usage line, what it does,
+ *  arguments, options, exit codes; and TCLAP's usage errors in one line that names what is
+ *  wrong ("missing <RAWLOG> (rawlog file)"), then the usage; TCLAP's own says "One or more
+ *  required arguments missing!" without naming them. */
 class OneLineOutput : public TCLAP::StdOutput {
  public:
+    explicit OneLineOutput(const std::string& epilog) : epilog_(epilog) {}
     void failure(TCLAP::CmdLineInterface& c, TCLAP::ArgException& e) override;
+    void usage(TCLAP::CmdLineInterface& c) override;
+    void version(TCLAP::CmdLineInterface& c) override;
+
+ private:
+    const std::string& epilog_;
 };
+
+/** `mrloc --version`'s line: version, commit, MRPT's version. */
+std::string versionLine();
+
+/** Text wrapped to `width` columns, each line after the first indented by `indent`. */
+std::string wrapped(const std::string& text, size_t indent, size_t width = 88);
 
 /** A command's parser: TCLAP's, speaking through OneLineOutput. */
 class CommandLine : public TCLAP::CmdLine {
  public:
     explicit CommandLine(const std::string& description);
+    /** Printed by --help after the options (import: its formats). */
+    std::string epilog;
 
  private:
-    OneLineOutput oneLine_;
+    OneLineOutput oneLine_{epilog};
     // TCLAP makes an output of its own and frees it only when none is set: held here instead
     std::unique_ptr<TCLAP::CmdLineOutput> tclapsOwn_;
 };
 
 /** MRPT's TCLAP returns false from parse() after --help/--version (exit 0) and after a
- *  usage error it has printed (exit 2); nullopt means: go on. */
+ *  usage error it has printed (exit 2); nullopt means: go on. `--list-options` alone prints
+ *  the command's options, one per line (the shell completion's words), and returns 0. */
 std::optional<int> parseArgs(CommandLine& cmd, int argc, char** argv);
 
 /** "mrloc <argv...>": the command line provenance.json records. */
@@ -39,7 +63,12 @@ std::string commandLine(int argc, char** argv);
 /** --out, --quiet and --threads, shared by the commands that write a run folder. */
 struct OutputArgs {
     TCLAP::ValueArg<std::string> out{
-        "o", "out", "output directory (default: out/<scenario name>)", false, "", "DIR"};
+        "o",
+        "out",
+        "output folder (default: out/<[scenario] name>, or out/<the INI file's name> without one)",
+        false,
+        "",
+        "DIR"};
     TCLAP::SwitchArg quiet{"q", "quiet", "no progress bar, only errors"};
     TCLAP::ValueArg<long> threads;
     OutputArgs();

@@ -1,12 +1,16 @@
 #include "CommandTable.h"
 
 #include <mrloc/common/Error.h>
+#include <mrloc/common/Names.h>
 #include <mrloc/common/RunTransaction.h>
 #include <mrpt/3rdparty/tclap/CmdLine.h>
 
+#include <algorithm>
 #include <cstring>
 #include <iostream>
+#include <sstream>
 
+#include "CommandLine.h"
 #include "Commands.h"
 
 namespace mrloc::app {
@@ -16,6 +20,18 @@ namespace {
 template <int (*F)(int, char**)>
 int withoutRegistry(const method::Registry&, int argc, char** argv) {
     return F(argc, argv);
+}
+}  // namespace
+
+const std::vector<Command>& commands();
+
+namespace {
+/** ": did you mean 'run'?" for a near miss of a command's name, else "". */
+std::string nearestCommand(const std::string& typed) {
+    std::vector<std::string> names;
+    for (const auto& c : commands()) names.push_back(c.name);
+    const auto near = common::nearMiss(typed, names);
+    return near ? ": did you mean '" + *near + "'?" : "";
 }
 }  // namespace
 
@@ -36,8 +52,8 @@ const std::vector<Command>& commands() {
          "or a Slurm script; --collect sums them up (doc/batch.md)",
          batch},
         {"import", "<format> <in...>",
-         "a log recorded by others (libRSF, sonar text, MRCLAM, CARMEN)\n"
-         "into a rawlog + ground truth (mrloc import --help)",
+         "a log recorded by others into a rawlog + ground truth:\nformats below "
+         "(mrloc import <format> --help)",
          withoutRegistry<import>},
         {"eval", "<estimate> <truth>",
          "an estimate scored against the truth on the truth's stamps:\n"
@@ -50,7 +66,13 @@ const std::vector<Command>& commands() {
 
 std::string usage() {
     std::string out =
-        "usage: mrloc <command> [options]   (mrloc <command> --help for details)\n\ncommands:\n";
+        "usage: mrloc <command> [options]   (mrloc <command> --help for details)\n\n" +
+        wrapped(
+            "Localization of low-cost mobile robots and robot teams on MRPT: "
+            "simulate or read a rawlog, run a method from an INI file, read "
+            "the report.",
+            0) +
+        "\n\ncommands:\n";
     constexpr size_t kColumn = 27;
     for (const auto& c : commands()) {
         std::string head = "  " + c.name + " " + c.arguments;
@@ -60,29 +82,103 @@ std::string usage() {
             help.replace(p, 1, "\n" + std::string(kColumn, ' '));
         out += head + help + "\n";
     }
+    std::string formats;
+    for (const auto& f : importFormatNames()) formats += (formats.empty() ? "" : ", ") + f;
+    out += "\nimport formats: " + formats +
+           "\n\noptions:\n"
+           "  -h, --help                this help\n"
+           "  --version                 mrloc's version, commit and MRPT's version\n"
+           "  --commands                the command names, one per line\n"
+           "  --completion bash         a bash completion script: source <(mrloc --completion "
+           "bash)\n\n" +
+           wrapped(kExitCodes, 0) + "\n";
     return out;
+}
+
+std::string bashCompletion(const method::Registry& registry) {
+    // each command's options, asked of its own parser (parseArgs' --list-options), so the
+    // script cannot drift from the commands
+    std::string cases;
+    for (const auto& c : commands()) {
+        std::ostringstream options;
+        auto* const saved = std::cout.rdbuf(options.rdbuf());
+        std::vector<std::string> words{c.name, "--list-options"};
+        std::vector<char*> argv{words[0].data(), words[1].data()};
+        try {
+            c.run(registry, 2, argv.data());
+        } catch (...) {
+            std::cout.rdbuf(saved);
+            throw;
+        }
+        std::cout.rdbuf(saved);
+        std::string list = options.str();
+        std::replace(list.begin(), list.end(), '\n', ' ');
+        cases += "    " + c.name + ") opts=\"" + list + "\" ;;\n";
+    }
+    std::string names, formats;
+    for (const auto& c : commands()) names += c.name + " ";
+    for (const auto& f : importFormatNames()) formats += f + " ";
+    return "# bash completion for mrloc (mrloc --completion bash; source it or put it in\n"
+           "# /usr/share/bash-completion/completions/mrloc)\n"
+           "_mrloc() {\n"
+           "  local cur=${COMP_WORDS[COMP_CWORD]} opts\n"
+           "  if [ \"$COMP_CWORD\" -eq 1 ]; then\n"
+           "    COMPREPLY=($(compgen -W \"" +
+           names +
+           "--help --version\" -- \"$cur\")); return\n"
+           "  fi\n"
+           "  case ${COMP_WORDS[1]} in\n" +
+           cases +
+           "  esac\n"
+           "  if [[ $cur == -* ]]; then COMPREPLY=($(compgen -W \"$opts\" -- \"$cur\")); return; "
+           "fi\n"
+           "  if [ \"${COMP_WORDS[1]}\" = import ] && [ \"$COMP_CWORD\" -eq 2 ]; then\n"
+           "    COMPREPLY=($(compgen -W \"" +
+           formats +
+           "\" -- \"$cur\")); return\n"
+           "  fi\n"
+           "  COMPREPLY=($(compgen -f -- \"$cur\"))\n"
+           "}\n"
+           "complete -o filenames -F _mrloc mrloc\n";
 }
 
 int main(const method::Registry& registry, int argc, char** argv) {
     common::installSignalCleanup();
-    if (argc < 2 || !std::strcmp(argv[1], "--help") || !std::strcmp(argv[1], "-h")) {
+    if (argc < 2) {
+        std::cerr << usage();
+        return kExitUsage;
+    }
+    if (!std::strcmp(argv[1], "--help") || !std::strcmp(argv[1], "-h")) {
         std::cout << usage();
-        return argc < 2 ? 2 : 0;
+        return 0;
+    }
+    if (!std::strcmp(argv[1], "--version")) {
+        std::cout << versionLine() << "\n";
+        return 0;
     }
     if (!std::strcmp(argv[1], "--commands")) {
         for (const auto& c : commands()) std::cout << c.name << "\n";
+        return 0;
+    }
+    if (!std::strcmp(argv[1], "--completion")) {
+        if (argc != 3 || std::strcmp(argv[2], "bash")) {
+            std::cerr << "mrloc --completion: give the shell: mrloc --completion bash\n";
+            return kExitUsage;
+        }
+        std::cout << bashCompletion(registry);
         return 0;
     }
     const std::string command = argv[1];
     try {
         for (const auto& c : commands())
             if (c.name == command) return c.run(registry, argc - 1, argv + 1);
-        std::cerr << "mrloc: unknown command '" << command << "'\n" << usage();
-        return 2;
+        std::cerr << "mrloc: unknown command '" << command << "'" << nearestCommand(command)
+                  << " (mrloc --help lists them)\n";
+        return kExitUsage;
     } catch (const TCLAP::ArgException& e) {
         std::cerr << "mrloc " << command << ": " << e.error() << " (" << e.argId() << ")\n"
                   << "see: mrloc " << command << " --help\n";
-        return 2;
+        return kExitUsage;
     } catch (const mrloc::Error& e) {
         std::cerr << "mrloc " << command << ": error: " << oneLine(e.what()) << "\n";
         return 1;

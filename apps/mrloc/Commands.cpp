@@ -7,8 +7,11 @@
 #include <mrloc/common/Error.h>
 #include <mrloc/common/FolderLock.h>
 #include <mrloc/common/RunDirectory.h>
+#include <mrloc/common/ShellWord.h>
 #include <mrloc/report/Index.h>
 
+#include <cctype>
+#include <cstring>
 #include <filesystem>
 #include <fstream>
 #include <iostream>
@@ -18,6 +21,7 @@
 #include "CommandLine.h"
 #include "IniFile.h"
 #include "KeysDoc.h"
+#include "MrptSections.h"
 #include "RunSetup.h"
 #include "RunSteps.h"
 #include "StderrLog.h"
@@ -25,6 +29,30 @@
 namespace mrloc::app {
 
 namespace fs = std::filesystem;
+
+namespace {
+
+/** `path` as a shell word: as it is when it needs no quoting. */
+std::string word(const std::string& path) {
+    for (const char c : path)
+        if (!(std::isalnum(static_cast<unsigned char>(c)) || std::strchr("_-./+:=,@%", c)))
+            return common::shellWord(path);
+    return path.empty() ? "''" : path;
+}
+
+/** "next: <command>" on stderr, unless --quiet: what a user runs after this step. */
+void next(bool quiet, const std::string& command) {
+    if (!quiet) std::cerr << "next: " << command << "\n";
+}
+
+/** The one line that says a default run folder made from another INI or rawlog is replaced. */
+void noteReplacedRun(const StderrLog& log, const std::string& dir, const std::string& iniPath,
+                     const std::string& rawlog = "") {
+    if (const std::string note = replacedRunNote(dir, iniPath, rawlog); !note.empty())
+        log.warning(note);
+}
+
+}  // namespace
 
 int simulate(const method::Registry& registry, int argc, char** argv) {
     ScenarioCommand c(
@@ -37,12 +65,16 @@ int simulate(const method::Registry& registry, int argc, char** argv) {
     checkWorkOf(s, true, false, c.output.quiet.getValue());
     const std::string dir = c.output.dirOr(s.scenario.name);
     const StderrLog log(c.output.quiet.getValue());
+    noteReplacedRun(log, dir, s.iniPath);
     std::string rawlog;
     inTransaction(dir, "simulate", log, [&](const std::string& staging) {
         rawlog = simulateStep(s, staging, log);
         writeProvenance(s, staging, "simulate", commandLine(argc, argv));
     });
-    std::cout << (fs::path(dir) / fs::path(rawlog).filename()).string() << "\n";
+    const std::string written = (fs::path(dir) / fs::path(rawlog).filename()).string();
+    next(c.output.quiet.getValue(), "mrloc localize " + word(s.iniPath) + " " + word(written) +
+                                        (c.output.out.isSet() ? " --out " + word(dir) : ""));
+    std::cout << written << "\n";  // the last line: a script's
     return 0;
 }
 
@@ -69,13 +101,15 @@ int localize(const method::Registry& registry, int argc, char** argv) {
     checkWorkOf(s, false, true, o.quiet.getValue());
     const std::string dir = o.dirOr(s.scenario.name);
     const StderrLog log(o.quiet.getValue());
+    noteReplacedRun(log, dir, s.iniPath, rawlog.getValue());
     common::Headline headline;
     inTransaction(dir, "localize", log, [&](const std::string& staging) {
         headline = localizeStep(registry, s, rawlog.getValue(), staging, log, rawlog.getValue());
-        writeProvenance(s, staging, "localize", commandLine(argc, argv));
+        writeProvenance(s, staging, "localize", commandLine(argc, argv), rawlog.getValue());
     });
+    next(o.quiet.getValue(), "mrloc report " + word(dir) + "   (report.html and its pictures)");
     // exit 0 whether or not the method reached its goal (the headline says which), unless it
-    // failed on this input
+    // failed on this input; the headline stays the last line
     std::cout << dir << "\n" << common::headlineLine(s.method->name, headline) << "\n";
     return headline.failed ? common::kFailedExit : 0;
 }
@@ -115,6 +149,7 @@ int run(const method::Registry& registry, int argc, char** argv) {
     checkWorkOf(s, true, true, c.output.quiet.getValue());
     const std::string dir = c.output.dirOr(s.scenario.name);
     const StderrLog log(c.output.quiet.getValue());
+    noteReplacedRun(log, dir, s.iniPath);
     common::Headline headline;
     // the files an error names are the run's own, removed with the rest of it
     inTransaction(
@@ -138,8 +173,9 @@ int index(int argc, char** argv) {
         "headline beside the paper's figure, and a link to its report");
     TCLAP::UnlabeledValueArg<std::string> dir("folder", "folder of run folders", true, "", "DIR",
                                               cmd);
-    TCLAP::ValueArg<std::string> title("t", "title", "the page's title", false,
-                                       "mrloc: five methods, five papers", "TEXT", cmd);
+    TCLAP::ValueArg<std::string> title(
+        "t", "title", "the page's title (default: what the folder holds: its runs and methods)",
+        false, "", "TEXT", cmd);
     if (const auto code = parseArgs(cmd, argc, argv)) return *code;
     if (!fs::is_directory(dir.getValue()))
         throw Error(common::pathInWords(dir.getValue()) + ": not a folder");
@@ -151,8 +187,9 @@ int keys(const method::Registry& registry, int argc, char** argv) {
     CommandLine cmd(
         "mrloc keys: the INI keys of every section declared as a key table (name, default, "
         "unit, range, meaning), as doc/ini.md shows them");
-    TCLAP::UnlabeledValueArg<std::string> section("section", "one section only (polymap)", false,
-                                                  "", "SECTION", cmd);
+    TCLAP::UnlabeledValueArg<std::string> section(
+        "section", "one section only (polymap), or mrpt: the keys mrloc reads from MRPT's sections",
+        false, "", "SECTION", cmd);
     TCLAP::ValueArg<std::string> update(
         "", "update", "rewrite the key tables between this Markdown file's markers", false, "",
         "FILE", cmd);
@@ -178,7 +215,8 @@ int keys(const method::Registry& registry, int argc, char** argv) {
         }
         return 0;
     }
-    std::cout << keysText(registry, section.getValue());
+    std::cout << (section.getValue() == "mrpt" ? mrptKeysText()
+                                               : keysText(registry, section.getValue()));
     return 0;
 }
 

@@ -6,6 +6,9 @@
 // (the INI resolved), RunSteps.h (the steps of a run folder and its transaction).
 #include <mrloc/method/Registry.h>
 
+#include <string>
+#include <vector>
+
 namespace mrloc::app {
 
 int simulate(const method::Registry& registry, int argc, char** argv);  // Commands.cpp
@@ -16,6 +19,7 @@ int index(int argc, char** argv);                                       // Comma
 int keys(const method::Registry& registry, int argc, char** argv);      // Commands.cpp
 int info(int argc, char** argv);                                        // Info.cpp
 int import(int argc, char** argv);                                      // Import.cpp
+std::vector<std::string> importFormatNames();                           // Import.cpp
 int eval(int argc, char** argv);                                        // Eval.cpp
 int trial(const method::Registry& registry, int argc, char** argv);     // Trial.cpp
 int batch(const method::Registry& registry, int argc, char** argv);     // Batch.cpp

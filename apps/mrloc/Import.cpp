@@ -22,34 +22,29 @@ const logimport::FormatRegistry& formats() {
     return registry;
 }
 
-constexpr const char* kImportUsage =
-    "usage: mrloc import <format> <inputs...> --out <file.rawlog> [--opt key=value ...]\n"
-    "Converts a log into an MRPT rawlog (observations only, labels <robot>.<sensor>, the\n"
-    "log's own time stamps), each robot's ground truth as <out stem>.<robot>.gt.txt (TUM), and\n"
-    "prints what it wrote. Nothing is written under a final name unless all of it converts.\n"
-    "doc/import.md: what each format maps to which MRPT class, units, frames, what is dropped.\n\n";
-
 }  // namespace
 
+std::vector<std::string> importFormatNames() {
+    std::vector<std::string> names;
+    for (const auto& [name, format] : formats().all()) names.push_back(name);
+    return names;
+}
+
 int import(int argc, char** argv) {
-    for (int i = 1; i < argc; ++i)
-        if (!std::strcmp(argv[i], "--help") || !std::strcmp(argv[i], "-h") || argc == 1) {
-            // `mrloc import <format> --help`: that format's options only
-            const auto named = formats().all().find(argc > 2 ? argv[1] : "");
-            std::cout << kImportUsage
-                      << (named != formats().all().end()
-                              ? "format:\n" + logimport::formatHelp(named->second) +
-                                    "doc/import.md#" + named->first + " says more.\n"
-                              : logimport::formatsHelp(formats()));
-            return 0;
-        }
-    if (argc < 2) {
-        std::cerr << kImportUsage << logimport::formatsHelp(formats());
-        return 2;
-    }
-    CommandLine cmd("mrloc import");
-    TCLAP::UnlabeledValueArg<std::string> format("format", "import format", true, "", "FORMAT",
-                                                 cmd);
+    CommandLine cmd(
+        "mrloc import: converts a log recorded by others into an MRPT rawlog (observations only, "
+        "labels <robot>.<sensor>, the log's own time stamps), each robot's ground truth as "
+        "<out stem>.<robot>.gt.txt (TUM), and prints what it wrote. Nothing is written under a "
+        "final name unless all of it converts. doc/import.md: what each format maps to which "
+        "MRPT class, units, frames, what is dropped.");
+    // `mrloc import <format> --help`: that format's inputs and options only
+    const auto named = formats().all().find(argc > 1 ? argv[1] : "");
+    cmd.epilog = named != formats().all().end()
+                     ? "format:\n" + logimport::formatHelp(named->second) + "doc/import.md#" +
+                           named->first + " says more.\n"
+                     : logimport::formatsHelp(formats());
+    TCLAP::UnlabeledValueArg<std::string> format("format", "import format (below)", true, "",
+                                                 "FORMAT", cmd);
     TCLAP::UnlabeledMultiArg<std::string> inputs("inputs", "input files", true, "INPUT", cmd);
     TCLAP::ValueArg<std::string> out("o", "out", "the rawlog to write", true, "", "RAWLOG", cmd);
     TCLAP::MultiArg<std::string> opts("", "opt", "a format's option, key=value", false, "KEY=VALUE",

@@ -17,11 +17,13 @@
 #include <ctime>
 #include <filesystem>
 #include <fstream>
+#include <iostream>
 #include <set>
 #include <thread>
 
 #include "Advice.h"
 #include "IniFile.h"
+#include "MrptSections.h"
 
 namespace mrloc::app {
 
@@ -84,6 +86,9 @@ Setup loadSetupUnguarded(const method::Registry& registry, const std::string& in
     s.iniPath = iniPath;
     s.iniText = readIniText(iniPath);
     s.ini = openIni(iniPath, s.iniText, registry);
+    // MRPT's sections are MRPT's apps' too: a near miss of a key mrloc reads there is a
+    // warning, not an error
+    for (const auto& w : mrptKeyWarnings(*s.ini, iniPath)) std::cerr << "warning: " << w << "\n";
     applyOverrides(registry, *s.ini, overrides);
     s.scenario.loadFromConfigFile(*s.ini, "scenario");
     if (seed) {
@@ -95,6 +100,9 @@ Setup loadSetupUnguarded(const method::Registry& registry, const std::string& in
         s.ini->write("scenario", "seed", std::to_string(*seed));
         s.ini->discardSavingChanges();
     }
+    // an INI without a name (MRPT's, a user's) is named after its file: runs of two such INIs
+    // go to two folders, not both to out/run
+    if (!s.ini->keyExists("scenario", "name")) s.scenario.name = nameFromFile(iniPath);
     common::checkName(s.scenario.name, s.iniPath + ": [scenario] name");
     if (s.scenario.method.empty()) {
         // an MRPT app's INI for a task mrloc does not do: say so, and what would fit its log
@@ -109,6 +117,7 @@ Setup loadSetupUnguarded(const method::Registry& registry, const std::string& in
     if (needSimulation || sim::ScenarioOptions::describesSimulation(*s.ini, "scenario")) {
         s.simulation = s.method->scenario(*s.ini, *s.localizer);
         s.simulation->config.scenario.seed = s.scenario.seed;
+        s.simulation->config.scenario.name = s.scenario.name;  // the INI's, or its file's
     }
     s.reportOptions.loadFromConfigFile(*s.ini, "report");
     return s;
@@ -226,7 +235,7 @@ std::string seedOverrides(const mrpt::config::CConfigFileBase& ini) {
 }  // namespace
 
 void writeProvenance(const Setup& s, const std::string& dir, const std::string& step,
-                     const std::string& command) {
+                     const std::string& command, const std::string& rawlog) {
     common::makeDirectories(dir);
     common::writeFileAtomically(common::run_dir::configCopy(dir), s.iniText);
     common::writeFileAtomically(common::run_dir::effectiveIni(dir), effectiveIni(s));
@@ -251,7 +260,51 @@ void writeProvenance(const Setup& s, const std::string& dir, const std::string& 
     p["cpu"] = cpuModel();
     p["cores"] = std::max(1u, std::thread::hardware_concurrency());
     if (step == "simulate" || step == "run") p["simulated"] = true;
+    if (!rawlog.empty())
+        p["rawlog"] = rawlog;
+    else if (step != "report")
+        p.erase("rawlog");
     common::saveJson(path, p);
+}
+
+namespace {
+/** Two paths name the same file (both as seen from here). */
+bool sameFile(const std::string& a, const std::string& b) {
+    std::error_code ec1, ec2;
+    const auto ca = fs::weakly_canonical(a, ec1), cb = fs::weakly_canonical(b, ec2);
+    return ec1 || ec2 ? a == b : ca == cb;
+}
+}  // namespace
+
+std::string replacedRunNote(const std::string& dir, const std::string& iniPath,
+                            const std::string& rawlog) {
+    const std::string path = common::run_dir::provenance(dir);
+    if (!fs::is_regular_file(fs::symlink_status(path))) return "";
+    nlohmann::json p;
+    try {
+        p = common::readProvenanceFile(path);
+    } catch (const Error&) {
+        return "";  // the transaction names what is wrong with the folder
+    }
+    const std::string ini = p.value("ini", "");
+    const bool rawlogs = !rawlog.empty() && p.contains("rawlog") && p["rawlog"].is_string();
+    const std::string was = rawlogs ? p["rawlog"].get<std::string>() : "";
+    if (!ini.empty() && !sameFile(ini, iniPath))
+        return dir + " holds a run of " + common::printable(ini) + "; this one, of " + iniPath +
+               ", replaces it (--out DIR keeps both)";
+    if (rawlogs && !sameFile(was, rawlog))
+        return dir + " holds a run on " + common::printable(was) + "; this one, on " + rawlog +
+               ", replaces it (--out DIR keeps both)";
+    return "";
+}
+
+std::string nameFromFile(const std::string& path) {
+    std::string name = fs::path(path).stem().string().substr(0, 64);
+    for (char& c : name)
+        if (!(std::isalnum(static_cast<unsigned char>(c)) || c == '_' || c == '-' || c == '.'))
+            c = '_';
+    if (!name.empty() && (name.front() == '-' || name.front() == '.')) name.front() = '_';
+    return name.empty() ? "run" : name;
 }
 
 std::string checkIni(const method::Registry& registry, const std::string& iniPath) {

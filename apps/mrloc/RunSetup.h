@@ -64,8 +64,19 @@ std::string effectiveIni(const Setup& s);
 std::string checkIni(const method::Registry& registry, const std::string& iniPath);
 
 /** config.ini (a copy of the INI), effective.ini and provenance.json, with this step's
- *  command line added to the steps already recorded there. */
+ *  command line added to the steps already recorded there, and the rawlog `localize` read
+ *  (none for a simulated run). */
 void writeProvenance(const Setup& s, const std::string& dir, const std::string& step,
-                     const std::string& command);
+                     const std::string& command, const std::string& rawlog = "");
+
+/** The run folder name of an INI without [scenario] name: its file's stem, each character a
+ *  name cannot hold as '_' ("run" when nothing is left). */
+std::string nameFromFile(const std::string& path);
+
+/** "out/x holds a run of a.ini; this one, of b.ini, replaces it" when the run already in
+ *  `dir` was made from another INI (or, localizing, another rawlog): the line a user reads
+ *  before a default folder is reused. Empty when the folder is new or from the same files. */
+std::string replacedRunNote(const std::string& dir, const std::string& iniPath,
+                            const std::string& rawlog = "");
 
 }  // namespace mrloc::app

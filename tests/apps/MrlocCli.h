@@ -33,11 +33,14 @@ inline Result mrlocCmd(const std::string& args) {
 }
 
 /** Starts `mrloc run <ini> --out <out> -q` in the background (its stderr to /dev/null when
- *  `silent`); its pid, for waitStatus. */
-inline pid_t startRun(const std::string& ini, const std::string& out, bool silent = false) {
+ *  `silent`, else to `stderrFile` when given); its pid, for waitStatus. */
+inline pid_t startRun(const std::string& ini, const std::string& out, bool silent = false,
+                      const std::string& stderrFile = "") {
     const pid_t pid = fork();
     if (pid == 0) {
         if (silent) dup2(::open("/dev/null", O_WRONLY), STDERR_FILENO);
+        if (!silent && !stderrFile.empty())
+            dup2(::open(stderrFile.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644), STDERR_FILENO);
         execl(MRLOC_BINARY, "mrloc", "run", ini.c_str(), "--out", out.c_str(), "-q",
               static_cast<char*>(nullptr));
         _exit(127);

@@ -253,10 +253,12 @@ TEST(BadPath, NonUtf8RawlogPathRunsToTheEnd) {
 
 namespace {
 
-/** Starts `mrloc run <ini> --out <out> -q`, waits until the rawlog is being written (in the
- *  staging folder beside `out`), sends `sig`, and returns the exit status. */
-int interruptedRun(const std::string& ini, const std::string& out, int sig) {
-    const pid_t pid = startRun(ini, out);
+/** Starts `mrloc run <ini> --out <out> -q` (its stderr to `stderrFile`), waits until the
+ *  rawlog is being written (in the staging folder beside `out`), sends `sig`, and returns the
+ *  exit status. */
+int interruptedRun(const std::string& ini, const std::string& out, int sig,
+                   const std::string& stderrFile) {
+    const pid_t pid = startRun(ini, out, false, stderrFile);
     const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(60);
     const fs::path o(out);
     const std::string staging =
@@ -280,8 +282,15 @@ TEST(Signals, SigtermAndSigintEndARunAndRemoveEverything) {
     std::ofstream(ini) << text;
     for (const auto& [sig, code] : std::map<int, int>{{SIGTERM, 143}, {SIGINT, 130}}) {
         const std::string out = tmp("signal_" + std::to_string(sig));
-        EXPECT_EQ(interruptedRun(ini, out, sig), code);
+        const std::string said = out + ".stderr";
+        EXPECT_EQ(interruptedRun(ini, out, sig, said), code);
         EXPECT_FALSE(fs::exists(out)) << "left behind after signal " << sig;
+        // the last line says what stopped the run and what is left
+        std::string last = slurp(said);
+        while (!last.empty() && last.back() == '\n') last.pop_back();
+        last = last.substr(last.rfind('\n') + 1);
+        EXPECT_EQ(last, std::string("mrloc: ") + (sig == SIGINT ? "interrupted" : "terminated") +
+                            ": " + out + " left as it was");
         for (const auto& e : fs::directory_iterator(fs::path(out).parent_path()))  // no staging
             EXPECT_EQ(e.path().filename().string().find("." + fs::path(out).filename().string()),
                       std::string::npos)

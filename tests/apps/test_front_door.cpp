@@ -187,6 +187,10 @@ TEST(FrontDoor, TheIndexShowsEveryRunsHeadlineAndLinksItsReport) {
     const std::string page = slurp(tour + "/index.html");
     EXPECT_TRUE(contains(page, "<a href='beacons/report.html'>beacons</a>")) << page;
     EXPECT_TRUE(contains(page, "<a href='polymap/report.html'>polymap</a>")) << page;
+    // titled by what the folder holds (issue 57), unless the title is given (./run.sh's tour)
+    EXPECT_TRUE(contains(page, "<title>mrloc: 2 runs in apps_tour (beacons, polymap)</title>"))
+        << page;
+    EXPECT_FALSE(contains(page, "five methods"));
     // the beacons run's APE RMSE on the truth's timeline as metrics.json has it, to 3 digits
     const auto m = common::readJsonFile(tour + "/beacons/metrics.json");
     char rmse[32];
@@ -203,8 +207,9 @@ TEST(FrontDoor, TheIndexShowsEveryRunsHeadlineAndLinksItsReport) {
         << R"({"method": "<b>m", "robots": {}, "headline": {"reached": false,
               "status": "<script>alert(1)</script>", "figures": []}})";
     fs::create_directory_symlink(tour + "/beacons", tour + "/link");
-    ASSERT_EQ(mrlocCmd("index " + tour).code, 0);
+    ASSERT_EQ(mrlocCmd("index " + tour + " --title 'the <i>tour</i>'").code, 0);
     const std::string again = slurp(tour + "/index.html");
+    EXPECT_TRUE(contains(again, "<h1>the &lt;i&gt;tour&lt;/i&gt;</h1>")) << again;
     EXPECT_TRUE(contains(again, "&lt;script&gt;alert(1)&lt;/script&gt;")) << again;
     EXPECT_FALSE(contains(again, "<script>"));
     EXPECT_TRUE(contains(again, "zz (no report) (&lt;b&gt;m)")) << again;

@@ -35,7 +35,9 @@ TEST(RangeWindow, RangesReadOneAtATimeAreMovedToTheNewestPose) {
         const double r = std::hypot(sensor.x - b.x, sensor.y - b.y);
         window.add(k * 0.1, oneRange(k + 1, r), odo, map);
         epoch = window.epoch(k * 0.1, odo, map, 4, 1.0);
-        if (k < 3) EXPECT_FALSE(epoch) << "only " << k + 1 << " beacons in";
+        if (k < 3) {
+            EXPECT_FALSE(epoch) << "only " << k + 1 << " beacons in";
+        }
     }
     ASSERT_TRUE(epoch);
     ASSERT_EQ(epoch->sensedData.size(), 4u);

@@ -1,4 +1,5 @@
 #include <mrloc/beacons/StartupTrack.h>
+#include <mrloc/common/RigidFit.h>
 
 #include <Eigen/Geometry>
 #include <cmath>
@@ -51,7 +52,7 @@ std::optional<Eigen::Matrix3d> StartupTrack::align(double baseline) {
         to.col(Eigen::Index(k)) = points_[best[k]].fix;
     }
     if ((from.col(from.cols() - 1) - from.col(0)).norm() < baseline) return std::nullopt;
-    const Eigen::Matrix3d T = Eigen::umeyama(from, to, false);
+    const Eigen::Matrix3d T = common::rigidFit2D(from, to);
     for (size_t k : best)
         if (!fits(T, k)) return std::nullopt;
     std::deque<Point> kept;

@@ -1,5 +1,6 @@
 #include <mrloc/common/Error.h>
 #include <mrloc/common/Evaluation.h>
+#include <mrloc/common/RigidFit.h>
 #include <mrpt/core/bits_math.h>
 #include <mrpt/math/wrap2pi.h>
 
@@ -109,7 +110,7 @@ CPose2D alignmentOf(Alignment a, const std::vector<Pair>& pairs) {
         from.col(Eigen::Index(k)) << pairs[k].estimate.x(), pairs[k].estimate.y();
         to.col(Eigen::Index(k)) << pairs[k].truth.x(), pairs[k].truth.y();
     }
-    const Eigen::Matrix3d T = Eigen::umeyama(from, to, false);
+    const Eigen::Matrix3d T = rigidFit2D(from, to);
     return {T(0, 2), T(1, 2), std::atan2(T(1, 0), T(0, 0))};
 }
 

@@ -103,6 +103,7 @@ nlohmann::json readProvenanceFile(const std::string& path) {
                     {"/steps", T::Object},
                     {"/outputs", T::Object},
                     {"/simulated", T::Boolean},
+                    {"/rawlog", T::String},
                     {"/date_utc", T::String}},
                    path);
     return j;

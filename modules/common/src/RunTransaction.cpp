@@ -36,6 +36,7 @@ struct LiveTransaction {
     std::atomic<int> state{0};  // 0 free, 1 being filled, 2 live
     char staging[4096];
     char lock[4096];
+    char folder[4096];  // as the user named it, for the "interrupted" line
 };
 constexpr int kLiveSlots = 8;
 LiveTransaction g_live[kLiveSlots];
@@ -84,25 +85,47 @@ struct LiveTemporary {
 };
 LiveTemporary g_temporaries[kTemporarySlots];
 
+/** write(2) of a C string: what a signal handler may print. */
+void say(const char* text) {
+    size_t n = 0;
+    while (text[n]) ++n;
+    while (n > 0) {
+        const ssize_t w = ::write(STDERR_FILENO, text, n);
+        if (w <= 0) return;
+        text += w;
+        n -= size_t(w);
+    }
+}
+
 extern "C" void removeStagingAndExit(int sig) {
+    // one line that says the run stopped and what is left: "mrloc: interrupted: out/x is
+    // left as it was" (its previous run, or nothing); on a line of its own after a progress bar
+    say(sig == SIGINT ? "\nmrloc: interrupted" : "\nmrloc: terminated");
+    bool first = true;
     for (auto& t : g_live)
         if (t.state.load() == 2) {
             removeTree(t.staging);
             ::unlink(t.lock);
+            say(first ? ": " : ", ");
+            say(t.folder);
+            first = false;
         }
+    say(first ? "\n" : " left as it was\n");
     for (auto& t : g_temporaries)
         if (t.state.load() == 2) removeTree(t.path);
     _exit(128 + sig);
 }
 
-int claimLiveSlot(const std::string& staging, const std::string& lock) {
-    if (staging.size() >= sizeof g_live[0].staging || lock.size() >= sizeof g_live[0].lock)
+int claimLiveSlot(const std::string& staging, const std::string& lock, const std::string& folder) {
+    if (staging.size() >= sizeof g_live[0].staging || lock.size() >= sizeof g_live[0].lock ||
+        folder.size() >= sizeof g_live[0].folder)
         throw Error("run folder " + staging + ": the path is too long");
     for (int i = 0; i < kLiveSlots; ++i) {
         int expected = 0;
         if (g_live[i].state.compare_exchange_strong(expected, 1)) {
             std::memcpy(g_live[i].staging, staging.c_str(), staging.size() + 1);
             std::memcpy(g_live[i].lock, lock.c_str(), lock.size() + 1);
+            std::memcpy(g_live[i].folder, folder.c_str(), folder.size() + 1);
             g_live[i].state.store(2);
             return i;
         }
@@ -238,7 +261,7 @@ RunTransaction::RunTransaction(const std::string& folder, const std::string& ste
                     fs::remove_all(e.path(), ec);
             }
         }
-        slot_ = claimLiveSlot(staging_, lockPath_);
+        slot_ = claimLiveSlot(staging_, lockPath_, folder_);
         stageCopyOfFolder(log);
     } catch (...) {
         if (slot_ >= 0) fs::remove_all(staging_, ec);

@@ -21,7 +21,8 @@ std::optional<OdometryFit> fitOdometry(const common::Trajectory& odometry,
     // (libRSF's point2) has none, and the course turns as the heading does
     double odoDistance = 0, cross = 0, truthSquares = 0;
     std::optional<mrpt::poses::CPose3D> lastOdo, lastTruth;
-    std::optional<double> lastOdoCourse, lastTruthCourse;
+    bool courses = false;  // both courses below are set (two plain doubles: GCC 12 took
+    double lastOdoCourse = 0, lastTruthCourse = 0;  // optionals as maybe uninitialized)
     for (double t = start; t <= end; t += kStep) {
         const auto o = common::interpolate(odometry, t), g = common::interpolate(truth, t);
         if (!o || !g) continue;
@@ -32,16 +33,16 @@ std::optional<OdometryFit> fitOdometry(const common::Trajectory& odometry,
             fit.truthDistance += std::hypot(dxg, dyg);
             // a course is a course only while both move (5 cm in the half second)
             if (std::hypot(dxo, dyo) < kMinStep || std::hypot(dxg, dyg) < kMinStep) {
-                lastOdoCourse.reset(), lastTruthCourse.reset();
+                courses = false;
             } else {
                 const double co = std::atan2(dyo, dxo), cg = std::atan2(dyg, dxg);
-                if (lastOdoCourse && lastTruthCourse) {
-                    const double dOdo = mrpt::math::wrapToPi(co - *lastOdoCourse);
-                    const double dTruth = mrpt::math::wrapToPi(cg - *lastTruthCourse);
+                if (courses) {
+                    const double dOdo = mrpt::math::wrapToPi(co - lastOdoCourse);
+                    const double dTruth = mrpt::math::wrapToPi(cg - lastTruthCourse);
                     fit.truthTurn += std::abs(dTruth);
                     cross += dOdo * dTruth, truthSquares += dTruth * dTruth;
                 }
-                lastOdoCourse = co, lastTruthCourse = cg;
+                lastOdoCourse = co, lastTruthCourse = cg, courses = true;
             }
         }
         lastOdo = o, lastTruth = g;

@@ -40,7 +40,7 @@ std::string iniOf(const std::string& runFolder) {
 
 }  // namespace
 
-std::string makeIndex(const std::string& folder, const std::string& title) {
+std::string makeIndex(const std::string& folder, std::string title) {
     std::vector<std::string> runs;
     std::error_code ec;
     for (const auto& entry : fs::directory_iterator(folder, ec)) {
@@ -54,12 +54,15 @@ std::string makeIndex(const std::string& folder, const std::string& title) {
     if (runs.empty()) throw Error(folder + ": no run folder in it (none holds a metrics.json)");
     std::sort(runs.begin(), runs.end());
 
+    std::vector<std::string> methods;  // in the order of the runs, each once
     Table t({"run (INI)", "outcome", "figure", "this run", "the paper",
              "how this run differs from the paper's"});
     for (const auto& run : runs) {
         const std::string metricsPath = common::run_dir::metrics(folder + "/" + run);
         const auto metrics = common::readMetricsFile(metricsPath);
         const std::string method = metrics.value("method", "?");
+        if (std::find(methods.begin(), methods.end(), method) == methods.end())
+            methods.push_back(method);
         const bool hasReport = fs::is_regular_file(common::run_dir::report(folder + "/" + run));
         Html runCell = hasReport ? link(run + "/report.html", run) : Html(run + " (no report)");
         if (method != run) runCell += Html(" (" + method + ")");
@@ -79,6 +82,16 @@ std::string makeIndex(const std::string& folder, const std::string& title) {
             first = false;
         }
         if (first) t.row({runCell, outcome, "", "", "", ""});
+    }
+    if (title.empty()) {  // what the folder holds: "mrloc: 3 runs in out (beacons, polymap)"
+        std::string names;
+        for (const auto& m : methods) names += (names.empty() ? "" : ", ") + m;
+        const std::string where =
+            fs::path(folder).lexically_normal().filename().empty()
+                ? fs::path(folder).lexically_normal().parent_path().filename().string()
+                : fs::path(folder).lexically_normal().filename().string();
+        title = "mrloc: " + std::to_string(runs.size()) + (runs.size() == 1 ? " run" : " runs") +
+                " in " + common::printable(where) + " (" + names + ")";
     }
     const Html body =
         heading(1, title) +

@@ -8,7 +8,8 @@ namespace mrloc::report {
 
 /** Writes `folder`/index.html over the run folders directly inside it (those holding a
  *  metrics.json, in name order) and returns its path. Throws mrloc::Error when none does,
- *  or when a run's metrics.json is malformed (naming it). */
-std::string makeIndex(const std::string& folder, const std::string& title);
+ *  or when a run's metrics.json is malformed (naming it). An empty `title` says what the
+ *  folder holds: "mrloc: 3 runs in out (beacons, polymap)". */
+std::string makeIndex(const std::string& folder, std::string title = "");
 
 }  // namespace mrloc::report
