@@ -103,8 +103,8 @@ long+='|Mutations\.BeaconsRawlogIsRefusedOrCountedNeverSilentlyTaken'
 long+='|MrlocFormation\.AMarchWhoseCamerasFindNoTagSaysSoInTheHeadline'
 long+='|MrlocRun\.BeaconReportsShowTheDistanceBetweenFixesPerScheduling'
 long+='|MrlocPolymap\.IdenticalRoomsBehindNarrowPassagesSayWhy|MrlocPolymap\.FeaturesBelowTheScansTolerance'
-# the shafts map's whole run (4 s here): Elimination.StepsJoinedByShafts* sanitizes its
-# eliminations, PolymapFiles.TheTableSaysWhereEachAlgorithmParts* its table note
+# the shafts map's whole run (4 s here): its eliminations are the steps maps' code
+# (Elimination.StepsMaps*), PolymapFiles.TheTableSaysWhereEachAlgorithmParts* its table note
 long+='|MrlocPolymap\.StepsJoinedByShaftsRunsThePapersTables'
 # the exact pipeline on MRPT's two building maps (six whole runs, 6 s here): the trace's
 # opening and the consensus pass run sanitized in FreeSpaceTrace.* and Hypotheses.Corners*
@@ -122,6 +122,16 @@ long+='|MrlocFramesync\.CorridorRunSharesTheFrameAndTheReportShowsThePapersMeasu
 long+='|Elimination\.IdenticalRoomsEveryLayoutEveryAlgorithm|MrlocPolymap\.SweepOverMapSizesDrawsFigsSixAndSeven'
 long+='|BeaconStudy\.ThePapersRoomStudyMeetsTheGoalAndIsDeterministic'
 long+='|CommandLine\.(EveryCommand|VersionUnknown|BashCompletion|SimulateAndLocalize|AnIniWithoutAName|CmakeInstall)'
+# and (CI at 1,606 s here with the above) five rendered panoramas end to end (the renderer and
+# the detector run sanitized in tests/omnivision), a sweep of ray casts against the
+# visibility polygons (Visibility's other cases stay), the shafts map's eliminations (the
+# same code as Elimination.StepsMaps*), thirty robots end to end (TriangleSearch.* runs the
+# search in process), bad formation and polymap keys (the key tables' checks, sanitized by
+# MrlocErrors.* and fuzz_ini) and crafted provenance files (path checks: RunFolder's others)
+long+='|MrlocOmnivision\.FiveRobotsFromRenderedPanoramas|Visibility\.HolesAgreeWithRayCasting'
+long+='|Elimination\.StepsJoinedByShafts|MrlocOmnivision\.SwarmOfThirty'
+long+='|MrlocFormation\.BadFormationInput|MrlocPolymap\.BadPolymapInput'
+long+='|RunFolder\.ACraftedProvenanceOrSymlinks'
 if [ "${MRLOC_SANITIZE_ALL:-0}" = 1 ]; then
   ctest --output-on-failure -j "$(nproc)" "$@"
 else
