@@ -132,6 +132,15 @@ long+='|MrlocOmnivision\.FiveRobotsFromRenderedPanoramas|Visibility\.HolesAgreeW
 long+='|Elimination\.StepsJoinedByShafts|MrlocOmnivision\.SwarmOfThirty'
 long+='|MrlocFormation\.BadFormationInput|MrlocPolymap\.BadPolymapInput'
 long+='|RunFolder\.ACraftedProvenanceOrSymlinks'
+# and (CI at 1,641 s here with those) two identical rooms told apart by a corridor (the scan
+# localizer runs sanitized in RealPolymap.LocalizationDemoBesidePfLocalization), MRPT's
+# range-only INIs with real times (MrptData.UwbDemoAgainstItsGroundTruthFile stays), rooms
+# behind narrow passages (Elimination's steps maps stay), the Udacity log in two halves
+# (RealSonar.UdacityWallsFromRealEchoes stays) and where MRPT's ground truth is found (a file
+# lookup)
+long+='|ScanLocalizer\.TwoIdenticalRooms|MrptData\.RangeOnlyInisRunUnchanged'
+long+='|Elimination\.RoomsBehindPassagesTooNarrow|RealSonar\.TwoHalvesOfTheUdacityLog'
+long+='|FrontDoor\.MrptGroundTruthIsPickedUp'
 if [ "${MRLOC_SANITIZE_ALL:-0}" = 1 ]; then
   ctest --output-on-failure -j "$(nproc)" "$@"
 else
