@@ -21,8 +21,10 @@ std::optional<OdometryFit> fitOdometry(const common::Trajectory& odometry,
     // (libRSF's point2) has none, and the course turns as the heading does
     double odoDistance = 0, cross = 0, truthSquares = 0;
     std::optional<mrpt::poses::CPose3D> lastOdo, lastTruth;
-    bool courses = false;  // both courses below are set (two plain doubles: GCC 12 took
-    double lastOdoCourse = 0, lastTruthCourse = 0;  // optionals as maybe uninitialized)
+    // the last courses of both, valid while `courses` holds; plain doubles, since GCC 12 warned
+    // that a pair of optionals read here might be uninitialized
+    bool courses = false;
+    double lastOdoCourse = 0, lastTruthCourse = 0;
     for (double t = start; t <= end; t += kStep) {
         const auto o = common::interpolate(odometry, t), g = common::interpolate(truth, t);
         if (!o || !g) continue;
