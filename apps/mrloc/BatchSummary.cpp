@@ -294,18 +294,27 @@ void plotFigure(const BatchSummary& s, const std::string& name, const std::strin
         g << "$bins << EOD\n";
         for (size_t b = 0; b < f.histogram.size(); ++b)
             g << mrpt::format("%.10g %zu\n", f.min + (double(b) + 0.5) * width, f.histogram[b]);
+        // whole trials on the y axis, the bins' edges on the x axis (a tick every bin or
+        // every few), a quarter bin between the outer bars and the frame
+        const size_t most = *std::max_element(f.histogram.begin(), f.histogram.end());
+        const size_t yStep = std::max<size_t>(1, (most + 7) / 8);
+        const size_t binsPerTick = (kBins + 7) / 8;
         g << "EOD\n"
           << "set xlabel " << report::gnuplotString(f.name + " (" + unitText(f) + ")") << "\n"
-          << "set ylabel 'trials'\nset yrange [0:*]\nset style fill solid 0.5\n"
+          << mrpt::format("set xrange [%.10g:%.10g]\nset xtics %.10g, %.10g\n",
+                          f.min - 0.25 * width, f.min + (double(kBins) + 0.25) * width, f.min,
+                          width * double(binsPerTick))
+          << mrpt::format("set ytics %zu\nset yrange [0:%zu]\n", yStep, most + yStep)
+          << "set ylabel 'trials'\nset style fill solid 0.5\n"
           << "set boxwidth " << mrpt::format("%.10g", width * 0.9) << "\n"
           << "set arrow from " << mrpt::format("%.10g", f.mean) << ", graph 0 to "
-          << mrpt::format("%.10g", f.mean) << ", graph 1 nohead lc rgb '#d62728' lw 2\n"
+          << mrpt::format("%.10g", f.mean) << ", graph 1 nohead lc rgb pal_vermillion lw 2\n"
           << "set arrow from " << mrpt::format("%.10g", f.p95) << ", graph 0 to "
-          << mrpt::format("%.10g", f.p95) << ", graph 1 nohead lc rgb '#2ca02c' lw 2 dt 2\n"
-          << "plot $bins using 1:2 with boxes lc rgb '#1f77b4' title "
+          << mrpt::format("%.10g", f.p95) << ", graph 1 nohead lc rgb pal_green lw 2 dt 2\n"
+          << "plot $bins using 1:2 with boxes lc rgb pal_blue title "
           << report::gnuplotString(mrpt::format("%zu trials", f.count))
-          << ", NaN with lines lc rgb '#d62728' lw 2 title 'mean'"
-          << ", NaN with lines lc rgb '#2ca02c' lw 2 dt 2 title '95th percentile'\n";
+          << ", NaN with lines lc rgb pal_vermillion lw 2 title 'mean'"
+          << ", NaN with lines lc rgb pal_green lw 2 dt 2 title '95th percentile'\n";
     } else {
         // x: the grid's value when one numeric key makes the grid, else the point's number
         bool numeric = s.plan.grid.size() == 1;
@@ -337,9 +346,9 @@ void plotFigure(const BatchSummary& s, const std::string& name, const std::strin
             g << "set xrange [-0.5:" << s.points.size() - 0.5 << "]\n";
         }
         g << "set ylabel " << report::gnuplotString(name + " (" + unit + ")") << "\n"
-          << "plot $stats using 1:2:3 with yerrorlines lc rgb '#1f77b4' pt 7 title 'mean +/- sd'"
-          << ", $stats using 1:4 with linespoints lc rgb '#ff7f0e' pt 5 title 'median'"
-          << ", $stats using 1:5 with linespoints lc rgb '#2ca02c' pt 9 dt 2 title "
+          << "plot $stats using 1:2:3 with yerrorlines lc rgb pal_blue pt 7 title 'mean +/- sd'"
+          << ", $stats using 1:4 with linespoints lc rgb pal_orange pt 5 title 'median'"
+          << ", $stats using 1:5 with linespoints lc rgb pal_green pt 9 dt 2 title "
              "'95th percentile'\n";
     }
     report::runGnuplot(g.str(), png);
@@ -386,10 +395,11 @@ std::string renderBatchReport(const std::string& dir) {
         body += t.html();
         const std::string png = mrpt::format("batch.figure%zu.png", k);
         plotFigure(s, names[k], (fs::path(dir) / png).string());
-        body += Figure{png, names[k] + ": " +
-                                (s.points.size() == 1 ? "histogram over the trials"
-                                                      : "mean, median and 95th percentile per "
-                                                        "grid point")}
+        body += Figure{png,
+                       names[k] + ": " +
+                           (s.points.size() == 1
+                                ? "histogram over the trials; the mean and 95th percentile as lines"
+                                : "mean, median and 95th percentile at each grid point")}
                     .html();
     }
     if (!s.failed.empty() || !s.missing.empty()) {

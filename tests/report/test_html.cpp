@@ -37,11 +37,14 @@ TEST(Html, LinksAndFiguresHoldNoSchemeAndStayInTheirAttribute) {
     EXPECT_EQ(report::link("javascript:alert(1)", "x").markup(),
               "<a href='javascript%3Aalert%281%29'>x</a>");
     EXPECT_EQ((report::Figure{"polymap.r1.png", "map, V and 'hypotheses'"}).html().markup(),
-              "<img src='polymap.r1.png' alt='map, V and &#39;hypotheses&#39;'>\n");
+              "<figure><img src='polymap.r1.png' alt='map, V and &#39;hypotheses&#39;'><figcaption>"
+              "map, V and &#39;hypotheses&#39;</figcaption></figure>\n");
     const auto img = (report::Figure{"a' onerror='alert(1).png", "x"}).html().markup();
-    EXPECT_EQ(img, "<img src='a%27%20onerror%3D%27alert%281%29.png' alt='x'>\n");
+    EXPECT_EQ(img,
+              "<figure><img src='a%27%20onerror%3D%27alert%281%29.png' alt='x'><figcaption>x"
+              "</figcaption></figure>\n");
     EXPECT_EQ((report::Figure{"\xc3\xa9t\xc3\xa9.png", ""}).html().markup(),
-              "<img src='%C3%A9t%C3%A9.png' alt=''>\n");
+              "<figure><img src='%C3%A9t%C3%A9.png' alt=''><figcaption></figcaption></figure>\n");
 }
 
 TEST(Html, TablesAreWellFormed) {

@@ -3,6 +3,7 @@
 #include <mrloc/common/Error.h>
 #include <mrloc/common/Evaluation.h>
 #include <mrloc/report/EvaluationPlots.h>
+#include <mrloc/report/PictureLayout.h>
 #include <mrloc/report/Plots.h>
 #include <mrloc/report/TopView.h>
 #include <mrpt/img/CImage.h>
@@ -51,41 +52,84 @@ TEST(TopView, DrawsPathsAndBeaconsWhereTheyAre) {
     report::renderTopView(c, png, 400, 400);
     mrpt::img::CImage img;
     ASSERT_TRUE(img.loadFromFile(png));
-    // the drawing 400 x 400, the legend in a panel right of it (its longest entry, "r odometry
-    // alone", 16 characters: 48 + 9 x 16 = 192 px)
-    ASSERT_EQ(img.getHeight(), 400u);
-    ASSERT_EQ(img.getWidth(), 592u);
-    // The view is centred on the room; the scale follows from the fitted zoom with its margin:
-    // 400 px span (1.12 * 4 + 0.3) * 1.1 = 5.258 m, so 1 m = 76.1 px, image y grows downwards.
-    const double pxPerM = 400 / ((1.12 * 4 + 0.3) * 1.1);
-    const auto px = [&](double x) { return int(200 + (x - 2.0) * pxPerM); };
-    const auto py = [&](double y) { return int(200 - (y - 2.0) * pxPerM); };
-    // The estimate in the robot's colour (violet: blue and red well above green), the truth
-    // in its pale version (green channel raised towards white), nothing violet elsewhere.
-    const auto violet = [&](int x, int y, int gLo, int gHi) {
+    // The room 4 x 4 m with its 6 % and 0.3 m margins: 4.54 m over the 400 px drawing, framed
+    // by axes (tick labels 1 character, "y (m)" 5: 16 + 9 x 5 = 61 px left, 26 top, 46 below),
+    // the legend's panel right of it (14 px apart; its longest entry, "r odometry alone", 16
+    // characters: 60 + 9 x 16 = 204 px).
+    const auto layout = report::readLayout(png);
+    ASSERT_TRUE(layout);
+    EXPECT_EQ(layout->data.x0, 61);
+    EXPECT_EQ(layout->data.y0, 26);
+    EXPECT_EQ(layout->data.width(), 400);
+    EXPECT_EQ(layout->data.height(), 400);
+    ASSERT_EQ(img.getWidth(), 61u + 400 + 14 + 204);
+    ASSERT_EQ(img.getHeight(), 26u + 400 + 46);
+    EXPECT_EQ(layout->width, int(img.getWidth()));
+    ASSERT_TRUE(layout->legend);
+    EXPECT_FALSE(layout->legend->overlaps(layout->data));
+    EXPECT_EQ(layout->legend->x0, 61 + 400 + 14);
+    ASSERT_EQ(layout->labels.size(), 1u);
+    EXPECT_TRUE(layout->labels[0].inside(layout->data));
+    ASSERT_TRUE(layout->inkShare);
+    EXPECT_GT(*layout->inkShare, 0.7);  // the room's walls span the drawing (measured 0.78)
+    const double pxPerM = 400 / (1.06 * 4 + 0.3);
+    const auto px = [&](double x) { return int(61 + 200 + (x - 2.0) * pxPerM); };
+    const auto py = [&](double y) { return int(26 + 200 - (y - 2.0) * pxPerM); };
+    // The robot's colour (the palette's first, blue): blue well above red, green between.
+    const auto blue = [&](int x, int y, int rLo, int rHi) {
         int n = 0;
         for (int v = y - 6; v <= y + 6; ++v)
             for (int u = x - 6; u <= x + 6; ++u) {
                 const uint8_t* p = img(u, v);
-                n += p[0] > p[1] + 30 && p[2] > p[1] + 15 && p[1] >= gLo && p[1] <= gHi;
+                n += p[0] > p[2] + 40 && p[1] > p[2] + 20 && p[2] >= rLo && p[2] <= rHi;
             }
         return n;
     };
-    EXPECT_GT(violet(px(1.5), py(1.1), 0, 150), 3);    // the estimate, full colour
-    EXPECT_EQ(violet(px(1.5), py(1.1), 160, 255), 0);  // not pale
-    EXPECT_GT(violet(px(3.1), py(2.0), 150, 200), 3);  // the truth, pale
-    EXPECT_EQ(violet(px(3.1), py(2.0), 0, 140), 0);
-    EXPECT_GT(countColoured(img, px(1.5), py(2.6), {74, 0, 105}), 3);   // odometry, dark
-    EXPECT_GT(countColoured(img, px(0.5), py(3.5), {30, 90, 220}), 3);  // the landmark
-    EXPECT_EQ(violet(px(1.5), py(3.0), 0, 255), 0);                     // no path elsewhere
+    EXPECT_GT(blue(px(1.5), py(1.1), 0, 60), 3);     // the estimate, full colour
+    EXPECT_EQ(blue(px(1.5), py(1.1), 120, 255), 0);  // not pale
+    EXPECT_GT(blue(px(3.1), py(2.0), 140, 200), 3);  // the truth, pale
+    EXPECT_EQ(blue(px(3.1), py(2.0), 0, 60), 0);
+    EXPECT_EQ(blue(px(1.5), py(3.0), 0, 255), 0);  // no path elsewhere
+    // the truth a wide band (10 px), the estimate a thin line (2 px): across each, pixels of
+    // its colour in one column
+    const auto across = [&](int x, int y, int rLo, int rHi) {
+        int n = 0;
+        for (int v = y - 12; v <= y + 12; ++v) {
+            const uint8_t* p = img(x, v);
+            n += p[0] > p[2] + 40 && p[1] > p[2] + 20 && p[2] >= rLo && p[2] <= rHi;
+        }
+        return n;
+    };
+    EXPECT_LE(across(px(1.5), py(1.1), 0, 60), 3);
+    int bandWidth = 0;  // the truth runs up x = 3.1: count along a row
+    for (int u = px(3.1) - 12; u <= px(3.1) + 12; ++u) {
+        const uint8_t* p = img(u, py(2.0));
+        bandWidth += p[0] > p[2] + 40 && p[2] >= 140 && p[2] <= 200;
+    }
+    EXPECT_GE(bandWidth, 8);
+    // odometry alone dashed: along y = 2.6 (its fullest row) the robot's colour and gaps
+    // alternate (7 px drawn, 5 not, the line's caps narrowing the gaps: about 80 % drawn)
+    int drawn = 0, columns = px(3.3) - px(0.7) + 1;
+    for (int v = py(2.6) - 2; v <= py(2.6) + 2; ++v) {
+        int inRow = 0;
+        for (int u = px(0.7); u <= px(3.3); ++u) {
+            const uint8_t* p = img(u, v);
+            inRow += p[0] > p[2] + 40 && p[1] > p[2] + 20 && p[2] <= 60;
+        }
+        drawn = std::max(drawn, inRow);
+    }
+    EXPECT_GT(drawn, columns / 3);
+    EXPECT_LT(drawn, columns * 9 / 10);
+    EXPECT_GT(countColoured(img, px(0.5), py(3.5), {230, 159, 0}), 3);  // the landmark
     // the start: a black ring where the truth begins, (3.1, 0.5)
-    EXPECT_GT(countColoured(img, px(3.1) + 9, py(0.5), {0, 0, 0}), 3);
+    const int ring = int(std::lround((0.015 * 4 + 0.03) * pxPerM * 0.85));
+    EXPECT_GT(countColoured(img, px(3.1) + ring, py(0.5), {0, 0, 0}), 3);
     // the landmark's name on white, centred above it
     EXPECT_GT(countColoured(img, px(0.5), py(3.5) - 33, {255, 255, 255}), 20);
-    // The legend is in the panel, clear of the drawing: the landmarks' swatch at its first
-    // row; the scale bar (bottom left) is black on white.
-    EXPECT_GT(countColoured(img, 400 + 18, 14 + 7, {30, 90, 220}), 3);
-    EXPECT_GT(countColoured(img, 30, 400 - 16, {0, 0, 0}), 3);
+    // the axes: a tick label "0" under x = 0 and beside y = 0, dark on white
+    EXPECT_GT(countColoured(img, px(0.0), 26 + 400 + 15, {30, 30, 30}), 3);
+    // The legend in its panel, clear of the drawing: walls first, the landmarks' dot second.
+    EXPECT_GT(countColoured(img, 61 + 400 + 14 + 27, 26 + 20 + 8, {230, 159, 0}), 3);
 }
 
 TEST(Plots, GnuplotWritesPngs) {

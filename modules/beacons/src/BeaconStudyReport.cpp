@@ -121,7 +121,7 @@ std::string gridCell(const StudyGridRow* g) {
  *  reception (%), against the part's value; one colour per variant. */
 Html gridPlot(const GridPart& part, const std::string& dir, const std::string& png,
               const std::string& xLabel, const std::string& caption, double bound) {
-    const char* colours[] = {"#d62728", "#1f77b4", "#2ca02c", "#9467bd"};
+    const char* colours[] = {"pal_vermillion", "pal_blue", "pal_green", "pal_purple"};
     std::string data, errors, reception;
     for (size_t v = 0; v < part.variants.size(); ++v) {
         std::vector<std::pair<double, double>> mean, max, rec, covered;
@@ -139,14 +139,14 @@ Html gridPlot(const GridPart& part, const std::string& dir, const std::string& p
         data += report::dataBlock("m" + n, mean) + report::dataBlock("x" + n, max) +
                 report::dataBlock("r" + n, rec) + report::dataBlock("c" + n, covered);
         if (!mean.empty())
-            errors += "$m" + n + " using 1:2 with linespoints lw 2 pt 7 lc rgb '" + colour +
-                      "' title " + report::gnuplotString(part.variants[v] + ": mean") + ", $x" + n +
-                      " using 1:2 with linespoints lw 2 pt 6 dt 2 lc rgb '" + colour + "' title " +
+            errors += "$m" + n + " using 1:2 with linespoints lw 2 pt 7 lc rgb " + colour +
+                      " title " + report::gnuplotString(part.variants[v] + ": mean") + ", $x" + n +
+                      " using 1:2 with linespoints lw 2 pt 6 dt 2 lc rgb " + colour + " title " +
                       report::gnuplotString(part.variants[v] + ": max") + ", ";
-        reception += "$c" + n + " using 1:2 with linespoints lw 2 pt 7 lc rgb '" + colour +
-                     "' title " + report::gnuplotString(part.variants[v] + ": points covered") +
-                     ", $r" + n + " using 1:2 with linespoints lw 2 pt 6 dt 2 lc rgb '" + colour +
-                     "' title " + report::gnuplotString(part.variants[v] + ": lowest reception") +
+        reception += "$c" + n + " using 1:2 with linespoints lw 2 pt 7 lc rgb " + colour +
+                     " title " + report::gnuplotString(part.variants[v] + ": points covered") +
+                     ", $r" + n + " using 1:2 with linespoints lw 2 pt 6 dt 2 lc rgb " + colour +
+                     " title " + report::gnuplotString(part.variants[v] + ": lowest reception") +
                      ", ";
     }
     if (reception.empty()) return {};
@@ -161,14 +161,14 @@ Html gridPlot(const GridPart& part, const std::string& dir, const std::string& p
             "set ylabel 'horizontal error (mm)'\nset logscale y\nset title 'error where the "
             "trials gave a fix'\nplot " +
             errors +
-            mrpt::format("%g with lines dt 3 lw 2 lc rgb '#555555' title 'bound %.0f mm'\n",
+            mrpt::format("%g with lines dt 3 lw 2 lc rgb pal_grey title 'bound %.0f mm'\n",
                          1000 * bound, 1000 * bound) +
             "unset logscale y\n";
     body +=
         "set ylabel 'share (%)'\nset yrange [0:105]\nset title 'test points covered, and "
         "the lowest reception over them'\nplot " +
         reception +
-        "90 with lines dt 3 lw 2 lc rgb '#555555' title 'paper 001: 90 % reception'\nunset "
+        "90 with lines dt 3 lw 2 lc rgb pal_grey title 'paper 001: 90 % reception'\nunset "
         "multiplot\n";
     report::runGnuplot(body, dir + "/" + png, "1200,800");
     return report::Figure{png, caption}.html();
@@ -259,11 +259,15 @@ Html countSection(const BeaconStudyFile& f, const std::string& dir) {
                 "it'\n"
                 "set yrange [0:*]\nset offsets graph 0.04, graph 0.04, graph 0.08, 0\nset key "
                 "outside right top\n"
-                "plot $f using 1:2 with linespoints lw 2 pt 7 lc rgb '#d62728' title 'fixed heads "
+                "plot $f using 1:2 with linespoints lw 2 pt 7 lc rgb pal_vermillion title 'fixed "
+                "heads "
                 "(straight down)', "
-                "$a using 1:2 with linespoints lw 2 pt 5 lc rgb '#1f77b4' title 'active heads'\n",
+                "$a using 1:2 with linespoints lw 2 pt 5 lc rgb pal_blue title 'active heads'\n",
             dir + "/beacons.study.count.png", "800,420");
-        out += report::Figure{"beacons.study.count.png", "beacons needed against room size"}.html();
+        out += report::Figure{"beacons.study.count.png",
+                              "beacons needed against the room's size: active heads should need "
+                              "fewer than fixed ones"}
+                   .html();
     }
     return out;
 }
@@ -296,11 +300,11 @@ Html agentsSection(const BeaconStudyFile& f, const std::string& dir) {
     out += table.html();
     std::string body, plot = "plot ";
     int i = 0;
-    const char* colours[] = {"#1f77b4", "#2ca02c", "#9467bd", "#d62728", "#ff7f0e"};
+    const char* colours[] = {"pal_blue", "pal_green", "pal_purple", "pal_vermillion", "pal_orange"};
     for (const auto& [name, xy] : curves) {
         body += report::dataBlock("c" + std::to_string(i), xy);
         plot += (i ? ", " : "") + std::string("$c") + std::to_string(i) +
-                " using 1:2 with linespoints lw 2 pt 7 lc rgb '" + colours[i % 5] + "' title " +
+                " using 1:2 with linespoints lw 2 pt 7 lc rgb " + colours[i % 5] + " title " +
                 report::gnuplotString(name);
         ++i;
     }
@@ -311,7 +315,9 @@ Html agentsSection(const BeaconStudyFile& f, const std::string& dir) {
             "set key outside right top\n" +
             plot + "\n",
         dir + "/beacons.study.agents.png", "1000,450");
-    out += report::Figure{"beacons.study.agents.png", "ranging rate per agent"}.html();
+    out += report::Figure{"beacons.study.agents.png",
+                          "ranging rate each agent gets as more agents share the beacons"}
+               .html();
     return out;
 }
 

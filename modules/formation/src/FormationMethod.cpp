@@ -80,16 +80,17 @@ report::Html runPicture(const report::RunView& run, const FormationRunFile& f) {
                        report::dataBlock("drEst", drEst) + report::dataBlock("drTrue", drTrue) +
                        report::dataBlock("start", start);
     body +=
-        "set xlabel 'x (m)'\nset ylabel 'y (m)'\nset size ratio -1\nset key outside right top\n"
-        "plot $route using 1:2 with linespoints lw 2 lc rgb '#2ca02c' pt 7 ps 0.6 title 'route', "
+        "set xlabel 'x (m)'\nset ylabel 'y (m)'\nset size ratio -1\n"
+        "set key outside below center horizontal\n"
+        "plot $route using 1:2 with linespoints lw 2 lc rgb pal_green pt 7 ps 0.6 title 'route', "
         "$believed using 1:2 with points pt 1 ps 0.8 lc rgb 'black' title 'vertices (believed)', "
-        "$truth using 1:2 with points pt 6 ps 0.6 lc rgb '#1f77b4' title 'vertices (true)', "
+        "$truth using 1:2 with points pt 6 ps 0.6 lc rgb pal_blue title 'vertices (true)', "
         "$start using 1:2 with points pt 5 ps 0.8 lc rgb 'black' title 'strip (start)', "
-        "$drTrue using 1:2 with lines lw 1 lc rgb '#999999' title 'dead-reckoning robot (true)', "
-        "$drEst using 1:2 with lines lw 2 lc rgb '#d62728' title 'dead reckoning (estimate)'";
+        "$drTrue using 1:2 with lines lw 1 lc rgb pal_grey title 'dead-reckoning robot (true)', "
+        "$drEst using 1:2 with lines lw 2 lc rgb pal_vermillion title 'dead reckoning (estimate)'";
     if (!obstacles.empty())
         body +=
-            ", $obst using 1:2 with points pt 7 ps 0.3 lc rgb '#ff7f0e' title 'obstacles found'";
+            ", $obst using 1:2 with points pt 7 ps 0.3 lc rgb pal_orange title 'obstacles found'";
     body += "\n";
     // the world's obstacles (effective.ini [world]) as boxes under everything else
     if (run.effective && run.effective->sectionExists("world")) {
@@ -99,20 +100,24 @@ report::Html runPicture(const report::RunView& run, const FormationRunFile& f) {
         int id = 1;
         for (const auto& b : world.obstacles)
             boxes += mrpt::format(
-                "set object %d rect from %.17g,%.17g to %.17g,%.17g back fc rgb '#bbbbbb' "
+                "set object %d rect from %.17g,%.17g to %.17g,%.17g back fc rgb pal_lightgrey "
                 "fs solid 0.6 noborder\n",
                 id++, b.min.x, b.min.y, b.max.x, b.max.y);
         body = boxes + body;
     }
-    // a picture as tall as the route's extent asks for (the legend takes the right 30 %)
+    // a picture as tall as the route's extent asks for (the plot about 900 px wide, the
+    // axes and the legend below it about 180 px)
     double x0 = INFINITY, x1 = -INFINITY, y0 = INFINITY, y1 = -INFINITY;
     for (const auto* set : {&route, &believed, &start, &drEst})
         for (const auto& [x, y] : *set)
             x0 = std::min(x0, x), x1 = std::max(x1, x), y0 = std::min(y0, y), y1 = std::max(y1, y);
     const double aspect = (y1 - y0 + 2) / std::max(x1 - x0 + 2, 1.0);
-    const int height = std::clamp(int(std::lround(700 * aspect)) + 120, 320, 900);
+    const int height = std::clamp(int(std::lround(900 * aspect)) + 180, 360, 1000);
     report::runGnuplot(body, run.dir + "/formation.run.png", mrpt::format("1000,%d", height));
-    return report::Figure{"formation.run.png", "route, vertices and dead reckoning"}.html();
+    return report::Figure{"formation.run.png",
+                          "the formation's believed vertices (+) should sit on the true ones (o); "
+                          "dead reckoning drifts from its truth"}
+        .html();
 }
 
 /** Seed 003 fig. 14 for one route: the mean error against time, both speeds. */
@@ -123,7 +128,7 @@ report::Html figureFourteen(const std::string& dir, const FormationExperimentFil
         if (c.route == route) speeds.insert(c.wheelSpeed);
     std::string body, plot;
     int k = 0;
-    const char* colours[] = {"#d62728", "#1f77b4", "#9467bd", "#8c564b"};
+    const char* colours[] = {"pal_vermillion", "pal_blue", "pal_purple", "pal_black"};
     for (auto it = speeds.rbegin(); it != speeds.rend(); ++it, ++k) {
         std::vector<std::pair<double, double>> dr, f;
         for (const auto& c : e.curves)
@@ -132,10 +137,10 @@ report::Html figureFourteen(const std::string& dir, const FormationExperimentFil
         const std::string n = std::to_string(k), colour = colours[k % 4];
         body += report::dataBlock("dr" + n, dr) + report::dataBlock("f" + n, f);
         plot += std::string(plot.empty() ? "plot " : ", ") + "$dr" + n +
-                " using 1:2 with lines lw 2 dt " + std::to_string(k + 1) + " lc rgb '" + colour +
-                "' title 'dead reckoning, " + mrpt::format("%g", *it) + " rad/s', $f" + n +
-                " using 1:2 with points pt " + std::to_string(7 + 2 * k) + " ps 0.5 lc rgb '" +
-                colour + "' title 'formation, " + mrpt::format("%g", *it) + " rad/s'";
+                " using 1:2 with lines lw 2 dt " + std::to_string(k + 1) + " lc rgb " + colour +
+                " title 'dead reckoning, " + mrpt::format("%g", *it) + " rad/s', $f" + n +
+                " using 1:2 with points pt " + std::to_string(7 + 2 * k) + " ps 0.5 lc rgb " +
+                colour + " title 'formation, " + mrpt::format("%g", *it) + " rad/s'";
     }
     const std::string png = "formation.fig14." + route + ".png";
     report::runGnuplot(
@@ -144,7 +149,9 @@ report::Html figureFourteen(const std::string& dir, const FormationExperimentFil
             "set key outside right top\nset yrange [0:*]\nset offsets 0, 0, graph 0.1, 0\n" +
             plot + "\n",
         dir + "/" + png);
-    return report::Figure{png, "error against time, " + routeTitle(route)}.html();
+    return report::Figure{png, "error against time, " + routeTitle(route) +
+                                   ": the formation's should stay below dead reckoning's"}
+        .html();
 }
 
 /** A table of per-step vertex errors (seed 003 fig. 11's measure), in mm. */
@@ -226,7 +233,7 @@ report::Html experimentSection(const std::string& dir) {
                                "set xlabel 'number of robots N'\nset ylabel 'mean error at the "
                                "destination (m)'\nset yrange [0:*]\nset xtics 1\nset key outside "
                                "right top\nplot $n using 1:2 with linespoints lw 2 pt 7 lc rgb "
-                               "'#1f77b4' title " +
+                               "pal_blue title " +
                                report::gnuplotString("formation, " +
                                                      routeTitle(e.table.front().route) + " route") +
                                " noenhanced\n",
@@ -240,7 +247,9 @@ report::Html experimentSection(const std::string& dir) {
                paragraph(
                    "The paper: \"the localization error remains consistent despite an increase "
                    "in the number of robots\".") +
-               report::Figure{"formation.fig15.png", "error against N"}.html() +
+               report::Figure{"formation.fig15.png",
+                              "error against the number of robots: paper 003 says it stays level"}
+                   .html() +
                report::Table().headedRow("N", ns).headedRow("error (m)", errors).html();
     }
     out +=

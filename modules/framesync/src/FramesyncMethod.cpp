@@ -5,6 +5,7 @@
 #include <mrloc/framesync/FramesyncLocalizer.h>
 #include <mrloc/framesync/FramesyncMethod.h>
 #include <mrloc/framesync/FramesyncPayload.h>
+#include <mrloc/report/Palette.h>
 #include <mrloc/report/Plots.h>
 #include <mrloc/report/TopView.h>
 #include <mrloc/sim/World.h>
@@ -29,9 +30,11 @@ method::Scenario loadScenario(const mrpt::config::CConfigFileBase& ini,
     return s;
 }
 
-std::string colourOf(size_t i) {
-    const auto c = report::robotColour(i);
-    return mrpt::format("#%02x%02x%02x", c.R, c.G, c.B);
+std::string colourOf(size_t i) { return "'" + report::palette::hex(report::robotColour(i)) + "'"; }
+
+/** The robot's colour 60 % transparent (gnuplot's #AARRGGBB): the truth's wide band. */
+std::string paleOf(size_t i) {
+    return "'#99" + report::palette::hex(report::robotColour(i)).substr(1) + "'";
 }
 
 std::string cm(double metres) {
@@ -44,17 +47,17 @@ std::string worldObjects(const report::RunView& run) {
     sim::WorldOptions world;
     world.loadFromConfigFile(*run.effective, "world");
     std::string out = mrpt::format(
-        "set object 1 rect from 0,0 to %.17g,%.17g back fs empty border lc rgb '#777777'\n",
+        "set object 1 rect from 0,0 to %.17g,%.17g back fs empty border lc rgb pal_grey\n",
         world.sizeX, world.sizeY);
     int id = 2;
     for (const auto& b : world.obstacles)
         out += mrpt::format(
-            "set object %d rect from %.17g,%.17g to %.17g,%.17g back fc rgb '#bbbbbb' "
+            "set object %d rect from %.17g,%.17g to %.17g,%.17g back fc rgb pal_lightgrey "
             "fs solid 0.7 noborder\n",
             id++, b.min.x, b.min.y, b.max.x, b.max.y);
     for (const auto& p : world.pillars)
         out += mrpt::format(
-            "set object %d circle at %.17g,%.17g size %.17g back fc rgb '#8c564b' fs solid 0.6 "
+            "set object %d circle at %.17g,%.17g size %.17g back fc rgb pal_black fs solid 0.6 "
             "noborder\n",
             id++, p.x, p.y, p.radius);
     return out;
@@ -72,7 +75,7 @@ report::Html runPicture(const report::RunView& run, const FramesyncRunFile& f) {
     };
     for (size_t i = 0; i < robots.size(); ++i) {
         const std::string& r = robots[i];
-        const std::string n = std::to_string(i), colour = colourOf(i);
+        const std::string n = std::to_string(i), colour = colourOf(i), pale = paleOf(i);
         std::vector<std::pair<double, double>> est, odo, gt, walls;
         for (const auto& p : run.estimates.at(r)) est.emplace_back(p.pose.x(), p.pose.y());
         if (std::filesystem::exists(common::run_dir::odometry(run.dir, r)))
@@ -93,19 +96,19 @@ report::Html runPicture(const report::RunView& run, const FramesyncRunFile& f) {
                 extend(w.wall.a.x, w.wall.a.y), extend(w.wall.b.x, w.wall.b.y);
             }
         data += "$walls" + n + " << EOD\n" + segments + "EOD\n";
-        const std::string truth =
-            gt.empty() ? ""
-                       : "$gt" + n + " using 1:2 with lines lw 1 dt 2 lc rgb '" + colour +
-                             "' title " + report::gnuplotString(r + " (true)") + ", ";
+        const std::string truth = gt.empty()
+                                      ? ""
+                                      : "$gt" + n + " using 1:2 with lines lw 7 lc rgb " + pale +
+                                            " title " + report::gnuplotString(r + " (true)") + ", ";
         odometryPlot += std::string(odometryPlot.empty() ? "plot " : ", ") + truth + "$odo" + n +
-                        " using 1:2 with lines lw 2 lc rgb '" + colour + "' title " +
+                        " using 1:2 with lines lw 2 dt 2 lc rgb " + colour + " title " +
                         report::gnuplotString(r + " (odometry)");
         sharedPlot += std::string(sharedPlot.empty() ? "plot " : ", ") + truth + "$est" + n +
-                      " using 1:2 with lines lw 2 lc rgb '" + colour + "' title " +
+                      " using 1:2 with lines lw 2 lc rgb " + colour + " title " +
                       report::gnuplotString(r + " (shared frame)");
         if (!segments.empty())
-            sharedPlot += ", $walls" + n + " using 1:2:3:4 with vectors nohead lw 4 lc rgb '" +
-                          colour + "' title " + report::gnuplotString(r + "'s walls");
+            sharedPlot += ", $walls" + n + " using 1:2:3:4 with vectors nohead lw 4 lc rgb " +
+                          colour + " title " + report::gnuplotString(r + "'s walls");
     }
     const double margin = 1;
     const std::string ranges = mrpt::format("set xrange [%.17g:%.17g]\nset yrange [%.17g:%.17g]\n",
@@ -118,7 +121,9 @@ report::Html runPicture(const report::RunView& run, const FramesyncRunFile& f) {
         odometryPlot + "\nset title 'with the shared frame (paper 004)'\n" + sharedPlot +
         "\nunset multiplot\n";
     report::runGnuplot(body, run.dir + "/framesync.run.png", "1100,900");
-    return report::Figure{"framesync.run.png", "estimates without and with the shared frame"}
+    return report::Figure{"framesync.run.png",
+                          "each robot's own odometry (dashed) drifts from its truth (wide band); "
+                          "in the shared frame the paths stay on it"}
         .html();
 }
 
@@ -171,13 +176,17 @@ report::Html experimentSection(const std::string& dir) {
                 "set xlabel 'distance between the estimates at the end, against the truth (cm)'"
                 "\nset ylabel 'fraction of runs'\nset yrange [0:1.05]\nset xrange [0:*]\n"
                 "set key outside right top\nset arrow from 10, graph 0 to 10, graph 1 nohead dt 2 "
-                "lc rgb '#2ca02c'\nset arrow from 30, graph 0 to 30, graph 1 nohead dt 2 lc "
-                "rgb '#d62728'\nset label 'paper 004: < 10 cm' at 10.5, graph 0.08 tc rgb "
-                "'#2ca02c'\nset label 'paper 004: about 30 cm' at 30.5, graph 0.16 tc rgb "
-                "'#d62728'\nplot $o using 1:2 with steps lw 2 lc rgb '#d62728' title 'own "
-                "odometry', $s using 1:2 with steps lw 2 lc rgb '#1f77b4' title 'shared frame'\n",
+                "lc rgb pal_green\nset arrow from 30, graph 0 to 30, graph 1 nohead dt 2 lc "
+                "rgb pal_vermillion\nset label 'paper 004: < 10 cm' at 10.5, graph 0.08 tc rgb "
+                "pal_green\nset label 'paper 004: about 30 cm' at 30.5, graph 0.16 tc rgb "
+                "pal_vermillion\nplot $o using 1:2 with steps lw 2 lc rgb pal_vermillion title "
+                "'own "
+                "odometry', $s using 1:2 with steps lw 2 lc rgb pal_blue title 'shared frame'\n",
             dir + "/framesync.seeds.png", "800,450");
-        out += report::Figure{"framesync.seeds.png", "distribution over seeds"}.html();
+        out += report::Figure{"framesync.seeds.png",
+                              "the shared frame's end discrepancy over the seeds should lie left "
+                              "of own odometry's"}
+                   .html();
     }
     // the sweeps: mean over the seeds at each value
     for (const std::string kind : {"noise", "drift"}) {
@@ -211,12 +220,16 @@ report::Html experimentSection(const std::string& dir) {
                 "[0:*]\nset offsets graph 0.04, graph 0.04, 0, 0\nset key outside right top\nplot "
                 "$o using "
                 "1:2 with linespoints lw 2 pt 7 lc rgb "
-                "'#d62728' title 'own odometry', $s using 1:2 with linespoints lw 2 pt 5 lc rgb "
-                "'#1f77b4' title 'shared frame'\n",
+                "pal_vermillion title 'own odometry', $s using 1:2 with linespoints lw 2 pt 5 lc "
+                "rgb "
+                "pal_blue title 'shared frame'\n",
             dir + "/" + png, "800,400");
         out +=
             heading(3, noise ? "Against the sonar's range noise" : "Against the odometry's drift") +
-            report::Figure{png, kind + " sweep"}.html() + table.html();
+            report::Figure{
+                png, "as the " + kind + " grows, the shared frame should stay below own odometry"}
+                .html() +
+            table.html();
     }
     return out;
 }

@@ -134,12 +134,12 @@ void plotLayout(const LayoutFile& layout, const std::string& pngPath) {
         "set title " + report::gnuplotString(title) +
         "\nset size ratio -1\nset xlabel 'x (m)'\nset ylabel 'y (m)'\n"
         "set key outside right\n"
-        "plot $ellipses using 1:2:3:4:5 with ellipses lc rgb '#9999ff' title 'refined, 3 sigma', "
-        "$truth using 1:2 with points pt 6 ps 2 lc rgb '#008000' title 'truth', "
+        "plot $ellipses using 1:2:3:4:5 with ellipses lc rgb pal_sky title 'refined, 3 sigma', "
+        "$truth using 1:2 with points pt 6 ps 2 lc rgb pal_green title 'truth', "
         "$names using 1:2:3 with labels offset 1.2,1.2 notitle, "
-        "$paper using 1:2 with points pt 2 ps 1.5 lc rgb '#d00000' title 'paper (eq. 8, sine "
+        "$paper using 1:2 with points pt 2 ps 1.5 lc rgb pal_vermillion title 'paper (eq. 8, sine "
         "rule)', "
-        "$refined using 1:2 with points pt 1 ps 1.5 lc rgb '#0000d0' title 'least squares'\n";
+        "$refined using 1:2 with points pt 1 ps 1.5 lc rgb pal_blue title 'least squares'\n";
     report::runGnuplot(plot, pngPath, "900,700");
 }
 

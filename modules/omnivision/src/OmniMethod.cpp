@@ -241,7 +241,10 @@ report::Html omnivisionSection(const report::RunView& run) {
             "The truth, the paper's solution (eq. (8) for L, then the sine rule) and the "
             "least-squares refinement over every identified bearing and measured "
             "distance, with its 3-sigma ellipses; the legend is in the picture.") +
-        report::Figure{"layout.png", "true and recovered layouts"}.html();
+        report::Figure{"layout.png",
+                       "each robot's recovered position should sit in its true circle, within its "
+                       "3-sigma ellipse"}
+            .html();
     // the headline figures: every pairwise distance against the truth, and the triangles
     // each snapshot gave (seed 000 finds a layout from the triangles' interior angles)
     const auto pct = [&](const char* key, const char* stat) {
@@ -329,7 +332,9 @@ report::Html omnivisionSection(const report::RunView& run) {
            paragraph(
                "Median relative error of all pairwise distances, mean over the trials. "
                "Paper 000 gives no figure to compare with.") +
-           report::Figure{"accuracy.png", "accuracy against noise"}.html() + accuracy.html();
+           report::Figure{"accuracy.png", "error against the bearings' noise: how fast it grows"}
+               .html() +
+           accuracy.html();
 }
 
 /** Every robot placed or not, and the relative error of the pairwise distances (seed 000's

@@ -374,8 +374,13 @@ report::Html sweepSection(const std::string& dir) {
                "over up to " +
                std::to_string(sweep.rows.empty() ? 0 : sweep.rows.front().starts) +
                " starts per map, evenly spread.") +
-           report::Figure{"elimination.fig6.png", "mean path against n"}.html() +
-           report::Figure{"elimination.fig7.png", "mean time against n"}.html() + table.html();
+           report::Figure{"elimination.fig6.png",
+                          "mean travel against n for each algorithm: lower is better"}
+               .html() +
+           report::Figure{"elimination.fig7.png",
+                          "mean computing time against n for each algorithm"}
+               .html() +
+           table.html();
 }
 
 }  // namespace

@@ -1,11 +1,11 @@
 #include <mrloc/common/Error.h>
 #include <mrloc/polymap/PolygonView.h>
+#include <mrloc/report/Palette.h>
 #include <mrloc/report/TopView.h>
 #include <mrpt/opengl/CDisk.h>
 #include <mrpt/opengl/CSetOfLines.h>
 
 #include <algorithm>
-#include <array>
 
 namespace mrloc::polymap {
 
@@ -13,13 +13,6 @@ using namespace mrpt::opengl;
 using common::TPoint2D;
 
 namespace {
-
-const std::array<mrpt::img::TColor, 6> kRouteColours = {mrpt::img::TColor{40, 90, 220},
-                                                        {160, 40, 200},
-                                                        {0, 170, 190},
-                                                        {120, 120, 0},
-                                                        {230, 60, 140},
-                                                        {110, 70, 30}};
 
 CSetOfLines::Ptr outline(const std::vector<TPoint2D>& v, const TPoint2D& at,
                          mrpt::img::TColor color, float width, float z) {
@@ -51,20 +44,32 @@ void renderPolygonView(const PolygonViewContent& c, const std::string& pngPath, 
     const TPoint2D lo = c.box ? c.box->first : P.min(), hi = c.box ? c.box->second : P.max();
     const double size = std::max(hi.x - lo.x, hi.y - lo.y);
     const double dot = std::max(0.004 * size, 0.05);
-    // Orange: V placed at each hypothesis; green: at the true start; red: hypotheses.
-    for (const auto& h : c.hypotheses) scene.insert(outline(c.sensed, h, {240, 140, 20}, 2, 0.01f));
-    if (c.truth && !c.sensed.empty())
-        scene.insert(outline(c.sensed, *c.truth, {20, 150, 50}, 3, 0.02f));
+    // The map, V and the hypotheses in black and greys; V at the true start a yellow band
+    // under them; each route in a series colour of the palette (Palette.h), so the routes
+    // are the only colours in the picture.
+    using namespace report::palette;
+    using report::Swatch;
+    // V at the true start and OI as wide bands drawn over the rendering (OpenGL's lines are
+    // one pixel wide off screen)
+    std::vector<report::PicturePath> bands;
+    const auto ring = [](const std::vector<TPoint2D>& v, const TPoint2D& at,
+                         mrpt::img::TColor colour) {
+        report::PicturePath p{{}, colour, 7, false};
+        for (const auto& q : v) p.points.push_back(q + at);
+        if (!v.empty()) p.points.push_back(v.front() + at);
+        return p;
+    };
+    if (c.truth && !c.sensed.empty()) bands.push_back(ring(c.sensed, *c.truth, kYellow));
+    if (!c.overlay.empty()) bands.push_back(ring(c.overlay, {0, 0}, kLightGrey));
+    for (const auto& h : c.hypotheses) scene.insert(outline(c.sensed, h, kGrey, 1.5, 0.01f));
     for (size_t r = 0; r < P.ringCount(); ++r)  // the outer boundary and each hole
-        scene.insert(outline(P.ringVertices(r), {0, 0}, {30, 30, 30}, 2, 0.03f));
-    for (const auto& h : c.hypotheses) scene.insert(marker(h, 1.6 * dot, {220, 40, 30}, 0.04f));
-    if (c.truth) scene.insert(marker(*c.truth, dot, {20, 150, 50}, 0.05f));
-    if (!c.overlay.empty()) scene.insert(outline(c.overlay, {0, 0}, {110, 190, 250}, 4, 0.015f));
-    for (const auto& p : c.candidates.second)
-        scene.insert(marker(p, 0.35 * dot, {150, 150, 150}, 0.055f));
+        scene.insert(outline(P.ringVertices(r), {0, 0}, kBlack, 2, 0.03f));
+    for (const auto& h : c.hypotheses) scene.insert(marker(h, 1.6 * dot, kBlack, 0.04f));
+    if (c.truth) scene.insert(marker(*c.truth, dot, kYellow, 0.05f));
+    for (const auto& p : c.candidates.second) scene.insert(marker(p, 0.35 * dot, kGrey, 0.055f));
     // Routes: one colour each, drawn a little apart so that shared legs stay visible.
     for (size_t k = 0; k < c.routes.size(); ++k) {
-        const auto colour = kRouteColours[k % kRouteColours.size()];
+        const auto colour = series(k);
         const double shift = 0.6 * dot * (double(k) - 0.5 * double(c.routes.size() - 1));
         auto lines = CSetOfLines::Create();
         lines->setLineWidth(2.5f);
@@ -78,21 +83,23 @@ void renderPolygonView(const PolygonViewContent& c, const std::string& pngPath, 
             scene.insert(marker({p.x + shift, p.y + shift}, 0.9 * dot, colour, 0.07f));
     }
     const double m = 0.02 * size;
-    report::Legend legend = {{"map P", {30, 30, 30}}, {"V at each hypothesis", {240, 140, 20}}};
-    if (c.truth) legend.push_back({"V at the true start", {20, 150, 50}});
-    legend.push_back({"hypotheses", {220, 40, 30}});
-    if (!c.overlay.empty()) legend.push_back({"OI at the true start", {110, 190, 250}});
+    report::Legend legend = {{"map P", kBlack, Swatch::Line}};
+    if (!c.hypotheses.empty()) {
+        legend.push_back({"hypotheses (#: the tables' numbers)", kBlack, Swatch::Dot});
+        legend.push_back({"V placed at each hypothesis", kGrey, Swatch::Line});
+    }
+    if (c.truth) legend.push_back({"the true start and V there", kYellow, Swatch::Band});
+    if (!c.overlay.empty()) legend.push_back({"OI at the true start", kLightGrey, Swatch::Band});
     if (!c.candidates.second.empty())
-        legend.push_back({c.candidates.first + ": first candidates", {150, 150, 150}});
+        legend.push_back({c.candidates.first + ": first candidates", kGrey, Swatch::Dot});
     for (size_t k = 0; k < c.routes.size(); ++k)
-        legend.push_back(
-            {c.routes[k].label + ": route and probes", kRouteColours[k % kRouteColours.size()]});
+        legend.push_back({c.routes[k].label + ": route, probes as dots", series(k), Swatch::Line});
     // each hypothesis numbered as the report's tables number it (#1 first)
     std::vector<report::WorldLabel> labels;
     for (size_t k = 0; k < c.hypotheses.size() && c.hypotheses.size() <= 40; ++k)
         labels.push_back({c.hypotheses[k].x, c.hypotheses[k].y, "#" + std::to_string(k + 1)});
     report::saveTopDown(scene, lo.x - m, lo.y - m, hi.x + m, hi.y + m, pngPath, width, height,
-                        legend, labels);
+                        legend, labels, bands);
 }
 
 }  // namespace mrloc::polymap

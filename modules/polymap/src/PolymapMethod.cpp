@@ -176,7 +176,10 @@ report::Html polymapSection(const report::RunView& run) {
         renderPolygonView(view, run.dir + "/" + png);
         out += report::heading(3, "Robot " + robot + ": " + std::to_string(file.hypotheses.size()) +
                                       " hypotheses") +
-               report::Figure{png, "map, V and hypotheses"}.html();
+               report::Figure{png,
+                              "the map with V placed at each numbered hypothesis: the true start "
+                              "(yellow) should be one of them"}
+                   .html();
         // the headline: where the truth is among the hypotheses (# as in the table below)
         if (view.truth && !file.hypotheses.empty()) {
             size_t best = 0;
@@ -220,19 +223,20 @@ report::Html polymapSection(const report::RunView& run) {
                 for (const auto& p : route.path)
                     lo = {std::min(lo.x, p.x), std::min(lo.y, p.y)},
                     hi = {std::max(hi.x, p.x), std::max(hi.y, p.y)};
-            // Routes on the left, room on the right for the legend (top right).
+            // the routes with a margin around them (the legend is beside the drawing)
             const double pad = 0.25 * std::max({hi.x - lo.x, hi.y - lo.y, 4.0});
-            const double wide = std::max(hi.x - lo.x + 2 * pad, 2 * (hi.y - lo.y + 2 * pad));
-            view.box = std::make_pair(lo - TPoint2D{pad, pad},
-                                      TPoint2D{lo.x - pad + 1.8 * wide, hi.y + pad});
+            view.box = std::make_pair(lo - TPoint2D{pad, pad}, hi + TPoint2D{pad, pad});
             const std::string zoom = "polymap." + robot + ".routes.png";
-            renderPolygonView(view, run.dir + "/" + zoom, 1200, 600);
+            renderPolygonView(view, run.dir + "/" + zoom, 900, 700);
             out += report::paragraph(
                        "Close-up: the overlay region OI of all hypotheses at the true start, the "
                        "first algorithm's candidates for its first probe, and each algorithm's "
                        "route from the run's true start (paper 002 figs. 2-5), its probes as "
                        "dots.") +
-                   report::Figure{zoom, "elimination routes from the true start"}.html();
+                   report::Figure{zoom,
+                                  "each algorithm's route from the true start until one hypothesis "
+                                  "is left: shorter is better"}
+                       .html();
         }
         report::Table table(
             {"#", "x (m)", "y (m)", "translation (m)", "mismatch (m)", "distance to truth (m)"});

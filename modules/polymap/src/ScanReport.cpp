@@ -95,7 +95,9 @@ report::Html scanSection(const report::RunView& run) {
             " specks dropped; the scanner may stand on " + fixed(polymap, "free_cells", "%.0f") +
             " free cells.");
         if (std::filesystem::exists(run.dir + "/" + kTracePicture))
-            out += report::Figure{kTracePicture, "the traced rings over the occupancy grid"}.html();
+            out += report::Figure{kTracePicture,
+                                  "the traced polygon's rings should follow the grid's walls"}
+                       .html();
     } else {
         out += report::paragraph("Map: " + polymap.value("map", std::string("?")) + ", " +
                                  fixed(polymap, "map_rings", "%.0f") + " ring(s) of " +
@@ -115,7 +117,10 @@ report::Html scanSection(const report::RunView& run) {
             " of the beams.");
         if (std::filesystem::exists(run.dir + "/" + scanPicture(robot)))
             out +=
-                report::Figure{scanPicture(robot), "hypotheses and paths of robot " + robot}.html();
+                report::Figure{scanPicture(robot),
+                               "robot " + robot +
+                                   "'s hypotheses and paths: the estimate should end on the truth"}
+                    .html();
         report::Table table({"#", "x (m)", "y (m)", "heading (deg)", "beams agreeing",
                              "beams through walls", "beams short of a wall (clutter)"});
         if (r.contains("points") && r["points"].is_array())

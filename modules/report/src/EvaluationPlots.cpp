@@ -1,5 +1,6 @@
 #include <mrloc/common/Error.h>
 #include <mrloc/report/EvaluationPlots.h>
+#include <mrloc/report/Palette.h>
 #include <mrloc/report/Plots.h>
 #include <mrpt/core/bits_math.h>
 #include <mrpt/core/format.h>
@@ -19,7 +20,7 @@ namespace {
 constexpr size_t kMaxPoints = 4000;
 /** Shaded stretches at most: the longest, when a log has more. */
 constexpr size_t kMaxShaded = 300;
-constexpr const char* kShade = "'#c8c8c8'";
+constexpr const char* kShade = "pal_lightgrey";  // Palette.h, a variable in every script
 
 size_t strideFor(size_t n) { return std::max<size_t>(1, (n + kMaxPoints - 1) / kMaxPoints); }
 
@@ -115,6 +116,16 @@ std::string truthBlock(const std::string& name, const common::Trajectory& truth,
     return s + "EOD\n";
 }
 
+/** Where the key goes and the canvas' size: beside the plot for a robot or two, below it
+ *  (in columns, the canvas taller by its rows) for more, so that it never takes half the
+ *  picture. `entries` counts the key's lines. */
+std::pair<std::string, std::string> keyAndSize(size_t robots, size_t entries) {
+    if (robots <= 2) return {"", "1000,500"};
+    const size_t rows = (entries + 2) / 3;
+    return {"set key outside below center horizontal maxcols 3\n",
+            mrpt::format("1000,%zu", 500 + 20 * rows)};
+}
+
 }  // namespace
 
 std::optional<Ellipse> twoSigmaEllipse(const mrpt::math::CMatrixDouble33& cov) {
@@ -174,14 +185,15 @@ void plotTruthTimelineError(const std::vector<EvaluatedTrack>& tracks, const std
     const bool one = tracks.size() == 1;
     const std::string key = !anyUncovered(shaded) ? ""
                             : one                 ? shadingKey(true)
-                                  : ", NaN with boxes fs solid 0.8 noborder lc rgb '#777777' title "
+                                  : ", NaN with boxes fs solid 0.8 noborder lc rgb pal_grey title "
                                     "'band at the bottom: that robot not covered'";
-    runGnuplot(body + (one ? shading(shaded, t0) : bands(tracks, t0)) +
+    const auto [keyPlace, size] = keyAndSize(tracks.size(), 2 * tracks.size() + 1);
+    runGnuplot(body + (one ? shading(shaded, t0) : bands(tracks, t0)) + keyPlace +
                    "set xlabel 'time since the truth''s first stamp (s)'\n"
                    "set ylabel 'position error at the truth''s stamps (m)'\nset yrange [0:*]\n"
                    "plot " +
                    plot + key + "\n",
-               pngPath, "1000,500");
+               pngPath, size);
 }
 
 void plotTruthTimelineCdf(const std::vector<EvaluatedTrack>& tracks, const std::string& pngPath) {
@@ -210,12 +222,13 @@ void plotTruthTimelineCdf(const std::vector<EvaluatedTrack>& tracks, const std::
             curve(*tr.odometry, "d" + std::to_string(i), i, tr.name + ": odometry alone", "dt 2");
     }
     if (plot.empty()) throw Error("no covered truth stamp to plot for " + pngPath);
-    runGnuplot(body +
+    const auto [keyPlace, size] = keyAndSize(tracks.size(), 2 * tracks.size());
+    runGnuplot(body + keyPlace +
                    "set xlabel 'position error (m)'\n"
                    "set ylabel 'share of the covered truth stamps'\nset yrange [0:1.02]\n"
                    "set xrange [0:*]\n" +
                    plot + "\n",
-               pngPath, "1000,500");
+               pngPath, size);
 }
 
 void plotPoseOverTime(const EvaluatedTrack& tr, const std::string& pngPath) {
@@ -251,7 +264,7 @@ void plotPoseOverTime(const EvaluatedTrack& tr, const std::string& pngPath) {
                            "set yrange [-180:180]\nset ytics 90\n"
                          : "unset xlabel\n";
         panels += "plot " + std::string(truthBlocks[k]) +
-                  " using 1:2 with lines lw 2 lc rgb '#555555' title 'truth', " +
+                  " using 1:2 with lines lw 5 lc rgb pal_lightgrey title 'truth', " +
                   estimateBlocks[k] + " using 1:2 with lines lw 1.2 lc 1 title 'estimate'" +
                   (k == 0 ? key : "") + "\nunset object\n";
     }
@@ -320,20 +333,19 @@ void plotErrorTopView(const EvaluatedTrack& tr, const std::string& pngPath) {
     const double aspect = drawnSpan(y0, y1) / drawnSpan(x0, x1);
     const int height = static_cast<int>(std::clamp(200 + 700 * aspect, 450.0, 950.0));
     std::string plot =
-        "plot $truth using 1:2 with lines lw 1.5 lc rgb '#9a9a9a' title 'truth', "
+        "plot $truth using 1:2 with lines lw 6 lc rgb pal_lightgrey title 'truth', "
         "$path using 1:2:3 with lines lw 2.5 lc palette title 'estimate (colour: its error)'";
     if (drawn)
         plot +=
-            ", $ell using 1:2:3:4:5 with ellipses lw 1 lc rgb '#1f4fb4' title "
+            ", $ell using 1:2:3:4:5 with ellipses lw 1 lc rgb pal_black title "
             "'2-sigma position covariance'";
     runGnuplot(body + ellipses +
                    "set size ratio -1\nset xlabel 'x (m)'\nset ylabel 'y (m)'\n"
                    "set xrange " +
                    range(x0, x1) + "\nset yrange " + range(y0, y1) +
                    "\n"
-                   "set cblabel 'position error (m)'\nset cbrange [0:*]\n"
-                   "set palette defined (0 '#1a9850', 0.5 '#fdae61', 1 '#b2182b')\n"
-                   "set title " +
+                   "set cblabel 'position error (m)'\nset cbrange [0:*]\n" +
+                   palette::gnuplotValueScale() + "set title " +
                    gnuplotString(tr.name + ": path from above, coloured by the error") + "\n" +
                    "set key outside bottom center horizontal\n" + plot + "\n",
                pngPath, mrpt::format("900,%d", height));

@@ -112,8 +112,9 @@ Html bulletList(const std::vector<Html>& items) {
 }
 
 Html Figure::html() const {
-    return HtmlWriter::markup("<img src='" + encodedTarget(file) + "' alt='" + escapeHtml(alt) +
-                              "'>\n");
+    const std::string words = escapeHtml(caption);
+    return HtmlWriter::markup("<figure><img src='" + encodedTarget(file) + "' alt='" + words +
+                              "'><figcaption>" + words + "</figcaption></figure>\n");
 }
 
 Table::Table(std::vector<Html> head) : head_(std::move(head)) {}
@@ -147,7 +148,8 @@ std::string htmlPage(const std::string& title, const Html& body) {
            "</title>\n<style>body{font-family:sans-serif;max-width:1100px;margin:2em auto}"
            "table{border-collapse:collapse;margin:1em 0}th,td{border:1px solid #ccc;"
            "padding:3px 8px;text-align:left;vertical-align:top}img{max-width:100%;border:1px solid "
-           "#ddd}</style>"
+           "#ddd}figure{margin:1em 0 1.5em}figcaption{color:#444;font-style:italic;margin-top:.3em}"
+           "</style>"
            "</head><body>\n" +
            body.markup() + "</body></html>\n";
 }

@@ -1,6 +1,8 @@
 #include <fcntl.h>
 #include <mrloc/common/AtomicFile.h>
 #include <mrloc/common/Error.h>
+#include <mrloc/report/Palette.h>
+#include <mrloc/report/PictureLayout.h>
 #include <mrloc/report/Plots.h>
 #include <mrpt/core/format.h>
 #include <spawn.h>
@@ -91,7 +93,11 @@ void runGnuplot(const std::string& body, const std::string& pngPath, const std::
         s << "set terminal pngcairo size " << size << " font 'Sans,11' noenhanced\n"
           << "set output " << gnuplotString(fs::path(out.tempPath()).filename().string()) << "\n"
           << "set grid\nset key outside right top\n"
-          << body;
+          << palette::gnuplotDefinitions()
+          << body
+          // the plot area gnuplot chose, in pixels from the bottom left, for the layout
+          << "\nprint sprintf('mrloc-layout %.1f %.1f %.1f %.1f', GPVAL_TERM_XMIN, "
+             "GPVAL_TERM_XMAX, GPVAL_TERM_YMIN, GPVAL_TERM_YMAX)\n";
         s.close();
         if (!s) throw Error("cannot write " + script.tempPath() + " (is the disk full?)");
     }
@@ -110,6 +116,22 @@ void runGnuplot(const std::string& body, const std::string& pngPath, const std::
         throw Error("cannot write " + pngPath +
                     ": gnuplot's picture is incomplete (is the disk "
                     "full?)");
+    PictureLayout layout;
+    std::sscanf(size.c_str(), "%d,%d", &layout.width, &layout.height);
+    const size_t at = message.rfind("mrloc-layout ");
+    double x0 = 0, x1 = 0, y0 = 0, y1 = 0;
+    if (at == std::string::npos ||
+        std::sscanf(message.c_str() + at, "mrloc-layout %lf %lf %lf %lf", &x0, &x1, &y0, &y1) != 4)
+        throw Error("gnuplot did not say where it drew " + pngPath + ": " + oneLine(message));
+    layout.data = {int(std::lround(x0)), layout.height - int(std::lround(y1)), int(std::lround(x1)),
+                   layout.height - int(std::lround(y0))};
+    layout.key = gnuplotKeyPlacement(body);
+    int rows = 1, columns = 1;
+    if (const size_t m = body.find("set multiplot layout ");
+        m != std::string::npos &&
+        std::sscanf(body.c_str() + m, "set multiplot layout %d,%d", &rows, &columns) == 2)
+        layout.panels = std::max(1, rows * columns);
+    writeLayout(out.tempPath(), layout);
     out.commit();
 }
 
@@ -145,7 +167,7 @@ void plotErrorPerRobot(const RobotErrors& errors, const std::string& pngPath) {
                    "set xtics rotate by -45\nset key outside right top\n"
                    "plot $e using 1:2:xtic(int(column(1)) % " +
                    std::to_string(every) +
-                   " == 0 ? stringcolumn(3) : '') with points pt 7 ps 1.5 lc rgb '#d00000' "
+                   " == 0 ? stringcolumn(3) : '') with points pt 7 ps 1.5 lc 1 "
                    "title 'error of the estimate'\n",
                pngPath);
 }

@@ -192,17 +192,28 @@ Html truthTimelineSection(const std::vector<EvaluatedTrack>& tracks) {
                    "not covered, never left out. Odometry alone is dashed in the robot's "
                    "colour.") +
                paragraph(alignmentInWords(tracks)) +
-               Figure{"error_time.png", "position error against time"}.html() +
-               Figure{"error_cdf.png", "CDF of the position error"}.html();
+               Figure{"error_time.png",
+                      "position error at every truth stamp: the estimate (solid) should stay under "
+                      "odometry alone (dashed); grey where nothing was estimated"}
+                   .html() +
+               Figure{"error_cdf.png",
+                      "share of the truth stamps within each error: further left is better; "
+                      "dashed, odometry alone"}
+                   .html();
     size_t pictured = 0;
     for (const auto& t : tracks) {
         if (!isPicturedTrack(t) || pictured == kRobotsPictured) continue;
         ++pictured;
         out += heading(3, "Robot " + t.name) +
-               Figure{"pose_time." + t.name + ".png", "x, y and heading against time"}.html() +
+               Figure{"pose_time." + t.name + ".png",
+                      "x, y and heading against time: the estimate (thin) should lie on the truth "
+                      "(wide grey)"}
+                   .html() +
                Figure{"error_topview." + t.name + ".png",
-                      t.covariances.empty() ? "path coloured by the error"
-                                            : "path coloured by the error, 2-sigma ellipses"}
+                      t.covariances.empty() ? "the path coloured by its error (dark small, yellow "
+                                              "large): look where it turns yellow"
+                                            : "the path coloured by its error (dark small, yellow "
+                                              "large); the 2-sigma ellipses should hold the truth"}
                    .html();
     }
     if (tracks.size() > pictured)
@@ -258,15 +269,27 @@ Html whatRan(const RunView& run, const Section& section, const nlohmann::json& p
     return t.html();
 }
 
-/** The headline: the outcome, then each figure beside the paper's, baselines marked. */
-Html headlineBlock(const nlohmann::json& metrics, const std::string& where) {
+/** The headline: the outcome, then each figure beside the paper's, baselines marked; on a log
+ *  recorded elsewhere (`besidePaper` false) no paper's figure: the papers' numbers are for
+ *  their own experiments, not for a user's log. */
+Html headlineBlock(const nlohmann::json& metrics, const std::string& where, bool besidePaper) {
     if (!metrics.contains("headline")) return paragraph("No headline in metrics.json.");
     const auto h = common::headlineFromJson(metrics["headline"], where);
     Html out =
         paragraph(bold(h.reached ? "Outcome: " : "Outcome (goal not reached): ") + Html(h.status));
-    Table t({"figure", "this run", "the paper", "how this run differs from the paper's"});
-    for (const auto& f : h.figures) t.row(figureCells(f));
+    Table t(besidePaper ? std::vector<Html>{"figure", "this run", "the paper",
+                                            "how this run differs from the paper's"}
+                        : std::vector<Html>{"figure", "this run"});
+    for (const auto& f : h.figures) {
+        auto cells = figureCells(f);
+        if (!besidePaper) cells.resize(2);
+        t.row(cells);
+    }
     if (t.rows()) out += t.html();
+    if (!besidePaper && t.rows())
+        out += paragraph(
+            "This log was recorded elsewhere: no paper's figure is set beside this run's, since "
+            "the papers' figures are for their own experiments.");
     std::vector<Html> warnings;
     if (metrics.contains("warnings") && metrics["warnings"].is_array())
         for (const auto& w : metrics["warnings"]) warnings.push_back(cellText(w));
@@ -292,9 +315,17 @@ Html provenanceSection(const nlohmann::json& p) {
     return t.html();
 }
 
-/** The page's title: [report] title, else the scenario's name and the method's subject. */
-std::string titleOf(const RunView& run, const Section& section, const ReportOptions& options) {
+/** The page's title: [report] title, else, for a log recorded elsewhere, its file and the
+ *  method, else the scenario's name and the method's subject (a paper's experiment). */
+std::string titleOf(const RunView& run, const Section& section, const ReportOptions& options,
+                    bool simulated) {
     if (!options.title.empty()) return options.title;
+    if (!simulated) {
+        const std::string rawlog =
+            std::filesystem::path(run.metrics.value("rawlog", "")).filename().string();
+        return (rawlog.empty() ? std::string("a log") : rawlog) + ": " +
+               run.metrics.value("method", "mrloc") + " on a log recorded elsewhere";
+    }
     std::string name = run.effective->read_string("scenario", "name", "");
     if (name.empty()) name = run.metrics.value("method", "mrloc");
     return section.subject.empty() ? name : name + ": " + section.subject;
@@ -372,10 +403,12 @@ std::string makeReport(const std::string& dir, const Section& section) {
     const auto provenance = provenanceOf(dir);
     ReportOptions options;
     options.loadFromConfigFile(*run.effective, "report");
-    const std::string title = titleOf(run, section, options);
+    const bool simulated = simulatedRun(provenance, metrics);
+    const std::string title = titleOf(run, section, options, simulated);
     Html body = heading(1, title) + heading(2, "What ran") + whatRan(run, section, provenance) +
-                heading(2, "Headline") + headlineBlock(metrics, common::run_dir::metrics(dir));
-    if (!options.paperCaption.empty() || !options.paperNote.empty())
+                heading(2, "Headline") +
+                headlineBlock(metrics, common::run_dir::metrics(dir), simulated);
+    if (simulated && (!options.paperCaption.empty() || !options.paperNote.empty()))
         body += paragraph(bold("Compared with the paper:") + " " + options.paperCaption +
                           (options.paperNote.empty() ? "" : ". " + options.paperNote));
     body += heading(2, "Provenance") + provenanceSection(provenance);
@@ -401,15 +434,19 @@ std::string makeReport(const std::string& dir, const Section& section) {
     if (topView)
         body += heading(2, "Top view") +
                 paragraph(
-                    "Each robot in its colour: the truth pale, the estimates full; the "
-                    "legend and the scale are in the picture.") +
-                Figure{"topview.png", "top view"}.html();
+                    "Each robot in its colour (one colour-blind-safe palette in every "
+                    "picture): the truth a wide pale band, the estimate a thin line, odometry "
+                    "alone dashed; axes in metres, the legend beside the drawing.") +
+                Figure{"topview.png",
+                       "each robot in its colour: the estimate (thin line) should lie on the truth "
+                       "(wide pale band); odometry alone dashed; the ring, the start"}
+                    .html();
     if (errors.empty())
         body += paragraph("No estimate with ground truth beside it: no errors to plot.");
     else if (perRobot)
         body += heading(2, "Error per robot") +
                 paragraph("One estimate per robot: one marker each.") +
-                Figure{"error_robots.png", "error per robot"}.html();
+                Figure{"error_robots.png", "one dot per robot: its position error"}.html();
     else
         body += truthTimelineSection(tracks);
     const std::string page = htmlPage(title, body);

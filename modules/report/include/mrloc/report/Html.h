@@ -43,11 +43,12 @@ Html link(const std::string& target, const Html& content);
 /** A bulleted list. */
 Html bulletList(const std::vector<Html>& items);
 
-/** A picture of the run folder: <img> with its file name (encoded as link()'s) and the
- *  words a reader without the picture gets. */
+/** A picture of the run folder: a <figure> of the <img> (its file name encoded as link()'s)
+ *  and one line under it saying what to look for, which is also the words a reader without
+ *  the picture gets (alt). */
 struct Figure {
     std::string file;
-    std::string alt;
+    std::string caption;
     Html html() const;
 };
 

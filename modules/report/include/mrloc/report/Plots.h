@@ -16,8 +16,10 @@ bool oneErrorPerRobot(const RobotErrors& errors);
 /** One marker per estimate, robots along the x axis (a method with one estimate each). */
 void plotErrorPerRobot(const RobotErrors& errors, const std::string& pngPath);
 
-/** Runs a gnuplot script (pngcairo, grid, key top left) whose data blocks are inline;
- *  writes pngPath atomically. Every plot of mrloc, the methods' included, goes through it. */
+/** Runs a gnuplot script (pngcairo, grid, key outside right, the palette's colours as
+ *  variables and line types: Palette.h) whose data blocks are inline; writes pngPath
+ *  atomically, with the plot area gnuplot chose and the key's placement in the PNG
+ *  (PictureLayout.h). Every plot of mrloc, the methods' included, goes through it. */
 void runGnuplot(const std::string& body, const std::string& pngPath,
                 const std::string& size = "900,500");
 /** `text` as a gnuplot single-quoted string, quotes included: every user string (a robot's
