@@ -2,6 +2,7 @@
 
 #include <mrloc/common/AtomicFile.h>
 #include <mrloc/common/LocalizationRun.h>
+#include <mrloc/common/MrptKeys.h>
 #include <mrloc/common/Rawlog.h>
 
 #include <filesystem>
@@ -45,9 +46,9 @@ std::optional<std::string> mrptAppOf(const mrpt::config::CConfigFileBase& ini) {
 }
 
 std::string rawlogNamedBy(const mrpt::config::CConfigFileBase& ini, const std::string& iniPath) {
-    for (const char* section :
-         {"LocalizationExperiment", "ro-localization", "MappingApplication"}) {
-        const std::string named = ini.read_string(section, "rawlog_file", "");
+    namespace k = common::mrpt_ini;
+    for (const auto& key : {k::kExperimentRawlogFile, k::kRoRawlogFile, k::kMappingRawlogFile}) {
+        const std::string named = ini.read_string(key.section, key.name, "");
         if (named.empty()) continue;
         const std::string path = common::pathFromIni(iniPath, named);
         std::error_code ec;

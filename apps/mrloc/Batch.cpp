@@ -456,6 +456,8 @@ int batch(const method::Registry& registry, int argc, char** argv) {
     Setup first = loadSetup(registry, plan.ini, long(plan.firstSeed), true, "", plan.trialKeys(0));
     if (!first.simulation)
         throw Error(plan.ini + ": [scenario] describes no simulation; a batch simulates it");
+    for (const auto& w : first.warnings)
+        std::cerr << "warning: " << w << "\n";  // once, not per trial
     for (size_t p = 1; p < plan.pointCount(); ++p)
         loadSetup(registry, plan.ini, long(plan.firstSeed), true, "", plan.trialKeys(p));
 

@@ -301,9 +301,10 @@ void plotFigure(const BatchSummary& s, const std::string& name, const std::strin
         const size_t binsPerTick = (kBins + 7) / 8;
         g << "EOD\n"
           << "set xlabel " << report::gnuplotString(f.name + " (" + unitText(f) + ")") << "\n"
-          << mrpt::format("set xrange [%.10g:%.10g]\nset xtics %.10g, %.10g\n",
-                          f.min - 0.25 * width, f.min + (double(kBins) + 0.25) * width, f.min,
-                          width * double(binsPerTick))
+          << mrpt::format(
+                 "set xrange [%.10g:%.10g]\nset xtics %.10g, %.10g\nset format x '%%.3g'\n",
+                 f.min - 0.25 * width, f.min + (double(kBins) + 0.25) * width, f.min,
+                 width * double(binsPerTick))
           << mrpt::format("set ytics %zu\nset yrange [0:%zu]\n", yStep, most + yStep)
           << "set ylabel 'trials'\nset style fill solid 0.5\n"
           << "set boxwidth " << mrpt::format("%.10g", width * 0.9) << "\n"

@@ -90,28 +90,55 @@ std::string usage() {
            "  --version                 mrloc's version, commit and MRPT's version\n"
            "  --commands                the command names, one per line\n"
            "  --completion bash         a bash completion script: source <(mrloc --completion "
-           "bash)\n\n" +
+           "bash)\n"
+           "  --man                     this and every command's help as a man page (roff)\n\n" +
            wrapped(kExitCodes, 0) + "\n";
     return out;
 }
+
+namespace {
+
+/** What a command prints for `args` on stdout (its help, its options), asked of its own
+ *  parser in this process. */
+std::string commandOutput(const method::Registry& registry, const Command& c,
+                          const std::string& argument) {
+    std::ostringstream text;
+    auto* const saved = std::cout.rdbuf(text.rdbuf());
+    std::vector<std::string> words{c.name, argument};
+    std::vector<char*> argv{words[0].data(), words[1].data()};
+    try {
+        c.run(registry, 2, argv.data());
+    } catch (...) {
+        std::cout.rdbuf(saved);
+        throw;
+    }
+    std::cout.rdbuf(saved);
+    return text.str();
+}
+
+/** Text as roff lines kept as they are (.nf): a backslash doubled, a line that starts with a
+ *  dot or a quote escaped, so no word of a help text becomes a roff request. */
+std::string roffVerbatim(const std::string& text) {
+    std::string out, line;
+    std::istringstream lines(text);
+    while (std::getline(lines, line)) {
+        std::string escaped;
+        for (const char ch : line) escaped += ch == '\\' ? std::string("\\e") : std::string(1, ch);
+        if (!escaped.empty() && (escaped[0] == '.' || escaped[0] == '\''))
+            escaped = "\\&" + escaped;
+        out += escaped + "\n";
+    }
+    return out;
+}
+
+}  // namespace
 
 std::string bashCompletion(const method::Registry& registry) {
     // each command's options, asked of its own parser (parseArgs' --list-options), so the
     // script cannot drift from the commands
     std::string cases;
     for (const auto& c : commands()) {
-        std::ostringstream options;
-        auto* const saved = std::cout.rdbuf(options.rdbuf());
-        std::vector<std::string> words{c.name, "--list-options"};
-        std::vector<char*> argv{words[0].data(), words[1].data()};
-        try {
-            c.run(registry, 2, argv.data());
-        } catch (...) {
-            std::cout.rdbuf(saved);
-            throw;
-        }
-        std::cout.rdbuf(saved);
-        std::string list = options.str();
+        std::string list = commandOutput(registry, c, "--list-options");
         std::replace(list.begin(), list.end(), '\n', ' ');
         cases += "    " + c.name + ") opts=\"" + list + "\" ;;\n";
     }
@@ -142,6 +169,24 @@ std::string bashCompletion(const method::Registry& registry) {
            "complete -o filenames -F _mrloc mrloc\n";
 }
 
+std::string manPage(const method::Registry& registry) {
+    std::string page =
+        ".TH MRLOC 1 \"\" \"" + versionLine() +
+        "\" \"User Commands\"\n"
+        ".SH NAME\nmrloc \\- localization of low-cost mobile robots and robot teams on MRPT\n"
+        ".SH SYNOPSIS\n.B mrloc\n.I command\n[\n.I options\n]\n"
+        ".SH DESCRIPTION\n.nf\n" +
+        roffVerbatim(usage()) + ".fi\n.SH COMMANDS\n";
+    for (const auto& c : commands())
+        page += ".SS " + c.name + "\n.nf\n" + roffVerbatim(commandOutput(registry, c, "--help")) +
+                ".fi\n";
+    return page +
+           ".SH FILES\nThe INIs, maps and sample rawlogs: share/mrloc/ under the prefix; the "
+           "documentation (doc/ini.md, doc/evaluation.md, one page per method): share/doc/mrloc/.\n"
+           ".SH SEE ALSO\n.BR pf-localization (1),\n.BR ro-localization (1),\n"
+           ".BR rawlog-edit (1)\n";
+}
+
 int main(const method::Registry& registry, int argc, char** argv) {
     common::installSignalCleanup();
     if (argc < 2) {
@@ -158,6 +203,10 @@ int main(const method::Registry& registry, int argc, char** argv) {
     }
     if (!std::strcmp(argv[1], "--commands")) {
         for (const auto& c : commands()) std::cout << c.name << "\n";
+        return 0;
+    }
+    if (!std::strcmp(argv[1], "--man")) {
+        std::cout << manPage(registry);
         return 0;
     }
     if (!std::strcmp(argv[1], "--completion")) {

@@ -65,6 +65,7 @@ int simulate(const method::Registry& registry, int argc, char** argv) {
     checkWorkOf(s, true, false, c.output.quiet.getValue());
     const std::string dir = c.output.dirOr(s.scenario.name);
     const StderrLog log(c.output.quiet.getValue());
+    for (const auto& w : s.warnings) log.warning(w);
     noteReplacedRun(log, dir, s.iniPath);
     std::string rawlog;
     inTransaction(dir, "simulate", log, [&](const std::string& staging) {
@@ -101,6 +102,7 @@ int localize(const method::Registry& registry, int argc, char** argv) {
     checkWorkOf(s, false, true, o.quiet.getValue());
     const std::string dir = o.dirOr(s.scenario.name);
     const StderrLog log(o.quiet.getValue());
+    for (const auto& w : s.warnings) log.warning(w);
     noteReplacedRun(log, dir, s.iniPath, rawlog.getValue());
     common::Headline headline;
     inTransaction(dir, "localize", log, [&](const std::string& staging) {
@@ -149,6 +151,7 @@ int run(const method::Registry& registry, int argc, char** argv) {
     checkWorkOf(s, true, true, c.output.quiet.getValue());
     const std::string dir = c.output.dirOr(s.scenario.name);
     const StderrLog log(c.output.quiet.getValue());
+    for (const auto& w : s.warnings) log.warning(w);
     noteReplacedRun(log, dir, s.iniPath);
     common::Headline headline;
     // the files an error names are the run's own, removed with the rest of it

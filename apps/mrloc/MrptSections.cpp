@@ -1,30 +1,19 @@
 #include "MrptSections.h"
 
+#include <mrloc/common/MrptKeys.h>
 #include <mrloc/common/Names.h>
 
 #include <map>
+#include <regex>
 
 namespace mrloc::app {
 
 const std::vector<MrptKey>& mrptKeysRead() {
-    static const std::vector<MrptKey> table{
-        {"ro-localization", "groundTruthFile", "every method: the ground truth of the log"},
-        {"ro-localization", "rawlog_file", "every method: the rawlog the ground truth is beside"},
-        {"OdometryEstimation", "odometry_X",
-         "beacons: the start (with odometry_Y) when [beacons] start is absent; the truth's origin"},
-        {"OdometryEstimation", "odometry_Y", "beacons: the start (with odometry_X)"},
-        {"OdometryEstimation", "odometry_PHI", "beacons: the start's heading (deg)"},
-        {"MetricMap_landmarksMap_00_likelihoodOpts", "beaconRangesStd",
-         "beacons: the ranges' sigma (m) when [beacons] range_sigma is absent"},
-        {"LocalizationExperiment", "map_file",
-         "polymap: the .gridmap or .simplemap to localize in"},
-        {"LocalizationExperiment", "init_PDF_min_x", "polymap: the box searched for the start"},
-        {"LocalizationExperiment", "init_PDF_max_x", "polymap: the box searched for the start"},
-        {"LocalizationExperiment", "init_PDF_min_y", "polymap: the box searched for the start"},
-        {"LocalizationExperiment", "init_PDF_max_y", "polymap: the box searched for the start"},
-        {"MetricMap_occupancyGrid_00_creationOpts", "resolution",
-         "polymap: the grid a .simplemap is drawn into (m)"},
-    };
+    static const std::vector<MrptKey> table = [] {
+        std::vector<MrptKey> keys;
+        for (const auto& k : common::mrpt_ini::kAll) keys.push_back({k.section, k.name, k.readBy});
+        return keys;
+    }();
     return table;
 }
 
@@ -38,10 +27,13 @@ std::vector<std::string> mrptKeyWarnings(const mrpt::config::CConfigFileBase& in
         std::vector<std::string> present;
         ini.getAllKeys(section, present);
         for (const auto& key : present) {
+            // a numbered family's key is the pattern with NNN for its three digits
+            const std::string asPattern = std::regex_replace(key, std::regex("[0-9]{3}"), "NNN");
             bool known = false;
-            for (const auto& k : keys) known = known || k == key;
+            for (const auto& k : keys)
+                known = known || k == key || (k.find("NNN") != std::string::npos && k == asPattern);
             if (known) continue;
-            if (const auto near = common::nearMiss(key, keys))
+            if (const auto near = common::nearMiss(asPattern, keys))
                 warnings.push_back(
                     iniPath + ": [" + section + "] " + common::printable(key) +
                     ": not a key mrloc reads, so its default is used (did you mean " + *near +

@@ -1,6 +1,7 @@
 #pragma once
 // The keys mrloc reads from MRPT's own INI sections ([ro-localization], [LocalizationExperiment],
-// [OdometryEstimation], the metric maps' options), in one table: what `mrloc keys mrpt` and
+// [OdometryEstimation], [MappingApplication], the metric maps' options), in one table
+// (common/MrptKeys.h, where the readers take their names from): what `mrloc keys mrpt` and
 // doc/ini.md list, and what a misspelt key there is checked against. Those sections also carry
 // keys for MRPT's apps, which mrloc leaves to them: a key mrloc does not read is not an error,
 // but one within an edit or two of a key it reads is a warning with "did you mean".

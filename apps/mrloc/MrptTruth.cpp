@@ -3,6 +3,7 @@
 #include <mrloc/common/AtomicFile.h>
 #include <mrloc/common/GroundTruthFile.h>
 #include <mrloc/common/IniSection.h>
+#include <mrloc/common/MrptKeys.h>
 #include <mrpt/core/bits_math.h>
 
 #include <filesystem>
@@ -22,11 +23,12 @@ bool sameFile(const std::string& a, const std::string& b) {
 
 /** ro-localization's start, the frame offset of its truth. */
 mrpt::poses::CPose3D mrptStart(const mrpt::config::CConfigFileBase& ini) {
-    if (!ini.keyExists("OdometryEstimation", "odometry_X")) return {};
-    common::IniSection s(ini, "OdometryEstimation");  // MRPT's section: its other keys are its own
-    return mrpt::poses::CPose3D(s.real("odometry_X", 0, -1e6, 1e6),
-                                s.real("odometry_Y", 0, -1e6, 1e6), 0,
-                                mrpt::DEG2RAD(s.real("odometry_PHI", 0, -360, 360)), 0, 0);
+    namespace k = common::mrpt_ini;
+    if (!ini.keyExists(k::kOdometryX.section, k::kOdometryX.name)) return {};
+    common::IniSection s(ini, k::kOdometryX.section);  // MRPT's: its other keys are its own
+    return mrpt::poses::CPose3D(s.real(k::kOdometryX.name, 0, -1e6, 1e6),
+                                s.real(k::kOdometryY.name, 0, -1e6, 1e6), 0,
+                                mrpt::DEG2RAD(s.real(k::kOdometryPhi.name, 0, -360, 360)), 0, 0);
 }
 
 }  // namespace
@@ -36,11 +38,13 @@ std::optional<FoundTruth> mrptTruthOf(const mrpt::config::CConfigFileBase& ini,
                                       std::string& note) {
     FoundTruth found;
     found.source.offset = mrptStart(ini);
-    const std::string named = ini.read_string("ro-localization", "groundTruthFile", "");
+    namespace k = common::mrpt_ini;
+    const std::string named =
+        ini.read_string(k::kGroundTruthFile.section, k::kGroundTruthFile.name, "");
     if (!named.empty()) {
         const std::string gt = common::pathFromIni(iniPath, named);
-        const std::string ownLog =
-            common::pathFromIni(iniPath, ini.read_string("ro-localization", "rawlog_file", ""));
+        const std::string ownLog = common::pathFromIni(
+            iniPath, ini.read_string(k::kRoRawlogFile.section, k::kRoRawlogFile.name, ""));
         if (!sameFile(ownLog, rawlog)) {
             note = "[ro-localization] groundTruthFile " + named + " is the truth of " + ownLog +
                    ", not of this log: not used";

@@ -88,7 +88,7 @@ Setup loadSetupUnguarded(const method::Registry& registry, const std::string& in
     s.ini = openIni(iniPath, s.iniText, registry);
     // MRPT's sections are MRPT's apps' too: a near miss of a key mrloc reads there is a
     // warning, not an error
-    for (const auto& w : mrptKeyWarnings(*s.ini, iniPath)) std::cerr << "warning: " << w << "\n";
+    s.warnings = mrptKeyWarnings(*s.ini, iniPath);
     applyOverrides(registry, *s.ini, overrides);
     s.scenario.loadFromConfigFile(*s.ini, "scenario");
     if (seed) {

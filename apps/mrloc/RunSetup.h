@@ -39,6 +39,9 @@ struct Setup {
     /** Built when the INI describes a simulation (it has [scenario]). */
     std::optional<method::Scenario> simulation;
     report::ReportOptions reportOptions;
+    /** What the reading warns of (a near miss of a key mrloc reads in an MRPT section): the
+     *  command prints them through its log, so that --quiet holds them back. */
+    std::vector<std::string> warnings;
 };
 
 /** Everything read from an INI fails as mrloc::Error naming the INI (MRPT's parser throws

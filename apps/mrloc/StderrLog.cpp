@@ -9,6 +9,7 @@ namespace mrloc::app {
 StderrLog::StderrLog(bool quiet) : quiet_(quiet), terminal_(isatty(fileno(stderr)) != 0) {}
 
 void StderrLog::warning(const std::string& line) const {
+    if (quiet_) return;  // --quiet: errors only (a run's warnings stay in metrics.json)
     std::fprintf(stderr, "warning: %s\n", line.c_str());
 }
 

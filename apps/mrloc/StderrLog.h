@@ -1,7 +1,8 @@
 #pragma once
 // The log the app passes down to common and the methods (common/Log.h): warnings as
-// "warning: <line>" and the progress on stderr, redrawn in place on a terminal; no progress
-// with -q. The only place mrloc's libraries' words reach stderr.
+// "warning: <line>" and the progress on stderr, redrawn in place on a terminal; neither with
+// -q (errors only: a run's warnings stay in its metrics.json and report). The only place
+// mrloc's libraries' words reach stderr.
 #include <mrloc/common/Log.h>
 
 namespace mrloc::app {

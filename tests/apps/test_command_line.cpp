@@ -192,7 +192,7 @@ TEST(CommandLine, ANearMissOfAKeyMrlocReadsInAnMrptSectionIsAWarning) {
     const std::string dir = tmp("mrptkeys");
     fs::create_directories(dir);
     std::ofstream(dir + "/q.ini") << text;
-    const auto r = mrlocCmd("simulate " + dir + "/q.ini -q --out " + dir + "/out");
+    const auto r = mrlocCmd("simulate " + dir + "/q.ini --out " + dir + "/out");
     ASSERT_EQ(r.code, 0) << r.output;
     EXPECT_TRUE(contains(r.output, "warning: " + dir +
                                        "/q.ini: [MetricMap_landmarksMap_00_likelihoodOpts] "
@@ -204,6 +204,10 @@ TEST(CommandLine, ANearMissOfAKeyMrlocReadsInAnMrptSectionIsAWarning) {
     // MRPT's apps' own keys, far from any mrloc reads, are theirs
     EXPECT_FALSE(contains(r.output, "rangeScan2D_decimation")) << r.output;
     EXPECT_FALSE(contains(r.output, "particles_count")) << r.output;
+    // --quiet: errors only; stdout the rawlog written, nothing else on either stream
+    const auto q = mrlocCmd("simulate " + dir + "/q.ini -q --out " + dir + "/out");
+    ASSERT_EQ(q.code, 0) << q.output;
+    EXPECT_EQ(q.output, dir + "/out/quickstart.rawlog\n");
     const auto keys = mrlocCmd("keys mrpt");
     EXPECT_EQ(keys.code, 0);
     EXPECT_TRUE(contains(keys.output,
@@ -222,6 +226,13 @@ TEST(CommandLine, CmakeInstallPutsTheProgramItsCompletionTheInisAndTheDocsUnderT
               mrlocCmd("--version").output);
     EXPECT_EQ(slurp(prefix + "/share/bash-completion/completions/mrloc"),
               mrlocCmd("--completion bash").output);
+    // the man page: the top-level help and every command's, in roff
+    const std::string man = slurp(prefix + "/share/man/man1/mrloc.1");
+    EXPECT_EQ(man, mrlocCmd("--man").output);
+    EXPECT_EQ(man.rfind(".TH MRLOC 1 ", 0), 0u) << man.substr(0, 80);
+    for (const char* section : {".SS run\n", ".SS import\n", ".SS keys\n", ".SH COMMANDS\n"})
+        EXPECT_TRUE(contains(man, section)) << section;
+    EXPECT_TRUE(contains(man, "usage: mrloc run <INI> [options]")) << man.substr(0, 400);
     // the INIs with what they name by relative paths: a shipped INI runs from there
     EXPECT_EQ(slurp(prefix + "/share/mrloc/config/quickstart.ini"), slurp(config("quickstart")));
     EXPECT_TRUE(fs::is_regular_file(prefix + "/share/mrloc/maps/two_rooms.poly"));

@@ -354,13 +354,21 @@ TEST(MrlocErrors, RangesFromBeaconsNotInTheMapAreAWarningAndTheHeadlineKeepsOdom
     const std::string out = tmp("partial");
     const auto r =
         mrlocCmd("localize " + config("beacons_fixed") + " " + std::string(MRLOC_SOURCE_DIR) +
-                 "/rawlogs/quickstart.rawlog -q --out " + out);
+                 "/rawlogs/quickstart.rawlog --out " + out);  // not -q: its warnings
     ASSERT_EQ(r.code, 0) << r.output;
     EXPECT_NE(r.output.find("warning: beacons: 293 ranges from beacons not in the map (of 1164"),
               std::string::npos)
         << r.output;
     const auto m = common::readJsonFile(out + "/metrics.json");
     ASSERT_EQ(m["warnings"].size(), 1u);
+    // --quiet: errors only on stderr; the warning stays in metrics.json (and the report)
+    const std::string quiet = tmp("partial_quiet");
+    const auto q =
+        mrlocCmd("localize " + config("beacons_fixed") + " " + std::string(MRLOC_SOURCE_DIR) +
+                 "/rawlogs/quickstart.rawlog -q --out " + quiet);
+    ASSERT_EQ(q.code, 0) << q.output;
+    EXPECT_EQ(q.output.find("warning"), std::string::npos) << q.output;
+    EXPECT_EQ(common::readJsonFile(quiet + "/metrics.json")["warnings"], m["warnings"]);
     EXPECT_EQ(m["use"]["seen"], 1164);
     EXPECT_EQ(m["use"]["used"], 871);
     EXPECT_EQ(m["rawlog_content"]["CObservationBeaconRanges"], 298);

@@ -176,7 +176,7 @@ TEST(MrptData, RangeOnlyInisRunUnchangedWithRealTimes) {
     const auto r = mrlocCmd(
         "localize /usr/share/mrpt/config_files/ro-localization/"
         "UWB_localization_demo.ini " +
-        kDatasets + "/uwb_ro-localization_demo.rawlog -q --out " + out);
+        kDatasets + "/uwb_ro-localization_demo.rawlog --out " + out);  // not -q: warnings
     EXPECT_NE(r.output.find("339 unlabelled mrpt::obs::CObservationBeaconRanges stamped 0 took "
                             "their sensory frame's time"),
               std::string::npos)

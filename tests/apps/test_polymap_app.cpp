@@ -4,6 +4,7 @@
 #include <mrloc/common/Metrics.h>
 #include <mrloc/common/Polygon.h>
 #include <mrloc/polymap/PolymapFiles.h>
+#include <mrloc/report/PictureLayout.h>
 #include <mrpt/core/format.h>
 #include <mrpt/img/CImage.h>
 
@@ -43,8 +44,14 @@ TEST(MrlocPolymap, StepsMapRunFindsTwelveHypothesesWithTheTruthAmongThem) {
     EXPECT_EQ(m["robots"]["r1"]["estimates"], 0);  // not localized yet: 12 candidates
     mrpt::img::CImage png;
     ASSERT_TRUE(png.loadFromFile(out + "/polymap.r1.png"));
-    // the drawing 1200 px wide, the legend in a panel right of it
-    EXPECT_EQ(png.getWidth(), 1428u);
+    // the drawing 1200 px wide (the map is wider than high), framed by axes, the legend in
+    // a panel right of it
+    const auto layout = report::readLayout(out + "/polymap.r1.png");
+    ASSERT_TRUE(layout && layout->legend);
+    EXPECT_EQ(layout->data.width(), 1200);
+    EXPECT_LT(layout->data.height(), 600);
+    EXPECT_GE(layout->legend->x0, layout->data.x1);
+    EXPECT_EQ(png.getWidth(), unsigned(layout->width));
     EXPECT_EQ(common::Polygon::load(out + "/map.poly").size(), 148u);
     EXPECT_EQ(polymap::HypothesesFile::read(out, "r1").hypotheses.size(), 12u);
     EXPECT_NE(slurp(out + "/report.html").find("12 hypotheses"), std::string::npos);

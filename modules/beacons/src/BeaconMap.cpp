@@ -1,5 +1,6 @@
 #include <mrloc/beacons/BeaconMap.h>
 #include <mrloc/common/Error.h>
+#include <mrloc/common/MrptKeys.h>
 #include <mrpt/core/format.h>
 #include <mrpt/system/string_utils.h>
 
@@ -22,16 +23,16 @@ BeaconMap readMrptLandmarksMap(const mrpt::config::CConfigFileBase& cfg, const s
     BeaconMap map;
     if (!cfg.sectionExists(name)) return map;
     IniSection sec(cfg, name);
-    const long n = sec.integer("nBeacons", 0, 0, 100000);
+    namespace k = common::mrpt_ini;
+    const long n = sec.integer(k::kBeaconCount.name, 0, 0, 100000);
     for (long q = 1; q <= n; ++q) {
-        const auto key = [&](const char* what) { return mrpt::format("beacon_%03ld_%s", q, what); };
-        for (const char* what : {"ID", "x", "y", "z"})
-            if (!sec.has(key(what)))
-                sec.fail(key(what), "missing (nBeacons = " + std::to_string(n) + ")");
-        const int id = int(sec.integer(key("ID"), 0, 0, 1L << 30));
-        if (map.count(id))
-            sec.fail(key("ID"), "beacon ID " + std::to_string(id) + " appears twice");
-        map[id] = {sec.real(key("x"), 0), sec.real(key("y"), 0), sec.real(key("z"), 0)};
+        const std::string idKey = k::numbered(k::kBeaconId, q), xKey = k::numbered(k::kBeaconX, q),
+                          yKey = k::numbered(k::kBeaconY, q), zKey = k::numbered(k::kBeaconZ, q);
+        for (const auto& key : {idKey, xKey, yKey, zKey})
+            if (!sec.has(key)) sec.fail(key, "missing (nBeacons = " + std::to_string(n) + ")");
+        const int id = int(sec.integer(idKey, 0, 0, 1L << 30));
+        if (map.count(id)) sec.fail(idKey, "beacon ID " + std::to_string(id) + " appears twice");
+        map[id] = {sec.real(xKey, 0), sec.real(yKey, 0), sec.real(zKey, 0)};
     }
     return map;
 }

@@ -1,6 +1,7 @@
 #include <mrloc/beacons/BeaconLocalizer.h>
 #include <mrloc/beacons/Ultrasonic.h>
 #include <mrloc/common/KeyTable.h>
+#include <mrloc/common/MrptKeys.h>
 #include <mrpt/core/bits_math.h>
 #include <mrpt/core/format.h>
 
@@ -13,15 +14,14 @@ using common::IniSection;
 
 /** MRPT's range-only INIs give the range noise in their landmarks map's likelihood options:
  *  honoured when [beacons] range_sigma is not given (effective.ini says so). */
-constexpr const char* kMrptLikelihood = "MetricMap_landmarksMap_00_likelihoodOpts";
-
 void loadRangeSigma(IniSection& s, O& o) {
     const auto& src = s.config();
+    const auto& key = common::mrpt_ini::kBeaconRangesStd;
     o.rangeSigmaFrom.clear();
-    if (!s.has("range_sigma") && src.keyExists(kMrptLikelihood, "beaconRangesStd")) {
-        IniSection mrpt(src, kMrptLikelihood);  // MRPT's section: its other keys are its own
-        o.tracker.rangeSigma = mrpt.real("beaconRangesStd", o.tracker.rangeSigma, 1e-6, 10);
-        o.rangeSigmaFrom = std::string("[") + kMrptLikelihood + "] beaconRangesStd";
+    if (!s.has("range_sigma") && src.keyExists(key.section, key.name)) {
+        IniSection mrpt(src, key.section);  // MRPT's section: its other keys are its own
+        o.tracker.rangeSigma = mrpt.real(key.name, o.tracker.rangeSigma, 1e-6, 10);
+        o.rangeSigmaFrom = std::string("[") + key.section + "] " + key.name;
     } else {
         o.tracker.rangeSigma = s.real("range_sigma", o.tracker.rangeSigma, 1e-6, 10);
     }
@@ -29,19 +29,20 @@ void loadRangeSigma(IniSection& s, O& o) {
 
 /** [beacons] start, else MRPT's [OdometryEstimation] odometry_X/Y/PHI. */
 void loadStart(IniSection& s, O& o) {
+    namespace k = common::mrpt_ini;
     const auto& src = s.config();
     o.startFrom.clear();
     o.tracker.startPose.reset();
     if (s.has("start")) {
         const auto v = s.reals("start", {}, 3);
         o.tracker.startPose = mrpt::poses::CPose2D(v[0], v[1], mrpt::DEG2RAD(v[2]));
-    } else if (src.keyExists("OdometryEstimation", "odometry_X") &&
-               src.keyExists("OdometryEstimation", "odometry_Y")) {
-        IniSection mrpt(src, "OdometryEstimation");  // MRPT's section
-        o.tracker.startPose =
-            mrpt::poses::CPose2D(mrpt.requireReal("odometry_X"), mrpt.requireReal("odometry_Y"),
-                                 mrpt::DEG2RAD(mrpt.real("odometry_PHI", 0, -360, 360)));
-        o.startFrom = "[OdometryEstimation] odometry_X/Y/PHI";
+    } else if (src.keyExists(k::kOdometryX.section, k::kOdometryX.name) &&
+               src.keyExists(k::kOdometryY.section, k::kOdometryY.name)) {
+        IniSection mrpt(src, k::kOdometryX.section);  // MRPT's section
+        o.tracker.startPose = mrpt::poses::CPose2D(
+            mrpt.requireReal(k::kOdometryX.name), mrpt.requireReal(k::kOdometryY.name),
+            mrpt::DEG2RAD(mrpt.real(k::kOdometryPhi.name, 0, -360, 360)));
+        o.startFrom = std::string("[") + k::kOdometryX.section + "] odometry_X/Y/PHI";
     }
 }
 

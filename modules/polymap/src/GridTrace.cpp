@@ -2,6 +2,8 @@
 #include <mrloc/common/Polygon.h>
 #include <mrloc/common/RawlogProbe.h>
 #include <mrloc/polymap/GridTrace.h>
+#include <mrloc/report/Palette.h>
+#include <mrloc/report/TopView.h>
 #include <mrpt/config/CConfigFileBase.h>
 #include <mrpt/core/format.h>
 #include <mrpt/img/CImage.h>
@@ -347,13 +349,10 @@ void renderMap(const mrpt::maps::COccupancyGridMap2D* grid, const WallMap& map,
     const double scale = std::min(1400.0 / (hi.x - lo.x), 900.0 / (hi.y - lo.y));  // px per m
     const int W = std::max(200, int((hi.x - lo.x) * scale)),
               H = std::max(100, int((hi.y - lo.y) * scale));
-    const int panel = 360, top = 40, bottom = 50;
-    cv::Mat img(H + top + bottom, W + panel, CV_8UC3, cv::Scalar(255, 255, 255));
+    cv::Mat view(H, W, CV_8UC3);  // the map alone: it clips what lies outside the box
     const auto world = [&](int x, int y) {
         return TPoint2D{lo.x + (x + 0.5) / scale, hi.y - (y + 0.5) / scale};
     };
-    // the map is drawn on its own image, which clips what lies outside the box
-    cv::Mat view(H, W, CV_8UC3);
     const auto pix = [&](const TPoint2D& p) {
         return cv::Point(int(std::clamp((p.x - lo.x) * scale, -1e6, 1e6)),
                          int(std::clamp((hi.y - p.y) * scale, -1e6, 1e6)));
@@ -372,73 +371,43 @@ void renderMap(const mrpt::maps::COccupancyGridMap2D* grid, const WallMap& map,
             if (map.freeCells.at(p)) px = {uint8_t(v * 0.8), v, uint8_t(v * 0.8)};
             view.at<cv::Vec3b>(y, x) = px;
         }
-    const cv::Scalar ringColour(40, 40, 230);  // BGR: red
+    // the palette's colours (report/Palette.h), as OpenCV's blue-green-red
+    const auto bgr = [](mrpt::img::TColor c) { return cv::Scalar(c.B, c.G, c.R); };
+    namespace pal = report::palette;
     for (const auto& ring : map.rings) {
         std::vector<cv::Point> pts;
         for (const auto& p : ring) pts.push_back(pix(p));
-        cv::polylines(view, pts, true, ringColour, scale > 40 ? 2 : 1, cv::LINE_AA);
+        cv::polylines(view, pts, true, bgr(pal::kPurple), scale > 40 ? 2 : 1, cv::LINE_AA);
     }
-    const cv::Scalar pathColours[] = {cv::Scalar(200, 90, 0), cv::Scalar(0, 150, 255),
-                                      cv::Scalar(160, 0, 160)};
     for (size_t k = 0; k < overlay.paths.size(); ++k) {
         std::vector<cv::Point> pts;
         for (const auto& p : overlay.paths[k].points) pts.push_back(pix(p));
-        cv::polylines(view, pts, false, pathColours[k % 3], 2, cv::LINE_AA);
-        if (!pts.empty()) cv::circle(view, pts.front(), 4, pathColours[k % 3], -1, cv::LINE_AA);
+        cv::polylines(view, pts, false, bgr(pal::series(k)), 2, cv::LINE_AA);
+        if (!pts.empty()) cv::circle(view, pts.front(), 4, bgr(pal::series(k)), -1, cv::LINE_AA);
     }
-    const cv::Scalar hypColour(0, 140, 0);
     const double arrow = std::max(0.6, 18 / scale);  // m
     for (const auto& h : overlay.hypotheses) {
         const cv::Point a = pix({h.x, h.y});
         const cv::Point b = pix({h.x + arrow * std::cos(h.phi), h.y + arrow * std::sin(h.phi)});
-        cv::arrowedLine(view, a, b, hypColour, 2, cv::LINE_AA, 0, 0.35);
+        cv::arrowedLine(view, a, b, bgr(pal::kBlack), 2, cv::LINE_AA, 0, 0.35);
     }
-    view.copyTo(img(cv::Rect(0, top, W, H)));
-    const auto text = [&](const std::string& s, int x, int y, double size = 0.5) {
-        cv::putText(img, s, {x, y}, cv::FONT_HERSHEY_SIMPLEX, size, cv::Scalar(0, 0, 0), 1,
-                    cv::LINE_AA);
-    };
-    text(title, 10, 26, 0.6);
-    // scale bar: a round length near a fifth of the width
-    const double widthM = hi.x - lo.x;
-    double bar = std::pow(10.0, std::floor(std::log10(widthM / 5)));
-    if (bar * 5 <= widthM / 5)
-        bar *= 5;
-    else if (bar * 2 <= widthM / 5)
-        bar *= 2;
-    const int barPx = int(bar * scale), by = top + H + 30;
-    cv::line(img, {10, by}, {10 + barPx, by}, cv::Scalar(0, 0, 0), 3);
-    text(mrpt::format("%g m", bar), 15 + barPx, by + 5);
-    text(mrpt::format("x from %.1f to %.1f m, y from %.1f to %.1f m (the map's frame)", lo.x, hi.x,
-                      lo.y, hi.y),
-         90 + barPx, by + 5, 0.45);
-    // the legend in its own panel right of the map
-    int ly = top + 20;
-    const int lx = W + 20;
-    const auto swatch = [&](const cv::Scalar& c, const std::string& s, int kind) {
-        if (kind == 1)
-            cv::line(img, {lx, ly - 5}, {lx + 24, ly - 5}, c, 2);
-        else if (kind == 2)
-            cv::arrowedLine(img, {lx, ly - 5}, {lx + 24, ly - 5}, c, 2, cv::LINE_AA, 0, 0.35);
-        else {
-            cv::rectangle(img, {lx, ly - 12}, {lx + 24, ly + 2}, c, -1);
-            cv::rectangle(img, {lx, ly - 12}, {lx + 24, ly + 2}, cv::Scalar(0, 0, 0), 1);
-        }
-        text(s, lx + 32, ly, 0.45);
-        ly += 24;
-    };
+    using report::Swatch;
+    report::Legend legend;
     if (grid) {
-        swatch(cv::Scalar(255, 255, 255), "free (grid)", 0);
-        swatch(cv::Scalar(128, 128, 128), "unknown (grid)", 0);
-        swatch(cv::Scalar(0, 0, 0), "occupied (grid)", 0);
+        legend.push_back({"free (grid)", {255, 255, 255}, Swatch::Patch});
+        legend.push_back({"unknown (grid)", {128, 128, 128}, Swatch::Patch});
+        legend.push_back({"occupied (grid)", {0, 0, 0}, Swatch::Patch});
     }
-    swatch(cv::Scalar(204, 255, 204), "where the scanner may stand", 0);
-    swatch(ringColour, grid ? "traced rings (walls)" : "the map's rings (walls)", 1);
-    if (!overlay.hypotheses.empty()) swatch(hypColour, "hypotheses, first scan (heading)", 2);
+    legend.push_back({"where the scanner may stand", {204, 255, 204}, Swatch::Patch});
+    legend.push_back(
+        {grid ? "traced rings (walls)" : "the map's rings (walls)", pal::kPurple, Swatch::Line});
+    if (!overlay.hypotheses.empty())
+        legend.push_back({"hypotheses, first scan (heading)", pal::kBlack, Swatch::Arrow});
     for (size_t k = 0; k < overlay.paths.size(); ++k)
-        swatch(pathColours[k % 3], overlay.paths[k].label + " (dot: start)", 1);
-    mrpt::img::CImage out(img, mrpt::img::SHALLOW_COPY);
-    if (!out.saveToFile(pngPath)) throw Error("cannot write " + pngPath);
+        legend.push_back({overlay.paths[k].label + " (dot: start)", pal::series(k), Swatch::Line});
+    mrpt::img::CImage drawing(view, mrpt::img::DEEP_COPY);
+    report::framePicture(drawing, lo.x + 0.5 * W / scale, hi.y - 0.5 * H / scale, 1 / scale,
+                         pngPath, legend, {}, {}, title);
 }
 
 }  // namespace mrloc::polymap

@@ -53,14 +53,14 @@ void renderPolygonView(const PolygonViewContent& c, const std::string& pngPath, 
     // one pixel wide off screen)
     std::vector<report::PicturePath> bands;
     const auto ring = [](const std::vector<TPoint2D>& v, const TPoint2D& at,
-                         mrpt::img::TColor colour) {
-        report::PicturePath p{{}, colour, 7, false};
+                         mrpt::img::TColor colour, int width) {
+        report::PicturePath p{{}, colour, width, false};
         for (const auto& q : v) p.points.push_back(q + at);
         if (!v.empty()) p.points.push_back(v.front() + at);
         return p;
     };
-    if (c.truth && !c.sensed.empty()) bands.push_back(ring(c.sensed, *c.truth, kYellow));
-    if (!c.overlay.empty()) bands.push_back(ring(c.overlay, {0, 0}, kLightGrey));
+    if (c.truth && !c.sensed.empty()) bands.push_back(ring(c.sensed, *c.truth, kYellow, 6));
+    if (!c.overlay.empty()) bands.push_back(ring(c.overlay, {0, 0}, kLightGrey, 5));
     for (const auto& h : c.hypotheses) scene.insert(outline(c.sensed, h, kGrey, 1.5, 0.01f));
     for (size_t r = 0; r < P.ringCount(); ++r)  // the outer boundary and each hole
         scene.insert(outline(P.ringVertices(r), {0, 0}, kBlack, 2, 0.03f));

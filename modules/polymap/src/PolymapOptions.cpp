@@ -1,6 +1,7 @@
 #include <mrloc/common/AtomicFile.h>
 #include <mrloc/common/Error.h>
 #include <mrloc/common/KeyTable.h>
+#include <mrloc/common/MrptKeys.h>
 #include <mrloc/polymap/PolymapOptions.h>
 #include <mrpt/core/format.h>
 
@@ -357,10 +358,11 @@ void PolymapOptions::saveToConfigFile(mrpt::config::CConfigFileBase& t,
 }
 
 void PolymapOptions::loadFromMrptLocalizationIni(const mrpt::config::CConfigFileBase& ini) {
+    namespace k = common::mrpt_ini;
     *this = PolymapOptions{};
-    const std::string section = "LocalizationExperiment";
+    const std::string section = k::kMapFile.section;
     origin_ = common::configOrigin(ini) + ": [" + section + "]";
-    const std::string named = ini.read_string(section, "map_file", "");
+    const std::string named = ini.read_string(section, k::kMapFile.name, "");
     if (named.empty())
         throw Error(origin_ + " map_file: required (the map pf-localization localizes in)");
     namespace fs = std::filesystem;
@@ -374,23 +376,24 @@ void PolymapOptions::loadFromMrptLocalizationIni(const mrpt::config::CConfigFile
     scanMode = true;
     // pf-localization's init_PDF box (MRPT's defaults when absent), where it spreads its
     // particles: the same prior for the search
-    const auto read = [&](const char* key, double def) {
-        const double v = ini.read_double(section, key, def);
+    const auto read = [&](const k::Key& key, double def) {
+        const double v = ini.read_double(key.section, key.name, def);
         if (!std::isfinite(v) || std::abs(v) > common::Polygon::kMaxCoordinate)
-            throw Error(origin_ + " " + key + ": " + std::to_string(v) + " is not a coordinate");
+            throw Error(origin_ + " " + key.name + ": " + std::to_string(v) +
+                        " is not a coordinate");
         return v;
     };
-    const double x0 = read("init_PDF_min_x", -10), x1 = read("init_PDF_max_x", 10);
-    const double y0 = read("init_PDF_min_y", -10), y1 = read("init_PDF_max_y", 10);
+    const double x0 = read(k::kInitMinX, -10), x1 = read(k::kInitMaxX, 10);
+    const double y0 = read(k::kInitMinY, -10), y1 = read(k::kInitMaxY, 10);
     if (!(x0 < x1 && y0 < y1))
         throw Error(origin_ + " init_PDF_min_x .. init_PDF_max_y: an empty box");
     scan.region = std::make_pair(TPoint2D{x0, y0}, TPoint2D{x1, y1});
     // the grid MRPT builds from a simplemap, with the INI's resolution and insertion options
-    const std::string grid = "MetricMap_occupancyGrid_00_";  // kGridInsertSection's map
-    const double res = ini.read_double(grid + "creationOpts", "resolution", trace.resolution);
+    const auto& resolution = k::kGridResolution;  // kGridInsertSection's map
+    const double res = ini.read_double(resolution.section, resolution.name, trace.resolution);
     if (!(res >= 0.01 && res <= 1))
-        throw Error(common::configOrigin(ini) + ": [" + grid +
-                    "creationOpts] resolution: expected 0.01 to 1 m");
+        throw Error(common::configOrigin(ini) + ": [" + resolution.section + "] " +
+                    resolution.name + ": expected 0.01 to 1 m");
     trace.resolution = res;
     if (ini.sectionExists(kGridInsertSection)) {
         trace.insertOptions = &ini;

@@ -79,8 +79,14 @@ void drawLegend(mrpt::img::CImage& img, int x0, int y0, const Legend& legend) {
     for (const auto& e : legend) {
         const int a = x0 + 10, b = x0 + 44, mid = y + 8;
         switch (e.swatch) {
-            case Swatch::Patch:
-                img.filledRectangle(a, mid - 4, b, mid + 4, e.colour);
+            case Swatch::Patch:  // outlined: a white patch (free space) stays visible
+                img.filledRectangle(a, mid - 5, b, mid + 5, e.colour);
+                img.rectangle(a, mid - 5, b, mid + 5, mrpt::img::TColor(60, 60, 60));
+                break;
+            case Swatch::Arrow:
+                img.line(a, mid, b, mid, e.colour, 2);
+                img.line(b, mid, b - 7, mid - 5, e.colour, 2);
+                img.line(b, mid, b - 7, mid + 5, e.colour, 2);
                 break;
             case Swatch::Band:
                 img.filledRectangle(a, mid - 5, b, mid + 5, e.colour);
@@ -89,8 +95,8 @@ void drawLegend(mrpt::img::CImage& img, int x0, int y0, const Legend& legend) {
                 img.line(a, mid, b, mid, e.colour, 2);
                 break;
             case Swatch::Dashed:
-                for (int u = a; u < b; u += 10)
-                    img.line(u, mid, std::min(b, u + 6), mid, e.colour, 2);
+                for (int u = a; u < b; u += 12)
+                    img.line(u, mid, std::min(b, u + 7), mid, e.colour, 2);
                 break;
             case Swatch::Dot:
                 img.filledRectangle(a + 12, mid - 5, a + 22, mid + 5, e.colour);
@@ -104,13 +110,22 @@ void drawLegend(mrpt::img::CImage& img, int x0, int y0, const Legend& legend) {
     }
 }
 
-/** A round tick step (1, 2 or 5 x 10^k) giving about five to ten ticks over `span`. */
-double tickStep(double span) {
-    const double rough = span / 6;
-    double step = std::pow(10.0, std::floor(std::log10(rough)));
-    for (double f : {1.0, 2.0, 5.0, 10.0})
-        if (step * f >= rough) return step * f;
-    return step * 10;
+/** A round tick step (1, 2 or 5 x 10^k) for a drawing of `width` x `height` metres at
+ *  `metresPerPixel`: about six ticks along the shorter side (so it has some), the same step on
+ *  both axes (one grid), at least 60 pixels apart (so the labels never touch). */
+double tickStep(double width, double height, double metresPerPixel) {
+    const double rough = std::min(width, height) / 6;
+    double decade = std::pow(10.0, std::floor(std::log10(rough)));
+    int mantissa = 1;  // the step is mantissa x decade, mantissa 1, 2 or 5
+    const auto grow = [&] {
+        if (mantissa == 5)
+            mantissa = 1, decade *= 10;
+        else
+            mantissa = mantissa == 1 ? 2 : 5;
+    };
+    while (mantissa * decade < rough) grow();
+    while (mantissa * decade / metresPerPixel < 60) grow();
+    return mantissa * decade;
 }
 
 std::string tickText(double v, double step) {
@@ -298,7 +313,7 @@ void saveTopDown(mrpt::opengl::COpenGLScene& scene, double x0, double y0, double
     // CFBORender's orthographic view is zoomDistance/2 high (measured)
     cam.setZoomDistance(float(2.0 * h * metresPerPixel));
     // a grid on the axes' ticks, under everything
-    const double step = tickStep(std::max(w, h) * metresPerPixel);
+    const double step = tickStep(w * metresPerPixel, h * metresPerPixel, metresPerPixel);
     const double gx0 = cx - 0.5 * w * metresPerPixel, gx1 = cx + 0.5 * w * metresPerPixel;
     const double gy0 = cy - 0.5 * h * metresPerPixel, gy1 = cy + 0.5 * h * metresPerPixel;
     auto grid = CGridPlaneXY::Create(std::floor(gx0 / step) * step, std::ceil(gx1 / step) * step,
@@ -310,7 +325,17 @@ void saveTopDown(mrpt::opengl::COpenGLScene& scene, double x0, double y0, double
     mrpt::img::CImage drawing;
     render.render_RGB(scene, drawing);
     scene.removeObject(grid);
+    framePicture(drawing, cx, cy, metresPerPixel, pngPath, legend, labels, paths);
+}
 
+void framePicture(mrpt::img::CImage drawing, double cx, double cy, double metresPerPixel,
+                  const std::string& pngPath, const Legend& legend,
+                  const std::vector<WorldLabel>& labels, const std::vector<PicturePath>& paths,
+                  const std::string& title) {
+    const int w = int(drawing.getWidth()), h = int(drawing.getHeight());
+    const double step = tickStep(w * metresPerPixel, h * metresPerPixel, metresPerPixel);
+    const double gx0 = cx - 0.5 * w * metresPerPixel, gx1 = cx + 0.5 * w * metresPerPixel;
+    const double gy0 = cy - 0.5 * h * metresPerPixel, gy1 = cy + 0.5 * h * metresPerPixel;
     const auto toPixelX = [&](double x) { return w / 2.0 + (x - cx) / metresPerPixel; };
     const auto toPixelY = [&](double y) { return h / 2.0 - (y - cy) / metresPerPixel; };
     drawPaths(drawing, paths,
@@ -322,11 +347,13 @@ void saveTopDown(mrpt::opengl::COpenGLScene& scene, double x0, double y0, double
         yTicks.emplace_back(toPixelY(t), tickText(t, step));
     size_t widest = 5;  // "y (m)"
     for (const auto& [p, text] : yTicks) widest = std::max(widest, text.size());
-    // the drawing framed by axes: tick labels left and below, the axes' names
-    const int left = 16 + kCharWidth * int(widest), top = 26, bottom = 46, right = 14;
+    // the drawing framed by axes: tick labels left and below, the axes' names, the title above
+    const int left = 16 + kCharWidth * int(widest), top = title.empty() ? 26 : 50, bottom = 46,
+              right = 14;
     const int panel = legendWidth(legend);
     const int rowsHeight = top + 10 + kLegendRow * int(legend.size());
-    const int W = left + w + right + panel, H = std::max(top + h + bottom, rowsHeight);
+    const int W = std::max(left + w + right + panel, left + kCharWidth * int(title.size()) + 8);
+    const int H = std::max(top + h + bottom, rowsHeight);
     mrpt::img::CImage img(W, H, mrpt::img::CH_RGB);
     const mrpt::img::TColor white(255, 255, 255), ink(30, 30, 30);
     img.filledRectangle(0, 0, W - 1, H - 1, white);
@@ -337,6 +364,7 @@ void saveTopDown(mrpt::opengl::COpenGLScene& scene, double x0, double y0, double
     layout.inkShare = contentShare(drawing);
     img.rectangle(left - 1, top - 1, left + w, top + h, ink, 1);
     img.selectTextFont("9x15");
+    if (!title.empty()) img.textOut(left, 6, title, ink);
     for (const auto& [p, text] : xTicks) {
         const int u = left + int(std::lround(p));
         img.line(u, top + h, u, top + h + 5, ink, 1);
@@ -348,11 +376,11 @@ void saveTopDown(mrpt::opengl::COpenGLScene& scene, double x0, double y0, double
         img.textOut(left - 8 - kCharWidth * int(text.size()), v - 7, text, ink);
     }
     img.textOut(left + w / 2 - 2 * kCharWidth, top + h + 26, "x (m)", ink);
-    img.textOut(4, 4, "y (m)", ink);
+    img.textOut(4, top - 22, "y (m)", ink);
     img.selectTextFont("10x20");
     for (const auto& l : labels) {
-        // names whose place is outside the drawn extent (a close-up) are left out
-        if (l.x < x0 || l.x > x1 || l.y < y0 || l.y > y1) continue;
+        // names whose place is outside the drawing (a close-up) are left out
+        if (l.x < gx0 || l.x > gx1 || l.y < gy0 || l.y > gy1) continue;
         // the name centred above its place, on white, kept inside the drawing
         const int lw = 10 * int(l.text.size()) + 6, lh = 22;
         const int px =

@@ -11,6 +11,7 @@
 //      beacon_001_x = 1.0   beacon_001_y = 2.0   beacon_001_z = 2.5
 // MRPT's own parser defaults a missing key to 0; this one stops with an error naming it.
 #include <mrloc/common/IniSection.h>
+#include <mrloc/common/MrptKeys.h>
 #include <mrpt/math/TPoint3D.h>
 
 #include <map>
@@ -32,7 +33,7 @@ struct alignas(alignof(double)) BeaconPosition : mrpt::math::TPoint3D {
 
 using BeaconMap = std::map<int, BeaconPosition>;  ///< beacon ID -> position
 
-inline constexpr const char* kMrptLandmarksSection = "MetricMap_landmarksMap_00_creationOpts";
+inline constexpr const char* kMrptLandmarksSection = common::mrpt_ini::kBeaconCount.section;
 
 /** Reads beacon_<id> keys of `section` (and marks the prefix as allowed). */
 BeaconMap readBeaconKeys(IniSection& section);

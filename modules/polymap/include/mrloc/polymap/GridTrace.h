@@ -114,8 +114,8 @@ struct MapOverlay {
 };
 
 /** The map as a picture (PNG): the grid in grey (if any), where the scanner may stand tinted,
- *  the rings in colour, the overlay; a scale bar, the box's coordinates, and the legend in a
- *  panel beside the map. */
+ *  the rings and the overlay in the palette's colours; axes in metres (the map's frame) and
+ *  the legend in a panel beside the map (report::framePicture). */
 void renderMap(const mrpt::maps::COccupancyGridMap2D* grid, const WallMap& map,
                const MapOverlay& overlay, const std::string& pngPath, const std::string& title);
 

@@ -3,6 +3,7 @@
 // with axes in metres and a legend panel drawn into the picture so that it reads on its own.
 #include <mrloc/common/Localizer.h>
 #include <mrloc/sim/World.h>
+#include <mrpt/img/CImage.h>
 #include <mrpt/img/TColor.h>
 #include <mrpt/math/TPoint2D.h>
 #include <mrpt/math/TPoint3D.h>
@@ -39,7 +40,7 @@ void renderTopView(const TopViewContent& content, const std::string& pngPath, un
                    unsigned height = 900);
 
 /** How a legend entry's sample is drawn: as the thing it names is drawn. */
-enum class Swatch { Patch, Band, Line, Dashed, Dot, Ring };
+enum class Swatch { Patch, Band, Line, Dashed, Dot, Ring, Arrow };
 
 struct LegendEntry {
     std::string name;
@@ -73,5 +74,13 @@ void saveTopDown(mrpt::opengl::COpenGLScene& scene, double x0, double y0, double
                  const std::string& pngPath, unsigned width, unsigned height, const Legend& legend,
                  const std::vector<WorldLabel>& labels = {},
                  const std::vector<PicturePath>& paths = {});
+
+/** Frames a drawing already made (a map seen from above, `metresPerPixel`, its centre at
+ *  (cx, cy)) as saveTopDown does: the paths over it, axes in metres, the labels, a title above
+ *  when given, the legend panel beside it; writes the PNG with its layout. */
+void framePicture(mrpt::img::CImage drawing, double cx, double cy, double metresPerPixel,
+                  const std::string& pngPath, const Legend& legend,
+                  const std::vector<WorldLabel>& labels = {},
+                  const std::vector<PicturePath>& paths = {}, const std::string& title = "");
 
 }  // namespace mrloc::report
