@@ -21,10 +21,12 @@ std::optional<OdometryFit> fitOdometry(const common::Trajectory& odometry,
     // (libRSF's point2) has none, and the course turns as the heading does
     double odoDistance = 0, cross = 0, truthSquares = 0;
     std::optional<mrpt::poses::CPose3D> lastOdo, lastTruth;
-    // the last courses of both, valid while `courses` holds; plain doubles, since GCC 12 warned
-    // that a pair of optionals read here might be uninitialized
-    bool courses = false;
-    double lastOdoCourse = 0, lastTruthCourse = 0;
+    // the last step's courses of both, while both moved (not an optional pair: GCC 12 warned
+    // that one read here might be uninitialized)
+    struct {
+        double odometry = 0, truth = 0;
+        bool valid = false;
+    } lastCourse;
     for (double t = start; t <= end; t += kStep) {
         const auto o = common::interpolate(odometry, t), g = common::interpolate(truth, t);
         if (!o || !g) continue;
@@ -35,16 +37,16 @@ std::optional<OdometryFit> fitOdometry(const common::Trajectory& odometry,
             fit.truthDistance += std::hypot(dxg, dyg);
             // a course is a course only while both move (5 cm in the half second)
             if (std::hypot(dxo, dyo) < kMinStep || std::hypot(dxg, dyg) < kMinStep) {
-                courses = false;
+                lastCourse.valid = false;
             } else {
                 const double co = std::atan2(dyo, dxo), cg = std::atan2(dyg, dxg);
-                if (courses) {
-                    const double dOdo = mrpt::math::wrapToPi(co - lastOdoCourse);
-                    const double dTruth = mrpt::math::wrapToPi(cg - lastTruthCourse);
+                if (lastCourse.valid) {
+                    const double dOdo = mrpt::math::wrapToPi(co - lastCourse.odometry);
+                    const double dTruth = mrpt::math::wrapToPi(cg - lastCourse.truth);
                     fit.truthTurn += std::abs(dTruth);
                     cross += dOdo * dTruth, truthSquares += dTruth * dTruth;
                 }
-                lastOdoCourse = co, lastTruthCourse = cg, courses = true;
+                lastCourse = {co, cg, true};
             }
         }
         lastOdo = o, lastTruth = g;

@@ -103,21 +103,22 @@ std::optional<PictureLayout> readLayout(const std::string& pngPath) {
 std::string gnuplotKeyPlacement(const std::string& body) {
     // the last key statement wins, as in gnuplot; runGnuplot's preamble puts it outside
     static const std::regex statement(R"((^|\n|;)\s*(set|unset)\s+key\b([^\n;]*))");
+    static const std::regex off(R"(\boff\b)");
+    static const std::regex outside(R"(\b(outside|below|above|bmargin|tmargin|lmargin|rmargin)\b)");
+    static const std::regex inside(R"(\b(inside|at)\b)");
+    static const std::regex sideOrNothing(R"(^\s*$|\b(left|right|top|bottom|center)\b)");
     std::string placement = "outside";
     for (std::sregex_iterator it(body.begin(), body.end(), statement), end; it != end; ++it) {
         const std::string verb = (*it)[2], rest = (*it)[3];
-        if (verb == "unset" || std::regex_search(rest, std::regex(R"(\boff\b)")))
+        if (verb == "unset" || std::regex_search(rest, off))
             placement = "none";
-        else if (std::regex_search(
-                     rest,
-                     std::regex(R"(\b(outside|below|above|bmargin|tmargin|lmargin|rmargin)\b)")))
+        else if (std::regex_search(rest, outside))
             placement = "outside";
-        else if (std::regex_search(rest, std::regex(R"(\b(inside|at)\b)")))
+        else if (std::regex_search(rest, inside))
             placement = "inside";
-        else if (std::regex_search(rest, std::regex(R"(\b(left|right|top|bottom|center)\b)")))
-            placement = placement == "none" ? "inside" : placement;  // a side keeps inside/outside
-        else if (rest.find_first_not_of(" \t") == std::string::npos)
-            placement = placement == "none" ? "inside" : placement;  // `set key` turns it on
+        else if (placement == "none" && std::regex_search(rest, sideOrNothing))
+            placement = "inside";  // `set key` or a side alone turns it on, inside by default
+        // otherwise a side alone keeps the key inside or outside, as gnuplot does
     }
     return placement;
 }
