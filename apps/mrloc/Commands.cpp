@@ -32,14 +32,6 @@ namespace fs = std::filesystem;
 
 namespace {
 
-/** `path` as a shell word: as it is when it needs no quoting. */
-std::string word(const std::string& path) {
-    for (const char c : path)
-        if (!(std::isalnum(static_cast<unsigned char>(c)) || std::strchr("_-./+:=,@%", c)))
-            return common::shellWord(path);
-    return path.empty() ? "''" : path;
-}
-
 /** "next: <command>" on stderr, unless --quiet: what a user runs after this step. */
 void next(bool quiet, const std::string& command) {
     if (!quiet) std::cerr << "next: " << command << "\n";
@@ -73,8 +65,10 @@ int simulate(const method::Registry& registry, int argc, char** argv) {
         writeProvenance(s, staging, "simulate", commandLine(argc, argv));
     });
     const std::string written = (fs::path(dir) / fs::path(rawlog).filename()).string();
-    next(c.output.quiet.getValue(), "mrloc localize " + word(s.iniPath) + " " + word(written) +
-                                        (c.output.out.isSet() ? " --out " + word(dir) : ""));
+    next(c.output.quiet.getValue(),
+         "mrloc localize " + common::shellArgument(s.iniPath) + " " +
+             common::shellArgument(written) +
+             (c.output.out.isSet() ? " --out " + common::shellArgument(dir) : ""));
     std::cout << written << "\n";  // the last line: a script's
     return 0;
 }
@@ -109,7 +103,8 @@ int localize(const method::Registry& registry, int argc, char** argv) {
         headline = localizeStep(registry, s, rawlog.getValue(), staging, log, rawlog.getValue());
         writeProvenance(s, staging, "localize", commandLine(argc, argv), rawlog.getValue());
     });
-    next(o.quiet.getValue(), "mrloc report " + word(dir) + "   (report.html and its pictures)");
+    next(o.quiet.getValue(),
+         "mrloc report " + common::shellArgument(dir) + "   (report.html and its pictures)");
     // exit 0 whether or not the method reached its goal (the headline says which), unless it
     // failed on this input; the headline stays the last line
     std::cout << dir << "\n" << common::headlineLine(s.method->name, headline) << "\n";

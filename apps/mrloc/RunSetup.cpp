@@ -8,6 +8,7 @@
 #include <mrloc/common/Names.h>
 #include <mrloc/common/RunDirectory.h>
 #include <mrloc/common/Seeds.h>
+#include <mrloc/common/ShellWord.h>
 #include <mrloc/common/Version.h>
 #include <mrpt/config/CConfigFileMemory.h>
 #include <mrpt/system/os.h>
@@ -114,7 +115,15 @@ Setup loadSetupUnguarded(const method::Registry& registry, const std::string& in
     s.method = &registry.get(s.scenario.method);
     s.localizer = s.method->localizer();
     s.localizer->configure(*s.ini);
-    if (needSimulation || sim::ScenarioOptions::describesSimulation(*s.ini, "scenario")) {
+    const bool simulates = sim::ScenarioOptions::describesSimulation(*s.ini, "scenario");
+    if (needSimulation && !simulates)
+        // an INI for a log recorded elsewhere (config/beacons_librsf.ini): say which command
+        // reads it, not which simulation key is missing
+        throw Error(iniPath +
+                    ": describes no simulation ([scenario] holds no robots, world or duration): "
+                    "it localizes a log recorded elsewhere: mrloc localize " +
+                    common::shellArgument(iniPath) + " <rawlog>");
+    if (needSimulation || simulates) {
         s.simulation = s.method->scenario(*s.ini, *s.localizer);
         s.simulation->config.scenario.seed = s.scenario.seed;
         s.simulation->config.scenario.name = s.scenario.name;  // the INI's, or its file's

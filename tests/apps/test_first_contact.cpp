@@ -11,6 +11,7 @@
 #include <nlohmann/json.hpp>
 
 #include "MrlocCli.h"
+#include "PictureChecks.h"
 
 using namespace mrloc;
 using namespace mrloc::testing_cli;
@@ -21,6 +22,8 @@ TEST(FirstContact, OneBeaconAtATimeStartsBridgesAGapAndStaysRight) {
     const std::string out = tmp("one_at_a_time");
     const auto r = mrlocCmd("run " + config("beacons_one_at_a_time") + " -q --out " + out);
     ASSERT_EQ(r.code, 0) << r.output;
+    expectPicturesReadAtAGlance(out,
+                                "beacons_one_at_a_time");  // its pictures, once (test_pictures.cpp)
     const auto m = common::readJsonFile(out + "/metrics.json");
     const auto& b = m["beacons"];
     // measured (seed 1): first estimate 6.66 s after the first observation, from the particles

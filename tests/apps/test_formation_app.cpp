@@ -10,6 +10,7 @@
 #include <cmath>
 
 #include "MrlocCli.h"
+#include "PictureChecks.h"
 
 namespace fs = std::filesystem;
 using namespace mrloc;
@@ -31,6 +32,8 @@ TEST(MrlocFormation, ObstacleRunKeepsEveryRobotOutOfTheSafetyZonesAndArrives) {
     const std::string out = tmp("formation_obstacles");
     const auto r = mrlocCmd("run " + config("formation_obstacles") + " -q --out " + out);
     ASSERT_EQ(r.code, 0) << r.output;
+    expectPicturesReadAtAGlance(out,
+                                "formation_obstacles");  // its pictures, once (test_pictures.cpp)
     const auto m = common::readJsonFile(out + "/metrics.json");
     const auto& f = m["formation"];
     EXPECT_EQ(f["state"], "arrived") << f.dump(2);
@@ -184,6 +187,7 @@ TEST(MrlocFormation, PixelModeMarchIsSteeredByTheCamerasAndTheMidpointRuleBeatsT
     const std::string out = tmp("formation_pixel");
     const auto r = mrlocCmd("run " + config("formation_pixel") + " -q --out " + out);
     ASSERT_EQ(r.code, 0) << r.output;
+    expectPicturesReadAtAGlance(out, "formation_pixel");  // its pictures, once (test_pictures.cpp)
     const auto m = common::readJsonFile(out + "/metrics.json");
     EXPECT_EQ(m["formation"]["state"], "arrived") << m.dump(2);
     EXPECT_EQ(m["formation"]["moves"], 11);
@@ -278,6 +282,7 @@ TEST(MrlocFormation, PatrolRouteEndsWhereItStartsAndDeadReckoningDrivesAllOfIt) 
     const std::string out = tmp("formation_patrol");
     const auto r = mrlocCmd("run " + config("formation_patrol") + " -q --out " + out);
     ASSERT_EQ(r.code, 0) << r.output;
+    expectPicturesReadAtAGlance(out, "formation_patrol");  // its pictures, once (test_pictures.cpp)
     const auto f = common::readJsonFile(out + "/metrics.json")["formation"];
     EXPECT_EQ(f["state"], "arrived") << f.dump(2);
     EXPECT_EQ(f["moves"], 126);

@@ -13,6 +13,7 @@
 
 #include "AllMethods.h"
 #include "MrlocCli.h"
+#include "PictureChecks.h"
 #include "TestPaths.h"
 
 namespace fs = std::filesystem;
@@ -150,10 +151,28 @@ TEST(FrontDoor, AnMrptIniForATaskMrlocDoesNotDoSaysWhatFits) {
     EXPECT_TRUE(contains(s.output, "Faculty_one_loop_only.rawlog holds")) << s.output;
 }
 
+// An INI for a log recorded elsewhere simulates nothing: run and simulate name the command
+// that reads it (they said "[scenario] robots: required key is missing").
+TEST(FrontDoor, RunningAnIniForALogRecordedElsewhereSaysToLocalizeIt) {
+    for (const std::string command : {"run", "simulate"}) {
+        const std::string out = tmp("librsf_" + command);
+        const auto r = mrlocCmd(command + " " + config("beacons_librsf") + " --out " + out);
+        EXPECT_EQ(r.code, 1) << r.output;
+        EXPECT_EQ(std::count(r.output.begin(), r.output.end(), '\n'), 1) << r.output;
+        EXPECT_TRUE(contains(r.output, "beacons_librsf.ini: describes no simulation")) << r.output;
+        EXPECT_TRUE(contains(r.output, "it localizes a log recorded elsewhere: mrloc localize " +
+                                           config("beacons_librsf") + " <rawlog>"))
+            << r.output;
+        EXPECT_FALSE(contains(r.output, "required key")) << r.output;
+        EXPECT_FALSE(fs::exists(out));
+    }
+}
+
 TEST(FrontDoor, TheReportOpensWithWhatRanTheHeadlineAndProvenance) {
     const std::string out = tmp("report_top");
     const auto r = mrlocCmd("run " + config("quickstart") + " -q --out " + out);
     ASSERT_EQ(r.code, 0) << r.output;
+    expectPicturesReadAtAGlance(out, "quickstart");  // its pictures, once (test_pictures.cpp)
     const std::string page = slurp(out + "/report.html");
     // title from the scenario, then the blocks in the order
     EXPECT_TRUE(contains(page, "<title>quickstart: active ultrasonic beacons"))

@@ -25,6 +25,7 @@
 #include <sstream>
 
 #include "MrlocCli.h"
+#include "PictureChecks.h"
 #include "TestPaths.h"
 
 namespace fs = std::filesystem;
@@ -423,6 +424,8 @@ TEST(MrlocCli, SwappedArgumentsFoldersAndTextFilesAreSaidInWords) {
 TEST(MrlocCli, ARunIntoAUsedFolderLeavesNoStaleOutputsAndKeepsTheUsersFiles) {
     const std::string dir = tmp("used");
     ASSERT_EQ(mrlocCmd("run " + config("beacons_multi_robot") + " -q --out " + dir).code, 0);
+    expectPicturesReadAtAGlance(dir,
+                                "beacons_multi_robot");  // its pictures, once (test_pictures.cpp)
     EXPECT_TRUE(fs::exists(dir + "/estimates.faster.txt"));
     std::ofstream(dir + "/notes.txt") << "mine\n";
     // the same scenario with two of its four robots
@@ -450,6 +453,8 @@ TEST(MrlocCli, ARunIntoAUsedFolderLeavesNoStaleOutputsAndKeepsTheUsersFiles) {
 TEST(MrlocRun, ThirtyPercentBadRangesNeverLoseTheTrack) {
     const std::string out = tmp("bad_ranges");
     ASSERT_EQ(mrlocCmd("run " + config("beacons_bad_ranges") + " -q --out " + out).code, 0);
+    expectPicturesReadAtAGlance(out,
+                                "beacons_bad_ranges");  // its pictures, once (test_pictures.cpp)
     const auto m = common::readJsonFile(out + "/metrics.json");
     EXPECT_LT(m["rmse_m"].get<double>(), 0.010) << m.dump(2);
     EXPECT_LT(m["max_m"].get<double>(), 0.040) << m.dump(2);

@@ -12,6 +12,7 @@
 #include <numeric>
 
 #include "MrlocCli.h"
+#include "PictureChecks.h"
 
 namespace fs = std::filesystem;
 using namespace mrloc;
@@ -21,6 +22,8 @@ TEST(MrlocOmnivision, FiveRobotsFromRenderedPanoramas) {
     const std::string out = tmp("omni5");
     const auto r = mrlocCmd("run " + config("omnivision_5robots") + " -q --out " + out);
     ASSERT_EQ(r.code, 0) << r.output;
+    expectPicturesReadAtAGlance(out,
+                                "omnivision_5robots");  // its pictures, once (test_pictures.cpp)
     const auto m = common::readJsonFile(out + "/metrics.json");
     const auto& o = m["omnivision"];
     EXPECT_EQ(o["camera"], "render");
@@ -156,6 +159,7 @@ TEST(MrlocOmnivision, SwarmOfThirty) {
     const std::string out = tmp("omniswarm");
     const auto r = mrlocCmd("run " + config("omnivision_swarm") + " -q --out " + out);
     ASSERT_EQ(r.code, 0) << r.output;
+    expectPicturesReadAtAGlance(out, "omnivision_swarm");  // its pictures, once (test_pictures.cpp)
     const auto m = common::readJsonFile(out + "/metrics.json");
     const auto& o = m["omnivision"];
     EXPECT_EQ(o["robots"], 30);
@@ -181,6 +185,8 @@ TEST(MrlocOmnivision, SwarmOfAHundredBehindEachOthersBands) {
     const std::string out = tmp("omniswarm100");
     const auto r = mrlocCmd("run " + config("omnivision_swarm100") + " -q --out " + out);
     ASSERT_EQ(r.code, 0) << r.output;
+    expectPicturesReadAtAGlance(out,
+                                "omnivision_swarm100");  // its pictures, once (test_pictures.cpp)
     const auto m = common::readJsonFile(out + "/metrics.json");
     const auto& o = m["omnivision"];
     EXPECT_EQ(o["robots"], 100);
@@ -219,6 +225,8 @@ TEST(MrlocOmnivision, SwarmOfAHundredRenderedFromPixels) {
     const std::string out = tmp("omniswarm100r");
     const auto r = mrlocCmd("run " + config("omnivision_swarm100_rendered") + " -q --out " + out);
     ASSERT_EQ(r.code, 0) << r.output;
+    expectPicturesReadAtAGlance(
+        out, "omnivision_swarm100_rendered");  // its pictures, once (test_pictures.cpp)
     const auto m = common::readJsonFile(out + "/metrics.json");
     const auto& o = m["omnivision"];
     EXPECT_EQ(o["robots"], 100);

@@ -12,6 +12,7 @@
 #include <sstream>
 
 #include "MrlocCli.h"
+#include "PictureChecks.h"
 #include "TestPaths.h"
 
 namespace fs = std::filesystem;
@@ -35,6 +36,7 @@ TEST(MrlocPolymap, StepsMapRunFindsTwelveHypothesesWithTheTruthAmongThem) {
     const std::string out = tmp("polymap_steps");
     const auto r = mrlocCmd("run " + config("polymap_steps") + " -q --out " + out);
     ASSERT_EQ(r.code, 0) << r.output;
+    expectPicturesReadAtAGlance(out, "polymap_steps");  // its pictures, once (test_pictures.cpp)
     const auto m = common::readJsonFile(out + "/metrics.json");
     const auto& p = m["polymap"];
     EXPECT_EQ(p["map_vertices"], 148);
@@ -67,6 +69,9 @@ TEST(MrlocPolymap, MapFileRunWithTwoRoomsAndByteIdenticalRepeats) {
         const std::string out = tmp("polymap_file" + std::to_string(i));
         const auto r = mrlocCmd("run " + config("polymap_file") + " -q --out " + out);
         ASSERT_EQ(r.code, 0) << r.output;
+        if (i == 0)
+            expectPicturesReadAtAGlance(out,
+                                        "polymap_file");  // its pictures, once (test_pictures.cpp)
         const auto m = common::readJsonFile(out + "/metrics.json");
         EXPECT_EQ(m["polymap"]["robots"]["r1"]["hypotheses"], 2) << m.dump(2);
         EXPECT_TRUE(m["robots"]["r1"]["truth_in_hypotheses"].get<bool>());
@@ -156,6 +161,9 @@ TEST(MrlocPolymap, PaperExperimentOnTheSteps76MapLocalizesFromEveryStart) {
         const std::string out = tmp("polymap_steps76_" + std::to_string(i));
         const auto r = mrlocCmd("run " + config("polymap_steps76") + " -q --out " + out);
         ASSERT_EQ(r.code, 0) << r.output;
+        if (i == 0)
+            expectPicturesReadAtAGlance(
+                out, "polymap_steps76");  // its pictures, once (test_pictures.cpp)
         const auto file = polymap::EliminationFile::read(out);
         ASSERT_EQ(file.columns.size(), 5u);
         // The first-separation distance bounds every localization's travel (it is found from
@@ -243,6 +251,8 @@ TEST(MrlocPolymap, StepsJoinedByShaftsRunsThePapersTablesAndSaysWhereTheOrderDif
     const std::string out = tmp("polymap_steps148_shafts");
     const auto r = mrlocCmd("run " + config("polymap_steps148_shafts") + " -q --out " + out);
     ASSERT_EQ(r.code, 0) << r.output;
+    expectPicturesReadAtAGlance(
+        out, "polymap_steps148_shafts");  // its pictures, once (test_pictures.cpp)
     const auto m = common::readJsonFile(out + "/metrics.json");
     EXPECT_TRUE(m["polymap"]["robots"]["r1"]["elimination"]["localized"].get<bool>());
     EXPECT_LT(startErrorOf(m), 0.005);

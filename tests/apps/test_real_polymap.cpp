@@ -11,6 +11,7 @@
 #include <nlohmann/json.hpp>
 
 #include "MrlocCli.h"
+#include "PictureChecks.h"
 
 namespace {
 
@@ -74,6 +75,9 @@ TEST(RealPolymap, LocalizationDemoBesidePfLocalization) {
     const auto r = mrlocCmd("localize " + config("polymap_localization_demo") + " " + kDemoLog +
                             " -q --out " + out);
     ASSERT_EQ(r.code, 0) << r.output;
+    // its report's pictures, once (test_pictures.cpp)
+    ASSERT_EQ(mrlocCmd("report " + out).code, 0);
+    expectPicturesReadAtAGlance(out, "polymap_localization_demo");
     const auto m = robotMetrics(out);
     EXPECT_EQ(m["hypotheses"], 1);  // the whole map searched, heading unknown
     EXPECT_EQ(m["unique_after_m"], 0.0);
@@ -109,6 +113,9 @@ TEST(RealPolymap, SenaLogOnIcpSlamsMapBesideIcpSlam) {
     const auto r =
         mrlocCmd("localize " + config("polymap_sena") + " \"" + kSenaLog + "\" -q --out " + out);
     ASSERT_EQ(r.code, 0) << r.output;
+    // its report's pictures, once (test_pictures.cpp)
+    ASSERT_EQ(mrlocCmd("report " + out).code, 0);
+    expectPicturesReadAtAGlance(out, "polymap_sena");
     const auto m = robotMetrics(out);
     // measured: one hypothesis (agreement 0.49 in a hall where most beams leave the map;
     // the next pose 0.23), tracked over 225 scans and 76 m; against icp-slam's path mean
@@ -133,6 +140,9 @@ TEST(RealPolymap, SenaLogOnMrptsBuildingMapWithTheDefaults) {
     const auto r = mrlocCmd("localize " + config("polymap_sena_malaga") + " \"" + kSenaLog +
                             "\" -q --out " + out);
     ASSERT_EQ(r.code, 0) << r.output;
+    // its report's pictures, once (test_pictures.cpp)
+    ASSERT_EQ(mrlocCmd("report " + out).code, 0);
+    expectPicturesReadAtAGlance(out, "polymap_sena_malaga");
     const auto m = robotMetrics(out);
     // measured: one hypothesis from the first scan (agreement 0.50, 19 of 309 beams through
     // walls), localized at once; against pf-localization's path (run 2 of 3: see the

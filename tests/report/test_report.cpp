@@ -7,6 +7,8 @@
 #include <mrloc/report/Plots.h>
 #include <mrloc/report/TopView.h>
 #include <mrpt/img/CImage.h>
+#include <mrpt/opengl/COpenGLScene.h>
+#include <mrpt/opengl/CSetOfLines.h>
 
 #include <cstdlib>
 #include <filesystem>
@@ -276,4 +278,63 @@ TEST(EvaluationPlots, TheTwoSigmaEllipseOfACovarianceHasItsAxesAndAngle) {
     EXPECT_NEAR(std::fmod(e->angleDeg + 360, 180), 30, 1e-9);
     c(0, 0) = NAN;  // a method that does not estimate a term writes nan
     EXPECT_FALSE(report::twoSigmaEllipse(c));
+}
+
+// What OpenGL draws (walls, beacons, the polygon maps) and what is drawn in pixels over it
+// (paths, bands) land on the same pixels for the same place, in a wide, a tall and a square
+// extent: a square outline drawn both ways, red through OpenGL, blue as a path, has its
+// left and right sides in the same columns of the row through its middle.
+TEST(TopView, OpenGlAndPixelPathsAgreeInEveryShape) {
+    for (const auto& [x1, y1] : std::vector<std::pair<double, double>>{{8, 4}, {4, 8}, {5, 5}}) {
+        mrpt::opengl::COpenGLScene scene;
+        scene.getViewport()->setCustomBackgroundColor({1, 1, 1});
+        auto lines = mrpt::opengl::CSetOfLines::Create();
+        lines->setColor_u8(mrpt::img::TColor(255, 0, 0));
+        const double s0 = 1, s1 = 3;  // the square's sides
+        lines->appendLine(s0, s0, 0.03, s1, s0, 0.03);
+        lines->appendLine(s1, s0, 0.03, s1, s1, 0.03);
+        lines->appendLine(s1, s1, 0.03, s0, s1, 0.03);
+        lines->appendLine(s0, s1, 0.03, s0, s0, 0.03);
+        scene.insert(lines);
+        // the blue path a little inside the red square, so that neither hides the other
+        const double in = 0.1;
+        const report::PicturePath path{{{s0 + in, s0 + in},
+                                        {s1 - in, s0 + in},
+                                        {s1 - in, s1 - in},
+                                        {s0 + in, s1 - in},
+                                        {s0 + in, s0 + in}},
+                                       mrpt::img::TColor(0, 0, 255),
+                                       1,
+                                       false};
+        const std::string png = testing::TempDir() + "/mrloc_agree.png";
+        report::saveTopDown(scene, 0, 0, x1, y1, png, 600, 600, {}, {}, {path});
+        mrpt::img::CImage img;
+        ASSERT_TRUE(img.loadFromFile(png));
+        const auto layout = report::readLayout(png);
+        ASSERT_TRUE(layout);
+        // the square's middle row, from the blue path's extent
+        int by0 = -1, by1 = -1;
+        for (int v = layout->data.y0; v < layout->data.y1; ++v)
+            for (int u = layout->data.x0; u < layout->data.x1; ++u) {
+                const uint8_t* p = img(u, v);
+                if (p[0] > 200 && p[2] < 80 && p[1] < 80) {
+                    if (by0 < 0) by0 = v;
+                    by1 = v;
+                }
+            }
+        ASSERT_GE(by0, 0);
+        const int mid = (by0 + by1) / 2;
+        std::vector<int> red, blue;
+        for (int u = layout->data.x0; u < layout->data.x1; ++u) {
+            const uint8_t* p = img(u, mid);
+            if (p[2] > 150 && p[2] > p[1] + 60 && p[2] > p[0] + 60) red.push_back(u);
+            if (p[0] > 200 && p[2] < 80 && p[1] < 80) blue.push_back(u);
+        }
+        ASSERT_GE(red.size(), 2u) << x1 << " x " << y1;
+        ASSERT_GE(blue.size(), 2u) << x1 << " x " << y1;
+        const double m = double(by1 - by0) / (s1 - s0 - 2 * in);  // pixels per metre, from blue
+        // the red sides 0.1 m outside the blue ones, to a pixel
+        EXPECT_NEAR(blue.front() - red.front(), in * m, 1.5) << x1 << " x " << y1;
+        EXPECT_NEAR(red.back() - blue.back(), in * m, 1.5) << x1 << " x " << y1;
+    }
 }

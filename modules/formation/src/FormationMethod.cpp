@@ -232,12 +232,12 @@ report::Html experimentSection(const std::string& dir) {
         report::runGnuplot(report::dataBlock("n", xy) +
                                "set xlabel 'number of robots N'\nset ylabel 'mean error at the "
                                "destination (m)'\nset yrange [0:*]\nset xtics 1\nset key outside "
-                               "right top\nplot $n using 1:2 with linespoints lw 2 pt 7 lc rgb "
+                               "below center\nplot $n using 1:2 with linespoints lw 2 pt 7 lc rgb "
                                "pal_blue title " +
                                report::gnuplotString("formation, " +
                                                      routeTitle(e.table.front().route) + " route") +
                                " noenhanced\n",
-                           dir + "/formation.fig15.png", "700,400");
+                           dir + "/formation.fig15.png", "800,450");
         std::vector<report::Html> ns, errors;
         for (const auto& r : e.robots) {
             ns.push_back(std::to_string(r.robots));

@@ -5,6 +5,7 @@
 #include <mrloc/report/Plots.h>
 #include <mrpt/core/format.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <limits>
@@ -133,14 +134,22 @@ void plotLayout(const LayoutFile& layout, const std::string& pngPath) {
     plot +=
         "set title " + report::gnuplotString(title) +
         "\nset size ratio -1\nset xlabel 'x (m)'\nset ylabel 'y (m)'\n"
-        "set key outside right\n"
+        "set key outside below center horizontal maxcols 2\n"
         "plot $ellipses using 1:2:3:4:5 with ellipses lc rgb pal_sky title 'refined, 3 sigma', "
         "$truth using 1:2 with points pt 6 ps 2 lc rgb pal_green title 'truth', "
         "$names using 1:2:3 with labels offset 1.2,1.2 notitle, "
         "$paper using 1:2 with points pt 2 ps 1.5 lc rgb pal_vermillion title 'paper (eq. 8, sine "
         "rule)', "
         "$refined using 1:2 with points pt 1 ps 1.5 lc rgb pal_blue title 'least squares'\n";
-    report::runGnuplot(plot, pngPath, "900,700");
+    // the canvas in the layout's shape (the axes share one scale): a tall layout beside a
+    // key took 29 % of a 900 x 700 picture (omnivision_swarm), the key below now
+    double x0 = 0, x1 = 0, y0 = 0, y1 = 0;
+    for (const auto& p : points)
+        for (const auto& [x, y] : {std::pair{p.trueX, p.trueY}, std::pair{p.refinedX, p.refinedY}})
+            x0 = std::min(x0, x), x1 = std::max(x1, x), y0 = std::min(y0, y), y1 = std::max(y1, y);
+    const double shape = (y1 - y0 + 1) / (x1 - x0 + 1);  // 1 m of margin each way
+    const int height = int(std::clamp(760 * shape + 190, 450.0, 1200.0));
+    report::runGnuplot(plot, pngPath, mrpt::format("900,%d", height));
 }
 
 void plotAccuracy(const AccuracyFile& sweep, const std::string& pngPath) {

@@ -45,13 +45,14 @@ void renderPolygonView(const PolygonViewContent& c, const std::string& pngPath, 
     const double size = std::max(hi.x - lo.x, hi.y - lo.y);
     const double dot = std::max(0.004 * size, 0.05);
     // The map, V and the hypotheses in black and greys; V at the true start a yellow band
-    // under them; each route in a series colour of the palette (Palette.h), so the routes
+    // under the map; each route in a series colour of the palette (Palette.h), so the routes
     // are the only colours in the picture.
     using namespace report::palette;
     using report::Swatch;
-    // V at the true start and OI as wide bands drawn over the rendering (OpenGL's lines are
-    // one pixel wide off screen)
-    std::vector<report::PicturePath> bands;
+    // Drawn in pixels over the rendering, in this order (OpenGL's lines are one pixel wide
+    // off screen, and its triangles would hide them): V at the true start and OI as wide
+    // bands, then the map's rings and the routes over them, so that no band hides a wall.
+    std::vector<report::PicturePath> paths;
     const auto ring = [](const std::vector<TPoint2D>& v, const TPoint2D& at,
                          mrpt::img::TColor colour, int width) {
         report::PicturePath p{{}, colour, width, false};
@@ -59,11 +60,11 @@ void renderPolygonView(const PolygonViewContent& c, const std::string& pngPath, 
         if (!v.empty()) p.points.push_back(v.front() + at);
         return p;
     };
-    if (c.truth && !c.sensed.empty()) bands.push_back(ring(c.sensed, *c.truth, kYellow, 6));
-    if (!c.overlay.empty()) bands.push_back(ring(c.overlay, {0, 0}, kLightGrey, 5));
+    if (c.truth && !c.sensed.empty()) paths.push_back(ring(c.sensed, *c.truth, kYellow, 6));
+    if (!c.overlay.empty()) paths.push_back(ring(c.overlay, {0, 0}, kLightGrey, 5));
     for (const auto& h : c.hypotheses) scene.insert(outline(c.sensed, h, kGrey, 1.5, 0.01f));
     for (size_t r = 0; r < P.ringCount(); ++r)  // the outer boundary and each hole
-        scene.insert(outline(P.ringVertices(r), {0, 0}, kBlack, 2, 0.03f));
+        paths.push_back(ring(P.ringVertices(r), {0, 0}, kBlack, 2));
     for (const auto& h : c.hypotheses) scene.insert(marker(h, 1.6 * dot, kBlack, 0.04f));
     if (c.truth) scene.insert(marker(*c.truth, dot, kYellow, 0.05f));
     for (const auto& p : c.candidates.second) scene.insert(marker(p, 0.35 * dot, kGrey, 0.055f));
@@ -71,14 +72,9 @@ void renderPolygonView(const PolygonViewContent& c, const std::string& pngPath, 
     for (size_t k = 0; k < c.routes.size(); ++k) {
         const auto colour = series(k);
         const double shift = 0.6 * dot * (double(k) - 0.5 * double(c.routes.size() - 1));
-        auto lines = CSetOfLines::Create();
-        lines->setLineWidth(2.5f);
-        lines->setColor_u8(colour);
-        const auto& path = c.routes[k].path;
-        for (size_t i = 0; i + 1 < path.size(); ++i)
-            lines->appendLine(path[i].x + shift, path[i].y + shift, 0.06, path[i + 1].x + shift,
-                              path[i + 1].y + shift, 0.06);
-        scene.insert(lines);
+        report::PicturePath route{{}, colour, 2, false};
+        for (const auto& q : c.routes[k].path) route.points.push_back({q.x + shift, q.y + shift});
+        paths.push_back(std::move(route));
         for (const auto& p : c.routes[k].probes)
             scene.insert(marker({p.x + shift, p.y + shift}, 0.9 * dot, colour, 0.07f));
     }
@@ -99,7 +95,7 @@ void renderPolygonView(const PolygonViewContent& c, const std::string& pngPath, 
     for (size_t k = 0; k < c.hypotheses.size() && c.hypotheses.size() <= 40; ++k)
         labels.push_back({c.hypotheses[k].x, c.hypotheses[k].y, "#" + std::to_string(k + 1)});
     report::saveTopDown(scene, lo.x - m, lo.y - m, hi.x + m, hi.y + m, pngPath, width, height,
-                        legend, labels, bands);
+                        legend, labels, paths);
 }
 
 }  // namespace mrloc::polymap

@@ -66,11 +66,8 @@ std::string errorBlock(const std::string& name, const common::Evaluation& e, dou
         [](const common::PoseError&, const common::PoseError&) { return false; });
 }
 
-/** gnuplot objects shading each uncovered stretch of the tracks (behind the curves). */
-std::string shading(const std::vector<const common::Evaluation*>& evaluations, double t0) {
-    std::vector<std::pair<double, double>> spans;
-    for (const auto* e : evaluations)
-        spans.insert(spans.end(), e->coverage.uncovered.begin(), e->coverage.uncovered.end());
+/** gnuplot objects shading each of `spans` (behind the curves), the longest kMaxShaded. */
+std::string shadingOf(std::vector<std::pair<double, double>> spans, double t0) {
     if (spans.size() > kMaxShaded) {
         std::nth_element(
             spans.begin(), spans.begin() + kMaxShaded, spans.end(),
@@ -84,6 +81,34 @@ std::string shading(const std::vector<const common::Evaluation*>& evaluations, d
             "noborder behind\n",
             from - t0, std::max(to - t0, from - t0 + 1e-6), kShade);
     return s;
+}
+
+/** gnuplot objects shading each uncovered stretch of the tracks (behind the curves). */
+std::string shading(const std::vector<const common::Evaluation*>& evaluations, double t0) {
+    std::vector<std::pair<double, double>> spans;
+    for (const auto* e : evaluations)
+        spans.insert(spans.end(), e->coverage.uncovered.begin(), e->coverage.uncovered.end());
+    return shadingOf(std::move(spans), t0);
+}
+
+/** The stretches where no track is covered: the intersection of their uncovered spans
+ *  (each list in time order, as Coverage keeps them). */
+std::vector<std::pair<double, double>> noneCovered(const std::vector<EvaluatedTrack>& tracks) {
+    if (tracks.empty()) return {};
+    std::vector<std::pair<double, double>> common = tracks.front().estimate.coverage.uncovered;
+    for (size_t k = 1; k < tracks.size() && !common.empty(); ++k) {
+        const auto& other = tracks[k].estimate.coverage.uncovered;
+        std::vector<std::pair<double, double>> both;
+        size_t i = 0, j = 0;
+        while (i < common.size() && j < other.size()) {
+            const double from = std::max(common[i].first, other[j].first);
+            const double to = std::min(common[i].second, other[j].second);
+            if (from < to) both.emplace_back(from, to);
+            (common[i].second < other[j].second ? i : j)++;
+        }
+        common = std::move(both);
+    }
+    return common;
 }
 
 std::string shadingKey(bool any) {
@@ -126,6 +151,19 @@ std::pair<std::string, std::string> keyAndSize(size_t robots, size_t entries) {
             mrpt::format("1000,%zu", 500 + 20 * rows)};
 }
 
+/** Robots beyond the palette's seven colours are not keyed one by one: a key of a hundred
+ *  names would be taller than the plot (omnivision_swarm100 measured 1,760 px of key above
+ *  83 px of data). Their curves share the colours in turn and the key says what a line is. */
+constexpr size_t kKeyedRobots = 7;
+
+/** The title of the `k`-th curve (from 0) of a kind: the robot's own name when every robot
+ *  is keyed, else one entry for the kind (`together`) on its first curve and none after. */
+std::string curveTitle(size_t robots, size_t k, const std::string& own,
+                       const std::string& together) {
+    if (robots <= kKeyedRobots) return " title " + gnuplotString(own);
+    return k == 0 ? " title " + gnuplotString(together) : " notitle";
+}
+
 }  // namespace
 
 std::optional<Ellipse> twoSigmaEllipse(const mrpt::math::CMatrixDouble33& cov) {
@@ -164,31 +202,46 @@ void plotTruthTimelineError(const std::vector<EvaluatedTrack>& tracks, const std
     const double t0 = originOf(tracks);
     std::string body, plot;
     std::vector<const common::Evaluation*> shaded;
+    const size_t n = tracks.size();
+    const std::string each = mrpt::format("each line a robot (%zu robots)", n);
     int i = 0;
+    size_t estimates = 0, odometries = 0;
     for (const auto& tr : tracks) {
         ++i;
         if (!tr.estimate.errors.empty()) {
             body += errorBlock("e" + std::to_string(i), tr.estimate, t0);
             plot += std::string(plot.empty() ? "" : ", ") + "$e" + std::to_string(i) +
-                    " using 1:2 with lines lw 1.5 lc " + std::to_string(i) + " title " +
-                    gnuplotString(tr.name);
+                    " using 1:2 with lines lw 1.5 lc " + std::to_string(i) +
+                    curveTitle(n, estimates++, tr.name, each);
         }
         shaded.push_back(&tr.estimate);
         if (tr.odometry && !tr.odometry->errors.empty()) {
             body += errorBlock("o" + std::to_string(i), *tr.odometry, t0);
             plot += std::string(plot.empty() ? "" : ", ") + "$o" + std::to_string(i) +
-                    " using 1:2 with lines dt 2 lw 1.2 lc " + std::to_string(i) + " title " +
-                    gnuplotString(tr.name + ": odometry alone");
+                    " using 1:2 with lines dt 2 lw 1.2 lc " + std::to_string(i) +
+                    curveTitle(n, odometries++, tr.name + ": odometry alone",
+                               "dashed: that robot's odometry alone");
         }
     }
     if (plot.empty()) throw Error("no covered truth stamp to plot for " + pngPath);
-    const bool one = tracks.size() == 1;
-    const std::string key = !anyUncovered(shaded) ? ""
-                            : one                 ? shadingKey(true)
-                                  : ", NaN with boxes fs solid 0.8 noborder lc rgb pal_grey title "
-                                    "'band at the bottom: that robot not covered'";
-    const auto [keyPlace, size] = keyAndSize(tracks.size(), 2 * tracks.size() + 1);
-    runGnuplot(body + (one ? shading(shaded, t0) : bands(tracks, t0)) + keyPlace +
+    const bool one = tracks.size() == 1, keyed = n <= kKeyedRobots;
+    // one robot: its uncovered stretches shaded; up to seven: a band of each robot's colour
+    // along the bottom; more: shaded where no robot is covered (a band per robot would be a
+    // striped block a quarter of the plot high)
+    const auto none = keyed ? std::vector<std::pair<double, double>>() : noneCovered(tracks);
+    const std::string key =
+        !anyUncovered(shaded) ? ""
+        : one                 ? shadingKey(true)
+        : keyed               ? ", NaN with boxes fs solid 0.8 noborder lc rgb pal_grey title "
+                                "'band at the bottom: that robot not covered'"
+        : none.empty()        ? ""
+                       : std::string(", NaN with boxes fs solid 0.6 noborder lc rgb ") + kShade +
+                             " title 'no robot covered (no estimate)'";
+    const std::string uncovered = one     ? shading(shaded, t0)
+                                  : keyed ? bands(tracks, t0)
+                                          : shadingOf(none, t0);
+    const auto [keyPlace, size] = keyAndSize(n, n <= kKeyedRobots ? 2 * n + 1 : 3);
+    runGnuplot(body + uncovered + keyPlace +
                    "set xlabel 'time since the truth''s first stamp (s)'\n"
                    "set ylabel 'position error at the truth''s stamps (m)'\nset yrange [0:*]\n"
                    "plot " +
@@ -198,6 +251,8 @@ void plotTruthTimelineError(const std::vector<EvaluatedTrack>& tracks, const std
 
 void plotTruthTimelineCdf(const std::vector<EvaluatedTrack>& tracks, const std::string& pngPath) {
     std::string body, plot;
+    const size_t n = tracks.size();
+    size_t estimates = 0, odometries = 0;
     const auto curve = [&](const common::Evaluation& e, const std::string& name, int colour,
                            const std::string& title, const char* dash) {
         if (e.errors.empty()) return;
@@ -212,7 +267,9 @@ void plotTruthTimelineCdf(const std::vector<EvaluatedTrack>& tracks, const std::
         body += dataBlock(name, xy);
         plot += std::string(plot.empty() ? "plot " : ", ") + "$" + name +
                 " using 1:2 with steps lw 1.5 " + dash + " lc " + std::to_string(colour) +
-                " title " + gnuplotString(title);
+                (*dash ? curveTitle(n, odometries++, title, "dashed: that robot's odometry alone")
+                       : curveTitle(n, estimates++, title,
+                                    mrpt::format("each line a robot (%zu robots)", n)));
     };
     int i = 0;
     for (const auto& tr : tracks) {
@@ -222,7 +279,7 @@ void plotTruthTimelineCdf(const std::vector<EvaluatedTrack>& tracks, const std::
             curve(*tr.odometry, "d" + std::to_string(i), i, tr.name + ": odometry alone", "dt 2");
     }
     if (plot.empty()) throw Error("no covered truth stamp to plot for " + pngPath);
-    const auto [keyPlace, size] = keyAndSize(tracks.size(), 2 * tracks.size());
+    const auto [keyPlace, size] = keyAndSize(n, n <= kKeyedRobots ? 2 * n : 2);
     runGnuplot(body + keyPlace +
                    "set xlabel 'position error (m)'\n"
                    "set ylabel 'share of the covered truth stamps'\nset yrange [0:1.02]\n"

@@ -310,8 +310,10 @@ void saveTopDown(mrpt::opengl::COpenGLScene& scene, double x0, double y0, double
     cam.setAzimuthDegrees(-90);
     const double cx = (x0 + x1) / 2, cy = (y0 + y1) / 2;
     cam.setPointingAt(cx, cy, 0);
-    // CFBORender's orthographic view is zoomDistance/2 high (measured)
-    cam.setZoomDistance(float(2.0 * h * metresPerPixel));
+    // CFBORender's orthographic view is zoomDistance/2 across its shorter side (measured:
+    // high when wider than high, wide when higher than wide; a tall drawing set by its
+    // height was drawn at its width's scale, TopView.OpenGlAndPixelPathsAgreeInEveryShape)
+    cam.setZoomDistance(float(2.0 * std::min(w, h) * metresPerPixel));
     // a grid on the axes' ticks, under everything
     const double step = tickStep(w * metresPerPixel, h * metresPerPixel, metresPerPixel);
     const double gx0 = cx - 0.5 * w * metresPerPixel, gx1 = cx + 0.5 * w * metresPerPixel;
