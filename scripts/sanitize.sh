@@ -141,6 +141,10 @@ long+='|RunFolder\.ACraftedProvenanceOrSymlinks'
 long+='|ScanLocalizer\.TwoIdenticalRooms|MrptData\.RangeOnlyInisRunUnchanged'
 long+='|Elimination\.RoomsBehindPassagesTooNarrow|RealSonar\.TwoHalvesOfTheUdacityLog'
 long+='|FrontDoor\.MrptGroundTruthIsPickedUp'
+# searches that repeat, exhaustively, code the other sanitized tests of their kind run (the
+# multilateration, elimination and verification-tour tests of tests/beacons, tests/polymap)
+long+='|Multilateration\.MonteCarloRmseWithinTenPercentOfCramerRao'
+long+='|Elimination\.StepsMapsEveryStartEveryStrategy|TravelBounds\.TourIsTheExhaustiveOptimum'
 # every shipped INI's whole run checked picture by picture: the renderers run sanitized in
 # TopView.* and Plots.*, the runs in the methods' own end-to-end tests
 long+='|Pictures/EveryShippedIni\.'

@@ -35,6 +35,9 @@ TEST(MrlocFormation, ObstacleRunKeepsEveryRobotOutOfTheSafetyZonesAndArrives) {
     expectPicturesReadAtAGlance(out,
                                 "formation_obstacles");  // its pictures, once (test_pictures.cpp)
     const auto m = common::readJsonFile(out + "/metrics.json");
+    EXPECT_EQ(m["headline"].value("mechanism", ""),  // the error model (doc/formation.md's table)
+              "the error model: paper 003's mean errors read as mean absolute errors (gamma, "
+              "random sign), carried over by the base's offset (carry; mrloc's reading)");
     const auto& f = m["formation"];
     EXPECT_EQ(f["state"], "arrived") << f.dump(2);
     // Measured: 18 moves (12 on the same route without the pillars: the detour costs 6).
@@ -189,6 +192,10 @@ TEST(MrlocFormation, PixelModeMarchIsSteeredByTheCamerasAndTheMidpointRuleBeatsT
     ASSERT_EQ(r.code, 0) << r.output;
     expectPicturesReadAtAGlance(out, "formation_pixel");  // its pictures, once (test_pictures.cpp)
     const auto m = common::readJsonFile(out + "/metrics.json");
+    // what ran, in the paper's terms (doc/formation.md's table)
+    EXPECT_EQ(m["headline"].value("mechanism", ""),
+              "Algorithm 1 from pixels with mrloc's lateral rule (algorithm_one = midpoint: the "
+              "anchor in line with the base's midpoint; the paper's is algorithm_one = paper)");
     EXPECT_EQ(m["formation"]["state"], "arrived") << m.dump(2);
     EXPECT_EQ(m["formation"]["moves"], 11);
     EXPECT_EQ(m["formation"]["camera_lost_moves"], 0);

@@ -45,6 +45,10 @@ TEST(MrlocFramesync, CorridorRunSharesTheFrameAndTheReportShowsThePapersMeasure)
     const auto r = mrlocCmd("run " + corridorIni("fs_corridor", 10, 4) + " -q --out " + out);
     ASSERT_EQ(r.code, 0) << r.output;
     const auto m = common::readJsonFile(out + "/metrics.json");
+    // what ran, in the paper's terms (doc/framesync.md's table)
+    EXPECT_EQ(m["headline"].value("mechanism", ""),
+              "paper 004 sec. 4.3's wall tests alone (matching = local; sec. 3's general "
+              "transform is matching = general); ERPs dropped on a redefinition (sec. 5.1)");
     const auto& f = m["framesync"];
     const double shared = f["end_relative_error_shared_m"],
                  odometry = f["end_relative_error_odometry_m"];

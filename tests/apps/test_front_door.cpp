@@ -191,6 +191,13 @@ TEST(FrontDoor, TheReportOpensWithWhatRanTheHeadlineAndProvenance) {
     EXPECT_EQ(p["date_utc"].get<std::string>().size(), 19u);  // 2026-12-02 15:22:35
     EXPECT_TRUE(contains(p["mrpt_version"].get<std::string>(), "2.")) << p.dump();
     EXPECT_TRUE(contains(page, "MRPT</th><td>" + p["mrpt_version"].get<std::string>()));
+    // what ran, in the paper's terms (doc/beacons.md's table), under the outcome
+    const auto m = common::readJsonFile(out + "/metrics.json");
+    EXPECT_EQ(m["headline"].value("mechanism", ""),
+              "mrloc's tracker between fixes (mode = tracker: odometry and gated ranges, beyond "
+              "paper 001); one shared acoustic channel, one agent per slot (paper 001's firing "
+              "of different beacons at different agents at once runs in [beacons_study] only)");
+    EXPECT_TRUE(contains(page, "What ran: </b>")) << "the report names what ran";
     // the summary's first row is the RMSE
     const size_t table = page.find("<table", errors);
     EXPECT_LT(page.find("RMSE (m)", table), page.find("mean error (m)", table));

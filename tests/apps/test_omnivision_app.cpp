@@ -161,6 +161,10 @@ TEST(MrlocOmnivision, SwarmOfThirty) {
     ASSERT_EQ(r.code, 0) << r.output;
     expectPicturesReadAtAGlance(out, "omnivision_swarm");  // its pictures, once (test_pictures.cpp)
     const auto m = common::readJsonFile(out + "/metrics.json");
+    // what ran, in the paper's terms (doc/omnivision.md's table)
+    EXPECT_EQ(m["headline"].value("mechanism", ""),
+              "t_b: the full search, as at t_e (search_at_tb = full; paper 000's eq. (11)-(12) "
+              "is search_at_tb = localized)");
     const auto& o = m["omnivision"];
     EXPECT_EQ(o["robots"], 30);
     EXPECT_TRUE(o["restarts"].empty()) << o.dump(2);

@@ -38,6 +38,12 @@ TEST(MrlocPolymap, StepsMapRunFindsTwelveHypothesesWithTheTruthAmongThem) {
     ASSERT_EQ(r.code, 0) << r.output;
     expectPicturesReadAtAGlance(out, "polymap_steps");  // its pictures, once (test_pictures.cpp)
     const auto m = common::readJsonFile(out + "/metrics.json");
+    // what ran, in the paper's terms (doc/polymap.md's table)
+    EXPECT_EQ(m["headline"]
+                  .value("mechanism", "")
+                  .rfind("paper 002's hypotheses from the exact visibility polygon", 0),
+              0u)
+        << m["headline"];
     const auto& p = m["polymap"];
     EXPECT_EQ(p["map_vertices"], 148);
     EXPECT_EQ(p["robots"]["r1"]["hypotheses"], 12) << p.dump(2);

@@ -143,6 +143,10 @@ TEST(RealPolymap, SenaLogOnMrptsBuildingMapWithTheDefaults) {
     // its report's pictures, once (test_pictures.cpp)
     ASSERT_EQ(mrlocCmd("report " + out).code, 0);
     expectPicturesReadAtAGlance(out, "polymap_sena_malaga");
+    EXPECT_EQ(
+        nlohmann::json::parse(slurp(out + "/metrics.json"))["headline"].value("mechanism", ""),
+        "the scan localizer (localizer = scan): a beam model of the real scans against "
+        "the map, beyond paper 002's exact visibility polygons");
     const auto m = robotMetrics(out);
     // measured: one hypothesis from the first scan (agreement 0.50, 19 of 309 beams through
     // walls), localized at once; against pf-localization's path (run 2 of 3: see the

@@ -19,9 +19,12 @@ TEST(Outcome, HeadlineRoundTripsThroughJson) {
     h.status = "not localized: 3 hypotheses left";
     h.figures.push_back({"travel", 12.5, "m", "0.978 of cells (paper 002)", "another map", false});
     h.figures.push_back({"dead reckoning", std::nullopt, "m", "", "", true});
+    h.mechanism = "paper 002's elimination replayed with cells (elimination)";
     const auto back = common::headlineFromJson(common::toJson(h), "here");
     EXPECT_FALSE(back.reached);
     EXPECT_EQ(back.status, h.status);
+    EXPECT_EQ(back.mechanism, h.mechanism);
+    EXPECT_FALSE(common::toJson(common::Headline{}).contains("mechanism"));  // none to name
     ASSERT_EQ(back.figures.size(), 2u);
     EXPECT_DOUBLE_EQ(*back.figures[0].value, 12.5);
     EXPECT_EQ(back.figures[0].paper, "0.978 of cells (paper 002)");
@@ -36,6 +39,7 @@ TEST(Outcome, TheLineKeepsBaselinesApart) {
     h.status = "tracked";
     h.figures.push_back({"RMSE", 0.0271, "m", "", "", false});
     h.figures.push_back({"odometry alone RMSE", 0.76, "m", "", "", true});
+    h.mechanism = "mrloc's tracker";  // the report's and metrics.json's, not the line's
     EXPECT_EQ(common::headlineLine("beacons", h),
               "beacons: tracked: RMSE 0.0271 m; baseline: odometry alone RMSE 0.76 m");
 }

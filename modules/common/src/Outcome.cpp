@@ -18,6 +18,7 @@ nlohmann::json toJson(const ObservationUse& use) {
 nlohmann::json toJson(const Headline& h) {
     nlohmann::json j = {{"reached", h.reached && !h.failed}, {"status", h.status}};
     if (h.failed) j["failed"] = true;
+    if (!h.mechanism.empty()) j["mechanism"] = h.mechanism;
     j["figures"] = nlohmann::json::array();
     for (const auto& f : h.figures) {
         nlohmann::json fj = {{"name", f.name}, {"unit", f.unit}, {"baseline", f.baseline}};
@@ -47,6 +48,7 @@ Headline headlineFromJson(const nlohmann::json& j, const std::string& where) {
     h.reached = j["reached"].get<bool>();
     h.failed = flag(j, "failed");
     h.status = text(j, "status");
+    h.mechanism = text(j, "mechanism");
     for (const auto& fj : j["figures"]) {
         if (!fj.is_object()) throw Error(where + ": headline.figures: not an object");
         HeadlineFigure f;

@@ -325,6 +325,23 @@ common::Headline formationHeadline(const method::HeadlineOf<FormationLocalizer>&
     const std::string state =
         in.metrics.value("formation", nlohmann::json::object()).value("state", std::string("?"));
     h.reached = state == "arrived";
+    // doc/formation.md, "The paper's mechanism: as stated, as shipped"
+    const auto& config = in.localizer.config();
+    if (config.mode == FormationConfig::Mode::Pixel)
+        h.mechanism =
+            config.lateral == AlgorithmOneOptions::Lateral::Midpoint
+                ? "Algorithm 1 from pixels with mrloc's lateral rule (algorithm_one = midpoint: "
+                  "the anchor in line with the base's midpoint; the paper's is "
+                  "algorithm_one = paper)"
+                : "Algorithm 1 from pixels with paper 003's lateral rule (algorithm_one = paper)";
+    else
+        h.mechanism = std::string(
+                          "the error model: paper 003's mean errors read as mean "
+                          "absolute errors (gamma, random sign), carried over by ") +
+                      (config.carry == MarchOptions::Carry::Base         ? "the base's offset"
+                       : config.carry == MarchOptions::Carry::Reflection ? "the reflection"
+                                                                         : "Algorithm 1") +
+                      " (carry; mrloc's reading)";
     h.status = h.reached ? "at the destination"
                          : mrpt::format(
                                "ended before the destination: after move %.0f, "

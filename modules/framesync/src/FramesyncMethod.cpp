@@ -287,6 +287,19 @@ common::Headline framesyncHeadline(const method::HeadlineOf<FramesyncLocalizer>&
     common::Headline h;
     const auto redefinitions = common::numberAt(in.metrics, "framesync/redefinitions");
     const bool sharing = in.localizer.config().team.sharing;
+    // doc/framesync.md, "The paper's mechanism: as stated, as shipped"
+    if (sharing) {
+        const auto& team = in.localizer.config().team;
+        h.mechanism = team.manager.match.general
+                          ? "paper 004 sec. 4.3's wall tests, then sec. 3's general transform "
+                            "where none passes (matching = general)"
+                          : "paper 004 sec. 4.3's wall tests alone (matching = local; sec. 3's "
+                            "general transform is matching = general)";
+        h.mechanism += team.onRedefinition == TeamOptions::OnRedefinition::Drop
+                           ? "; ERPs dropped on a redefinition (sec. 5.1)"
+                           : "; ERPs carried into the new frame (on_redefinition = transform, "
+                             "mrloc's)";
+    }
     h.reached = !sharing || (redefinitions && *redefinitions > 0);
     h.status = !sharing    ? "frames kept apart ([framesync] sharing = false)"
                : h.reached ? "one frame shared"

@@ -356,6 +356,20 @@ common::Headline omnivisionHeadline(const method::HeadlineOf<OmniLocalizer>& in)
                         why[t.reason] += n->get<size_t>();
             }
     h.reached = unresolved == 0;
+    // doc/omnivision.md, "The paper's mechanism: as stated, as shipped"
+    const auto& options = in.localizer.options();
+    if (options.method == "proposed")
+        h.mechanism = options.localizedSearch
+                          ? "t_b: paper 000's eq. (11)-(12), a triangle of the stopped pair "
+                            "and one witness (search_at_tb = localized), confirmed by the "
+                            "witness's odometer turn (beyond the paper, which rules out "
+                            "heading information)"
+                          : "t_b: the full search, as at t_e (search_at_tb = full; paper 000's "
+                            "eq. (11)-(12) is search_at_tb = localized)";
+    else
+        h.mechanism =
+            "the conventional method: one measured distance and the sine rule "
+            "(paper 000 section 2)";
     h.status = h.reached ? "every robot identified"
                          : mrpt::format("%zu robot views unresolved", unresolved);
     std::string reasons;

@@ -273,7 +273,14 @@ std::optional<double> startError(const PolymapLocalizer& localizer, const std::s
 /** Localized or not (one hypothesis left, per robot), with the hypotheses of the first
  *  scan, the travel the elimination needed and the start's error against the truth. */
 common::Headline polymapHeadline(const method::HeadlineOf<PolymapLocalizer>& in) {
-    if (in.localizer.scanMode()) return scanHeadline(in.localizer.methodMetrics());
+    if (in.localizer.scanMode()) {
+        auto scan = scanHeadline(in.localizer.methodMetrics());
+        // doc/polymap.md, "The paper's mechanism: as stated, as shipped"
+        scan.mechanism =
+            "the scan localizer (localizer = scan): a beam model of the real scans against the "
+            "map, beyond paper 002's exact visibility polygons";
+        return scan;
+    }
     common::Headline h;
     std::string notLocalized;
     double hypotheses = 0, travel = 0;
@@ -324,6 +331,18 @@ common::Headline polymapHeadline(const method::HeadlineOf<PolymapLocalizer>& in)
     }
     h.reached = notLocalized.empty();
     h.status = h.reached ? "localized" : "not localized: " + notLocalized;
+    // doc/polymap.md, "The paper's mechanism: as stated, as shipped"
+    const auto& options = in.localizer.options();
+    h.mechanism = "paper 002's hypotheses from the exact visibility polygon";
+    if (options.drive)
+        h.mechanism += "; the robot drives paper 002's elimination with the " +
+                       strategyName(*options.drive) + " algorithm (drive)";
+    else if (!options.elimination.empty()) {
+        std::string names;
+        for (const auto s : options.elimination)
+            names += (names.empty() ? "" : ", ") + strategyName(s);
+        h.mechanism += "; paper 002's elimination replayed with " + names + " (elimination)";
+    }
     if (!fellBack.empty())  // the algorithm's own candidates separated nothing (issue 55)
         h.status += " (the " + strategyName(in.localizer.options().drive.value()) +
                     " algorithm fell back: " + fellBack + ")";

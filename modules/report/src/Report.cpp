@@ -277,6 +277,7 @@ Html headlineBlock(const nlohmann::json& metrics, const std::string& where, bool
     const auto h = common::headlineFromJson(metrics["headline"], where);
     Html out =
         paragraph(bold(h.reached ? "Outcome: " : "Outcome (goal not reached): ") + Html(h.status));
+    if (!h.mechanism.empty()) out += paragraph(bold("What ran: ") + Html(h.mechanism));
     Table t(besidePaper ? std::vector<Html>{"figure", "this run", "the paper",
                                             "how this run differs from the paper's"}
                         : std::vector<Html>{"figure", "this run"});

@@ -54,6 +54,11 @@ struct Headline {
     bool failed = false;
     std::string status;  ///< "localized", "not localized: 0 hypotheses fit the first scan", ...
     std::vector<HeadlineFigure> figures;
+    /** What ran, in the paper's terms: the paper's own mechanism or mrloc's variant of it,
+     *  named with its key ("t_b: the full search ...; paper 000's eq. (11)-(12) is
+     *  search_at_tb = localized"); each module's doc page has the table. Empty: nothing to
+     *  choose between. The report prints it under the outcome, metrics.json keeps it. */
+    std::string mechanism;
 };
 
 nlohmann::json toJson(const Headline& h);
