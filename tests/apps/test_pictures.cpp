@@ -53,8 +53,8 @@ const std::map<std::string, std::string> kLogs = {
      "/usr/share/mrpt/datasets/2006-01ENE-21-SENA_Telecom Faculty_one_loop_only.rawlog"},
     {"polymap_sena_malaga",
      "/usr/share/mrpt/datasets/2006-01ENE-21-SENA_Telecom Faculty_one_loop_only.rawlog"},
-    // imported first (mrloc import mrclam): RealLogs.BeaconTrackerOnMrclamDataset6 draws its
-    // report; here its INI is checked by the others' pictures of the same method
+    // imported first (mrloc import mrclam, from ../shared/data): skipped here, and its
+    // pictures are checked nowhere (RealLogs.BeaconTrackerOnMrclamDataset6 localizes it)
     {"beacons_mrclam", ""},
 };
 

@@ -164,6 +164,12 @@ std::string curveTitle(size_t robots, size_t k, const std::string& own,
     return k == 0 ? " title " + gnuplotString(together) : " notitle";
 }
 
+/** The one key entry of every estimate's curve, and of every odometry's, past kKeyedRobots. */
+std::string eachRobotTitle(size_t robots) {
+    return mrpt::format("each line a robot (%zu robots)", robots);
+}
+constexpr const char* kEachOdometryTitle = "dashed: that robot's odometry alone";
+
 }  // namespace
 
 std::optional<Ellipse> twoSigmaEllipse(const mrpt::math::CMatrixDouble33& cov) {
@@ -203,7 +209,7 @@ void plotTruthTimelineError(const std::vector<EvaluatedTrack>& tracks, const std
     std::string body, plot;
     std::vector<const common::Evaluation*> shaded;
     const size_t n = tracks.size();
-    const std::string each = mrpt::format("each line a robot (%zu robots)", n);
+    const std::string each = eachRobotTitle(n);
     int i = 0;
     size_t estimates = 0, odometries = 0;
     for (const auto& tr : tracks) {
@@ -219,8 +225,7 @@ void plotTruthTimelineError(const std::vector<EvaluatedTrack>& tracks, const std
             body += errorBlock("o" + std::to_string(i), *tr.odometry, t0);
             plot += std::string(plot.empty() ? "" : ", ") + "$o" + std::to_string(i) +
                     " using 1:2 with lines dt 2 lw 1.2 lc " + std::to_string(i) +
-                    curveTitle(n, odometries++, tr.name + ": odometry alone",
-                               "dashed: that robot's odometry alone");
+                    curveTitle(n, odometries++, tr.name + ": odometry alone", kEachOdometryTitle);
         }
     }
     if (plot.empty()) throw Error("no covered truth stamp to plot for " + pngPath);
@@ -254,7 +259,7 @@ void plotTruthTimelineCdf(const std::vector<EvaluatedTrack>& tracks, const std::
     const size_t n = tracks.size();
     size_t estimates = 0, odometries = 0;
     const auto curve = [&](const common::Evaluation& e, const std::string& name, int colour,
-                           const std::string& title, const char* dash) {
+                           const std::string& title, bool odometry) {
         if (e.errors.empty()) return;
         std::vector<double> v;
         for (const auto& p : e.errors) v.push_back(p.translation);
@@ -266,17 +271,17 @@ void plotTruthTimelineCdf(const std::vector<EvaluatedTrack>& tracks, const std::
         xy.emplace_back(v.back(), 1.0);
         body += dataBlock(name, xy);
         plot += std::string(plot.empty() ? "plot " : ", ") + "$" + name +
-                " using 1:2 with steps lw 1.5 " + dash + " lc " + std::to_string(colour) +
-                (*dash ? curveTitle(n, odometries++, title, "dashed: that robot's odometry alone")
-                       : curveTitle(n, estimates++, title,
-                                    mrpt::format("each line a robot (%zu robots)", n)));
+                " using 1:2 with steps lw 1.5 " + (odometry ? "dt 2" : "") + " lc " +
+                std::to_string(colour) +
+                (odometry ? curveTitle(n, odometries++, title, kEachOdometryTitle)
+                          : curveTitle(n, estimates++, title, eachRobotTitle(n)));
     };
     int i = 0;
     for (const auto& tr : tracks) {
         ++i;
-        curve(tr.estimate, "c" + std::to_string(i), i, tr.name, "");
+        curve(tr.estimate, "c" + std::to_string(i), i, tr.name, false);
         if (tr.odometry)
-            curve(*tr.odometry, "d" + std::to_string(i), i, tr.name + ": odometry alone", "dt 2");
+            curve(*tr.odometry, "d" + std::to_string(i), i, tr.name + ": odometry alone", true);
     }
     if (plot.empty()) throw Error("no covered truth stamp to plot for " + pngPath);
     const auto [keyPlace, size] = keyAndSize(n, n <= kKeyedRobots ? 2 * n : 2);
