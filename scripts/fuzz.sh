@@ -17,9 +17,14 @@ if [ ${#targets[@]} -eq 0 ]; then
   for f in tests/fuzz/fuzz_*.cpp; do t="${f##*/fuzz_}"; targets+=("${t%.cpp}"); done
 fi
 
+# MRLOC_FUZZ_COVERAGE=OFF (CI): no libFuzzer coverage in mrloc's files (doc/hardening.md)
+coverage="${MRLOC_FUZZ_COVERAGE:-ON}"
 if [ ! -f build-asan/CMakeCache.txt ]; then
   CXX=clang++ cmake -S . -B build-asan -DCMAKE_BUILD_TYPE=Release \
-    -DCMAKE_CXX_FLAGS_RELEASE="-O1 -DNDEBUG" -DMRLOC_SANITIZE=ON >/dev/null
+    -DCMAKE_CXX_FLAGS_RELEASE="-O1 -DNDEBUG" -DMRLOC_SANITIZE=ON \
+    -DMRLOC_FUZZ_COVERAGE="$coverage" >/dev/null
+elif ! grep -q "^MRLOC_FUZZ_COVERAGE:BOOL=$coverage\$" build-asan/CMakeCache.txt; then
+  cmake -S . -B build-asan -DMRLOC_FUZZ_COVERAGE="$coverage" >/dev/null
 fi
 cmake --build build-asan -j "$(nproc)" --target "${targets[@]/#/fuzz_}" 2>&1 |
   { grep -v -E '^\[ *[0-9]+%\] (Building|Linking|Built)' || true; }

@@ -243,23 +243,31 @@ TEST(MrlocOmnivision, SwarmOfAHundredRenderedFromPixels) {
 }
 
 // Seed 000 eq. (11)-(12): at t_b only the triangle of the stopped pair and one witness of
-// t_e is searched. The paper's solution is the full search's (the same triangle, the same
-// L); the refinement has one odometer instead of 28, so it is less exact.
+// t_e is searched. Confirmed by the witness's odometer turn (beyond the paper), the paper's
+// solution is the full search's (the same triangle, the same L); the refinement has one
+// odometer instead of 28, so it is less exact. Confirmed as the paper's setting allows (no
+// heading), every one of the ten witnesses tried in this swarm is ambiguous: the full search
+// runs, as the paper's fall-back, and the report says so.
 TEST(MrlocOmnivision, LocalizedSearchAtTbGivesThePapersSolution) {
-    const std::string ini = writeIniFrom(config("omnivision_swarm"), "omnilocal", "[omnivision]",
-                                         "[omnivision]\nsearch_at_tb = localized");
-    const std::string out = tmp("omnilocal");
-    const auto r = mrlocCmd("run " + ini + " -q --out " + out);
-    ASSERT_EQ(r.code, 0) << r.output;
-    const auto m = common::readJsonFile(out + "/metrics.json");
+    const auto runWith = [](const std::string& search) {
+        const std::string name = "omni_" + search;
+        const std::string ini = writeIniFrom(config("omnivision_swarm"), name, "[omnivision]",
+                                             "[omnivision]\nsearch_at_tb = " + search);
+        const std::string out = tmp(name);
+        const auto r = mrlocCmd("run " + ini + " -q --out " + out);
+        EXPECT_EQ(r.code, 0) << r.output;
+        return common::readJsonFile(out + "/metrics.json");
+    };
+    const auto m = runWith("localized_turn");
     const auto& o = m["omnivision"];
-    EXPECT_EQ(o["search_at_tb"], "localized");
+    EXPECT_EQ(o["search_at_tb"], "localized_turn");
     EXPECT_EQ(o["snapshots"]["t_b"]["search"], "localized");
     EXPECT_EQ(o["snapshots"]["t_b"]["triangles"], 1);
     ASSERT_EQ(o["localized_searches"].size(), 1u);
     const auto& l = o["localized_searches"][0];
     EXPECT_EQ(l["pair"], "R01 R02");
     EXPECT_EQ(l["witnesses_tried"], 1);
+    EXPECT_FALSE(l.contains("full_search_instead"));
     // eq. (12) on 29 images each: at most 28 x 28 x 29 triples (measured 6,580)
     EXPECT_LE(l["image_triples"].get<int>(), 28 * 28 * 29);
     EXPECT_GT(l["triangles_summing_to_180"].get<int>(), 1);  // chance sums (measured 149)
@@ -268,6 +276,27 @@ TEST(MrlocOmnivision, LocalizedSearchAtTbGivesThePapersSolution) {
     EXPECT_NEAR(o["relative_distance_error_paper"]["median"].get<double>(), 0.0264, 0.0005);
     EXPECT_LT(o["relative_distance_error_refined"]["median"].get<double>(), 0.0025);
     EXPECT_EQ(m["headline"]["status"], "every robot identified") << m["headline"].dump(2);
+    EXPECT_EQ(m["headline"]["mechanism"],
+              "t_b: paper 000's eq. (11)-(12), a triangle of the stopped pair and one witness "
+              "(search_at_tb = localized_turn), confirmed by the witness's odometer turn "
+              "(beyond the paper, which rules out heading information)");
+
+    const auto pm = runWith("localized");
+    const auto& po = pm["omnivision"];
+    EXPECT_EQ(po["search_at_tb"], "localized");
+    EXPECT_EQ(po["snapshots"]["t_b"]["search"], "full");
+    ASSERT_EQ(po["localized_searches"].size(), 1u);
+    const std::string why = po["localized_searches"][0].value("full_search_instead", "");
+    EXPECT_NE(why.find("(10 tried) forms a triangle with them at t_b that the robots it saw "
+                       "confirm and no other robot could make"),
+              std::string::npos)
+        << why;
+    EXPECT_EQ(pm["headline"]["mechanism"],
+              "t_b: the full search, paper 000's fall-back: eq. (11)-(12) (search_at_tb = "
+              "localized) confirmed no witness's triangle");
+    // the full search's solution: the same as search_at_tb = full's
+    EXPECT_NEAR(po["relative_distance_error_paper"]["median"].get<double>(), 0.0264, 0.0005);
+    EXPECT_LT(po["relative_distance_error_refined"]["median"].get<double>(), 0.001);
 }
 
 TEST(MrlocOmnivision, ConventionalMethodAndByteIdenticalRepeats) {

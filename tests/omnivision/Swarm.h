@@ -70,9 +70,10 @@ struct StopAndGo {
     Swarm before, after;
     std::vector<double> travelled, turned;  ///< per robot: m, rad (the odometer's)
 };
-inline StopAndGo stopAndGo(size_t n, unsigned seed, double sigmaDeg, double side, double step) {
+inline StopAndGo stopAndGo(size_t n, unsigned seed, double sigmaDeg, double side, double step,
+                           double markerRadius = kThinMarker) {
     StopAndGo s;
-    s.before = randomSwarm(n, seed, sigmaDeg, side, 1.0, 0, kThinMarker);
+    s.before = randomSwarm(n, seed, sigmaDeg, side, 1.0, 0, markerRadius);
     mrpt::random::CRandomGenerator rng(seed);
     auto moved = s.before.poses;
     s.travelled.assign(n, 0);
@@ -85,7 +86,7 @@ inline StopAndGo stopAndGo(size_t n, unsigned seed, double sigmaDeg, double side
             mrpt::poses::CPose2D(moved[r].x() + step * std::cos(dir),
                                  moved[r].y() + step * std::sin(dir), moved[r].phi() + s.turned[r]);
     }
-    s.after = viewsOf(moved, sigmaDeg, seed + 100, 0, kThinMarker);
+    s.after = viewsOf(moved, sigmaDeg, seed + 100, 0, markerRadius);
     const auto imageOf = [](const Swarm& sw, size_t r, int who) {
         const auto& t = sw.truth[r];
         return size_t(std::find(t.begin(), t.end(), who) - t.begin());

@@ -162,7 +162,7 @@ TEST(Methods, LocalizedSearchAtTbFindsTheWitnessTriangleOfEq12) {
     const auto se = testing_omni::viewsOf(t.after, 0, 2);
     const auto ie = identify(se.snapshot, exact());
     const auto local = localizedRestartSearch(sb.snapshot, se.snapshot, ie, 0, 1, t.travelled(),
-                                              t.turned(), exact());
+                                              t.turned(), exact(), false);
     // C travelled farthest (1 m against E's 0.71 m): the first witness tried, and found.
     EXPECT_EQ(local.witness, 2);
     EXPECT_EQ(local.witnessesTried, 1u);
@@ -195,40 +195,67 @@ TEST(Methods, LocalizedSearchAtTbFindsTheWitnessTriangleOfEq12) {
         huge.views[r] = makeView(raw, "huge");
     }
     try {
-        localizedRestartSearch(huge, se.snapshot, ie, 0, 1, t.travelled(), t.turned(), exact());
+        localizedRestartSearch(huge, se.snapshot, ie, 0, 1, t.travelled(), t.turned(), exact(),
+                               false);
         FAIL() << "expected the work bound";
     } catch (const Error& e) {
         EXPECT_NE(std::string(e.what()).find("work bound"), std::string::npos) << e.what();
     }
-    // No moving witness: the paper's restart.
-    EXPECT_THROW(localizedRestartSearch(sb.snapshot, se.snapshot, ie, 0, 1,
-                                        std::vector<double>(5, 0), t.turned(), exact()),
-                 Error);
+    // No moving witness: nothing to search, and the caller searches t_b in full.
+    const auto none = localizedRestartSearch(sb.snapshot, se.snapshot, ie, 0, 1,
+                                             std::vector<double>(5, 0), t.turned(), exact(), false);
+    EXPECT_EQ(none.witness, -1);
+    EXPECT_EQ(none.witnessesTried, 0u);
+    EXPECT_EQ(none.unconfirmed,
+              "none of the 0 moving robots that A and B both see at t_e (0 tried) forms a "
+              "triangle with them at t_b that the robots it saw confirm and no other robot could "
+              "make (0 image triples searched, paper 000 eq. (12))");
 }
 
 TEST(Methods, LocalizedSearchPicksTheTrueTriangleAmongChanceSumsInASwarm) {
     // 30 and 60 robots, 0.02 deg noise; between t_b and t_e every robot but A and B drives
-    // 0.3 m. Many triples sum to 180 degrees by chance; the one that keeps K nearest its
-    // t_e place is K's true triangle.
-    for (const size_t n : {30u, 60u})
-        for (unsigned seed = 1; seed <= 3; ++seed) {
-            const auto sg = testing_omni::stopAndGo(n, seed, 0.02, 20 * std::sqrt(n / 30.0), 0.3);
-            const auto &before = sg.before, &after = sg.after;
-            const auto& travelled = sg.travelled;
-            SearchOptions o;
-            o.sumTolerance = 6 * 0.02 * kDeg;
-            o.bearingTolerance = 4 * 0.02 * kDeg;
-            // t_e identified (the full search's job)
-            const auto ie = consistentTriangles(after.snapshot, after.truth, o.sumTolerance);
-            const auto local = localizedRestartSearch(before.snapshot, after.snapshot, ie, 0, 1,
-                                                      travelled, sg.turned, o);
-            EXPECT_GT(local.triangles, 1u) << n << " " << seed;  // chance sums exist
-            for (size_t r = 0; r < n; ++r)
-                for (size_t img = 0; img < local.before.labels[r].size(); ++img)
-                    if (const int who = local.before.labels[r][img]; who >= 0) {
-                        EXPECT_EQ(who, before.truth[r][img]) << n << " " << seed;
-                    }
-        }
+    // 0.3 m. Many triples sum to 180 degrees by chance; the robots the witness saw at t_e,
+    // each within its odometer distance of where it stood, tell the true one (the paper's
+    // setting: no heading), as does the witness's odometer turn (beyond the paper).
+    size_t confirmed[2] = {0, 0};  // scenes with a triangle: heading-free, odometer turn
+    for (const bool useOdometerTurn : {false, true})
+        for (const size_t n : {30u, 60u})
+            for (unsigned seed = 1; seed <= 3; ++seed) {
+                const auto sg =
+                    testing_omni::stopAndGo(n, seed, 0.02, 20 * std::sqrt(n / 30.0), 0.3);
+                const auto &before = sg.before, &after = sg.after;
+                SearchOptions o;
+                o.sumTolerance = 6 * 0.02 * kDeg;
+                o.bearingTolerance = 4 * 0.02 * kDeg;
+                // t_e identified (the full search's job)
+                const auto ie = consistentTriangles(after.snapshot, after.truth, o.sumTolerance);
+                const std::string what = std::to_string(n) + " robots, seed " +
+                                         std::to_string(seed) +
+                                         (useOdometerTurn ? ", odometer turn" : ", no heading");
+                const auto local =
+                    localizedRestartSearch(before.snapshot, after.snapshot, ie, 0, 1, sg.travelled,
+                                           sg.turned, o, useOdometerTurn);
+                if (local.witness < 0) {
+                    // every witness tried ambiguous: the caller's fall-back is the full search
+                    EXPECT_EQ(local.witnessesTried, 10u) << what;
+                    EXPECT_NE(local.unconfirmed.find("(10 tried)"), std::string::npos)
+                        << what << ": " << local.unconfirmed;
+                    EXPECT_TRUE(local.before.labels.empty()) << what;
+                    continue;
+                }
+                ++confirmed[useOdometerTurn];
+                EXPECT_GT(local.triangles, 1u) << what;  // chance sums exist
+                EXPECT_EQ(local.before.triangles.size(), 1u) << what;
+                for (size_t r = 0; r < n; ++r)
+                    for (size_t img = 0; img < local.before.labels[r].size(); ++img)
+                        if (const int who = local.before.labels[r][img]; who >= 0) {
+                            EXPECT_EQ(who, before.truth[r][img]) << what;
+                        }
+            }
+    // Measured: heading-free, a triangle in 2 of the six scenes (in the other four every one
+    // of the ten witnesses tried is ambiguous); with the turn in all six.
+    EXPECT_GE(confirmed[0], 2u);
+    EXPECT_EQ(confirmed[1], 6u);
 }
 
 TEST(Methods, ProposedNeedsACommonMovingWitness) {

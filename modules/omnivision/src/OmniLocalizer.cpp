@@ -187,12 +187,15 @@ const OmniResult& OmniLocalizer::result() const {
             }
             Identification ib;
             try {
-                if (options_.localizedSearch) {
-                    const auto local =
-                        localizedRestartSearch(sb, se, ie, a, b, travelled, turned, so);
-                    ib = local.before;
-                    r.localizedSearches.push_back(
-                        {na + " " + nb, local.witnessesTried, local.triples, local.triangles});
+                if (options_.localizedSearch()) {
+                    const auto local = localizedRestartSearch(
+                        sb, se, ie, a, b, travelled, turned, so,
+                        options_.searchAtTb == OmniOptions::SearchAtTb::LocalizedTurn);
+                    r.localizedSearches.push_back({na + " " + nb, local.witnessesTried,
+                                                   local.triples, local.triangles,
+                                                   local.unconfirmed});
+                    // no witness: the fall-back paper 000 names, t_b searched as t_e
+                    ib = local.witness >= 0 ? local.before : identify(sb, so);
                 } else {
                     ib = identify(sb, so);
                 }
@@ -335,12 +338,15 @@ nlohmann::json OmniLocalizer::methodMetrics() const {
     j["robots"] = r.robots.size();
     j["pair"] = r.robots[size_t(r.a)] + " " + r.robots[size_t(r.b)];
     j["restarts"] = r.restarts;
-    j["search_at_tb"] = options_.localizedSearch ? "localized" : "full";
-    for (const auto& l : r.localizedSearches)
-        j["localized_searches"].push_back({{"pair", l.pair},
-                                           {"witnesses_tried", l.witnessesTried},
-                                           {"image_triples", l.triples},
-                                           {"triangles_summing_to_180", l.triangles}});
+    j["search_at_tb"] = OmniOptions::wordOf(options_.searchAtTb);
+    for (const auto& l : r.localizedSearches) {
+        nlohmann::json lj = {{"pair", l.pair},
+                             {"witnesses_tried", l.witnessesTried},
+                             {"image_triples", l.triples},
+                             {"triangles_summing_to_180", l.triangles}};
+        if (!l.fallback.empty()) lj["full_search_instead"] = l.fallback;
+        j["localized_searches"].push_back(lj);
+    }
     j["baseline_L_m"] = r.paper.baseline;
     if (r.moving >= 0) {
         j["moving_robot_C"] = r.robots[size_t(r.moving)];
@@ -354,7 +360,9 @@ nlohmann::json OmniLocalizer::methodMetrics() const {
         sj["triangles"] = r.ids[s].triangles.size();
         sj["seeds_tried"] = r.ids[s].candidates;
         sj["pair_visits"] = r.ids[s].pairVisits;
-        const bool localized = options_.localizedSearch && r.ids.size() == 2 && s == 0;
+        const bool localized = options_.localizedSearch() && r.ids.size() == 2 && s == 0 &&
+                               !r.localizedSearches.empty() &&
+                               r.localizedSearches.back().fallback.empty();
         sj["search"] = localized ? "localized" : "full";
         std::vector<std::string> unresolved;
         std::map<std::string, size_t> why;  // reason's key -> robots

@@ -358,15 +358,31 @@ common::Headline omnivisionHeadline(const method::HeadlineOf<OmniLocalizer>& in)
     h.reached = unresolved == 0;
     // doc/omnivision.md, "The paper's mechanism: as stated, as shipped"
     const auto& options = in.localizer.options();
-    if (options.method == "proposed")
-        h.mechanism = options.localizedSearch
-                          ? "t_b: paper 000's eq. (11)-(12), a triangle of the stopped pair "
-                            "and one witness (search_at_tb = localized), confirmed by the "
-                            "witness's odometer turn (beyond the paper, which rules out "
-                            "heading information)"
-                          : "t_b: the full search, as at t_e (search_at_tb = full; paper 000's "
-                            "eq. (11)-(12) is search_at_tb = localized)";
-    else
+    if (options.method == "proposed") {
+        using Search = OmniOptions::SearchAtTb;
+        const auto searches = method.value("localized_searches", nlohmann::json::array());
+        const bool fellBack = searches.is_array() && !searches.empty() &&
+                              searches.back().is_object() &&
+                              searches.back().contains("full_search_instead");
+        if (options.searchAtTb == Search::Full)
+            h.mechanism =
+                "t_b: the full search, as at t_e (search_at_tb = full; paper 000's eq. "
+                "(11)-(12) is search_at_tb = localized)";
+        else if (fellBack)
+            h.mechanism =
+                "t_b: the full search, paper 000's fall-back: eq. (11)-(12) (search_at_tb = " +
+                OmniOptions::wordOf(options.searchAtTb) + ") confirmed no witness's triangle";
+        else if (options.searchAtTb == Search::Localized)
+            h.mechanism =
+                "t_b: paper 000's eq. (11)-(12), a triangle of the stopped pair and one witness "
+                "(search_at_tb = localized), confirmed without headings by the robots the "
+                "witness saw at t_e";
+        else
+            h.mechanism =
+                "t_b: paper 000's eq. (11)-(12), a triangle of the stopped pair and one witness "
+                "(search_at_tb = localized_turn), confirmed by the witness's odometer turn "
+                "(beyond the paper, which rules out heading information)";
+    } else
         h.mechanism =
             "the conventional method: one measured distance and the sine rule "
             "(paper 000 section 2)";

@@ -32,7 +32,19 @@ Pairs parsePairs(common::IniSection& s, const std::string& key, const Pairs& def
     return out;
 }
 
+/** `search_at_tb`'s words, spelt once (the key, metrics.json, the headline). */
+const std::vector<std::pair<std::string, OmniOptions::SearchAtTb>> kSearchAtTbWords{
+    {"full", OmniOptions::SearchAtTb::Full},
+    {"localized", OmniOptions::SearchAtTb::Localized},
+    {"localized_turn", OmniOptions::SearchAtTb::LocalizedTurn}};
+
 }  // namespace
+
+const std::string& OmniOptions::wordOf(SearchAtTb search) {
+    for (const auto& [word, value] : kSearchAtTbWords)
+        if (value == search) return word;
+    return kSearchAtTbWords.front().first;
+}
 
 const common::KeyTable<OmniOptions>& OmniOptions::keys() {
     using Opt = OmniOptions;
@@ -54,11 +66,13 @@ const common::KeyTable<OmniOptions>& OmniOptions::keys() {
             .real("round_period", MRLOC_KEY_FIELD(roundPeriod), {0, 1e6}, "s",
                   "round r stops pair r at `t_b + r * round_period` (must exceed `t_e - t_b` "
                   "with several pairs)")
-            .choice("search_at_tb", MRLOC_KEY_FIELD(localizedSearch),
-                    std::vector<std::pair<std::string, bool>>{{"full", false}, {"localized", true}},
+            .choice("search_at_tb", MRLOC_KEY_FIELD(searchAtTb), kSearchAtTbWords,
                     "the search at t_b: `full` (every image identified, as at t_e: the "
-                    "refinement then has every robot's odometer) or `localized` (paper 000 eq. "
-                    "(11)-(12): only a triangle of the stopped pair and one witness of t_e)")
+                    "refinement then has every robot's odometer), `localized` (paper 000 eq. "
+                    "(11)-(12): only a triangle of the stopped pair and one witness of t_e, "
+                    "confirmed without headings by the robots the witness saw; the full search "
+                    "when no witness is confirmed) or `localized_turn` (confirmed by the "
+                    "witness's odometer turn instead, beyond the paper)")
             .custom(
                 "measured_pair", "", "",
                 "conventional: `A` measures its distance to `B` (label `A.lidar.B`)",

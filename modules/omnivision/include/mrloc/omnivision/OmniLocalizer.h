@@ -29,6 +29,7 @@ struct OmniResult {
     struct LocalizedCost {
         std::string pair;
         size_t witnessesTried = 0, triples = 0, triangles = 0;
+        std::string fallback;  ///< why the full search ran instead (empty: it did not)
     };
     std::vector<LocalizedCost> localizedSearches;
     int a = -1, b = -1, moving = -1;

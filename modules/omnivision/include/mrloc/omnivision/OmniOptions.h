@@ -23,8 +23,14 @@ struct OmniOptions : public mrpt::config::CLoadableOptions {
     double tb = 10, te = 12, roundPeriod = 10;  ///< s
     /** Proposed: the search at t_b. full: every image identified, as at t_e (the refinement
      *  then has every robot's odometer). localized: seed 000 eq. (11)-(12), only a
-     *  triangle of A, B and one witness of t_e (RestartSearch.h). */
-    bool localizedSearch = false;
+     *  triangle of A, B and one witness of t_e, confirmed without headings, the full search
+     *  its fall-back (RestartSearch.h). localized_turn: the same, confirmed by the witness's
+     *  odometer turn (beyond the paper). */
+    enum class SearchAtTb { Full, Localized, LocalizedTurn };
+    SearchAtTb searchAtTb = SearchAtTb::Full;
+    bool localizedSearch() const { return searchAtTb != SearchAtTb::Full; }
+    /** The INI's word for a search at t_b (`search_at_tb`). */
+    static const std::string& wordOf(SearchAtTb search);
     /** Conventional: the pair whose distance a LiDAR measures, at `snapshot`. */
     std::pair<std::string, std::string> measuredPair{"A", "B"};
     double snapshot = 10;      ///< s
