@@ -86,4 +86,15 @@ inline std::string writeIniFrom(const std::string& base, const std::string& name
     return path;
 }
 
+/** config/beacons_paper_room.ini with a short study (4 choice trials a point instead of 100,
+ *  2 trials elsewhere instead of 10, a 1 m grid instead of 0.5 m), as `name`.ini: for tests
+ *  of what reaches the study or a run's headline, not of the study's figures. */
+inline std::string paperRoomWithAShortStudy(const std::string& name) {
+    const std::string fewer = writeIniFrom(config("beacons_paper_room"), name + "_choice",
+                                           "choice_trials    = 100", "choice_trials = 4");
+    const std::string fewerTrials =
+        writeIniFrom(fewer, name + "_trials", "trials           = 10", "trials = 2");
+    return writeIniFrom(fewerTrials, name, "grid             = 0.5", "grid = 1");
+}
+
 }  // namespace mrloc::testing_cli

@@ -441,16 +441,9 @@ TEST(Seed, ReachesFormationsExperimentAndEffectiveIniReproducesIt) {
 }
 
 TEST(Seed, ReachesTheBeaconStudyAndEffectiveIniReproducesIt) {
-    // every evaluation of the study draws from seedOf(the run's seed, what it evaluates); its
-    // method-choice table at 4 trials a point instead of 100, 2 elsewhere instead of 10, on a
-    // 1 m grid instead of 0.5 m
-    const std::string fewer = writeIniFrom(config("beacons_paper_room"), "seed_beacons_trials",
-                                           "choice_trials    = 100", "choice_trials = 4");
-    const std::string fewerTrials =
-        writeIniFrom(fewer, "seed_beacons_trials2", "trials           = 10", "trials = 2");
-    expectSeedReachesTheExperiment(
-        writeIniFrom(fewerTrials, "seed_beacons", "grid             = 0.5", "grid = 1"),
-        "beacons.study.json");
+    // every evaluation of the study draws from seedOf(the run's seed, what it evaluates); the
+    // study cut short (fewer trials, a coarser grid)
+    expectSeedReachesTheExperiment(paperRoomWithAShortStudy("seed_beacons"), "beacons.study.json");
 }
 
 TEST(Seed, ReachesOmnivisionsAccuracySweepAndEffectiveIniReproducesIt) {

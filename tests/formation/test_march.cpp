@@ -176,3 +176,45 @@ TEST(FormationMarch, BadInputIsAClearError) {
     EXPECT_EQ(message([&] { formation::drawAxisError(NAN, 0.01, rng); }),
               "formation: vertex error mean and sd must be positive");
 }
+
+// Paper 003's Algorithm 1, the rule as written (the anchor on the rear camera's axis, the base
+// beacons at +-d_t pixels): a minimal case of why its march sticks. In exact geometry an
+// anchor d off along the base puts the vertex 2 d the other way (the angle bisector theorem,
+// doc/formation.md), where the reflection (what the midpoint rule realizes) puts it d. Along a
+// strip of triangles, with every move exact and only the first anchor 1 mm off, the paper's
+// rule makes the error grow with the square of the moves (0.69 m after 76 moves, 2.76 m after
+// 153, the many-turns route's count), the reflection with their number (0.5 mm a move). Every
+// real move adds an offset of its own (the lab's 36 / 13 mm), each growing so.
+TEST(FormationAlgorithmOne, ThePapersRuleTurnsOneMillimetreIntoMetresAlongAStrip) {
+    const double s = 1.5, h = s * std::sqrt(3.0) / 2;
+    for (const double d : {0.001, 0.003, 0.01}) {
+        const TPoint2D v = formation::algorithmOneVertex({0, 0}, {s, 0}, {s / 2 + d, h}, s);
+        // first order: -2 d (measured -2.00 d at 1 mm, -1.99 d at 1 cm)
+        EXPECT_NEAR((v.x - s / 2) / d, -2, 0.05) << d;
+        EXPECT_NEAR(v.y, -h, 0.05 * d) << d;
+    }
+    // A strip: vertex n + 1 is vertex n - 2 reflected across the base (n - 1, n). The first
+    // anchor 1 mm off along the first base; nothing else is off.
+    const auto strip = [&](bool papersRule, size_t moves) {
+        std::vector<TPoint2D> ideal{{0, 0}, {s, 0}, {s / 2, h}}, real = ideal;
+        real[0].x += 0.001;
+        std::vector<double> error;
+        for (size_t n = 0; n < moves; ++n) {
+            const size_t k = ideal.size();
+            ideal.push_back(ideal[k - 1] + ideal[k - 2] - ideal[k - 3]);
+            real.push_back(
+                papersRule ? formation::algorithmOneVertex(real[k - 2], real[k - 1], real[k - 3], s)
+                           : real[k - 1] + real[k - 2] - real[k - 3]);
+            error.push_back((real.back() - ideal.back()).norm());
+        }
+        return error;
+    };
+    const auto paper = strip(true, 153), reflection = strip(false, 153);
+    // measured (deterministic): 0.169, 0.687 and 2.756 m after 38, 76 and 153 moves; the
+    // reflection 0.019, 0.038 and 0.077 m. Bounds 1 % out (another compiler's rounding).
+    EXPECT_NEAR(paper[152], 2.756, 0.03);
+    EXPECT_NEAR(paper[75] / paper[37], 4, 0.15);  // twice the moves, four times the error
+    EXPECT_NEAR(paper[152] / paper[75], 4, 0.15);
+    EXPECT_NEAR(reflection[152], 0.0765, 0.001);
+    EXPECT_NEAR(reflection[75] / reflection[37], 2, 0.1);  // twice the moves, twice the error
+}
