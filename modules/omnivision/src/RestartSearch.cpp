@@ -106,15 +106,12 @@ struct Agreement {
  *  triangle misses only robots hidden or gone from K's view in [t_b, t_e]. */
 constexpr double kMissShare = 0.1;
 
+/** `unitsPerMetre`: eq. (8)'s scale from the candidate, at most (see its computation). */
 Agreement agreementOf(const View& vk, const Vec2& kBefore, double kUncertainty,
-                      double headingBefore, double moved, double kTravelled,
+                      double headingBefore, double unitsPerMetre,
                       const std::vector<Placed>& seen, const std::vector<double>& travelled,
                       double bearingTolerance) {
     Agreement g;
-    if (!(kTravelled > 0)) return g;
-    // eq. (8): |AB| = l_K / |K_b - K_e|, so a robot's odometer distance l_j is l_j * moved /
-    // l_K in units of |AB| (at most: both places of K may be off by their uncertainty)
-    const double unitsPerMetre = (moved + 2 * kUncertainty) / kTravelled;
     size_t missed = 0;
     for (const auto& s : seen) {
         const Vec2 d = s.at - kBefore;
@@ -269,6 +266,12 @@ RestartSearch localizedRestartSearch(const Snapshot& before, const Snapshot& aft
                 if ((sb >= 0 ? 1 : -1) == side) continue;  // the same side of AB from B
                 const double atK = M_PI - std::abs(sa) - std::abs(sb);
                 if (atK < -sumTolerance) continue;
+                // K at t_b from A's and B's images alone (none: K on the line AB, no triangle)
+                std::optional<Vec2> placed;
+                try {
+                    placed = unitBaselinePoint(lineDirections(std::abs(sa), std::abs(sb), side));
+                } catch (const Error&) {
+                }
                 for (int ka = 0; ka < int(vk.size()); ++ka) {
                     ++out.triples;
                     // Counter-clockwise triangle A, B, K: from K, B lies counter-clockwise of A.
@@ -276,13 +279,8 @@ RestartSearch localizedRestartSearch(const Snapshot& before, const Snapshot& aft
                         imageNear(vk, vk.bearings[size_t(ka)] + side * atK, sumTolerance);
                     if (!kb || *kb == ka) continue;
                     ++found;
-                    Vec2 kBefore;
-                    try {
-                        kBefore =
-                            unitBaselinePoint(lineDirections(std::abs(sa), std::abs(sb), side));
-                    } catch (const Error&) {
-                        continue;  // K on the line AB: not a triangle
-                    }
+                    if (!placed) continue;
+                    const Vec2& kBefore = *placed;
                     // K's heading at t_b, from this triangle's image of A
                     const double headingBefore =
                         std::atan2(-kBefore.y(), -kBefore.x()) - vk.bearings[size_t(ka)];
@@ -296,10 +294,13 @@ RestartSearch localizedRestartSearch(const Snapshot& before, const Snapshot& aft
                     } else {
                         const double uncertainty =
                             placementUncertainty(kBefore, std::max(atK, 0.0), o.bearingTolerance);
+                        // eq. (8): |AB| = l_K / |K_b - K_e|, so a robot's odometer distance l_j
+                        // is l_j * moved / l_K in units of |AB| (at most: both places of K may
+                        // be off by their uncertainty)
                         f.unitsPerMetre = (moved + 2 * uncertainty) / travelled[size_t(k)];
-                        const auto g =
-                            agreementOf(vk, kBefore, uncertainty, headingBefore, moved,
-                                        travelled[size_t(k)], seen, travelled, o.bearingTolerance);
+                        const auto g = agreementOf(vk, kBefore, uncertainty, headingBefore,
+                                                   f.unitsPerMetre, seen, travelled,
+                                                   o.bearingTolerance);
                         if (!beyondChance(g)) continue;  // chance
                         f.excess = g.excess();
                     }
